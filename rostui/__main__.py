@@ -1,0 +1,5 @@
+"""Allow ``python -m rostui``."""
+
+from rostui.cli.main import main
+
+main()

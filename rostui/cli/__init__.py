@@ -1,0 +1,1 @@
+"""Typer command-line front end; each command is thin and imports lazily."""

@@ -1,0 +1,4 @@
+"""The rostui runtime: ROS 1 names, messages, XML-RPC, master, TCPROS and nodes.
+
+Nothing under ``rostui.core`` imports Textual, Typer or Rich.
+"""

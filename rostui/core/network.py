@@ -1,0 +1,62 @@
+"""Where servers bind and which address a node advertises (ROS_IP, ROS_HOSTNAME).
+
+Safe by default: when the master URI points at a loopback host and neither
+ROS_IP nor ROS_HOSTNAME is set, every server binds 127.0.0.1 only.  Otherwise
+servers bind all interfaces and advertise ROS_IP, ROS_HOSTNAME or the host name,
+as ROS 1 does.
+"""
+
+from __future__ import annotations
+
+import ipaddress
+import os
+import socket
+from dataclasses import dataclass
+from urllib.parse import urlparse
+
+DEFAULT_MASTER_URI = "http://localhost:11311"
+
+
+def master_uri_from_env(override: str | None = None) -> str:
+    """The master URI: an explicit override, else ROS_MASTER_URI, else the ROS default."""
+    uri = override or os.environ.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
+    return uri if uri.endswith("/") else uri + "/"
+
+
+def is_loopback_host(host: str) -> bool:
+    """True for localhost names and 127.0.0.0/8 or ::1 addresses."""
+    if host in ("localhost", "localhost.localdomain", "ip6-localhost"):
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
+
+
+@dataclass(frozen=True)
+class Addressing:
+    """The interface servers bind to and the host name they advertise in URIs."""
+
+    bind_host: str
+    advertise_host: str
+
+
+def resolve_addressing(
+    master_uri: str | None = None, ip: str | None = None, hostname: str | None = None
+) -> Addressing:
+    """Decide bind and advertised addresses from arguments and the environment.
+
+    ``ip`` and ``hostname`` are the ``__ip:=`` / ``__hostname:=`` overrides;
+    when absent ROS_IP and ROS_HOSTNAME are read.  ROS_HOSTNAME wins over
+    ROS_IP, as in rospy.
+    """
+    ip = ip or os.environ.get("ROS_IP") or None
+    hostname = hostname or os.environ.get("ROS_HOSTNAME") or None
+    master_host = urlparse(master_uri_from_env(master_uri)).hostname or "localhost"
+    if hostname is None and ip is None and is_loopback_host(master_host):
+        return Addressing(bind_host="127.0.0.1", advertise_host="127.0.0.1")
+    advertise = hostname or ip or socket.gethostname()
+    if is_loopback_host(advertise):
+        return Addressing(bind_host="127.0.0.1" if ":" not in advertise else "::1",
+                          advertise_host=advertise)
+    return Addressing(bind_host="0.0.0.0", advertise_host=advertise)

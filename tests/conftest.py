@@ -1,0 +1,158 @@
+"""Shared fixtures: free ports, private ROS_HOME, rostui and real ROS masters.
+
+Every test process gets its own ROS_HOME and a master on a free port; port 11311
+and the user's ~/.ros are never touched.  Interop peers (real roscore, rospy,
+roscpp) are required when ROSTUI_REQUIRE_INTEROP=1: a missing peer fails the
+test instead of skipping it.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Iterator
+
+import pytest
+
+SYSTEM_PYTHON = "/usr/bin/python3"
+REPO = Path(__file__).resolve().parent.parent
+
+
+def free_port() -> int:
+    """Return a TCP port on 127.0.0.1 that nothing listens on right now."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def interop_required() -> bool:
+    """True when CI demands that real ROS 1 peers are present."""
+    return os.environ.get("ROSTUI_REQUIRE_INTEROP") == "1"
+
+
+def need_peer(ok: bool, what: str) -> None:
+    """Skip (locally) or fail (in CI) when a real ROS 1 peer is missing."""
+    if ok:
+        return
+    if interop_required():
+        pytest.fail(f"ROSTUI_REQUIRE_INTEROP=1 but {what} is not installed")
+    pytest.skip(f"{what} not installed")
+
+
+def have_rospy() -> bool:
+    """True when Debian's rospy imports under the system Python."""
+    if not Path(SYSTEM_PYTHON).exists():
+        return False
+    r = subprocess.run([SYSTEM_PYTHON, "-c", "import rospy"], capture_output=True)
+    return r.returncode == 0
+
+
+def wait_for_port(port: int, timeout: float = 15.0, proc: subprocess.Popen | None = None) -> None:
+    """Block until something accepts TCP connections on 127.0.0.1:port."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if proc is not None and proc.poll() is not None:
+            out = proc.stdout.read() if proc.stdout else ""
+            raise RuntimeError(f"process exited with {proc.returncode} before listening: {out}")
+        try:
+            with socket.create_connection(("127.0.0.1", port), timeout=0.5):
+                return
+        except OSError:
+            time.sleep(0.05)
+    raise TimeoutError(f"nothing listened on port {port} within {timeout}s")
+
+
+def stop_process(proc: subprocess.Popen, timeout: float = 10.0) -> None:
+    """SIGINT a process, then SIGKILL it if it does not exit in time."""
+    if proc.poll() is not None:
+        return
+    proc.send_signal(2)
+    try:
+        proc.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
+
+
+@pytest.fixture
+def ros_env(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
+    """An environment with a private ROS_HOME and a master URI on a free port.
+
+    It is also applied to this test process, so in-process rostui nodes see it.
+    """
+    port = free_port()
+    home = tmp_path / "ros_home"
+    home.mkdir()
+    values = {
+        "ROS_MASTER_URI": f"http://127.0.0.1:{port}",
+        "ROS_HOME": str(home),
+        "ROS_IP": "127.0.0.1",
+        "PYTHONUNBUFFERED": "1",
+    }
+    for key in ("ROS_HOSTNAME", "ROS_NAMESPACE", "ROS_LOG_DIR", "ROSCONSOLE_FORMAT"):
+        monkeypatch.delenv(key, raising=False)
+    for key, value in values.items():
+        monkeypatch.setenv(key, value)
+    env = dict(os.environ)
+    env["ROSTUI_TEST_MASTER_PORT"] = str(port)
+    return env
+
+
+def master_port(env: dict[str, str]) -> int:
+    """The port of the master URI in a ros_env environment."""
+    return int(env["ROSTUI_TEST_MASTER_PORT"])
+
+
+def rostui_cmd(*args: str) -> list[str]:
+    """The argv that runs the installed rostui command line with this Python."""
+    return [sys.executable, "-m", "rostui", *args]
+
+
+@pytest.fixture
+def rostui_core(ros_env: dict[str, str]) -> Iterator[subprocess.Popen]:
+    """A `rostui core` master (with rosout) on the ros_env port."""
+    port = master_port(ros_env)
+    proc = subprocess.Popen(
+        rostui_cmd("core", "-p", str(port)), env=ros_env,
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+    )
+    try:
+        wait_for_port(port, proc=proc)
+        yield proc
+    finally:
+        stop_process(proc)
+
+
+@pytest.fixture
+def real_roscore(ros_env: dict[str, str]) -> Iterator[subprocess.Popen]:
+    """A real ROS 1 `roscore` on the ros_env port (required in CI)."""
+    need_peer(shutil.which("roscore") is not None, "roscore (Debian ros-core)")
+    port = master_port(ros_env)
+    proc = subprocess.Popen(
+        ["roscore", "-p", str(port)], env=ros_env,
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True,
+    )
+    try:
+        wait_for_port(port, timeout=30, proc=proc)
+        yield proc
+    finally:
+        stop_process(proc)
+
+
+@pytest.fixture(params=["rostui", "roscore"])
+def any_master(request: pytest.FixtureRequest, ros_env: dict[str, str]) -> str:
+    """Run the test once against `rostui core` and once against a real roscore."""
+    fixture = "rostui_core" if request.param == "rostui" else "real_roscore"
+    request.getfixturevalue(fixture)
+    return request.param
+
+
+@pytest.fixture
+def rospy_available() -> None:
+    """Require Debian's rospy under /usr/bin/python3."""
+    need_peer(have_rospy(), "rospy (Debian python3-rospy)")

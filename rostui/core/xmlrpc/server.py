@@ -1,0 +1,356 @@
+"""An asyncio XML-RPC server: HTTP/1.1 keep-alive, Content-Length framing.
+
+Each connection is served by its own task, so a slow or stalled client never
+holds up another.  A request must arrive completely within
+``request_timeout`` seconds of its first byte; a client that sends garbage,
+an oversized body or malformed XML gets an HTTP error or an XML-RPC fault,
+and never brings the server down.
+
+Faults follow Python's SimpleXMLRPCServer, which rosmaster and rospy use:
+code 1 and the string ``"<class 'X'>:message"``.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import inspect
+import logging
+import sys
+import zlib
+from typing import Any, Callable
+
+from .marshal import Fault, decode_call, encode_fault, encode_response, exception_fault_string
+
+__all__ = ["XmlRpcServer", "DEFAULT_MAX_BODY"]
+
+_log = logging.getLogger("rostui.xmlrpc.server")
+
+#: Largest request body accepted by default (64 MiB).
+DEFAULT_MAX_BODY = 64 * 1024 * 1024
+_MAX_HEADER = 64 * 1024
+
+_REASONS = {
+    200: "OK", 400: "Bad Request", 404: "Not Found", 408: "Request Timeout",
+    411: "Length Required", 413: "Content Too Large", 415: "Unsupported Media Type",
+    431: "Request Header Fields Too Large", 501: "Not Implemented", 505: "HTTP Version Not Supported",
+}
+
+if sys.version_info >= (3, 11):
+    _timeout = asyncio.timeout
+else:  # pragma: no cover - Python 3.10
+    @contextlib.asynccontextmanager
+    async def _timeout(delay: float | None):  # type: ignore[no-redef]
+        task = asyncio.current_task()
+        loop = asyncio.get_running_loop()
+        handle = loop.call_later(delay, task.cancel) if delay is not None and task else None
+        try:
+            yield
+        except asyncio.CancelledError as exc:
+            raise TimeoutError from exc
+        finally:
+            if handle is not None:
+                handle.cancel()
+
+
+class _HttpError(Exception):
+    """An HTTP-level error: answer ``status`` and close the connection."""
+
+    def __init__(self, status: int, detail: str) -> None:
+        super().__init__(detail)
+        self.status = status
+
+
+def _fault_string(exc: BaseException) -> str:
+    return exception_fault_string(exc)
+
+
+class XmlRpcServer:
+    """Serve the public methods of ``handler`` over XML-RPC.
+
+    Methods are looked up by name on ``handler``; names starting with ``_``
+    are never exposed.  A method may be a plain function or ``async def``.
+    ``system.multicall`` is answered by the server itself, as Python's
+    SimpleXMLRPCServer does for rosmaster and rospy.
+
+    ``host`` is the interface to bind; ``advertise_host`` (default: ``host``)
+    is the host name put in :attr:`uri`.
+    """
+
+    def __init__(
+        self,
+        handler: object,
+        host: str,
+        port: int = 0,
+        *,
+        advertise_host: str | None = None,
+        max_body: int = DEFAULT_MAX_BODY,
+        request_timeout: float = 60.0,
+        idle_timeout: float | None = None,
+    ) -> None:
+        self.handler = handler
+        self.host = host
+        self.advertise_host = advertise_host or host
+        self.max_body = max_body
+        self.request_timeout = request_timeout
+        self.idle_timeout = idle_timeout
+        self._requested_port = port
+        self._port: int | None = None
+        self._server: asyncio.AbstractServer | None = None
+        self._connections: set[asyncio.Task[None]] = set()
+        self._methods: dict[str, tuple[Callable[..., Any], bool] | None] = {}
+
+    # -- lifecycle ---------------------------------------------------------
+
+    async def start(self) -> None:
+        """Bind and start accepting connections (raises ``OSError`` if the port is taken)."""
+        self._server = await asyncio.start_server(
+            self._on_connection, self.host, self._requested_port,
+            limit=_MAX_HEADER, reuse_address=True, backlog=512,
+        )
+        self._port = self._server.sockets[0].getsockname()[1]
+
+    @property
+    def port(self) -> int:
+        """The TCP port the server listens on (valid after :meth:`start`)."""
+        if self._port is None:
+            raise RuntimeError("XmlRpcServer not started")
+        return self._port
+
+    @property
+    def uri(self) -> str:
+        """``http://<advertise_host>:<port>/`` (valid after :meth:`start`)."""
+        host = self.advertise_host
+        if ":" in host and not host.startswith("["):
+            host = f"[{host}]"
+        return f"http://{host}:{self.port}/"
+
+    async def close(self) -> None:
+        """Stop listening and drop every open connection."""
+        if self._server is not None:
+            self._server.close()
+        tasks = list(self._connections)
+        for task in tasks:
+            task.cancel()
+        if tasks:
+            await asyncio.gather(*tasks, return_exceptions=True)
+        if self._server is not None:
+            with contextlib.suppress(Exception):
+                await self._server.wait_closed()
+            self._server = None
+
+    # -- dispatch ----------------------------------------------------------
+
+    def _lookup(self, name: str) -> tuple[Callable[..., Any], bool] | None:
+        try:
+            return self._methods[name]
+        except KeyError:
+            pass
+        found: tuple[Callable[..., Any], bool] | None = None
+        if name and not name.startswith("_") and "." not in name:
+            fn = getattr(self.handler, name, None)
+            if callable(fn):
+                found = (fn, inspect.iscoroutinefunction(fn))
+        if len(self._methods) < 4096:
+            self._methods[name] = found
+        return found
+
+    async def _invoke(self, method: str, params: tuple[Any, ...] | list[Any]) -> Any:
+        """Call ``method``; exceptions propagate (turned into faults by the caller)."""
+        if method == "system.multicall":
+            if len(params) != 1 or not isinstance(params[0], list):
+                raise TypeError("system.multicall expects one array of calls")
+            return await self._multicall(params[0])
+        entry = self._lookup(method)
+        if entry is None:
+            raise Exception(f'method "{method}" is not supported')
+        fn, is_async = entry
+        if is_async:
+            return await fn(*params)
+        result = fn(*params)
+        if inspect.isawaitable(result):
+            result = await result
+        return result
+
+    async def _multicall(self, calls: list[Any]) -> list[Any]:
+        results: list[Any] = []
+        for call in calls:
+            try:
+                if not isinstance(call, dict):
+                    raise TypeError("multicall entry must be a struct")
+                name = call["methodName"]
+                params = call.get("params", [])
+                if name == "system.multicall":
+                    raise Exception("Recursive system.multicall forbidden")
+                if not isinstance(params, list):
+                    raise TypeError("params must be an array")
+                results.append([await self._invoke(name, params)])
+            except Fault as fault:
+                results.append({"faultCode": fault.faultCode, "faultString": fault.faultString})
+            except asyncio.CancelledError:
+                raise
+            except Exception as exc:
+                results.append({"faultCode": 1, "faultString": _fault_string(exc)})
+        return results
+
+    async def _respond_body(self, body: bytes) -> bytes:
+        try:
+            params, method = decode_call(body)
+        except Exception as exc:  # malformed XML, bad values, DTDs
+            return encode_fault(1, _fault_string(exc))
+        try:
+            result = await self._invoke(method, params)
+        except Fault as fault:
+            return encode_fault(fault.faultCode, fault.faultString)
+        except asyncio.CancelledError:
+            raise
+        except Exception as exc:
+            if not isinstance(exc, TypeError):
+                _log.debug("XML-RPC method %s raised", method, exc_info=True)
+            return encode_fault(1, _fault_string(exc))
+        try:
+            return encode_response(result)
+        except Exception as exc:  # e.g. int beyond 32 bits: a fault, as rosmaster sends
+            return encode_fault(1, _fault_string(exc))
+
+    # -- HTTP --------------------------------------------------------------
+
+    def _on_connection(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        task = asyncio.get_running_loop().create_task(self._serve(reader, writer))
+        self._connections.add(task)
+        task.add_done_callback(self._connections.discard)
+
+    async def _serve(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        try:
+            while True:
+                if not await self._serve_one(reader, writer):
+                    break
+        except (ConnectionError, asyncio.IncompleteReadError, TimeoutError, OSError):
+            pass
+        except asyncio.CancelledError:
+            pass
+        except Exception:  # never let one client take the server down
+            _log.exception("unexpected error serving an XML-RPC connection")
+        finally:
+            writer.close()
+            with contextlib.suppress(Exception):
+                await writer.wait_closed()
+
+    async def _send_error(self, writer: asyncio.StreamWriter, status: int, detail: str) -> None:
+        body = f"{status} {_REASONS.get(status, 'Error')}: {detail}\n".encode()
+        writer.write(
+            b"HTTP/1.1 %d %s\r\nContent-Type: text/plain\r\nContent-Length: %d\r\n"
+            b"Connection: close\r\n\r\n" % (status, _REASONS.get(status, "Error").encode(), len(body))
+            + body
+        )
+        with contextlib.suppress(Exception):
+            async with _timeout(5.0):
+                await writer.drain()
+
+    async def _serve_one(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> bool:
+        """Serve one request; return False when the connection must close."""
+        # Idle keep-alive wait: unbounded unless idle_timeout is set.
+        if self.idle_timeout is None:
+            first = await reader.read(1)
+        else:
+            async with _timeout(self.idle_timeout):
+                first = await reader.read(1)
+        if not first:
+            return False
+        try:
+            async with _timeout(self.request_timeout):
+                try:
+                    head = first + await reader.readuntil(b"\r\n\r\n")
+                except asyncio.LimitOverrunError:
+                    raise _HttpError(431, "request header too large") from None
+                except asyncio.IncompleteReadError:
+                    return False
+                method, keep_alive, length, encoding, expect = self._parse_head(head)
+                if expect:
+                    writer.write(b"HTTP/1.1 100 Continue\r\n\r\n")
+                body = await reader.readexactly(length) if length else b""
+        except TimeoutError:
+            await self._send_error(writer, 408, "request not received in time")
+            return False
+        except _HttpError as err:
+            await self._send_error(writer, err.status, str(err))
+            return False
+        if encoding:
+            try:
+                body = self._decode_body(body, encoding)
+            except _HttpError as err:
+                await self._send_error(writer, err.status, str(err))
+                return False
+        response = await self._respond_body(body)
+        writer.write(
+            b"HTTP/1.1 200 OK\r\nServer: rostui-xmlrpc\r\nContent-Type: text/xml\r\n"
+            b"Content-Length: %d\r\n%s\r\n" % (
+                len(response), b"" if keep_alive else b"Connection: close\r\n")
+            + response
+        )
+        transport = writer.transport
+        if transport.get_write_buffer_size() > 65536:
+            await writer.drain()
+        return keep_alive
+
+    def _parse_head(self, head: bytes) -> tuple[bytes, bool, int, str, bool]:
+        lines = head[:-4].split(b"\r\n")
+        parts = lines[0].split()
+        if len(parts) != 3:
+            raise _HttpError(400, "malformed request line")
+        method, _target, version = parts
+        if version == b"HTTP/1.1":
+            keep_alive = True
+        elif version == b"HTTP/1.0":
+            keep_alive = False
+        elif version.startswith(b"HTTP/"):
+            raise _HttpError(505, "only HTTP/1.0 and HTTP/1.1 are supported")
+        else:
+            raise _HttpError(400, "malformed request line")
+        if method != b"POST":
+            raise _HttpError(501, "only POST is supported")
+        length: int | None = None
+        encoding = ""
+        expect = False
+        for line in lines[1:]:
+            name, sep, value = line.partition(b":")
+            if not sep:
+                raise _HttpError(400, "malformed header line")
+            name = name.strip().lower()
+            value = value.strip()
+            if name == b"content-length":
+                if not value.isdigit() or len(value) > 18:
+                    raise _HttpError(400, "bad Content-Length")
+                length = int(value)
+            elif name == b"connection":
+                token = value.lower()
+                if b"close" in token:
+                    keep_alive = False
+                elif b"keep-alive" in token:
+                    keep_alive = True
+            elif name == b"transfer-encoding":
+                raise _HttpError(411, "chunked requests are not supported; send Content-Length")
+            elif name == b"content-encoding":
+                encoding = value.lower().decode("latin-1")
+            elif name == b"expect" and value.lower() == b"100-continue":
+                expect = True
+        if length is None:
+            raise _HttpError(411, "Content-Length required")
+        if length > self.max_body:
+            raise _HttpError(413, f"request body of {length} bytes exceeds {self.max_body}")
+        return method, keep_alive, length, encoding, expect
+
+    def _decode_body(self, body: bytes, encoding: str) -> bytes:
+        if encoding in ("identity", ""):
+            return body
+        if encoding not in ("gzip", "x-gzip"):
+            raise _HttpError(415, f"unsupported Content-Encoding {encoding}")
+        decomp = zlib.decompressobj(16 + zlib.MAX_WBITS)
+        try:
+            out = decomp.decompress(body, self.max_body + 1)
+        except zlib.error as exc:
+            raise _HttpError(400, f"bad gzip body: {exc}") from None
+        if len(out) > self.max_body or decomp.unconsumed_tail:
+            raise _HttpError(413, "decompressed body too large")
+        return out
+

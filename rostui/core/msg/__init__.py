@@ -1,0 +1,49 @@
+"""ROS 1 message and service types: .msg/.srv loading, md5, (de)serialization, dict/YAML views.
+
+Typical use::
+
+    from rostui.core.msg import get_message_class
+    String = get_message_class("std_msgs/String")
+    data = String(data="hi").serialize()
+    msg = String.deserialize(data)
+"""
+
+from __future__ import annotations
+
+from ..rostime import Duration, Time
+from .errors import (
+    DeserializationError,
+    MessageError,
+    MessageSpecError,
+    MessageValueError,
+    SerializationError,
+    UnknownMessageTypeError,
+)
+from .message import Message, Service
+from .registry import (
+    DEFINITION_SEPARATOR,
+    TypeStore,
+    clear_cache,
+    full_text,
+    get_message_class,
+    get_message_spec,
+    get_service_class,
+    get_service_spec,
+    list_message_types,
+    list_service_types,
+    md5sum,
+    register_types_from_definition,
+)
+from .spec import BUILTIN_TYPES, PRIMITIVE_TYPES, Constant, Field, MsgSpec, SrvSpec, parse_msg_text, parse_srv_text
+
+__all__ = [
+    "Time", "Duration",
+    "MessageError", "UnknownMessageTypeError", "MessageSpecError", "SerializationError",
+    "DeserializationError", "MessageValueError",
+    "Message", "Service",
+    "DEFINITION_SEPARATOR", "TypeStore", "clear_cache", "full_text", "get_message_class",
+    "get_message_spec", "get_service_class", "get_service_spec", "list_message_types",
+    "list_service_types", "md5sum", "register_types_from_definition",
+    "BUILTIN_TYPES", "PRIMITIVE_TYPES", "Constant", "Field", "MsgSpec", "SrvSpec",
+    "parse_msg_text", "parse_srv_text",
+]

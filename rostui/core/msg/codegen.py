@@ -1,0 +1,454 @@
+"""Generate fast Python source for message classes and ``exec`` it.
+
+For each type we emit straight-line ``serialize``/``deserialize`` code in which
+nested (non-array) messages are inlined and runs of consecutive fixed-size
+fields share one precompiled :class:`struct.Struct`.  Strings, byte arrays and
+variable arrays are length-checked before slicing, so a truncated or hostile
+buffer raises :class:`DeserializationError` instead of over-allocating.
+"""
+
+from __future__ import annotations
+
+import keyword
+import struct
+from typing import Any, Callable
+
+from ..rostime import Duration, Time
+from .errors import DeserializationError, SerializationError
+from .message import Message, hybridmethod
+from .spec import Field, MsgSpec
+
+__all__ = ["build_message_class", "min_size", "PRIMITIVE_STRUCT"]
+
+PRIMITIVE_STRUCT: dict[str, tuple[str, int]] = {
+    "bool": ("B", 1), "int8": ("b", 1), "uint8": ("B", 1), "byte": ("b", 1), "char": ("B", 1),
+    "int16": ("h", 2), "uint16": ("H", 2), "int32": ("i", 4), "uint32": ("I", 4),
+    "int64": ("q", 8), "uint64": ("Q", 8), "float32": ("f", 4), "float64": ("d", 8),
+}
+"""struct format char and byte size of each fixed-size primitive (serialization side)."""
+
+_FLOATS = ("float32", "float64")
+_MAX_EMPTY_ELEMENTS = 1 << 20  # cap for arrays whose elements may take zero bytes
+
+
+def _deser_char(t: str) -> str:
+    return "?" if t == "bool" else PRIMITIVE_STRUCT[t][0]
+
+
+def min_size(spec: MsgSpec, get_spec: Callable[[str], MsgSpec]) -> int:
+    """The fewest bytes a serialized instance of *spec* can take."""
+    total = 0
+    for f in spec.fields:
+        if f.is_array and f.array_len is None:
+            total += 4
+            continue
+        n = f.array_len if f.is_array else 1
+        assert n is not None
+        total += n * _elem_min_size(f.base_type, get_spec)
+    return total
+
+
+def _elem_min_size(t: str, get_spec: Callable[[str], MsgSpec]) -> int:
+    if t in PRIMITIVE_STRUCT:
+        return PRIMITIVE_STRUCT[t][1]
+    if t == "string":
+        return 4
+    if t in ("time", "duration"):
+        return 8
+    return min_size(get_spec(t), get_spec)
+
+
+def default_expr(f: Field, cls_var: Callable[[str], str]) -> str:
+    """A Python expression building the default value of field *f*."""
+    t = f.base_type
+    if f.is_array:
+        if t in ("uint8", "char"):
+            return f"b'\\x00' * {f.array_len}" if f.array_len is not None else "b''"
+        if f.array_len is None:
+            return "[]"
+        return f"[{_scalar_default(t, cls_var)} for _ in _range({f.array_len})]"
+    return _scalar_default(t, cls_var)
+
+
+def _scalar_default(t: str, cls_var: Callable[[str], str]) -> str:
+    if t in _FLOATS:
+        return "0.0"
+    if t == "bool":
+        return "False"
+    if t in PRIMITIVE_STRUCT:
+        return "0"
+    if t == "string":
+        return "''"
+    if t == "time":
+        return "_Time()"
+    if t == "duration":
+        return "_Duration()"
+    return f"{cls_var(t)}()"
+
+
+class _Gen:
+    """Code emitter shared by the serializer and deserializer walkers."""
+
+    def __init__(self, ns: dict[str, Any], get_spec: Callable[[str], MsgSpec], cls_var: Callable[[str], str]) -> None:
+        self.ns = ns
+        self.get_spec = get_spec
+        self.cls_var = cls_var
+        self.lines: list[str] = []
+        self.counter = 0
+        self.structs: dict[str, str] = {}
+
+    def var(self, prefix: str) -> str:
+        self.counter += 1
+        return f"{prefix}{self.counter}"
+
+    def struct(self, fmt: str) -> str:
+        name = self.structs.get(fmt)
+        if name is None:
+            name = f"_S{len(self.structs)}"
+            self.structs[fmt] = name
+            self.ns[name] = struct.Struct("<" + fmt)
+        return name
+
+    def emit(self, indent: int, line: str) -> None:
+        self.lines.append("    " * indent + line)
+
+
+class _SerWalker(_Gen):
+    """Emits the body of ``serialize`` (writes chunks with ``_w``)."""
+
+    def __init__(self, *a: Any) -> None:
+        super().__init__(*a)
+        self.run: list[tuple[str, str]] = []
+
+    def flush(self, ind: int) -> None:
+        if not self.run:
+            return
+        fmt = "".join(c for c, _ in self.run)
+        args = ", ".join(e for _, e in self.run)
+        self.emit(ind, f"_w({self.struct(fmt)}.pack({args}))")
+        self.run = []
+
+    def fields(self, spec: MsgSpec, p: str, ind: int) -> None:
+        for f in spec.fields:
+            self.field(f, f"{p}.{f.name}", ind)
+
+    def bytes_of(self, expr: str, ind: int) -> str:
+        x = self.var("_x")
+        self.emit(ind, f"{x} = {expr}")
+        self.emit(ind, f"if {x}.__class__ is not bytes: {x} = _as_bytes({x})")
+        return x
+
+    def field(self, f: Field, e: str, ind: int) -> None:
+        t = f.base_type
+        if not f.is_array:
+            if t in PRIMITIVE_STRUCT:
+                self.run.append((PRIMITIVE_STRUCT[t][0], e))
+            elif t == "string":
+                x = self.var("_x")
+                self.emit(ind, f"{x} = {e}")
+                self.emit(ind, f"if isinstance({x}, str): {x} = {x}.encode()")
+                self.run.append(("I", f"len({x})"))
+                self.flush(ind)
+                self.emit(ind, f"_w({x})")
+            elif t in ("time", "duration"):
+                c = "I" if t == "time" else "i"
+                v = self.var("_t")
+                self.emit(ind, f"{v} = {e}")
+                self.run += [(c, f"{v}.secs"), (c, f"{v}.nsecs")]
+            else:
+                v = self.var("_v")
+                self.emit(ind, f"{v} = {e}")
+                self.fields(self.get_spec(t), v, ind)
+            return
+        n = f.array_len
+        if t in ("uint8", "char"):
+            x = self.bytes_of(e, ind)
+            if n is None:
+                self.run.append(("I", f"len({x})"))
+                self.flush(ind)
+                self.emit(ind, f"_w({x})")
+            else:
+                self.emit(ind, f"if len({x}) != {n}: raise _SerErr('{f.name}: expected {n} bytes, got %d' % len({x}))")
+                self.run.append((f"{n}s", x))
+            return
+        if t in PRIMITIVE_STRUCT:
+            ch = PRIMITIVE_STRUCT[t][0]
+            if n is None:
+                x = self.var("_x")
+                self.emit(ind, f"{x} = {e}")
+                self.run.append(("I", f"len({x})"))
+                self.flush(ind)
+                self.emit(ind, f"_w(_pack('<%d{ch}' % len({x}), *{x}))")
+            else:
+                self.run.append((f"{n}{ch}", f"*{e}"))
+            return
+        x = self.var("_x")
+        self.emit(ind, f"{x} = {e}")
+        if n is None:
+            self.run.append(("I", f"len({x})"))
+        else:
+            self.emit(ind, f"if len({x}) != {n}: raise _SerErr('{f.name}: expected {n} elements, got %d' % len({x}))")
+        self.flush(ind)
+        it = self.var("_i")
+        self.emit(ind, f"for {it} in {x}:")
+        if t == "string":
+            self.emit(ind + 1, f"if isinstance({it}, str): {it} = {it}.encode()")
+            self.emit(ind + 1, f"_w(_pack_I(len({it})))")
+            self.emit(ind + 1, f"_w({it})")
+        elif t in ("time", "duration"):
+            s = self.struct("2I" if t == "time" else "2i")
+            self.emit(ind + 1, f"_w({s}.pack({it}.secs, {it}.nsecs))")
+        else:
+            self.fields(self.get_spec(t), it, ind + 1)
+            self.flush(ind + 1)
+
+
+class _DeserWalker(_Gen):
+    """Emits the body of ``_deser`` (reads ``_buf`` from offset ``_o``; ``_n`` = len)."""
+
+    def __init__(self, *a: Any) -> None:
+        super().__init__(*a)
+        self.run: list[tuple[str, str]] = []
+        self.post: list[str] = []
+
+    def flush(self, ind: int) -> None:
+        if not self.run:
+            return
+        fmt = "".join(c for c, _ in self.run)
+        targets = ", ".join(e for _, e in self.run)
+        s = self.struct(fmt)
+        self.emit(ind, f"{targets}, = {s}.unpack_from(_buf, _o)")
+        self.emit(ind, f"_o += {struct.calcsize('<' + fmt)}")
+        for line in self.post:
+            self.emit(ind, line)
+        self.run = []
+        self.post = []
+
+    def fields(self, spec: MsgSpec, p: str, ind: int) -> None:
+        for f in spec.fields:
+            self.field(f, p, ind)
+
+    def new_obj(self, t: str) -> str:
+        if t == "time":
+            return "_new(_Time)"
+        if t == "duration":
+            return "_new(_Duration)"
+        return f"_new({self.cls_var(t)})"
+
+    def count(self, f: Field, ind: int, elem_min: int) -> str:
+        """Emit code leaving the element count in a fresh variable (checked against the buffer)."""
+        if f.array_len is not None:
+            return str(f.array_len)
+        c = self.var("_c")
+        self.run.append(("I", c))
+        self.flush(ind)
+        if elem_min > 0:
+            self.emit(ind, f"if {c} * {elem_min} > _n - _o: raise _DeserErr('{f.name}: array length %d exceeds buffer' % {c})")
+        else:
+            self.emit(ind, f"if {c} > {_MAX_EMPTY_ELEMENTS}: raise _DeserErr('{f.name}: implausible array length %d' % {c})")
+        return c
+
+    def field(self, f: Field, p: str, ind: int) -> None:
+        t = f.base_type
+        target = f"{p}.{f.name}"
+        if not f.is_array:
+            if t in PRIMITIVE_STRUCT:
+                self.run.append((_deser_char(t), target))
+            elif t == "string":
+                ln = self.var("_l")
+                self.run.append(("I", ln))
+                self.flush(ind)
+                e = self.var("_e")
+                self.emit(ind, f"{e} = _o + {ln}")
+                self.emit(ind, f"if {e} > _n: raise _DeserErr('{f.name}: string runs past end of buffer')")
+                self.emit(ind, f"{target} = _buf[_o:{e}].decode('utf-8', 'replace')")
+                self.emit(ind, f"_o = {e}")
+            elif t in ("time", "duration"):
+                v = self.var("_t")
+                self.emit(ind, f"{v} = {target} = {self.new_obj(t)}")
+                c = "I" if t == "time" else "i"
+                self.run += [(c, f"{v}.secs"), (c, f"{v}.nsecs")]
+                self.post.append(f"if not 0 <= {v}.nsecs < 1000000000: {v}.canon()")
+            else:
+                v = self.var("_v")
+                self.emit(ind, f"{v} = {target} = {self.new_obj(t)}")
+                self.fields(self.get_spec(t), v, ind)
+            return
+        n = f.array_len
+        if t in ("uint8", "char"):
+            if n is not None:
+                self.run.append((f"{n}s", target))
+                return
+            c = self.count(f, ind, 1)
+            e = self.var("_e")
+            self.emit(ind, f"{e} = _o + {c}")
+            self.emit(ind, f"{target} = _buf[_o:{e}]")
+            self.emit(ind, f"_o = {e}")
+            return
+        if t in PRIMITIVE_STRUCT:
+            ch = _deser_char(t)
+            size = PRIMITIVE_STRUCT[t][1]
+            if n is not None:
+                self.flush(ind)
+                s = self.struct(f"{n}{ch}")
+                self.emit(ind, f"{target} = list({s}.unpack_from(_buf, _o))")
+                self.emit(ind, f"_o += {n * size}")
+            else:
+                c = self.count(f, ind, size)
+                self.emit(ind, f"{target} = list(_unpack_from('<%d{ch}' % {c}, _buf, _o))")
+                self.emit(ind, f"_o += {c} * {size}")
+            return
+        elem_min = _elem_min_size(t, self.get_spec)
+        if n is not None:
+            self.flush(ind)
+        c = self.count(f, ind, elem_min)
+        a = self.var("_a")
+        self.emit(ind, f"{a} = []")
+        self.emit(ind, f"_ap{a} = {a}.append")
+        it = self.var("_i")
+        self.emit(ind, f"for {it} in _range({c}):")
+        if t == "string":
+            ln, e = self.var("_l"), self.var("_e")
+            self.emit(ind + 1, f"{ln}, = _unpack_I(_buf, _o)")
+            self.emit(ind + 1, f"_o += 4")
+            self.emit(ind + 1, f"{e} = _o + {ln}")
+            self.emit(ind + 1, f"if {e} > _n: raise _DeserErr('{f.name}: string runs past end of buffer')")
+            self.emit(ind + 1, f"_ap{a}(_buf[_o:{e}].decode('utf-8', 'replace'))")
+            self.emit(ind + 1, f"_o = {e}")
+        elif t in ("time", "duration"):
+            v = self.var("_t")
+            s = self.struct("2I" if t == "time" else "2i")
+            self.emit(ind + 1, f"{v} = {self.new_obj(t)}")
+            self.emit(ind + 1, f"{v}.secs, {v}.nsecs = {s}.unpack_from(_buf, _o)")
+            self.emit(ind + 1, "_o += 8")
+            self.emit(ind + 1, f"if not 0 <= {v}.nsecs < 1000000000: {v}.canon()")
+            self.emit(ind + 1, f"_ap{a}({v})")
+        else:
+            v = self.var("_v")
+            self.emit(ind + 1, f"{v} = {self.new_obj(t)}")
+            self.fields(self.get_spec(t), v, ind + 1)
+            self.flush(ind + 1)
+            self.emit(ind + 1, f"_ap{a}({v})")
+        self.emit(ind, f"{target} = {a}")
+
+
+def _as_bytes(value: Any) -> bytes:
+    """Coerce a uint8[]/char[] field value (bytes-like or list of ints) to bytes."""
+    if isinstance(value, str):
+        return value.encode("latin-1")
+    return bytes(value)
+
+
+def _raise_short(msg: str) -> None:
+    raise DeserializationError(msg)
+
+
+def build_message_class(
+    spec: MsgSpec,
+    md5sum: str,
+    full_text: str,
+    get_spec: Callable[[str], MsgSpec],
+    get_class: Callable[[str], type[Message]],
+) -> type[Message]:
+    """Generate, compile and return the Python class for *spec*.
+
+    *get_spec* and *get_class* resolve nested message types (their classes
+    must be buildable first; ROS types cannot be recursive).
+    """
+    ns: dict[str, Any] = {
+        "_Time": Time, "_Duration": Duration, "_new": object.__new__, "_range": range,
+        "_pack": struct.pack, "_pack_I": struct.Struct("<I").pack,
+        "_unpack_from": struct.unpack_from, "_unpack_I": struct.Struct("<I").unpack_from,
+        "_as_bytes": _as_bytes, "_SerErr": SerializationError, "_DeserErr": DeserializationError,
+        "_struct_error": struct.error,
+    }
+    cls_vars: dict[str, str] = {}
+
+    def cls_var(t: str) -> str:
+        name = cls_vars.get(t)
+        if name is None:
+            name = "_C_" + t.replace("/", "__")
+            cls_vars[t] = name
+            ns[name] = get_class(t)
+        return name
+
+    fields = spec.fields
+    names = [f.name for f in fields]
+    lines: list[str] = []
+    # __init__
+    simple = all(n.isidentifier() and not keyword.iskeyword(n) and n != "self" for n in names)
+    defaults = {f.name: default_expr(f, cls_var) for f in fields}
+    if simple and names:
+        params = ", ".join(f"{n}=None" for n in names)
+        lines.append(f"def __init__(self, {params}):")
+        lines.append('    """Fields may be given positionally (field order) or by keyword; missing ones get defaults."""')
+        for n in names:
+            lines.append(f"    self.{n} = {defaults[n]} if {n} is None else {n}")
+    elif not names:
+        lines.append("def __init__(self):")
+        lines.append('    """This message has no fields."""')
+    # defaults table
+    lines.append("_defaults = {" + ", ".join(f"{n!r}: lambda: {defaults[n]}" for n in names) + "}")
+
+    # serialize
+    sw = _SerWalker(ns, get_spec, cls_var)
+    sw.fields(spec, "self", 2)
+    sw.flush(2)
+    lines.append("def serialize(self):")
+    lines.append('    """The message in ROS 1 wire format (little endian)."""')
+    lines.append("    _b = []")
+    lines.append("    _w = _b.append")
+    lines.append("    try:")
+    lines.extend(sw.lines or ["        pass"])
+    lines.append("    except _SerErr:")
+    lines.append("        raise")
+    lines.append("    except (_struct_error, TypeError, ValueError, AttributeError, OverflowError) as _exc:")
+    lines.append(f"        raise _SerErr('cannot serialize {spec.type_name}: %s' % (_exc,)) from _exc")
+    lines.append("    return b''.join(_b)")
+
+    # deserialize
+    dw = _DeserWalker(ns, get_spec, cls_var)
+    dw.structs = sw.structs  # share Struct objects
+    dw.counter = sw.counter
+    dw.fields(spec, "self", 2)
+    dw.flush(2)
+    lines.append("def _deser(cls, _buf):")
+    lines.append('    """Build a message from *_buf* (bytes, bytearray or memoryview)."""')
+    lines.append("    if _buf.__class__ is not bytes: _buf = bytes(_buf)")
+    lines.append("    _n = len(_buf)")
+    lines.append("    _o = 0")
+    lines.append("    self = _new(cls)")
+    lines.append("    try:")
+    lines.extend(dw.lines or ["        pass"])
+    lines.append("    except _DeserErr as _exc:")
+    lines.append(f"        raise _DeserErr('{spec.type_name}: %s' % (_exc,)) from None")
+    lines.append("    except (_struct_error, ValueError, OverflowError, MemoryError) as _exc:")
+    lines.append(f"        raise _DeserErr('{spec.type_name}: buffer too short or corrupt (%s)' % (_exc,)) from None")
+    lines.append("    return self")
+
+    source = "\n".join(lines) + "\n"
+    code = compile(source, f"<rostui msg {spec.type_name}>", "exec")
+    exec(code, ns)
+
+    attrs: dict[str, Any] = {
+        "__slots__": tuple(names),
+        "__doc__": f"ROS message {spec.type_name} (generated by rostui).",
+        "__module__": "rostui.core.msg.generated",
+        "_type": spec.type_name,
+        "_md5sum": md5sum,
+        "_full_text": full_text,
+        "_has_header": spec.has_header,
+        "_slot_types": [f.type for f in fields],
+        "_defaults": ns["_defaults"],
+        "_spec": spec,
+        "_source": source,
+        "serialize": ns["serialize"],
+        "deserialize": hybridmethod(ns["_deser"]),
+    }
+    if "__init__" in ns:
+        attrs["__init__"] = ns["__init__"]
+    for c in spec.constants:
+        attrs[c.name] = c.value
+    cls = type(spec.short_name, (Message,), attrs)
+    cls.__qualname__ = spec.short_name
+    return cls

@@ -1,0 +1,382 @@
+"""Type registry: loads .msg/.srv specs from packages, computes md5 and full text, builds classes.
+
+The default store loads lazily from rostui's built-in ``share/`` packages and
+ROS_PACKAGE_PATH (see :mod:`rostui.core.packages`).  Types learnt from a
+connection header's ``message_definition`` can be added with
+:func:`register_types_from_definition`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import threading
+from pathlib import Path
+from typing import Any
+
+from .. import packages
+from .codegen import build_message_class
+from .errors import MessageSpecError, UnknownMessageTypeError
+from .message import Message, Service
+from .spec import HEADER_TYPE, MsgSpec, SrvSpec, is_valid_type_name, parse_msg_text, parse_srv_text
+
+__all__ = [
+    "DEFINITION_SEPARATOR",
+    "TypeStore",
+    "default_store",
+    "get_message_class",
+    "get_service_class",
+    "get_message_spec",
+    "get_service_spec",
+    "md5sum",
+    "full_text",
+    "register_types_from_definition",
+    "list_message_types",
+    "list_service_types",
+    "normalize_type_name",
+    "clear_cache",
+]
+
+DEFINITION_SEPARATOR = "=" * 80
+"""The line between types in a ``message_definition`` / ``_full_text``."""
+
+
+def normalize_type_name(type_name: str) -> str:
+    """Map ``Header`` to ``std_msgs/Header`` and validate ``pkg/Name``."""
+    if type_name == "Header":
+        return HEADER_TYPE
+    if not is_valid_type_name(type_name):
+        raise UnknownMessageTypeError(type_name, "not a valid pkg/Type name")
+    return type_name
+
+
+class TypeStore:
+    """Specs, md5 sums, full texts and generated classes for a set of types.
+
+    With ``load_from_packages=True`` unknown names are looked up as
+    ``<pkg>/msg/<Name>.msg`` / ``<pkg>/srv/<Name>.srv`` in the package roots.
+    """
+
+    def __init__(self, load_from_packages: bool = True) -> None:
+        """Create an empty store."""
+        self.load_from_packages = load_from_packages
+        self._specs: dict[str, MsgSpec] = {}
+        self._srv_specs: dict[str, SrvSpec] = {}
+        self._md5: dict[str, str] = {}
+        self._md5_text: dict[str, str] = {}
+        self._full: dict[str, str] = {}
+        self._classes: dict[str, type[Message]] = {}
+        self._srv_classes: dict[str, type[Service]] = {}
+        self._building: set[str] = set()
+        self._lock = threading.RLock()
+
+    # -- specs -------------------------------------------------------------
+    def add_spec(self, spec: MsgSpec) -> None:
+        """Register a message spec (replacing nothing already present)."""
+        with self._lock:
+            self._specs.setdefault(spec.type_name, spec)
+
+    def has_type(self, type_name: str) -> bool:
+        """True when *type_name* is known or loadable."""
+        try:
+            self.get_spec(type_name)
+        except UnknownMessageTypeError:
+            return False
+        return True
+
+    def get_spec(self, type_name: str) -> MsgSpec:
+        """The spec of message type *type_name*; raises UnknownMessageTypeError/MessageSpecError."""
+        spec = self._specs.get(type_name)
+        if spec is not None:
+            return spec
+        type_name = normalize_type_name(type_name)
+        with self._lock:
+            spec = self._specs.get(type_name)
+            if spec is not None:
+                return spec
+            pkg, _, name = type_name.partition("/")
+            if self.load_from_packages:
+                pkg_dir = packages.find_package(pkg)
+                if pkg_dir is not None:
+                    path = pkg_dir / "msg" / f"{name}.msg"
+                    if path.is_file():
+                        spec = parse_msg_text(_read(path), type_name, str(path))
+                        self._specs[type_name] = spec
+                        return spec
+                    for suffix in ("Request", "Response"):
+                        if name.endswith(suffix) and len(name) > len(suffix):
+                            srv_name = f"{pkg}/{name[: -len(suffix)]}"
+                            try:
+                                self.get_srv_spec(srv_name)
+                            except UnknownMessageTypeError:
+                                break
+                            return self._specs[type_name]
+                    raise UnknownMessageTypeError(type_name, f"no {name}.msg in package {pkg} ({pkg_dir})")
+                raise UnknownMessageTypeError(type_name, f"package {pkg} not found")
+            raise UnknownMessageTypeError(type_name)
+
+    def get_srv_spec(self, type_name: str) -> SrvSpec:
+        """The spec of service type *type_name*."""
+        spec = self._srv_specs.get(type_name)
+        if spec is not None:
+            return spec
+        if not is_valid_type_name(type_name):
+            raise UnknownMessageTypeError(type_name, "not a valid pkg/Type name")
+        with self._lock:
+            spec = self._srv_specs.get(type_name)
+            if spec is not None:
+                return spec
+            pkg, _, name = type_name.partition("/")
+            pkg_dir = packages.find_package(pkg) if self.load_from_packages else None
+            if pkg_dir is None:
+                raise UnknownMessageTypeError(type_name, f"package {pkg} not found")
+            path = pkg_dir / "srv" / f"{name}.srv"
+            if not path.is_file():
+                raise UnknownMessageTypeError(type_name, f"no {name}.srv in package {pkg} ({pkg_dir})")
+            spec = parse_srv_text(_read(path), type_name, str(path))
+            self._srv_specs[type_name] = spec
+            self._specs.setdefault(spec.request.type_name, spec.request)
+            self._specs.setdefault(spec.response.type_name, spec.response)
+            return spec
+
+    def add_srv_spec(self, spec: SrvSpec) -> None:
+        """Register a service spec and its request/response halves."""
+        with self._lock:
+            self._srv_specs.setdefault(spec.type_name, spec)
+            self._specs.setdefault(spec.request.type_name, spec.request)
+            self._specs.setdefault(spec.response.type_name, spec.response)
+
+    # -- md5 and full text ---------------------------------------------------
+    def md5_text(self, type_name: str) -> str:
+        """The text hashed for *type_name*'s md5 (constants, then fields; nested types by md5)."""
+        cached = self._md5_text.get(type_name)
+        if cached is not None:
+            return cached
+        spec = self.get_spec(type_name)
+        type_name = spec.type_name
+        if type_name in self._building:
+            raise MessageSpecError(f"{type_name} contains itself", spec.source)
+        self._building.add(type_name)
+        try:
+            lines = [f"{c.type} {c.md5_name}={c.val_text}" for c in spec.constants]
+            for f in spec.fields:
+                if f.is_builtin:
+                    lines.append(f"{f.type} {f.name}")
+                else:
+                    try:
+                        sub = self.md5sum(f.base_type)
+                    except UnknownMessageTypeError as e:
+                        raise UnknownMessageTypeError(f.base_type, f"needed by {type_name}: {e}") from None
+                    lines.append(f"{sub} {f.name}")
+        finally:
+            self._building.discard(type_name)
+        text = "\n".join(lines).strip()
+        self._md5_text[type_name] = text
+        return text
+
+    def md5sum(self, type_name: str) -> str:
+        """The md5sum of message type *type_name*, as genmsg computes it."""
+        cached = self._md5.get(type_name)
+        if cached is None:
+            cached = hashlib.md5(self.md5_text(type_name).encode()).hexdigest()
+            self._md5[type_name] = cached
+        return cached
+
+    def srv_md5sum(self, type_name: str) -> str:
+        """The md5sum of service type *type_name* (request text + response text)."""
+        spec = self.get_srv_spec(type_name)
+        h = hashlib.md5()
+        h.update(self.md5_text(spec.request.type_name).encode())
+        h.update(self.md5_text(spec.response.type_name).encode())
+        return h.hexdigest()
+
+    def all_depends(self, type_name: str) -> list[str]:
+        """Nested message types of *type_name*, depth first, each once."""
+        out: list[str] = []
+
+        def walk(t: str, depth: int) -> None:
+            if depth > 64:
+                raise MessageSpecError(f"{type_name}: nesting too deep or recursive")
+            for d in self.get_spec(t).dependencies():
+                if d not in out:
+                    out.append(d)
+                walk(d, depth + 1)
+
+        walk(type_name, 0)
+        return out
+
+    def full_text(self, type_name: str) -> str:
+        """The ``message_definition`` of *type_name*: own text, then each nested type once."""
+        cached = self._full.get(type_name)
+        if cached is not None:
+            return cached
+        spec = self.get_spec(type_name)
+        parts = [spec.text, "\n"]
+        for d in self.all_depends(spec.type_name):
+            parts += [DEFINITION_SEPARATOR, "\n", f"MSG: {d}\n", self.get_spec(d).text, "\n"]
+        text = "".join(parts)[:-1]
+        self._full[type_name] = text
+        return text
+
+    # -- classes -------------------------------------------------------------
+    def get_class(self, type_name: str) -> type[Message]:
+        """The generated class of message type *type_name* (built once, cached)."""
+        cls = self._classes.get(type_name)
+        if cls is not None:
+            return cls
+        with self._lock:
+            spec = self.get_spec(type_name)
+            cls = self._classes.get(spec.type_name)
+            if cls is None:
+                md5 = self.md5sum(spec.type_name)  # also rejects recursive types
+                cls = build_message_class(spec, md5, self.full_text(spec.type_name), self.get_spec, self.get_class)
+                self._classes[spec.type_name] = cls
+            self._classes[type_name] = cls
+            return cls
+
+    def get_service_class(self, type_name: str) -> type[Service]:
+        """The generated service class of *type_name* (``_request_class``/``_response_class``)."""
+        cls = self._srv_classes.get(type_name)
+        if cls is not None:
+            return cls
+        with self._lock:
+            spec = self.get_srv_spec(type_name)
+            attrs: dict[str, Any] = {
+                "__doc__": f"ROS service {type_name} (generated by rostui).",
+                "__module__": "rostui.core.msg.generated",
+                "__slots__": (),
+                "_type": type_name,
+                "_md5sum": self.srv_md5sum(type_name),
+                "_request_class": self.get_class(spec.request.type_name),
+                "_response_class": self.get_class(spec.response.type_name),
+                "_spec": spec,
+            }
+            cls = type(spec.type_name.rpartition("/")[2], (Service,), attrs)
+            self._srv_classes[type_name] = cls
+            return cls
+
+
+def _read(path: Path) -> str:
+    try:
+        return path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as e:
+        raise MessageSpecError(f"not UTF-8 text: {e}", str(path)) from None
+
+
+_default = TypeStore(load_from_packages=True)
+_dynamic_cache: dict[tuple[str, str], type[Message]] = {}
+
+
+def default_store() -> TypeStore:
+    """The process-wide store used by the module-level functions."""
+    return _default
+
+
+def clear_cache() -> None:
+    """Forget every loaded type (for example after editing .msg files)."""
+    global _default
+    _default = TypeStore(load_from_packages=True)
+    _dynamic_cache.clear()
+    packages.clear_cache()
+
+
+def get_message_class(type_name: str) -> type[Message]:
+    """The class of message type *type_name* (``pkg/Name``; ``Header`` is accepted)."""
+    return _default.get_class(type_name)
+
+
+def get_service_class(type_name: str) -> type[Service]:
+    """The class of service type *type_name*."""
+    return _default.get_service_class(type_name)
+
+
+def get_message_spec(type_name: str) -> MsgSpec:
+    """The parsed spec of message type *type_name*."""
+    return _default.get_spec(type_name)
+
+
+def get_service_spec(type_name: str) -> SrvSpec:
+    """The parsed spec of service type *type_name*."""
+    return _default.get_srv_spec(type_name)
+
+
+def md5sum(type_name: str) -> str:
+    """The md5sum of message type *type_name*."""
+    return _default.md5sum(type_name)
+
+
+def full_text(type_name: str) -> str:
+    """The ``message_definition`` text of message type *type_name*."""
+    return _default.full_text(type_name)
+
+
+def split_definition(type_name: str, definition: str) -> list[MsgSpec]:
+    """Parse a ``message_definition`` into specs: the main type first, then each ``MSG:`` section."""
+    sections = definition.split("\n" + DEFINITION_SEPARATOR + "\n")
+    specs = [parse_msg_text(sections[0], type_name, "<message_definition>")]
+    for sec in sections[1:]:
+        head, _, text = sec.partition("\n")
+        if not head.startswith("MSG: "):
+            raise MessageSpecError(f"expected 'MSG: pkg/Type' after separator, got {head!r}", f"<message_definition of {type_name}>")
+        sub = head[5:].strip()
+        if sub == "Header":
+            sub = HEADER_TYPE
+        specs.append(parse_msg_text(text, sub, f"<message_definition of {type_name}: {sub}>"))
+    return specs
+
+
+def register_types_from_definition(type_name: str, definition: str) -> type[Message]:
+    """Build the class of *type_name* from a connection header's ``message_definition``.
+
+    If the locally installed type has the same md5 its class is returned;
+    otherwise a class is built from the definition alone (and types unknown
+    locally are registered so that :func:`get_message_class` finds them).
+    """
+    key = (type_name, definition)
+    cls = _dynamic_cache.get(key)
+    if cls is not None:
+        return cls
+    type_name = normalize_type_name(type_name)
+    store = TypeStore(load_from_packages=False)
+    for spec in split_definition(type_name, definition):
+        store.add_spec(spec)
+    md5 = store.md5sum(type_name)
+    try:
+        local_md5: str | None = _default.md5sum(type_name)
+    except (UnknownMessageTypeError, MessageSpecError):
+        local_md5 = None
+    if local_md5 == md5:
+        cls = _default.get_class(type_name)
+    else:
+        cls = store.get_class(type_name)
+        for t, spec in store._specs.items():
+            if not _default.has_type(t):
+                _default.add_spec(spec)
+    _dynamic_cache[key] = cls
+    return cls
+
+
+def _reconstruct(type_name: str, md5: str, definition: str) -> Message:
+    """Unpickling helper: an empty instance of the class matching *type_name*/*md5*."""
+    try:
+        cls = get_message_class(type_name)
+        if cls._md5sum != md5:
+            raise UnknownMessageTypeError(type_name)
+    except (UnknownMessageTypeError, MessageSpecError):
+        cls = register_types_from_definition(type_name, definition)
+    return cls.__new__(cls)
+
+
+def list_message_types(package: str) -> list[str]:
+    """The message types (``pkg/Name``) defined by *package*, sorted."""
+    d = packages.find_package(package)
+    if d is None:
+        raise packages.PackageNotFoundError(package)
+    return sorted(f"{package}/{p.stem}" for p in (d / "msg").glob("*.msg"))
+
+
+def list_service_types(package: str) -> list[str]:
+    """The service types (``pkg/Name``) defined by *package*, sorted."""
+    d = packages.find_package(package)
+    if d is None:
+        raise packages.PackageNotFoundError(package)
+    return sorted(f"{package}/{p.stem}" for p in (d / "srv").glob("*.srv"))

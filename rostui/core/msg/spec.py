@@ -1,0 +1,280 @@
+"""Parsing ``.msg`` and ``.srv`` text into field and constant lists.
+
+The grammar follows the ROS 1 msg format: one declaration per line, ``#`` starts
+a comment, ``TYPE NAME`` declares a field, ``TYPE NAME=VALUE`` a constant.
+``Header`` means ``std_msgs/Header``; any other bare non-builtin type name
+refers to the declaring package.  String constants keep everything right of
+``=`` (including ``#``), stripped, as genmsg does.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+from dataclasses import dataclass, field as dc_field
+
+from .errors import MessageSpecError
+
+__all__ = [
+    "PRIMITIVE_TYPES",
+    "BUILTIN_TYPES",
+    "HEADER_TYPE",
+    "Field",
+    "Constant",
+    "MsgSpec",
+    "SrvSpec",
+    "parse_msg_text",
+    "parse_srv_text",
+    "split_type_name",
+    "is_valid_type_name",
+]
+
+PRIMITIVE_TYPES: tuple[str, ...] = (
+    "bool", "int8", "uint8", "int16", "uint16", "int32", "uint32",
+    "int64", "uint64", "float32", "float64", "string", "byte", "char",
+)
+"""Types allowed for constants (``byte`` = int8 and ``char`` = uint8 are deprecated aliases)."""
+
+BUILTIN_TYPES: tuple[str, ...] = PRIMITIVE_TYPES + ("time", "duration")
+"""Every type that is not a message: primitives plus ``time`` and ``duration``."""
+
+HEADER_TYPE = "std_msgs/Header"
+"""The full name of the type a bare ``Header`` refers to."""
+
+_INT_BOUNDS: dict[str, tuple[int, int]] = {
+    "int8": (-(2**7), 2**7 - 1), "uint8": (0, 2**8 - 1),
+    "int16": (-(2**15), 2**15 - 1), "uint16": (0, 2**16 - 1),
+    "int32": (-(2**31), 2**31 - 1), "uint32": (0, 2**32 - 1),
+    "int64": (-(2**63), 2**63 - 1), "uint64": (0, 2**64 - 1),
+    "byte": (-(2**7), 2**7 - 1), "char": (0, 2**8 - 1),
+}
+
+_NAME_RE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+_TYPE_RE = re.compile(r"^([A-Za-z][A-Za-z0-9_]*(?:/[A-Za-z][A-Za-z0-9_]*)?)(?:\[(\d*)\])?$")
+
+
+def split_type_name(type_name: str) -> tuple[str, str]:
+    """Split ``pkg/Name`` into ``(pkg, Name)``; raises ValueError without exactly one ``/``."""
+    pkg, sep, name = type_name.partition("/")
+    if not sep or not pkg or not name or "/" in name:
+        raise ValueError(f"not a package-qualified type name: {type_name!r}")
+    return pkg, name
+
+
+def is_valid_type_name(type_name: str) -> bool:
+    """True for a syntactically legal ``pkg/Name`` (no array suffix)."""
+    m = _TYPE_RE.match(type_name)
+    return bool(m) and m.group(2) is None and "/" in type_name
+
+
+@dataclass(frozen=True)
+class Field:
+    """One field of a message: its name and resolved type."""
+
+    name: str
+    """The field name."""
+    type: str
+    """The resolved type with array suffix, e.g. ``std_msgs/Header``, ``float64[9]``, ``uint8[]``."""
+    base_type: str
+    """The element type without array suffix (``pkg/Name`` for messages)."""
+    is_array: bool
+    """True for ``T[]`` and ``T[N]``."""
+    array_len: int | None
+    """N for fixed arrays ``T[N]``, None otherwise."""
+
+    @property
+    def is_builtin(self) -> bool:
+        """True when the element type is a primitive, ``time`` or ``duration``."""
+        return self.base_type in BUILTIN_TYPES
+
+
+@dataclass(frozen=True)
+class Constant:
+    """A constant declaration ``TYPE NAME=VALUE``."""
+
+    type: str
+    """The constant's primitive type."""
+    name: str
+    """The constant's name."""
+    value: bool | int | float | str
+    """The value converted to Python."""
+    val_text: str
+    """The value exactly as written (stripped); used for the md5 text."""
+    md5_name: str = ""
+    """The name as genmsg hashes it (differs from *name* only for odd spacing in string constants)."""
+
+
+@dataclass
+class MsgSpec:
+    """A parsed message definition."""
+
+    type_name: str
+    """Full type name ``pkg/Name``."""
+    fields: tuple[Field, ...]
+    """Fields in declaration order."""
+    constants: tuple[Constant, ...]
+    """Constants in declaration order."""
+    text: str
+    """The definition text as given (used for ``message_definition``)."""
+    source: str | None = None
+    """The file the text came from, if any."""
+    md5sum: str = dc_field(default="", compare=False)
+    """Filled in by the registry once dependencies are known."""
+
+    @property
+    def package(self) -> str:
+        """The package part of the type name."""
+        return self.type_name.partition("/")[0]
+
+    @property
+    def short_name(self) -> str:
+        """The type name without package."""
+        return self.type_name.rpartition("/")[2]
+
+    @property
+    def has_header(self) -> bool:
+        """True when the first field is ``std_msgs/Header header``."""
+        return bool(self.fields) and self.fields[0].type == HEADER_TYPE and self.fields[0].name == "header"
+
+    def dependencies(self) -> list[str]:
+        """Message types used by fields, in field order (duplicates kept)."""
+        return [f.base_type for f in self.fields if not f.is_builtin]
+
+
+@dataclass
+class SrvSpec:
+    """A parsed service definition: request and response message specs."""
+
+    type_name: str
+    """Full service type name ``pkg/Name``."""
+    request: MsgSpec
+    """The request half, typed ``pkg/NameRequest``."""
+    response: MsgSpec
+    """The response half, typed ``pkg/NameResponse``."""
+    text: str
+    """The whole .srv text."""
+    source: str | None = None
+    """The file the text came from, if any."""
+
+
+def _strip_comment(line: str) -> str:
+    return line.split("#", 1)[0].strip()
+
+
+def _convert_constant(ctype: str, val: str) -> bool | int | float | str:
+    if ctype in ("float32", "float64"):
+        return float(val)
+    if ctype == "string":
+        return val.strip()
+    if ctype in _INT_BOUNDS:
+        lo, hi = _INT_BOUNDS[ctype]
+        iv = int(val)
+        if iv < lo or iv > hi:
+            raise ValueError(f"cannot coerce [{val}] to {ctype} (out of bounds)")
+        return iv
+    if ctype == "bool":
+        return bool(ast.literal_eval(val))
+    raise ValueError(f"invalid constant type: [{ctype}]")
+
+
+def _resolve_field_type(ftype: str, package: str) -> tuple[str, str, bool, int | None]:
+    m = _TYPE_RE.match(ftype)
+    if not m:
+        raise ValueError(f"{ftype} is not a legal message field type")
+    base, arr = m.group(1), m.group(2)
+    suffix = "" if arr is None else f"[{arr}]"
+    if "/" not in base:
+        if base == "Header":
+            base = HEADER_TYPE
+        elif base not in BUILTIN_TYPES:
+            if not package:
+                raise ValueError(f"cannot resolve bare type {base} without a package")
+            base = f"{package}/{base}"
+    return base + suffix, base, arr is not None, (int(arr) if arr else None)
+
+
+def parse_msg_text(text: str, type_name: str, source: str | None = None, first_line: int = 1) -> MsgSpec:
+    """Parse .msg *text* for type *type_name* (``pkg/Name``).
+
+    *source* and *first_line* are used only for error locations.
+    Raises :class:`MessageSpecError`.
+    """
+    package = type_name.partition("/")[0] if "/" in type_name else ""
+    fields: list[Field] = []
+    constants: list[Constant] = []
+    names: set[str] = set()
+    for lineno, orig in enumerate(text.split("\n"), start=first_line):
+        clean = _strip_comment(orig)
+        if not clean:
+            continue
+        try:
+            if "=" in clean:
+                constants.append(_parse_constant(orig, clean))
+                cname = constants[-1].name
+                if cname in names:
+                    raise ValueError(f"duplicate name {cname}")
+                names.add(cname)
+                continue
+            parts = clean.split()
+            if len(parts) != 2:
+                raise ValueError(f"invalid declaration: {orig.strip()}")
+            ftype, fname = parts
+            if not _NAME_RE.match(fname):
+                raise ValueError(f"{fname} is not a legal message field name")
+            full, base, is_arr, alen = _resolve_field_type(ftype, package)
+            if fname in names:
+                raise ValueError(f"duplicate field name {fname}")
+            names.add(fname)
+            fields.append(Field(fname, full, base, is_arr, alen))
+        except ValueError as e:
+            raise MessageSpecError(f"{type_name}: {e}", source, lineno) from None
+    return MsgSpec(type_name, tuple(fields), tuple(constants), text, source)
+
+
+def _parse_constant(orig: str, clean: str) -> Constant:
+    parts = clean.split()
+    ctype = parts[0]
+    if ctype not in PRIMITIVE_TYPES:
+        raise ValueError(f"{ctype} is not a legal constant type")
+    if ctype == "string":
+        idx = orig.find("=")
+        raw_name = orig[orig.find(" ") + 1 : idx]
+        name = raw_name.strip()
+        val = orig[idx + 1 :]
+    else:
+        halves = [x.strip() for x in " ".join(parts[1:]).split("=")]
+        if len(halves) != 2:
+            raise ValueError(f"invalid constant declaration: {orig.strip()}")
+        raw_name = name = halves[0]
+        val = halves[1]
+    if not _NAME_RE.match(name):
+        raise ValueError(f"{name!r} is not a legal constant name")
+    try:
+        value = _convert_constant(ctype, val)
+    except (ValueError, SyntaxError) as e:
+        raise ValueError(f"invalid constant value: {e}") from None
+    return Constant(ctype, name, value, val.strip(), raw_name)
+
+
+def parse_srv_text(text: str, type_name: str, source: str | None = None) -> SrvSpec:
+    """Parse .srv *text*: the request, a line starting with ``---``, the response.
+
+    The halves are typed ``<type_name>Request`` and ``<type_name>Response``.
+    """
+    req_lines: list[str] = []
+    resp_lines: list[str] = []
+    acc = req_lines
+    split_line = None
+    for i, line in enumerate(text.split("\n"), start=1):
+        if line.startswith("---"):
+            acc = resp_lines
+            if split_line is None:
+                split_line = i
+            continue
+        acc.append(line + "\n")
+    if split_line is None:
+        # genmsg accepts a missing separator (empty response); keep that leniency
+        split_line = len(req_lines) + 1
+    request = parse_msg_text("".join(req_lines), type_name + "Request", source, 1)
+    response = parse_msg_text("".join(resp_lines), type_name + "Response", source, split_line + 1)
+    return SrvSpec(type_name, request, response, text, source)

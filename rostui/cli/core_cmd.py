@@ -1,0 +1,57 @@
+"""`rostui core`: the master, the parameter server and rosout in one process."""
+
+from __future__ import annotations
+
+import asyncio
+import errno
+import signal
+import sys
+
+from rostui.core.master import Master
+from rostui.core.network import resolve_addressing
+from rostui.core.node.engine import new_event_loop
+from rostui.core.rosout import RosoutNode
+
+ROSDISTRO = "noetic"
+
+
+async def serve_core(port: int, stop: asyncio.Event) -> int:
+    """Run master and rosout until ``stop`` is set; return the exit status."""
+    master_uri_guess = f"http://localhost:{port}/"
+    addressing = resolve_addressing(None)
+    master = Master(addressing.bind_host, port, advertise_host=addressing.advertise_host)
+    try:
+        await master.start()
+    except OSError as exc:
+        if exc.errno == errno.EADDRINUSE:
+            print(f"ERROR: rostui core cannot run: another master is already running on port {port}.",
+                  file=sys.stderr)
+        else:
+            print(f"ERROR: rostui core cannot listen on port {port}: {exc.strerror or exc}", file=sys.stderr)
+        return 1
+    print("SUMMARY\n========\n\nPARAMETERS")
+    print(f" * /rosdistro: {ROSDISTRO}")
+    print(" * /rosversion: 1.15.15\n")
+    print(f"started master on port {port}")
+    print(f"ROS_MASTER_URI={master.uri}\n")
+    print(f"setting /run_id to {master.run_id}")
+    rosout = RosoutNode(master.uri or master_uri_guess)
+    await rosout.start()
+    print("started core service [/rosout]", flush=True)
+    await stop.wait()
+    await rosout.stop()
+    await master.stop()
+    return 0
+
+
+def run_core(port: int) -> int:
+    """Blocking entry point; Ctrl-C or SIGTERM stops everything cleanly."""
+    loop = new_event_loop()
+    asyncio.set_event_loop(loop)
+    stop = asyncio.Event()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(sig, stop.set)
+    try:
+        return loop.run_until_complete(serve_core(port, stop))
+    finally:
+        loop.close()

@@ -1,0 +1,93 @@
+"""The engine thread: an asyncio loop (uvloop when installed) behind the sync API.
+
+User scripts call blocking functions on their own thread; the engine runs the
+node's I/O and subscriber callbacks on its loop thread.  A blocking call made
+from the engine thread itself (a callback calling a service) runs on a private
+loop in a worker thread instead of deadlocking.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import concurrent.futures
+import threading
+from typing import Any, Awaitable, Callable, Coroutine, TypeVar
+
+T = TypeVar("T")
+
+
+def new_event_loop() -> asyncio.AbstractEventLoop:
+    """A new event loop, uvloop's when available."""
+    try:
+        import uvloop
+    except ImportError:
+        return asyncio.new_event_loop()
+    return uvloop.new_event_loop()
+
+
+class Engine:
+    """Runs one asyncio loop on a daemon thread until stopped."""
+
+    def __init__(self) -> None:
+        self.loop = new_event_loop()
+        self._ready = threading.Event()
+        self.thread = threading.Thread(target=self._run, name="rostui-engine", daemon=True)
+        self.thread.start()
+        self._ready.wait()
+
+    def _run(self) -> None:
+        asyncio.set_event_loop(self.loop)
+        self.loop.call_soon(self._ready.set)
+        self.loop.run_forever()
+
+    @property
+    def on_engine_thread(self) -> bool:
+        """True when the caller runs on the engine's loop thread (a callback)."""
+        return threading.current_thread() is self.thread
+
+    def run(self, coro: Coroutine[Any, Any, T], timeout: float | None = None) -> T:
+        """Run a coroutine on the engine loop and wait for its result."""
+        if self.on_engine_thread:
+            coro.close()
+            raise RuntimeError("blocking engine call from the engine thread; use run_detached")
+        future = asyncio.run_coroutine_threadsafe(coro, self.loop)
+        try:
+            return future.result(timeout)
+        except concurrent.futures.TimeoutError:
+            future.cancel()
+            raise TimeoutError("operation timed out") from None
+
+    def run_detached(self, make: Callable[[], Awaitable[T]]) -> T:
+        """Run a self-contained coroutine on a private loop in a worker thread.
+
+        Used for blocking calls made from the engine thread: the coroutine must
+        not use objects bound to the engine loop.
+        """
+        result: list[Any] = []
+
+        def work() -> None:
+            async def main() -> Any:
+                return await make()
+            try:
+                result.append((True, asyncio.run(main())))
+            except BaseException as exc:  # re-raised in the caller's thread
+                result.append((False, exc))
+
+        worker = threading.Thread(target=work, name="rostui-detached", daemon=True)
+        worker.start()
+        worker.join()
+        ok, value = result[0]
+        if not ok:
+            raise value
+        return value
+
+    def call_soon(self, fn: Callable[..., Any], *args: Any) -> None:
+        """Schedule a plain function on the loop from any thread."""
+        self.loop.call_soon_threadsafe(fn, *args)
+
+    def stop(self) -> None:
+        """Stop the loop and join the thread."""
+        if self.loop.is_running():
+            self.loop.call_soon_threadsafe(self.loop.stop)
+        if not self.on_engine_thread:
+            self.thread.join(timeout=5)

@@ -1,0 +1,466 @@
+"""AsyncNode: one ROS node on an asyncio loop (the engine behind both API faces).
+
+The node serves the slave XML-RPC API and one TCPROS server for topics and
+services, registers with the master, and keeps every publication,
+subscription and service it owns so that shutdown can unregister them all.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import itertools
+import logging
+import os
+import threading
+from typing import Any, Callable, Sequence
+from urllib.parse import urlparse
+
+from rostui.core import names
+from rostui.core.log import ConsoleLogger
+from rostui.core.network import Addressing, master_uri_from_env, resolve_addressing
+from rostui.core.node.anymsg import AnyMsg
+from rostui.core.node.params import ParamCache
+from rostui.core.node.services import ServiceException, ServiceProxy, ServiceServer
+from rostui.core.node.slave import SlaveApi
+from rostui.core.node.topics import Publication, Subscription, TopicType
+from rostui.core.node.transport import InboundConnection, InboundHandler
+from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, XmlRpcServer, ros_result
+
+log = logging.getLogger("rostui.node")
+
+_LOCAL_NODES: dict[str, "AsyncNode"] = {}
+
+
+class MasterError(Exception):
+    """The master could not be reached or refused a call."""
+
+
+class Publisher:
+    """A handle to publish on a topic; several handles may share a Publication."""
+
+    def __init__(self, node: "AsyncNode", publication: Publication, msg_class: Any) -> None:
+        self.node = node
+        self.impl = publication
+        self.msg_class = msg_class
+        self.name = publication.topic
+        self.resolved_name = publication.topic
+        self._closed = False
+
+    def publish(self, *args: Any, **kwargs: Any) -> None:
+        """Publish a message, or build one from positional/keyword fields."""
+        if self._closed:
+            raise RuntimeError(f"publish() to an unregistered topic [{self.name}]")
+        if len(args) == 1 and not kwargs and (isinstance(args[0], self.msg_class) or isinstance(args[0], AnyMsg)):
+            msg = args[0]
+        else:
+            msg = self.msg_class(*args, **kwargs)
+        self.impl.publish(msg)
+
+    def get_num_connections(self) -> int:
+        """How many subscribers are connected."""
+        return self.impl.num_subscribers
+
+    async def unregister(self) -> None:
+        """Stop publishing; the last handle unregisters the topic."""
+        if not self._closed:
+            self._closed = True
+            await self.node.release_publication(self.impl)
+
+
+class Subscriber:
+    """A handle to a subscription with one callback."""
+
+    def __init__(self, node: "AsyncNode", subscription: Subscription, callback: Callable[..., Any] | None,
+                 callback_args: Any) -> None:
+        self.node = node
+        self.impl = subscription
+        self.callback = callback
+        self.callback_args = callback_args
+        self.name = subscription.topic
+        self.resolved_name = subscription.topic
+        self._closed = False
+
+    def get_num_connections(self) -> int:
+        """How many publishers are connected."""
+        return sum(1 for c in self.impl.connections.values() if c is not None) + len(self.impl.local_pubs)
+
+    async def unregister(self) -> None:
+        """Stop receiving; the last handle unregisters the topic."""
+        if not self._closed:
+            self._closed = True
+            if self.callback is not None:
+                self.impl.remove_callback(self.callback, self.callback_args)
+            await self.node.release_subscription(self.impl)
+
+
+class AsyncNode:
+    """A ROS node driven by the running asyncio loop.
+
+    ``argv`` is the node's command line without the program name; ROS
+    arguments in it (``a:=b``, ``__name:=``, ``__ns:=``, ``_param:=``, ...) are
+    applied, the rest are left in ``self.argv``.
+    """
+
+    def __init__(self, name: str, *, argv: Sequence[str] | None = None, anonymous: bool = False,
+                 master_uri: str | None = None) -> None:
+        args = names.parse_argv(list(argv or []))
+        self.args = args
+        self.argv = list(args.args)
+        self.namespace = names.node_namespace(args)
+        self.name = names.node_global_name(name, args, anonymous=anonymous)
+        self.remappings = names.resolve_remappings(args.remaps, self.namespace, self.name)
+        self.master_uri = master_uri_from_env(args.master or master_uri)
+        self.addressing: Addressing = resolve_addressing(self.master_uri, args.ip, args.hostname)
+        self.publications: dict[str, Publication] = {}
+        self.subscriptions: dict[str, Subscription] = {}
+        self.services: dict[str, ServiceServer] = {}
+        self.params = ParamCache()
+        self.console = ConsoleLogger(self.name)
+        self.uri = ""
+        self.tcpros_port = 0
+        self.loop: asyncio.AbstractEventLoop = None  # type: ignore[assignment]
+        self.loop_thread_id = -1
+        self.shutdown_reason: str | None = None
+        self.shutdown_hooks: list[Callable[[str], Any]] = []
+        self._master: XmlRpcClient | None = None
+        self._ids = itertools.count(1)
+        self._xmlrpc: XmlRpcServer | None = None
+        self._tcpros: asyncio.AbstractServer | None = None
+        self._done: asyncio.Event | None = None
+        self._clients: dict[str, XmlRpcClient] = {}
+
+    # -- lifecycle --------------------------------------------------------------
+    async def start(self) -> "AsyncNode":
+        """Open the slave API and TCPROS servers; set ``_param:=`` parameters."""
+        self.loop = asyncio.get_running_loop()
+        self.loop_thread_id = threading.get_ident()
+        self._done = asyncio.Event()
+        self._master = XmlRpcClient(self.master_uri)
+        bind, host = self.addressing.bind_host, self.addressing.advertise_host
+        self._tcpros = await self.loop.create_server(lambda: InboundConnection(self), bind, 0)
+        self.tcpros_port = self._tcpros.sockets[0].getsockname()[1]
+        self._xmlrpc = XmlRpcServer(SlaveApi(self), bind, 0, advertise_host=host)
+        await self._xmlrpc.start()
+        self.uri = self._xmlrpc.uri
+        _LOCAL_NODES[self.uri] = self
+        for key, value in self.args.params.items():
+            await self.set_param("~" + key, value)
+        return self
+
+    async def wait_for_master(self, timeout: float | None = None, on_wait: Callable[[], None] | None = None) -> None:
+        """Wait until the master answers; ``on_wait`` is called once if it does not at first."""
+        deadline = None if timeout is None else self.loop.time() + timeout
+        warned = False
+        while True:
+            try:
+                await self.master_call("getPid")
+                return
+            except MasterError:
+                if deadline is not None and self.loop.time() >= deadline:
+                    raise
+                if not warned and on_wait is not None:
+                    on_wait()
+                    warned = True
+                await asyncio.sleep(0.2)
+
+    @property
+    def is_shutdown(self) -> bool:
+        """True once shutdown began."""
+        return self.shutdown_reason is not None
+
+    def request_shutdown(self, reason: str) -> None:
+        """Begin shutdown on a slave ``shutdown`` call, logging why, as roscpp does."""
+        if self.shutdown_reason is None:
+            self.console.warn(f"Shutdown request received. Reason given for shutdown: [{reason}]")
+            self.loop.create_task(self.shutdown(reason))
+
+    async def wait_shutdown(self) -> str:
+        """Wait until the node has shut down; return the reason."""
+        assert self._done is not None
+        await self._done.wait()
+        return self.shutdown_reason or ""
+
+    async def shutdown(self, reason: str = "shutdown") -> None:
+        """Unregister everything, close all connections and servers."""
+        if self.shutdown_reason is not None:
+            if self._done is not None:
+                await self._done.wait()
+            return
+        self.shutdown_reason = reason
+        for hook in list(self.shutdown_hooks):
+            try:
+                hook(reason)
+            except Exception:
+                log.exception("error in shutdown hook")
+        unregister = []
+        for pub in self.publications.values():
+            unregister.append(self._quiet_call("unregisterPublisher", pub.topic, self.uri))
+        for sub in self.subscriptions.values():
+            unregister.append(self._quiet_call("unregisterSubscriber", sub.topic, self.uri))
+        for srv in self.services.values():
+            unregister.append(self._quiet_call("unregisterService", srv.name, self.service_uri))
+        for key in self.params.keys():
+            unregister.append(self._quiet_call("unsubscribeParam", self.uri, key))
+        if unregister:
+            await asyncio.wait([asyncio.ensure_future(c) for c in unregister], timeout=2.0)
+        for pub in self.publications.values():
+            pub.close()
+        for sub in self.subscriptions.values():
+            sub.close()
+        self.publications.clear()
+        self.subscriptions.clear()
+        self.services.clear()
+        _LOCAL_NODES.pop(self.uri, None)
+        if self._tcpros is not None:
+            self._tcpros.close()
+        if self._xmlrpc is not None:
+            await self._xmlrpc.close()
+        for client in [self._master, *self._clients.values()]:
+            if client is not None:
+                await client.close()
+        assert self._done is not None
+        self._done.set()
+
+    async def _quiet_call(self, method: str, *args: Any) -> None:
+        try:
+            await asyncio.wait_for(self.master_call(method, *args), 2.0)
+        except Exception as exc:
+            log.debug("%s during shutdown failed: %s", method, exc)
+
+    # -- names --------------------------------------------------------------------
+    def resolve(self, name: str) -> str:
+        """Resolve a name in this node's namespace, applying remappings."""
+        return names.resolve_name(name, self.namespace, self.name, self.remappings)
+
+    def next_connection_id(self) -> int:
+        """A fresh id for getBusInfo / getBusStats."""
+        return next(self._ids)
+
+    @property
+    def service_uri(self) -> str:
+        """``rosrpc://host:port`` of this node's service endpoint."""
+        return f"rosrpc://{self.addressing.advertise_host}:{self.tcpros_port}"
+
+    # -- master -------------------------------------------------------------------
+    async def master_call(self, method: str, *args: Any) -> Any:
+        """Call a Master API method with our caller id; unwrap the ROS result."""
+        assert self._master is not None, "node not started"
+        try:
+            return ros_result(await self._master.call(method, self.name, *args))
+        except XmlRpcConnectionError as exc:
+            raise MasterError(f"Unable to communicate with master at {self.master_uri}: {exc}") from exc
+        except RosApiError as exc:
+            raise MasterError(f"master refused {method}: {exc}") from exc
+
+    def _client(self, uri: str) -> XmlRpcClient:
+        client = self._clients.get(uri)
+        if client is None:
+            client = self._clients[uri] = XmlRpcClient(uri, timeout=5.0)
+        return client
+
+    async def request_topic(self, uri: str, topic: str) -> tuple[str, int]:
+        """Ask a publisher's slave API for a TCPROS endpoint."""
+        client = self._client(uri)
+        try:
+            result = ros_result(await client.call("requestTopic", self.name, topic, [["TCPROS"]]))
+        except Exception:
+            self._clients.pop(uri, None)
+            await client.close()
+            raise
+        if not result or result[0] != "TCPROS":
+            raise ConnectionError(f"publisher {uri} offered no TCPROS endpoint for {topic}")
+        return str(result[1]), int(result[2])
+
+    def local_publication(self, uri: str, topic: str) -> Publication | None:
+        """A publication of a node in this process, for direct delivery."""
+        node = _LOCAL_NODES.get(uri)
+        if node is None or node.loop is not self.loop:
+            return None
+        return node.publications.get(topic)
+
+    async def lookup_service(self, name: str) -> str:
+        """The rosrpc URI of a service, or ServiceException if none is registered."""
+        try:
+            return str(await self.master_call("lookupService", name))
+        except MasterError as exc:
+            if "Unable to communicate" in str(exc):
+                raise ServiceException(str(exc)) from exc
+            raise ServiceException(f"service [{name}] unavailable") from exc
+
+    # -- TCPROS routing ------------------------------------------------------------
+    def route_inbound(self, header: dict[str, str], conn: InboundConnection) -> InboundHandler | str:
+        """Hand an accepted connection to the publication or service it names."""
+        if "topic" in header:
+            pub = self.publications.get(header["topic"])
+            if pub is None:
+                return f"received request for unknown topic [{header['topic']}]"
+            return pub.accept(header, conn)
+        if "service" in header:
+            srv = self.services.get(header["service"])
+            if srv is None:
+                return f"received request for unknown service [{header['service']}]"
+            return srv.accept(header, conn)
+        return "header did not have required element: topic or service"
+
+    # -- topics -----------------------------------------------------------------------
+    async def advertise(self, topic: str, msg_class: Any, *, queue_size: int | None = None, latch: bool = False,
+                        tcp_nodelay: bool = False, topic_type: TopicType | None = None) -> Publisher:
+        """Publish on a topic; ``topic_type`` overrides the type (for AnyMsg relays)."""
+        name = self.resolve(topic)
+        ttype = topic_type or TopicType.of(msg_class)
+        pub = self.publications.get(name)
+        if pub is None:
+            pub = Publication(self, name, ttype, queue_size=queue_size, latch=latch, tcp_nodelay=tcp_nodelay)
+            self.publications[name] = pub
+            try:
+                await self.master_call("registerPublisher", name, ttype.type, self.uri)
+            except MasterError:
+                self.publications.pop(name, None)
+                raise
+        elif pub.topic_type.md5sum != ttype.md5sum:
+            raise ValueError(f"topic [{name}] is already published as {pub.topic_type.type}, not {ttype.type}")
+        pub.handles += 1
+        return Publisher(self, pub, msg_class)
+
+    async def release_publication(self, pub: Publication) -> None:
+        """Drop one handle; unregister when none are left."""
+        pub.handles -= 1
+        if pub.handles <= 0 and self.publications.get(pub.topic) is pub:
+            del self.publications[pub.topic]
+            pub.close()
+            await self._quiet_call("unregisterPublisher", pub.topic, self.uri)
+
+    async def subscribe(self, topic: str, msg_class: Any, callback: Callable[..., Any] | None = None, *,
+                        callback_args: Any = None, queue_size: int | None = None,
+                        tcp_nodelay: bool = False) -> Subscriber:
+        """Subscribe to a topic; ``callback(msg)`` runs on the engine loop."""
+        name = self.resolve(topic)
+        sub = self.subscriptions.get(name)
+        created = sub is None
+        if sub is None:
+            sub = Subscription(self, name, msg_class, queue_size=queue_size, tcp_nodelay=tcp_nodelay)
+            self.subscriptions[name] = sub
+        elif sub.msg_class._md5sum != msg_class._md5sum:
+            raise ValueError(f"topic [{name}] is already subscribed as {sub.type_name}, not {msg_class._type}")
+        if callback is not None:
+            sub.add_callback(callback, callback_args)
+        sub.handles += 1
+        if created:
+            try:
+                uris = await self.master_call("registerSubscriber", name, msg_class._type, self.uri)
+            except MasterError:
+                self.subscriptions.pop(name, None)
+                raise
+            sub.update_publishers(list(uris))
+        return Subscriber(self, sub, callback, callback_args)
+
+    async def release_subscription(self, sub: Subscription) -> None:
+        """Drop one handle; unregister when none are left."""
+        sub.handles -= 1
+        if sub.handles <= 0 and self.subscriptions.get(sub.topic) is sub:
+            del self.subscriptions[sub.topic]
+            sub.close()
+            await self._quiet_call("unregisterSubscriber", sub.topic, self.uri)
+
+    # -- services ----------------------------------------------------------------------
+    async def advertise_service(self, name: str, srv_class: Any, handler: Callable[[Any], Any], *,
+                                threaded: bool = False) -> ServiceServer:
+        """Serve a service; ``threaded`` runs the handler in a worker thread."""
+        resolved = self.resolve(name)
+        if resolved in self.services:
+            raise ValueError(f"service [{resolved}] is already registered in this node")
+        server = ServiceServer(self, resolved, srv_class, handler, threaded=threaded)
+        self.services[resolved] = server
+        try:
+            await self.master_call("registerService", resolved, self.service_uri, self.uri)
+        except MasterError:
+            self.services.pop(resolved, None)
+            raise
+        return server
+
+    async def unadvertise_service(self, server: ServiceServer) -> None:
+        """Stop serving a service."""
+        if self.services.get(server.name) is server:
+            del self.services[server.name]
+            await self._quiet_call("unregisterService", server.name, self.service_uri)
+
+    def service_proxy(self, name: str, srv_class: Any, *, persistent: bool = False,
+                      headers: dict[str, str] | None = None) -> ServiceProxy:
+        """A client for a service (resolved in this node's namespace)."""
+        return ServiceProxy(self, self.resolve(name), srv_class, persistent=persistent, headers=headers)
+
+    async def wait_for_service(self, name: str, timeout: float | None = None) -> None:
+        """Wait until a service is registered and accepts connections."""
+        resolved = self.resolve(name)
+        deadline = None if timeout is None else self.loop.time() + timeout
+        while True:
+            try:
+                uri = await self.lookup_service(resolved)
+                parsed = urlparse(uri)
+                _, writer = await asyncio.wait_for(
+                    asyncio.open_connection(parsed.hostname, parsed.port), 1.0)
+                writer.close()
+                return
+            except (ServiceException, OSError, asyncio.TimeoutError) as exc:
+                if deadline is not None and self.loop.time() >= deadline:
+                    raise TimeoutError(f"timeout exceeded while waiting for service {resolved}") from exc
+            await asyncio.sleep(0.1)
+
+    # -- parameters ----------------------------------------------------------------------
+    async def get_param(self, name: str, default: Any = ...) -> Any:
+        """A parameter's value; KeyError when unset and no default is given."""
+        key = self.resolve(name)
+        try:
+            return await self.master_call("getParam", key)
+        except MasterError as exc:
+            if "Unable to communicate" in str(exc):
+                raise
+            if default is ...:
+                raise KeyError(key) from None
+            return default
+
+    async def get_param_cached(self, name: str, default: Any = ...) -> Any:
+        """Like get_param, but subscribes once and answers from the cache after."""
+        key = self.resolve(name)
+        if not self.params.subscribed(key):
+            value = await self.master_call("subscribeParam", self.uri, key)
+            self.params.set(key, value)
+        value = self.params.get(key)
+        if value == {} and not await self.has_param(key):
+            if default is ...:
+                raise KeyError(key)
+            return default
+        return value
+
+    async def set_param(self, name: str, value: Any) -> None:
+        """Set a parameter (a dict sets a namespace)."""
+        await self.master_call("setParam", self.resolve(name), value)
+
+    async def has_param(self, name: str) -> bool:
+        """True when the parameter exists."""
+        return bool(await self.master_call("hasParam", self.resolve(name)))
+
+    async def delete_param(self, name: str) -> None:
+        """Delete a parameter; KeyError when it does not exist."""
+        key = self.resolve(name)
+        try:
+            await self.master_call("deleteParam", key)
+        except MasterError as exc:
+            if "Unable to communicate" in str(exc):
+                raise
+            raise KeyError(key) from None
+
+    async def search_param(self, name: str) -> str | None:
+        """The closest parameter name up the namespace tree, or None."""
+        try:
+            found = await self.master_call("searchParam", name)
+        except MasterError as exc:
+            if "Unable to communicate" in str(exc):
+                raise
+            return None
+        return found or None
+
+    async def get_param_names(self) -> list[str]:
+        """Every parameter name on the server."""
+        return list(await self.master_call("getParamNames"))
+

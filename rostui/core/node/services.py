@@ -1,0 +1,260 @@
+"""ROS services over rosrpc: servers inside a node, and client proxies.
+
+Wire format: the client sends a header (callerid, service, md5sum, optional
+persistent=1 or probe=1), the server answers with its header (callerid,
+md5sum, request_type, response_type, type).  Each request is a length-prefixed
+body; each response is an ok byte, a length, and the response body (ok=1) or
+an error string (ok=0).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from typing import TYPE_CHECKING, Any, Callable
+from urllib.parse import urlparse
+
+from rostui.core.tcpros import LEN, MAX_HEADER, decode_header, encode_header, max_frame_from_env
+
+if TYPE_CHECKING:
+    from rostui.core.node.node import AsyncNode
+    from rostui.core.node.transport import InboundConnection
+
+log = logging.getLogger("rostui.services")
+
+
+class ServiceException(Exception):
+    """A service call failed: unavailable, refused, or the handler reported an error."""
+
+
+Handler = Callable[[Any], Any]
+
+
+def make_response(srv_class: Any, result: Any) -> Any:
+    """Turn what a handler returned into a response, as rospy accepts it.
+
+    A response instance passes through; None is an error; a dict gives
+    keyword fields; a tuple or list gives positional fields; any other single
+    value fills a response with exactly one field.
+    """
+    resp_class = srv_class._response_class
+    if isinstance(result, resp_class):
+        return result
+    if result is None:
+        raise ServiceException("service handler returned None")
+    if isinstance(result, dict):
+        return resp_class(**result)
+    if isinstance(result, (tuple, list)):
+        return resp_class(*result)
+    if len(resp_class.__slots__) == 1:
+        return resp_class(result)
+    raise ServiceException(f"service handler returned {type(result).__name__}, not {resp_class._type}")
+
+
+class ServiceServer:
+    """A service advertised by a node; answers rosrpc connections."""
+
+    def __init__(self, node: "AsyncNode", name: str, srv_class: Any, handler: Handler,
+                 *, threaded: bool) -> None:
+        self.node = node
+        self.name = name
+        self.srv_class = srv_class
+        self.handler = handler
+        self.threaded = threaded
+        self.calls = 0
+
+    @property
+    def type_name(self) -> str:
+        """The service type, e.g. ``std_srvs/Empty``."""
+        return self.srv_class._type
+
+    def reply_header(self) -> dict[str, str]:
+        """The header this server sends to every client."""
+        return {
+            "callerid": self.node.name,
+            "md5sum": self.srv_class._md5sum,
+            "request_type": self.srv_class._request_class._type,
+            "response_type": self.srv_class._response_class._type,
+            "type": self.srv_class._type,
+        }
+
+    def accept(self, header: dict[str, str], conn: "InboundConnection") -> "ServiceConnection | str":
+        """Answer a client's header; return a connection handler or a refusal."""
+        if header.get("probe") == "1":
+            conn.write(encode_header(self.reply_header()))
+            conn.close()
+            return ServiceConnection(self, conn, persistent=False)
+        md5 = header.get("md5sum")
+        if md5 is None:
+            return "header did not have required element: md5sum"
+        if md5 not in ("*", self.srv_class._md5sum):
+            return (f"request from [{header.get('callerid', '?')}]: md5sums do not match: "
+                    f"[{md5}] vs. [{self.srv_class._md5sum}]")
+        conn.write(encode_header(self.reply_header()))
+        return ServiceConnection(self, conn, persistent=header.get("persistent") == "1")
+
+    async def handle(self, body: bytes) -> bytes:
+        """Run the handler on one request body; return the framed response."""
+        try:
+            request = self.srv_class._request_class.deserialize(body)
+            if self.threaded:
+                result = await self.node.loop.run_in_executor(None, self.handler, request)
+            else:
+                result = self.handler(request)
+                if asyncio.iscoroutine(result):
+                    result = await result
+            payload = make_response(self.srv_class, result).serialize()
+            self.calls += 1
+            return b"\x01" + LEN.pack(len(payload)) + payload
+        except Exception as exc:
+            text = str(exc) if isinstance(exc, ServiceException) else f"error processing request: {exc}"
+            if not isinstance(exc, ServiceException):
+                log.error("error processing request for service %s: %s", self.name, exc)
+            data = text.encode()
+            return b"\x00" + LEN.pack(len(data)) + data
+
+
+class ServiceConnection:
+    """One client connection to a ServiceServer; requests are answered in order."""
+
+    def __init__(self, server: ServiceServer, conn: "InboundConnection", *, persistent: bool) -> None:
+        self.server = server
+        self.conn = conn
+        self.persistent = persistent
+        self.queue: asyncio.Queue[bytes] = asyncio.Queue()
+        self.task: asyncio.Task[None] | None = None
+
+    def frames_received(self, frames: list[bytes]) -> None:
+        """Queue requests; a worker answers them one at a time."""
+        for data in frames:
+            self.queue.put_nowait(data)
+        if self.task is None:
+            self.task = asyncio.get_running_loop().create_task(self._serve())
+
+    async def _serve(self) -> None:
+        while True:
+            body = await self.queue.get()
+            self.conn.write(await self.server.handle(body))
+            if not self.persistent:
+                self.conn.close()
+                return
+
+    def connection_lost(self) -> None:
+        """Stop the worker."""
+        if self.task is not None:
+            self.task.cancel()
+
+    def pause_writing(self) -> None:
+        """Responses are small; nothing to do."""
+
+    def resume_writing(self) -> None:
+        """Responses are small; nothing to do."""
+
+
+def parse_rosrpc_uri(uri: str) -> tuple[str, int]:
+    """Split ``rosrpc://host:port`` into host and port."""
+    parsed = urlparse(uri)
+    if parsed.scheme != "rosrpc" or not parsed.hostname or not parsed.port:
+        raise ServiceException(f"invalid service URI [{uri}]")
+    return parsed.hostname, parsed.port
+
+
+async def read_header(reader: asyncio.StreamReader) -> dict[str, str]:
+    """Read one connection header from a stream."""
+    (size,) = LEN.unpack(await reader.readexactly(4))
+    if size > MAX_HEADER:
+        raise ServiceException(f"service header of {size} bytes is too large")
+    return decode_header(await reader.readexactly(size))
+
+
+async def probe_service(uri: str, service: str, callerid: str, timeout: float = 5.0) -> dict[str, str]:
+    """Ask a service server for its header (type, md5sum) without calling it."""
+    host, port = parse_rosrpc_uri(uri)
+    reader, writer = await asyncio.wait_for(asyncio.open_connection(host, port), timeout)
+    try:
+        writer.write(encode_header({"callerid": callerid, "service": service, "md5sum": "*", "probe": "1"}))
+        header = await asyncio.wait_for(read_header(reader), timeout)
+    finally:
+        writer.close()
+    if "error" in header:
+        raise ServiceException(header["error"])
+    return header
+
+
+class ServiceProxy:
+    """A client handle for one service; optionally keeps its connection open."""
+
+    def __init__(self, node: "AsyncNode", name: str, srv_class: Any, *, persistent: bool = False,
+                 headers: dict[str, str] | None = None) -> None:
+        self.node = node
+        self.name = name
+        self.srv_class = srv_class
+        self.persistent = persistent
+        self.headers = headers or {}
+        self._stream: tuple[asyncio.StreamReader, asyncio.StreamWriter] | None = None
+        self._lock: asyncio.Lock | None = None
+
+    def build_request(self, *args: Any, **kwargs: Any) -> Any:
+        """A request from a request instance, positional fields or keywords."""
+        req_class = self.srv_class._request_class
+        if len(args) == 1 and not kwargs and isinstance(args[0], req_class):
+            return args[0]
+        return req_class(*args, **kwargs)
+
+    async def _open(self) -> tuple[asyncio.StreamReader, asyncio.StreamWriter]:
+        uri = await self.node.lookup_service(self.name)
+        host, port = parse_rosrpc_uri(uri)
+        try:
+            reader, writer = await asyncio.open_connection(host, port)
+        except OSError as exc:
+            raise ServiceException(f"unable to connect to service [{self.name}]: {exc}") from exc
+        header = {"callerid": self.node.name, "service": self.name, "md5sum": self.srv_class._md5sum,
+                  "type": self.srv_class._type, **self.headers}
+        if self.persistent:
+            header["persistent"] = "1"
+        writer.write(encode_header(header))
+        try:
+            reply = await read_header(reader)
+        except (asyncio.IncompleteReadError, ConnectionError) as exc:
+            writer.close()
+            raise ServiceException(f"service [{self.name}] closed the connection during the header exchange") from exc
+        if "error" in reply:
+            writer.close()
+            raise ServiceException(f"service [{self.name}] refused the call: {reply['error']}")
+        return reader, writer
+
+    async def call(self, *args: Any, **kwargs: Any) -> Any:
+        """Call the service; raise ServiceException on any failure."""
+        request = self.build_request(*args, **kwargs)
+        if self._lock is None:
+            self._lock = asyncio.Lock()
+        async with self._lock:
+            stream = self._stream or await self._open()
+            reader, writer = stream
+            try:
+                payload = request.serialize()
+                writer.write(LEN.pack(len(payload)) + payload)
+                ok = (await reader.readexactly(1))[0]
+                (size,) = LEN.unpack(await reader.readexactly(4))
+                if size > max_frame_from_env():
+                    raise ServiceException(f"service [{self.name}] sent a response of {size} bytes, over the cap")
+                body = await reader.readexactly(size)
+            except (asyncio.IncompleteReadError, ConnectionError) as exc:
+                writer.close()
+                self._stream = None
+                raise ServiceException(f"service [{self.name}] closed the connection before responding") from exc
+            if self.persistent and ok:
+                self._stream = stream
+            else:
+                writer.close()
+                self._stream = None
+        if not ok:
+            raise ServiceException(
+                f"service [{self.name}] responded with an error: {body.decode(errors='replace')}")
+        return self.srv_class._response_class.deserialize(body)
+
+    async def close(self) -> None:
+        """Close a persistent connection."""
+        if self._stream is not None:
+            self._stream[1].close()
+            self._stream = None

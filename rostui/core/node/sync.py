@@ -1,0 +1,571 @@
+"""The synchronous, rospy-like face of the node engine, for user scripts.
+
+One node per process, as in rospy::
+
+    from rostui import client as ros
+    from rostui.core.msg import get_message_class
+
+    String = get_message_class("std_msgs/String")
+    ros.init_node("talker")
+    pub = ros.Publisher("chatter", String, queue_size=10)
+    rate = ros.Rate(10)
+    while not ros.is_shutdown():
+        pub.publish(String(data="hello"))
+        rate.sleep()
+
+Subscriber callbacks run on the engine thread, one at a time, as soon as a
+message arrives; keep them short.  Service handlers run in worker threads, so
+they may block.  Blocking calls (service calls, parameters) work from any
+thread, callbacks included.
+"""
+
+from __future__ import annotations
+
+import atexit
+import signal
+import sys
+import threading
+import time
+from typing import Any, Callable, Sequence
+
+from rostui.core import names
+from rostui.core.log import Level
+from rostui.core.node import node as _node
+from rostui.core.node.engine import Engine
+from rostui.core.node.services import ServiceException, probe_service
+from rostui.core.node.topics import TopicType
+from rostui.core.rostime import Duration, Time
+from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, call_sync, ros_result
+
+
+class ROSException(Exception):
+    """Base error of the sync API."""
+
+
+class ROSInterruptException(ROSException, KeyboardInterrupt):
+    """Raised by sleep() and Rate.sleep() when the node shuts down."""
+
+
+class _State:
+    """The process's single node and its engine."""
+
+    engine: Engine | None = None
+    node: _node.AsyncNode | None = None
+    shutdown = threading.Event()
+    reason = ""
+    hooks: list[Callable[..., Any]] = []
+
+
+_state = _State()
+
+
+def _require() -> tuple[Engine, _node.AsyncNode]:
+    if _state.engine is None or _state.node is None:
+        raise ROSException("init_node() has not been called")
+    return _state.engine, _state.node
+
+
+def _excepthook(kind: type[BaseException], value: BaseException, tb: Any) -> None:
+    if isinstance(value, ROSInterruptException):
+        return
+    _previous_excepthook(kind, value, tb)
+
+
+_previous_excepthook = sys.excepthook
+
+
+def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = False,
+              log_level: int | Level | None = None, disable_signals: bool = False,
+              master_uri: str | None = None, wait_for_master: bool = True) -> None:
+    """Start this process's node; ``argv`` defaults to ``sys.argv[1:]``."""
+    global _previous_excepthook
+    if _state.node is not None:
+        raise ROSException(f"init_node() was already called for {_state.node.name}")
+    engine = Engine()
+    node = _node.AsyncNode(name, argv=sys.argv[1:] if argv is None else argv, anonymous=anonymous,
+                           master_uri=master_uri)
+    if log_level is not None:
+        node.console.level = Level(int(log_level))
+    engine.run(node.start())
+    node.shutdown_hooks.append(_on_node_shutdown)
+    _state.engine, _state.node = engine, node
+    _state.shutdown.clear()
+    if not disable_signals and threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, _on_signal)
+        signal.signal(signal.SIGTERM, _on_signal)
+    atexit.register(_atexit)
+    if sys.excepthook is not _excepthook:
+        _previous_excepthook = sys.excepthook
+        sys.excepthook = _excepthook
+    if wait_for_master:
+        def warn() -> None:
+            node.console.warn(f"Unable to contact the master at [{node.master_uri}]; will keep trying.")
+        engine.run(node.wait_for_master(on_wait=warn))
+
+
+def _on_signal(signum: int, _frame: Any) -> None:
+    signal_shutdown("signal-interrupt" if signum == signal.SIGINT else "signal-terminate")
+
+
+def _on_node_shutdown(reason: str) -> None:
+    _state.reason = reason
+    _state.shutdown.set()
+    for hook in list(_state.hooks):
+        try:
+            hook(reason) if _accepts_arg(hook) else hook()
+        except Exception as exc:
+            sys.stderr.write(f"error in shutdown hook: {exc}\n")
+
+
+def _accepts_arg(fn: Callable[..., Any]) -> bool:
+    try:
+        import inspect
+        return len(inspect.signature(fn).parameters) >= 1
+    except (TypeError, ValueError):
+        return False
+
+
+def _atexit() -> None:
+    if _state.node is not None and not _state.node.is_shutdown:
+        signal_shutdown("atexit")
+
+
+def signal_shutdown(reason: str) -> None:
+    """Shut the node down: unregister everything, close connections."""
+    engine, node = _state.engine, _state.node
+    _state.shutdown.set()
+    if engine is None or node is None:
+        return
+    if engine.on_engine_thread:
+        node.request_shutdown(reason)
+        return
+    try:
+        engine.run(node.shutdown(reason), timeout=5)
+    except Exception:
+        pass
+
+
+def on_shutdown(hook: Callable[..., Any]) -> None:
+    """Call ``hook()`` (or ``hook(reason)``) when the node shuts down."""
+    _state.hooks.append(hook)
+
+
+def is_shutdown() -> bool:
+    """True once the node has begun shutting down."""
+    return _state.shutdown.is_set()
+
+
+def ok() -> bool:
+    """The opposite of is_shutdown(), as roscpp's ros::ok()."""
+    return not _state.shutdown.is_set()
+
+
+def spin() -> None:
+    """Block until the node shuts down (Ctrl-C, or the master's shutdown request)."""
+    _require()
+    try:
+        while not _state.shutdown.wait(0.5):
+            pass
+    except KeyboardInterrupt:
+        signal_shutdown("keyboard interrupt")
+
+
+def get_name() -> str:
+    """This node's global name."""
+    return _require()[1].name
+
+
+def get_namespace() -> str:
+    """This node's namespace, with leading and trailing slash."""
+    return _require()[1].namespace
+
+
+def get_node_uri() -> str:
+    """This node's slave API URI."""
+    return _require()[1].uri
+
+
+def get_master_uri() -> str:
+    """The master URI this node uses."""
+    return _require()[1].master_uri
+
+
+def resolve_name(name: str) -> str:
+    """Resolve a name in this node's namespace, applying remappings."""
+    return _require()[1].resolve(name)
+
+
+def myargv(argv: Sequence[str] | None = None) -> list[str]:
+    """``argv`` (default sys.argv) without ROS arguments; keeps the program name."""
+    argv = list(sys.argv if argv is None else argv)
+    return argv[:1] + names.parse_argv(argv[1:]).args
+
+
+# -- time ---------------------------------------------------------------------------
+def get_rostime() -> Time:
+    """The current time."""
+    return Time.now()
+
+
+def get_time() -> float:
+    """The current time in seconds."""
+    return time.time()
+
+
+def sleep(duration: float | Duration) -> None:
+    """Sleep, returning early with ROSInterruptException on shutdown."""
+    seconds = duration.to_sec() if isinstance(duration, Duration) else float(duration)
+    if seconds <= 0:
+        return
+    if _state.shutdown.wait(seconds):
+        raise ROSInterruptException("ROS shutdown request")
+
+
+class Rate:
+    """Keeps a loop at a fixed frequency (like rospy.Rate / ros::Rate)."""
+
+    def __init__(self, hz: float) -> None:
+        if hz <= 0:
+            raise ValueError("rate must be positive")
+        self.period = 1.0 / hz
+        self.last = time.monotonic()
+
+    def remaining(self) -> float:
+        """Seconds left in the current cycle."""
+        return self.last + self.period - time.monotonic()
+
+    def sleep(self) -> None:
+        """Sleep until the next cycle; raises ROSInterruptException on shutdown."""
+        now = time.monotonic()
+        remaining = self.last + self.period - now
+        if remaining > 0:
+            if _state.shutdown.wait(remaining):
+                raise ROSInterruptException("ROS shutdown request")
+            self.last += self.period
+        else:
+            self.last = now if -remaining > self.period else self.last + self.period
+            if _state.shutdown.is_set():
+                raise ROSInterruptException("ROS shutdown request")
+
+
+class TimerEvent:
+    """What a Timer callback receives."""
+
+    def __init__(self, last_expected: float | None, last_real: float | None, current_expected: float,
+                 current_real: float, last_duration: float | None) -> None:
+        self.last_expected = last_expected
+        self.last_real = last_real
+        self.current_expected = current_expected
+        self.current_real = current_real
+        self.last_duration = last_duration
+
+
+class Timer:
+    """Calls ``callback(TimerEvent)`` every ``period`` seconds on the engine thread."""
+
+    def __init__(self, period: float | Duration, callback: Callable[[TimerEvent], Any], oneshot: bool = False) -> None:
+        engine, _ = _require()
+        self.period = period.to_sec() if isinstance(period, Duration) else float(period)
+        self.callback = callback
+        self.oneshot = oneshot
+        self._loop = engine.loop
+        self._handle: Any = None
+        self._stopped = False
+        self._last_expected: float | None = None
+        self._last_real: float | None = None
+        self._last_duration: float | None = None
+        self._next = time.time() + self.period
+        engine.call_soon(self._schedule)
+
+    def _schedule(self) -> None:
+        if not self._stopped:
+            self._handle = self._loop.call_later(max(0.0, self._next - time.time()), self._fire)
+
+    def _fire(self) -> None:
+        if self._stopped or _state.shutdown.is_set():
+            return
+        start = time.time()
+        event = TimerEvent(self._last_expected, self._last_real, self._next, start, self._last_duration)
+        try:
+            self.callback(event)
+        except Exception as exc:
+            sys.stderr.write(f"error in timer callback: {exc}\n")
+        self._last_expected, self._last_real = self._next, start
+        self._last_duration = time.time() - start
+        if self.oneshot:
+            return
+        self._next += self.period
+        if self._next < time.time():
+            self._next = time.time() + self.period
+        self._schedule()
+
+    def shutdown(self) -> None:
+        """Stop the timer."""
+        self._stopped = True
+        if self._handle is not None:
+            self._loop.call_soon_threadsafe(self._handle.cancel)
+
+    def is_alive(self) -> bool:
+        """True until shutdown() or a oneshot fired."""
+        return not self._stopped
+
+
+# -- topics -----------------------------------------------------------------------------
+class Publisher:
+    """Publish messages on a topic (rospy.Publisher)."""
+
+    def __init__(self, name: str, data_class: Any, queue_size: int | None = None, latch: bool = False,
+                 tcp_nodelay: bool = False, topic_type: TopicType | None = None) -> None:
+        engine, node = _require()
+        self._engine = engine
+        self._impl = engine.run(node.advertise(name, data_class, queue_size=queue_size, latch=latch,
+                                               tcp_nodelay=tcp_nodelay, topic_type=topic_type))
+        self.name = self._impl.name
+        self.resolved_name = self._impl.name
+        self.data_class = data_class
+        self.type = (topic_type.type if topic_type else data_class._type)
+
+    def publish(self, *args: Any, **kwargs: Any) -> None:
+        """Publish a message, or one built from fields; never blocks on slow subscribers."""
+        self._impl.publish(*args, **kwargs)
+
+    def get_num_connections(self) -> int:
+        """Connected subscribers."""
+        return self._impl.get_num_connections()
+
+    def unregister(self) -> None:
+        """Stop publishing."""
+        if not self._engine.on_engine_thread:
+            self._engine.run(self._impl.unregister())
+        else:
+            self._engine.loop.create_task(self._impl.unregister())
+
+
+class Subscriber:
+    """Receive messages of a topic in a callback (rospy.Subscriber)."""
+
+    def __init__(self, name: str, data_class: Any, callback: Callable[..., Any] | None = None,
+                 callback_args: Any = None, queue_size: int | None = None, buff_size: int = 65536,
+                 tcp_nodelay: bool = False) -> None:
+        engine, node = _require()
+        self._engine = engine
+        self._impl = engine.run(node.subscribe(name, data_class, callback, callback_args=callback_args,
+                                               queue_size=queue_size, tcp_nodelay=tcp_nodelay))
+        self.name = self._impl.name
+        self.resolved_name = self._impl.name
+        self.data_class = data_class
+
+    def get_num_connections(self) -> int:
+        """Connected publishers."""
+        return self._impl.get_num_connections()
+
+    def unregister(self) -> None:
+        """Stop receiving."""
+        if not self._engine.on_engine_thread:
+            self._engine.run(self._impl.unregister())
+        else:
+            self._engine.loop.create_task(self._impl.unregister())
+
+
+def wait_for_message(topic: str, topic_type: Any, timeout: float | None = None) -> Any:
+    """Block until one message arrives on a topic and return it."""
+    box: list[Any] = []
+    got = threading.Event()
+
+    def take(msg: Any) -> None:
+        if not box:
+            box.append(msg)
+            got.set()
+
+    sub = Subscriber(topic, topic_type, take)
+    try:
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while not got.wait(0.05):
+            if _state.shutdown.is_set():
+                raise ROSInterruptException("ROS shutdown request")
+            if deadline is not None and time.monotonic() > deadline:
+                raise ROSException(f"timeout exceeded while waiting for a message on topic {sub.resolved_name}")
+        return box[0]
+    finally:
+        sub.unregister()
+
+
+# -- services --------------------------------------------------------------------------
+class Service:
+    """Serve a service; ``handler(request)`` runs in a worker thread (rospy.Service)."""
+
+    def __init__(self, name: str, service_class: Any, handler: Callable[[Any], Any]) -> None:
+        engine, node = _require()
+        self._engine, self._node = engine, node
+        self._server = engine.run(node.advertise_service(name, service_class, handler, threaded=True))
+        self.resolved_name = self._server.name
+
+    def shutdown(self, reason: str = "") -> None:
+        """Stop serving."""
+        self._engine.run(self._node.unadvertise_service(self._server))
+
+
+class _DetachedCaller:
+    """The minimum of a node a ServiceProxy needs, on a private loop."""
+
+    def __init__(self, name: str, master_uri: str) -> None:
+        self.name = name
+        self.master_uri = master_uri
+
+    async def lookup_service(self, service: str) -> str:
+        async with XmlRpcClient(self.master_uri) as client:
+            try:
+                return str(ros_result(await client.call("lookupService", self.name, service)))
+            except XmlRpcConnectionError as exc:
+                raise ServiceException(f"Unable to communicate with master at {self.master_uri}: {exc}") from exc
+            except RosApiError as exc:
+                raise ServiceException(f"service [{service}] unavailable") from exc
+
+
+class ServiceProxy:
+    """Call a service like a function (rospy.ServiceProxy)."""
+
+    def __init__(self, name: str, service_class: Any, persistent: bool = False,
+                 headers: dict[str, str] | None = None) -> None:
+        engine, node = _require()
+        self._engine = engine
+        self._node = node
+        self._proxy = node.service_proxy(name, service_class, persistent=persistent, headers=headers)
+        self.resolved_name = self._proxy.name
+        self.service_class = service_class
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        """Call the service; ServiceException on failure."""
+        return self.call(*args, **kwargs)
+
+    def call(self, *args: Any, **kwargs: Any) -> Any:
+        """Call the service; ServiceException on failure."""
+        if self._engine.on_engine_thread:
+            from rostui.core.node.services import ServiceProxy as AsyncProxy
+            caller = _DetachedCaller(self._node.name, self._node.master_uri)
+            proxy = AsyncProxy(caller, self.resolved_name, self.service_class)  # type: ignore[arg-type]
+            return self._engine.run_detached(lambda: proxy.call(*args, **kwargs))
+        return self._engine.run(self._proxy.call(*args, **kwargs))
+
+    def wait_for_service(self, timeout: float | None = None) -> None:
+        """Wait until the service is available."""
+        wait_for_service(self.resolved_name, timeout)
+
+    def close(self) -> None:
+        """Close a persistent connection."""
+        if not self._engine.on_engine_thread:
+            self._engine.run(self._proxy.close())
+
+
+def wait_for_service(service: str, timeout: float | None = None) -> None:
+    """Block until a service is registered and reachable; ROSException on timeout."""
+    engine, node = _require()
+    try:
+        if engine.on_engine_thread:
+            raise ROSException("wait_for_service() cannot be called from a subscriber callback")
+        engine.run(node.wait_for_service(service, timeout))
+    except TimeoutError as exc:
+        raise ROSException(str(exc)) from None
+
+
+def probe_service_header(service: str, timeout: float = 5.0) -> dict[str, str]:
+    """The header a service server sends (its type and md5sum)."""
+    engine, node = _require()
+    resolved = node.resolve(service)
+
+    async def probe() -> dict[str, str]:
+        uri = await node.lookup_service(resolved)
+        return await probe_service(uri, resolved, node.name, timeout)
+    return engine.run(probe())
+
+
+# -- parameters --------------------------------------------------------------------------
+def _param_call(method: str, *args: Any) -> Any:
+    _, node = _require()
+    try:
+        return ros_result(call_sync(node.master_uri, method, node.name, *args))
+    except XmlRpcConnectionError as exc:
+        raise ROSException(f"Unable to communicate with master at {node.master_uri}: {exc}") from exc
+
+
+_MISSING: Any = object()
+
+
+def get_param(name: str, default: Any = _MISSING) -> Any:
+    """A parameter's value; KeyError if unset and no default."""
+    key = resolve_name(name)
+    try:
+        return _param_call("getParam", key)
+    except RosApiError:
+        if default is _MISSING:
+            raise KeyError(key) from None
+        return default
+
+
+def get_param_cached(name: str, default: Any = _MISSING) -> Any:
+    """A parameter's value, subscribed once and then read from the cache."""
+    engine, node = _require()
+    if engine.on_engine_thread:
+        return get_param(name, default)
+    try:
+        return engine.run(node.get_param_cached(name, ... if default is _MISSING else default))
+    except _node.MasterError as exc:
+        raise ROSException(str(exc)) from None
+
+
+def set_param(name: str, value: Any) -> None:
+    """Set a parameter (a dict sets a whole namespace)."""
+    _param_call("setParam", resolve_name(name), value)
+
+
+def has_param(name: str) -> bool:
+    """True when the parameter exists."""
+    return bool(_param_call("hasParam", resolve_name(name)))
+
+
+def delete_param(name: str) -> None:
+    """Delete a parameter; KeyError if it does not exist."""
+    key = resolve_name(name)
+    try:
+        _param_call("deleteParam", key)
+    except RosApiError:
+        raise KeyError(key) from None
+
+
+def search_param(name: str) -> str | None:
+    """The closest parameter of that name up this node's namespace, or None."""
+    try:
+        return _param_call("searchParam", name) or None
+    except RosApiError:
+        return None
+
+
+def get_param_names() -> list[str]:
+    """Every parameter name on the server."""
+    return list(_param_call("getParamNames"))
+
+
+# -- logging (console for now; /rosout comes with the logging layer) --------------------------
+def logdebug(msg: str, *args: Any) -> None:
+    """Log at DEBUG."""
+    _require()[1].console.debug(msg % args if args else msg)
+
+
+def loginfo(msg: str, *args: Any) -> None:
+    """Log at INFO."""
+    _require()[1].console.info(msg % args if args else msg)
+
+
+def logwarn(msg: str, *args: Any) -> None:
+    """Log at WARN."""
+    _require()[1].console.warn(msg % args if args else msg)
+
+
+def logerr(msg: str, *args: Any) -> None:
+    """Log at ERROR."""
+    _require()[1].console.error(msg % args if args else msg)
+
+
+def logfatal(msg: str, *args: Any) -> None:
+    """Log at FATAL."""
+    _require()[1].console.fatal(msg % args if args else msg)

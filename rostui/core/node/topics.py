@@ -1,0 +1,420 @@
+"""Topic publications and subscriptions of a node.
+
+A `Publication` owns every outgoing connection of one topic: it serialises a
+message once, frames it, and writes it to each subscriber; a latched topic
+keeps its last frame for newcomers.  Publishing from a thread other than the
+engine's queues the frame and wakes the loop once per batch.
+
+A `Subscription` connects to every publisher the master lists, checks each
+publisher header, deserialises frames and calls callbacks.  Publishers in the
+same process are linked directly: message objects are handed over without
+serialisation.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import collections
+import logging
+import threading
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable
+
+from rostui.core.node.anymsg import AnyMsg
+from rostui.core.node.transport import InboundConnection, SubscriberConnection, set_nodelay
+from rostui.core.tcpros import LEN, encode_header
+
+if TYPE_CHECKING:
+    from rostui.core.node.node import AsyncNode
+
+log = logging.getLogger("rostui.topics")
+
+
+@dataclass(frozen=True)
+class TopicType:
+    """What a topic carries: type name, md5sum and message_definition."""
+
+    type: str
+    md5sum: str
+    definition: str
+
+    @classmethod
+    def of(cls, msg_class: Any) -> "TopicType":
+        """The TopicType of a generated message class."""
+        return cls(msg_class._type, msg_class._md5sum, msg_class._full_text)
+
+
+class OutgoingLink:
+    """One subscriber's connection to a publication, with its own drop queue."""
+
+    def __init__(self, pub: "Publication", conn: InboundConnection, header: dict[str, str]) -> None:
+        self.pub = pub
+        self.conn = conn
+        self.callerid = header.get("callerid", "")
+        self.paused = False
+        self.backlog: collections.deque[bytes] = collections.deque(maxlen=pub.queue_limit)
+        self.messages_sent = 0
+        self.bytes_sent = 0
+        self.dropped = 0
+        self.id = pub.node.next_connection_id()
+
+    def send(self, data: bytes, count: int = 1) -> None:
+        """Write framed bytes, or queue them while the peer is slow."""
+        if self.paused:
+            if len(self.backlog) == self.backlog.maxlen:
+                self.dropped += 1
+            self.backlog.append(data)
+            return
+        self.conn.write(data)
+        self.messages_sent += count
+        self.bytes_sent += len(data)
+
+    def frames_received(self, frames: list[bytes]) -> None:
+        """Subscribers send nothing after their header; ignore stray bytes."""
+
+    def pause_writing(self) -> None:
+        """Start queueing (bounded by queue_size, oldest dropped)."""
+        self.paused = True
+
+    def resume_writing(self) -> None:
+        """Flush what queued while paused."""
+        self.paused = False
+        while self.backlog and not self.paused:
+            self.send(self.backlog.popleft())
+
+    def connection_lost(self) -> None:
+        """Forget this subscriber."""
+        self.pub.remove_link(self)
+
+
+class Publication:
+    """Every publisher handle of one topic in one node shares this object."""
+
+    def __init__(
+        self, node: "AsyncNode", topic: str, topic_type: TopicType, *,
+        queue_size: int | None, latch: bool, tcp_nodelay: bool,
+    ) -> None:
+        self.node = node
+        self.topic = topic
+        self.topic_type = topic_type
+        self.latch = latch
+        self.tcp_nodelay = tcp_nodelay
+        self.queue_limit = queue_size if queue_size and queue_size > 0 else None
+        self.links: tuple[OutgoingLink, ...] = ()
+        self.local: tuple["Subscription", ...] = ()
+        self.latched_frame: bytes | None = None
+        self.latched_msg: Any = None
+        self.handles = 0
+        self.messages_published = 0
+        self._pending: collections.deque[tuple[bytes, Any]] = collections.deque(maxlen=self.queue_limit)
+        self._flush_scheduled = False
+        self._lock = threading.Lock()
+
+    # -- connections ---------------------------------------------------------
+    def accept(self, header: dict[str, str], conn: InboundConnection) -> OutgoingLink | str:
+        """Answer a subscriber's header; return the link or a refusal reason."""
+        md5 = header.get("md5sum")
+        if md5 is None:
+            return "header did not have required element: md5sum"
+        ours = self.topic_type.md5sum
+        if md5 not in ("*", ours) and ours != "*":
+            return (f"Client [{header.get('callerid', '?')}] wants topic {self.topic} to have datatype/md5sum "
+                    f"[{header.get('type', '?')}/{md5}], but our version has [{self.topic_type.type}/{ours}]. "
+                    "Dropping connection.")
+        link = OutgoingLink(self, conn, header)
+        if self.tcp_nodelay or header.get("tcp_nodelay") == "1":
+            if conn.transport is not None:
+                set_nodelay(conn.transport)
+        reply = {
+            "callerid": self.node.name,
+            "md5sum": ours,
+            "type": self.topic_type.type,
+            "message_definition": self.topic_type.definition,
+            "latching": "1" if self.latch else "0",
+            "topic": self.topic,
+        }
+        conn.write(encode_header(reply))
+        self.links = self.links + (link,)
+        if self.latch and self.latched_frame is not None:
+            link.send(self.latched_frame)
+        return link
+
+    def remove_link(self, link: OutgoingLink) -> None:
+        """Drop a subscriber connection."""
+        self.links = tuple(x for x in self.links if x is not link)
+
+    def add_local(self, sub: "Subscription") -> None:
+        """Link a subscription of this process for direct delivery."""
+        if sub not in self.local:
+            self.local = self.local + (sub,)
+            if self.latch and self.latched_msg is not None:
+                sub.deliver_local(self.latched_msg, self)
+
+    def remove_local(self, sub: "Subscription") -> None:
+        """Unlink a same-process subscription."""
+        self.local = tuple(x for x in self.local if x is not sub)
+
+    @property
+    def num_subscribers(self) -> int:
+        """Connected subscribers, remote and in-process."""
+        return len(self.links) + len(self.local)
+
+    # -- publishing -----------------------------------------------------------
+    def publish(self, msg: Any) -> None:
+        """Serialise once and send to every subscriber (any thread)."""
+        payload = msg.serialize() if not isinstance(msg, AnyMsg) else msg._buff
+        data = LEN.pack(len(payload)) + payload
+        if threading.get_ident() == self.node.loop_thread_id:
+            self._send(data, msg)
+            return
+        with self._lock:
+            self._pending.append((data, msg))
+            if self._flush_scheduled:
+                return
+            self._flush_scheduled = True
+        self.node.loop.call_soon_threadsafe(self._flush)
+
+    def _flush(self) -> None:
+        with self._lock:
+            batch = list(self._pending)
+            self._pending.clear()
+            self._flush_scheduled = False
+        if not batch:
+            return
+        if self.links:
+            data = b"".join(item[0] for item in batch)
+            for link in self.links:
+                link.send(data, len(batch))
+        for data, msg in batch:
+            self._after_send(data, msg)
+        self.messages_published += len(batch)
+
+    def _send(self, data: bytes, msg: Any) -> None:
+        for link in self.links:
+            link.send(data)
+        self._after_send(data, msg)
+        self.messages_published += 1
+
+    def _after_send(self, data: bytes, msg: Any) -> None:
+        if self.latch:
+            self.latched_frame = data
+            self.latched_msg = msg
+        for sub in self.local:
+            sub.deliver_local(msg, self)
+
+    def close(self) -> None:
+        """Close every subscriber connection."""
+        for link in self.links:
+            link.conn.close()
+        self.links = ()
+        for sub in self.local:
+            sub.publication_gone(self)
+        self.local = ()
+
+
+Callback = Callable[..., Any]
+
+
+class Subscription:
+    """Every subscriber handle of one topic in one node shares this object."""
+
+    def __init__(self, node: "AsyncNode", topic: str, msg_class: Any, *, queue_size: int | None,
+                 tcp_nodelay: bool) -> None:
+        self.node = node
+        self.topic = topic
+        self.msg_class = msg_class
+        self.raw = msg_class is AnyMsg
+        self.queue_size = queue_size
+        self.tcp_nodelay = tcp_nodelay
+        self.callbacks: tuple[tuple[Callback, Any], ...] = ()
+        self.connections: dict[str, SubscriberConnection | None] = {}
+        self.local_pubs: dict[str, Publication] = {}
+        self.publisher_uris: list[str] = []
+        self.handles = 0
+        self.closed = False
+        self.messages_received = 0
+        self._retry: dict[str, asyncio.Task[None]] = {}
+
+    @property
+    def type_name(self) -> str:
+        """The type registered with the master (``*`` for raw subscribers)."""
+        return self.msg_class._type
+
+    def add_callback(self, cb: Callback, args: Any = None) -> None:
+        """Register a callback ``cb(msg)`` or ``cb(msg, args)``."""
+        self.callbacks = self.callbacks + ((cb, args),)
+
+    def remove_callback(self, cb: Callback, args: Any = None) -> None:
+        """Remove one registration of a callback."""
+        items = list(self.callbacks)
+        for i, item in enumerate(items):
+            if item[0] is cb and item[1] is args:
+                del items[i]
+                break
+        self.callbacks = tuple(items)
+
+    def _dispatch(self, msg: Any) -> None:
+        self.messages_received += 1
+        for cb, args in self.callbacks:
+            try:
+                if args is None:
+                    result = cb(msg)
+                else:
+                    result = cb(msg, args)
+                if asyncio.iscoroutine(result):
+                    self.node.loop.create_task(result)
+            except Exception:  # a user callback must not kill the connection
+                log.exception("error in subscriber callback for %s", self.topic)
+
+    def deliver_local(self, msg: Any, pub: Publication) -> None:
+        """A same-process publisher hands over a message object."""
+        if self.raw and not isinstance(msg, AnyMsg):
+            raw = AnyMsg(msg.serialize())
+            raw._connection_header = {"type": pub.topic_type.type, "md5sum": pub.topic_type.md5sum,
+                                      "message_definition": pub.topic_type.definition,
+                                      "callerid": pub.node.name,
+                                      "latching": "1" if pub.latch else "0"}
+            msg = raw
+        self._dispatch(msg)
+
+    def publication_gone(self, pub: Publication) -> None:
+        """A same-process publisher closed."""
+        for uri, p in list(self.local_pubs.items()):
+            if p is pub:
+                del self.local_pubs[uri]
+
+    # -- connection management --------------------------------------------------
+    def update_publishers(self, uris: list[str]) -> None:
+        """Connect to new publishers and drop those no longer listed."""
+        if self.closed:
+            return
+        self.publisher_uris = list(uris)
+        wanted = set(uris)
+        for uri in list(self.connections):
+            if uri not in wanted:
+                conn = self.connections.pop(uri)
+                if conn is not None:
+                    conn.close()
+                task = self._retry.pop(uri, None)
+                if task:
+                    task.cancel()
+        for uri in list(self.local_pubs):
+            if uri not in wanted:
+                self.local_pubs.pop(uri).remove_local(self)
+        for uri in uris:
+            if uri in self.connections or uri in self.local_pubs:
+                continue
+            local = self.node.local_publication(uri, self.topic)
+            if local is not None:
+                if self._types_match(local.topic_type.md5sum):
+                    self.local_pubs[uri] = local
+                    local.add_local(self)
+                continue
+            self.connections[uri] = None
+            self._retry[uri] = self.node.loop.create_task(self._connect_loop(uri))
+
+    def _types_match(self, md5: str) -> bool:
+        ours = self.msg_class._md5sum
+        return ours == "*" or md5 == "*" or ours == md5
+
+    async def _connect_loop(self, uri: str) -> None:
+        """Connect to a publisher; retry while it is still listed."""
+        delay = 0.1
+        try:
+            while not self.closed and uri in self.connections:
+                lost = await self._connect_once(uri)
+                if lost is None or self.closed or uri not in self.connections:
+                    return
+                await asyncio.sleep(delay)
+                delay = min(delay * 2, 2.0)
+        except asyncio.CancelledError:
+            pass
+        finally:
+            if self._retry.get(uri) is asyncio.current_task():
+                self._retry.pop(uri, None)
+
+    async def _connect_once(self, uri: str) -> str | None:
+        """One connection attempt; returns an error string to retry, None to stop."""
+        try:
+            host, port = await self.node.request_topic(uri, self.topic)
+        except Exception as exc:  # publisher gone or refusing: retry while listed
+            return str(exc)
+        done: asyncio.Future[str | None] = self.node.loop.create_future()
+
+        def on_lost(reason: str | None) -> None:
+            if self.connections.get(uri) is proto:
+                self.connections[uri] = None
+            if not done.done():
+                done.set_result(reason or "connection closed")
+
+        proto = SubscriberConnection(self._request_header(), self._check_header,
+                                     self._frames_handler(), on_lost)
+        try:
+            await self.node.loop.create_connection(lambda: proto, host, port)
+        except OSError as exc:
+            return str(exc)
+        if uri not in self.connections or self.closed:
+            proto.close()
+            return None
+        self.connections[uri] = proto
+        reason = await done
+        if proto.error and "md5" in proto.error.lower():
+            return None
+        return reason
+
+    def _request_header(self) -> dict[str, str]:
+        header = {
+            "callerid": self.node.name,
+            "topic": self.topic,
+            "md5sum": self.msg_class._md5sum,
+            "type": self.msg_class._type,
+            "tcp_nodelay": "1" if self.tcp_nodelay else "0",
+        }
+        if not self.raw:
+            header["message_definition"] = self.msg_class._full_text
+        return header
+
+    def _check_header(self, header: dict[str, str]) -> str | None:
+        missing = [k for k in ("md5sum", "type") if k not in header]
+        if missing:
+            return f"Publisher header did not have required element: {missing[0]}"
+        if not self._types_match(header["md5sum"]):
+            return (f"md5sum mismatch on {self.topic}: publisher has [{header['type']}/{header['md5sum']}], "
+                    f"we want [{self.msg_class._type}/{self.msg_class._md5sum}]")
+        return None
+
+    def _frames_handler(self) -> Callable[[list[bytes], dict[str, str]], None]:
+        dispatch = self._dispatch
+        if self.raw:
+            def on_raw(frames: list[bytes], header: dict[str, str]) -> None:
+                for data in frames:
+                    msg = AnyMsg(data)
+                    msg._connection_header = header
+                    dispatch(msg)
+            return on_raw
+        deserialize = self.msg_class.deserialize
+        topic = self.topic
+
+        def on_frames(frames: list[bytes], _header: dict[str, str]) -> None:
+            for data in frames:
+                try:
+                    msg = deserialize(data)
+                except Exception as exc:
+                    log.warning("dropping undecodable message on %s: %s", topic, exc)
+                    continue
+                dispatch(msg)
+        return on_frames
+
+    def close(self) -> None:
+        """Disconnect from every publisher."""
+        self.closed = True
+        for task in self._retry.values():
+            task.cancel()
+        self._retry.clear()
+        for conn in self.connections.values():
+            if conn is not None:
+                conn.close()
+        self.connections.clear()
+        for pub in self.local_pubs.values():
+            pub.remove_local(self)
+        self.local_pubs.clear()

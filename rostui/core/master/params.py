@@ -79,7 +79,9 @@ class ParamTree:
             if type(d) is not dict or seg not in d:
                 raise KeyError(key)
             d = d[seg]
-        if type(d) is not dict or segs[-1] not in d:
+        # Like rosmaster, a non-dict here answers with its own ``in``/``del``
+        # semantics (TypeError for numbers -> "invalid arguments").
+        if segs[-1] not in d:
             raise KeyError(key)
         del d[segs[-1]]
 

@@ -180,7 +180,10 @@ class _SerWalker(_Gen):
                 self.flush(ind)
                 self.emit(ind, f"_w(_pack('<%d{ch}' % len({x}), *{x}))")
             else:
-                self.run.append((f"{n}{ch}", f"*{e}"))
+                x = self.var("_x")
+                self.emit(ind, f"{x} = {e}")
+                self.emit(ind, f"if len({x}) != {n}: raise _SerErr('{f.name}: expected {n} elements, got %d' % len({x}))")
+                self.run.append((f"{n}{ch}", f"*{x}"))
             return
         x = self.var("_x")
         self.emit(ind, f"{x} = {e}")

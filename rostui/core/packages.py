@@ -97,22 +97,29 @@ def _package_name(pkg_dir: Path) -> str:
     return pkg_dir.name
 
 
-def list_packages() -> dict[str, Path]:
-    """All known packages, name -> directory (re-scanned when ROS_PACKAGE_PATH changes)."""
+def _packages() -> dict[str, Path]:
+    """The cached name -> directory map, rebuilt when ROS_PACKAGE_PATH changed."""
     global _cache_key, _cache
     key = (os.environ.get("ROS_PACKAGE_PATH", ""),)
+    if _cache_key == key:
+        return _cache
     with _lock:
         if _cache_key != key:
             found: dict[str, Path] = {}
             for root in package_roots():
                 _scan_root(root, found)
             _cache, _cache_key = found, key
-        return dict(_cache)
+        return _cache
+
+
+def list_packages() -> dict[str, Path]:
+    """All known packages, name -> directory (re-scanned when ROS_PACKAGE_PATH changes)."""
+    return dict(_packages())
 
 
 def find_package(name: str) -> Path | None:
     """The directory of package *name*, or None when it is not found."""
-    return list_packages().get(name)
+    return _packages().get(name)
 
 
 def get_package_path(name: str) -> Path:

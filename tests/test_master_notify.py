@@ -1,0 +1,175 @@
+"""Master -> node notifications: publisherUpdate, paramUpdate and shutdown, received by real servers."""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from typing import Any, Awaitable, Callable
+
+from rostui.core.master import Master
+from rostui.core.xmlrpc import XmlRpcClient, XmlRpcServer
+
+
+class FakeNode:
+    """A slave-API stand-in that records what the master tells it."""
+
+    def __init__(self, delay: float = 0.0, param_reply: int = 1) -> None:
+        self.events: list[tuple[str, tuple[Any, ...]]] = []
+        self.delay = delay
+        self.param_reply = param_reply
+        self.changed = asyncio.Event()
+
+    def _record(self, name: str, args: tuple[Any, ...]) -> None:
+        self.events.append((name, args))
+        self.changed.set()
+
+    async def publisherUpdate(self, caller_id: str, topic: str, pubs: list[str]) -> list[Any]:
+        if self.delay:
+            await asyncio.sleep(self.delay)
+        self._record("publisherUpdate", (caller_id, topic, pubs))
+        return [1, "", 0]
+
+    def paramUpdate(self, caller_id: str, key: str, value: Any) -> list[Any]:
+        self._record("paramUpdate", (caller_id, key, value))
+        return [self.param_reply, "", 0]
+
+    def shutdown(self, caller_id: str, msg: str) -> list[Any]:
+        self._record("shutdown", (caller_id, msg))
+        return [1, "", 0]
+
+    async def wait_for(self, count: int, timeout: float = 5.0) -> list[tuple[str, tuple[Any, ...]]]:
+        deadline = time.monotonic() + timeout
+        while len(self.events) < count:
+            self.changed.clear()
+            remaining = deadline - time.monotonic()
+            assert remaining > 0, f"only got {self.events}"
+            try:
+                await asyncio.wait_for(self.changed.wait(), remaining)
+            except asyncio.TimeoutError:
+                pass
+        return self.events
+
+
+Test = Callable[[Master, XmlRpcClient, list[tuple[FakeNode, str]]], Awaitable[None]]
+
+
+def scenario(test: Test, nodes: list[FakeNode]) -> None:
+    """Start a master and one XmlRpcServer per fake node, then run ``test``."""
+    async def main() -> None:
+        master = Master("127.0.0.1", 0, run_id="r")
+        await master.start()
+        servers = [XmlRpcServer(n, "127.0.0.1") for n in nodes]
+        for s in servers:
+            await s.start()
+        client = XmlRpcClient(master.uri)
+        try:
+            await test(master, client, [(n, s.uri) for n, s in zip(nodes, servers)])
+        finally:
+            await client.close()
+            await master.stop()
+            for s in servers:
+                await s.close()
+    asyncio.run(main())
+
+
+def test_publisher_update_on_register_and_unregister() -> None:
+    async def t(m: Master, c: XmlRpcClient, nodes: list[tuple[FakeNode, str]]) -> None:
+        (sub, sub_uri), (pub, pub_uri) = nodes
+        await c.call("registerSubscriber", "/sub", "/chatter", "std_msgs/String", sub_uri)
+        assert (await c.call("registerPublisher", "/pub", "/chatter", "std_msgs/String", pub_uri))[2] == [sub_uri]
+        events = await sub.wait_for(1)
+        assert events[0] == ("publisherUpdate", ("/master", "/chatter", [pub_uri]))
+        await c.call("unregisterPublisher", "/pub", "/chatter", pub_uri)
+        events = await sub.wait_for(2)
+        assert events[1] == ("publisherUpdate", ("/master", "/chatter", []))
+        assert pub.events == []
+    scenario(t, [FakeNode(), FakeNode()])
+
+
+def test_register_does_not_wait_for_slow_subscriber_and_keeps_order() -> None:
+    async def t(m: Master, c: XmlRpcClient, nodes: list[tuple[FakeNode, str]]) -> None:
+        (slow, slow_uri), = nodes
+        await c.call("registerSubscriber", "/slow", "/a", "std_msgs/String", slow_uri)
+        await c.call("registerSubscriber", "/slow", "/b", "std_msgs/String", slow_uri)
+        t0 = time.monotonic()
+        await c.call("registerPublisher", "/p1", "/a", "std_msgs/String", "http://127.0.0.1:1/")
+        await c.call("registerPublisher", "/p2", "/b", "std_msgs/String", "http://127.0.0.1:1/")
+        await c.call("registerPublisher", "/p3", "/a", "std_msgs/String", "http://127.0.0.1:2/")
+        assert time.monotonic() - t0 < 0.3  # the 0.5 s subscriber did not hold us up
+        events = await slow.wait_for(2, timeout=5)
+        await asyncio.sleep(0.7)
+        topics = [e[1][1] for e in slow.events]
+        # the first update for /a is in flight; the later ones are queued and the
+        # pending /a update is replaced by the newest list, in place
+        assert topics[0] == "/a"
+        assert slow.events[-1][1] in (("/master", "/b", ["http://127.0.0.1:1/"]),
+                                      ("/master", "/a", ["http://127.0.0.1:1/", "http://127.0.0.1:2/"]))
+        last_a = [e for e in slow.events if e[1][1] == "/a"][-1]
+        assert last_a[1][2] == ["http://127.0.0.1:1/", "http://127.0.0.1:2/"]
+        assert events
+    scenario(t, [FakeNode(delay=0.5)])
+
+
+def test_dead_subscriber_does_not_block_others() -> None:
+    async def t(m: Master, c: XmlRpcClient, nodes: list[tuple[FakeNode, str]]) -> None:
+        (live, live_uri), = nodes
+        await c.call("registerSubscriber", "/dead", "/t", "std_msgs/String", "http://127.0.0.1:1/")
+        await c.call("registerSubscriber", "/live", "/t", "std_msgs/String", live_uri)
+        await c.call("registerPublisher", "/p", "/t", "std_msgs/String", "http://127.0.0.1:9/")
+        events = await live.wait_for(1)
+        assert events[0][1] == ("/master", "/t", ["http://127.0.0.1:9/"])
+        assert (await c.call("getUri", "/x"))[0] == 1
+    scenario(t, [FakeNode()])
+
+
+def test_same_name_node_replacement_shuts_down_old_node() -> None:
+    async def t(m: Master, c: XmlRpcClient, nodes: list[tuple[FakeNode, str]]) -> None:
+        (old, old_uri), (new, new_uri), (sub, sub_uri) = nodes
+        await c.call("registerSubscriber", "/listener", "/chatter", "std_msgs/String", sub_uri)
+        await c.call("registerPublisher", "/talker", "/chatter", "std_msgs/String", old_uri)
+        await sub.wait_for(1)
+        await c.call("registerPublisher", "/talker", "/other", "std_msgs/String", new_uri)
+        events = await old.wait_for(1)
+        assert events[0] == ("shutdown", ("/master", "[/talker] Reason: new node registered with same name"))
+        # the old node's publication is gone and its subscribers are told
+        sub_events = await sub.wait_for(2)
+        assert sub_events[1] == ("publisherUpdate", ("/master", "/chatter", []))
+        assert await c.call("lookupNode", "/x", "/talker") == [1, "node api", new_uri]
+        assert new.events == []
+    scenario(t, [FakeNode(), FakeNode(), FakeNode()])
+
+
+def test_param_update_on_set_namespace_and_delete() -> None:
+    async def t(m: Master, c: XmlRpcClient, nodes: list[tuple[FakeNode, str]]) -> None:
+        (node, uri), = nodes
+        await c.call("subscribeParam", "/n", uri, "/ns/a")
+        await c.call("subscribeParam", "/n", uri, "/ns/gone")
+        await c.call("setParam", "/other", "/ns/a", 1)
+        events = await node.wait_for(1)
+        assert events[0] == ("paramUpdate", ("/master", "/ns/a/", 1))
+        # the subscriber's own set is not echoed back
+        await c.call("setParam", "/n", "/ns/a", 2)
+        await c.call("setParam", "/other", "/ns", {"a": 5, "b": 6})
+        events = await node.wait_for(3)
+        assert sorted(events[1:], key=repr) == [
+            ("paramUpdate", ("/master", "/ns/a/", 5)),
+            ("paramUpdate", ("/master", "/ns/gone/", {})),
+        ]
+        await c.call("deleteParam", "/other", "/ns")
+        events = await node.wait_for(5)
+        assert sorted(events[3:], key=repr) == [
+            ("paramUpdate", ("/master", "/ns/a/", {})),
+            ("paramUpdate", ("/master", "/ns/gone/", {})),
+        ]
+    scenario(t, [FakeNode()])
+
+
+def test_param_subscriber_answering_minus_one_is_dropped() -> None:
+    async def t(m: Master, c: XmlRpcClient, nodes: list[tuple[FakeNode, str]]) -> None:
+        (node, uri), = nodes
+        await c.call("subscribeParam", "/n", uri, "/p")
+        await c.call("setParam", "/x", "/p", 1)
+        await node.wait_for(1)
+        await asyncio.sleep(0.1)
+        assert await c.call("lookupNode", "/x", "/n") == [-1, "unknown node [/n]", ""]
+    scenario(t, [FakeNode(param_reply=-1)])

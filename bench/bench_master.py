@@ -107,7 +107,7 @@ def bench_register(uri: str, procs: int, conns: int, seconds: float) -> float:
     return total / max(time.monotonic() - start, seconds)
 
 
-async def _state_latency(uri: str, topics: int, samples: int) -> list[float]:
+async def _state_latency(uri: str, topics: int, samples: int) -> tuple[list[float], list[float]]:
     async with XmlRpcClient(uri, timeout=60) as c:
         for i in range(topics):
             await c.call("registerPublisher", "/state_pub", f"/state/t{i}", "std_msgs/String",
@@ -120,7 +120,26 @@ async def _state_latency(uri: str, topics: int, samples: int) -> list[float]:
             t0 = time.perf_counter()
             await c.call("getSystemState", "/bench")
             times.append(time.perf_counter() - t0)
-        return times
+    return times, await _raw_latency(uri, samples)
+
+
+async def _raw_latency(uri: str, samples: int) -> list[float]:
+    """getSystemState round trips without client-side XML parsing (the server's share)."""
+    host, port = uri[len("http://"):].rstrip("/").split(":")
+    body = (b"<?xml version='1.0'?><methodCall><methodName>getSystemState</methodName><params>"
+            b"<param><value><string>/bench</string></value></param></params></methodCall>")
+    request = b"POST / HTTP/1.1\r\nHost: x\r\nContent-Type: text/xml\r\nContent-Length: %d\r\n\r\n" % len(body) + body
+    reader, writer = await asyncio.open_connection(host, int(port))
+    times = []
+    for _ in range(samples):
+        t0 = time.perf_counter()
+        writer.write(request)
+        head = await reader.readuntil(b"\r\n\r\n")
+        length = int(head.lower().split(b"content-length:")[1].split(b"\r\n")[0])
+        await reader.readexactly(length)
+        times.append(time.perf_counter() - t0)
+    writer.close()
+    return times
 
 
 def main() -> int:
@@ -148,7 +167,7 @@ def main() -> int:
                 port = free_port()
                 proc = start_master(kind, port, home)
                 uri = f"http://127.0.0.1:{port}/"
-                lat = asyncio.run(_state_latency(uri, args.topics, args.samples))
+                lat, raw = asyncio.run(_state_latency(uri, args.topics, args.samples))
             finally:
                 proc.terminate()
                 try:
@@ -156,17 +175,21 @@ def main() -> int:
                 except subprocess.TimeoutExpired:
                     proc.kill()
             lat.sort()
+            raw.sort()
             results[kind] = {
                 "rate": rate,
                 "p50": statistics.median(lat) * 1e3,
                 "p90": lat[int(len(lat) * 0.9) - 1] * 1e3,
+                "raw50": statistics.median(raw) * 1e3,
             }
             r = results[kind]
             print(f"{kind:10s} registerPublisher/s: {r['rate']:9.0f}   getSystemState({args.topics} topics) "
-                  f"p50 {r['p50']:7.2f} ms  p90 {r['p90']:7.2f} ms", flush=True)
+                  f"full call p50 {r['p50']:7.2f} ms p90 {r['p90']:7.2f} ms; "
+                  f"server round trip (no client parse) p50 {r['raw50']:7.2f} ms", flush=True)
     ros, ours = results["rosmaster"], results["rostui"]
     print(f"ratio rostui/rosmaster registerPublisher/s: {ours['rate'] / ros['rate']:.2f}x")
-    print(f"ratio rosmaster/rostui getSystemState p50 latency: {ros['p50'] / ours['p50']:.2f}x faster")
+    print(f"getSystemState full-call p50: rostui {ros['p50'] / ours['p50']:.2f}x faster than rosmaster")
+    print(f"getSystemState server round-trip p50: rostui {ros['raw50'] / ours['raw50']:.2f}x faster than rosmaster")
     return 0
 
 

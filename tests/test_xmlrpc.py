@@ -248,3 +248,50 @@ def test_ros_result() -> None:
         ros_result((0, "failed", 0))
     with pytest.raises(XmlRpcProtocolError):
         ros_result("nonsense")
+
+
+@pytest.mark.parametrize("params", [
+    ("/n", "/t1", "std_msgs/String", "http://127.0.0.1:1/"),
+    (),
+    ("",),
+    (0, -5, 2**31 - 1, "ünï", "x y\tz", "  "),
+    ("a&b<c>",),
+    ("l\r\nx",),
+    (True, 1.5, None, [1, "x"], {"k": {"j": b"\x00"}}),
+])
+def test_decode_fast_path_agrees_with_stdlib(params: tuple[Any, ...]) -> None:
+    from rostui.core.xmlrpc.marshal import decode_call, encode_call
+    body = encode_call("someMethod", params)
+    assert decode_call(body) == xmlrpc.client.loads(body, use_builtin_types=True)
+
+
+@pytest.mark.parametrize("body", [
+    b"<methodCall><methodName>m</methodName><params><param><value>bare</value></param></params></methodCall>",
+    b"<?xml version='1.0'?>\n<methodCall>\n<methodName>m</methodName>\n<params>\n<param>\n"
+    b"<value><i4>7</i4></value>\n</param>\n</params>\n</methodCall>\n",
+    b"<methodCall><methodName>m</methodName><params><param><value><int>99999999999999999999</int>"
+    b"</value></param></params></methodCall>",
+])
+def test_decode_raw_documents_agree_with_stdlib(body: bytes) -> None:
+    from rostui.core.xmlrpc.marshal import decode_call
+    assert decode_call(body) == xmlrpc.client.loads(body, use_builtin_types=True)
+
+
+def test_decode_fast_path_refuses_what_expat_refuses() -> None:
+    from rostui.core.xmlrpc.marshal import decode_call
+    body = b"<methodCall>\x0c<methodName>m</methodName></methodCall>"
+    with pytest.raises(Exception):
+        xmlrpc.client.loads(body)
+    with pytest.raises(Exception):
+        decode_call(body)
+
+
+@pytest.mark.parametrize("text", [b"a\x01b", b"a]]>b", b"\x00"])
+def test_decode_fast_path_does_not_accept_invalid_characters(text: bytes) -> None:
+    from rostui.core.xmlrpc.marshal import decode_call
+    body = b"<methodCall><methodName>m</methodName><params><param><value><string>" + text + \
+        b"</string></value></param></params></methodCall>"
+    with pytest.raises(Exception):
+        xmlrpc.client.loads(body)
+    with pytest.raises(Exception):
+        decode_call(body)

@@ -7,7 +7,9 @@ import logging
 import socket
 import uuid
 
-from ..xmlrpc import XmlRpcServer
+from typing import Any
+
+from ..xmlrpc import EncodedResponse, XmlRpcServer
 from .handler import MasterHandler
 from .notify import Notifier
 
@@ -16,6 +18,34 @@ _log = logging.getLogger("rostui.master")
 #: Defaults for the parameters roslaunch sets when it starts a core.
 DEFAULT_ROSDISTRO = "noetic\n"
 DEFAULT_ROSVERSION = "1.16.0\n"
+
+
+class _WireHandler:
+    """What the XML-RPC server sees: the handler, plus a cached encoding of getSystemState.
+
+    getSystemState is the one large answer tools poll (rqt_graph, rosnode);
+    while the registrations do not change its serialised form is reused.
+    """
+
+    def __init__(self, handler: MasterHandler) -> None:
+        self._handler = handler
+        self._state_key: list[Any] | None = None
+        self._state_encoded: EncodedResponse | None = None
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._handler, name)
+
+    def getSystemState(self, *args: Any) -> Any:
+        """getSystemState, answered from cache while nothing changed."""
+        result = self._handler.getSystemState(*args)
+        if result[0] != 1:
+            return result
+        state = result[2]
+        key = self._state_key
+        if key is None or any(a is not b for a, b in zip(key, state)):
+            self._state_key = list(state)
+            self._state_encoded = EncodedResponse(result)
+        return self._state_encoded
 
 
 class Master:
@@ -39,7 +69,7 @@ class Master:
         self._rosversion = rosversion
         self._shutdown_reason: asyncio.Future[str] | None = None
         self.handler = MasterHandler(Notifier(timeout=notify_timeout), on_shutdown=self._shutdown_requested)
-        self._server = XmlRpcServer(self.handler, host, port, advertise_host=advertise_host)
+        self._server = XmlRpcServer(_WireHandler(self.handler), host, port, advertise_host=advertise_host)
 
     @property
     def run_id(self) -> str:

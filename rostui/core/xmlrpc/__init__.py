@@ -9,11 +9,13 @@ from __future__ import annotations
 
 from .client import XmlRpcClient, call_sync
 from .errors import RosApiError, XmlRpcConnectionError, XmlRpcError, XmlRpcFault, XmlRpcProtocolError
+from .marshal import EncodedResponse
 from .result import ros_result
 from .server import DEFAULT_MAX_BODY, XmlRpcServer
 
 __all__ = [
     "DEFAULT_MAX_BODY",
+    "EncodedResponse",
     "RosApiError",
     "XmlRpcClient",
     "XmlRpcConnectionError",

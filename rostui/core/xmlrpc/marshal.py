@@ -8,6 +8,7 @@ declarations are the usual way to attack an XML parser.
 
 from __future__ import annotations
 
+import re
 import xmlrpc.client as _xc
 from typing import Any
 
@@ -23,13 +24,62 @@ def _check_safe(body: bytes) -> None:
         raise UnsafeXmlError("DTD and entity declarations are not allowed")
 
 
+class EncodedResponse:
+    """A complete, already serialised ``<methodResponse>``.
+
+    A server method may return one to skip marshalling (e.g. a cached answer
+    to a large, unchanged query); clients see an ordinary response.
+    """
+
+    __slots__ = ("body",)
+
+    def __init__(self, value: Any) -> None:
+        self.body = encode_response(value)
+
+
 def encode_call(method: str, params: tuple[Any, ...]) -> bytes:
     """Serialise a ``<methodCall>`` document."""
     return _xc.dumps(params, method, allow_none=True).encode("utf-8")
 
 
+# Fast path for the calls that dominate a master's load: every parameter a
+# plain string or integer, no entities, no carriage returns.  Anything else
+# (or anything this strict pattern does not match) goes to the full parser,
+# so the fast path never accepts a document the standard parser would refuse.
+_FAST_CALL = re.compile(
+    rb"(?:<\?xml version=['\"]1\.0['\"](?:[ \t\r\n]+encoding=['\"](?:utf-8|UTF-8)['\"])?[ \t\r\n]*\?>)?[ \t\r\n]*"
+    rb"<methodCall>[ \t\r\n]*<methodName>([A-Za-z0-9_.]+)</methodName>[ \t\r\n]*"
+    rb"(?:<params>((?:[ \t\r\n]*<param>[ \t\r\n]*<value>(?:<string>[^<&\]\x00-\x08\x0b-\x1f]*</string>|[^<&\]\x00-\x08\x0b-\x1f]*|"
+    rb"<(?:int|i4|i8)>-?[0-9]{1,18}</(?:int|i4|i8)>)</value>[ \t\r\n]*</param>)*)[ \t\r\n]*</params>[ \t\r\n]*)?"
+    rb"</methodCall>[ \t\r\n]*"
+)
+_FAST_PARAM = re.compile(
+    rb"<value>(?:<string>([^<]*)</string>|<(int|i4|i8)>([^<]*)</(?:int|i4|i8)>|([^<]*))</value>"
+)
+
+
+def _decode_fast(body: bytes) -> tuple[tuple[Any, ...], str] | None:
+    m = _FAST_CALL.fullmatch(body)
+    if m is None:
+        return None
+    params: list[Any] = []
+    if m.group(2):
+        for s, kind, num, bare in _FAST_PARAM.findall(m.group(2)):
+            if kind:
+                params.append(int(num))
+            else:
+                try:
+                    params.append((s or bare).decode("utf-8"))
+                except UnicodeDecodeError:
+                    return None
+    return tuple(params), m.group(1).decode("ascii")
+
+
 def decode_call(body: bytes) -> tuple[tuple[Any, ...], str]:
     """Parse a ``<methodCall>``: return ``(params, method_name)``."""
+    fast = _decode_fast(body)
+    if fast is not None:
+        return fast
     _check_safe(body)
     params, method = _xc.loads(body, use_builtin_types=True)
     if not isinstance(method, str) or not method:

@@ -20,7 +20,7 @@ import sys
 import zlib
 from typing import Any, Callable
 
-from .marshal import Fault, decode_call, encode_fault, encode_response, exception_fault_string
+from .marshal import EncodedResponse, Fault, decode_call, encode_fault, encode_response, exception_fault_string
 
 __all__ = ["XmlRpcServer", "DEFAULT_MAX_BODY"]
 
@@ -208,6 +208,8 @@ class XmlRpcServer:
             if not isinstance(exc, TypeError):
                 _log.debug("XML-RPC method %s raised", method, exc_info=True)
             return encode_fault(1, _fault_string(exc))
+        if type(result) is EncodedResponse:
+            return result.body
         try:
             return encode_response(result)
         except Exception as exc:  # e.g. int beyond 32 bits: a fault, as rosmaster sends

@@ -1,0 +1,266 @@
+#!/usr/bin/env python3
+"""Pub/sub benchmark: rostui against rospy and roscpp, measured in the same run.
+
+For each library, a publisher process and a subscriber process of that library
+talk through one master (``rostui core`` for all three, so the master is the
+same and only the node side differs):
+
+* small throughput: std_msgs/String with a 16-byte payload, flooded as fast as
+  the publisher can (queue 1000); messages/s *received* by the subscriber over
+  a fixed window that starts at the first message;
+* large throughput: the same with a 1 MB payload, in MB/s (10^6 bytes) received;
+* latency: ping-pong round trips (N after a warm-up), p50 and p99 in µs.
+
+Peers: bench/roscpp_peer.cpp (built here into bench/_build/),
+bench/rospy_peer.py (system /usr/bin/python3) and bench/rostui_peer.py (this
+project's venv).  Everything runs on 127.0.0.1 with a private ROS_HOME and a
+free port; every process is stopped at the end.  Not a test: it prints a table
+and the ratios rostui/rospy and rostui/roscpp, and the targets.
+
+    .venv/bin/python bench/bench_pubsub.py                 # whole run, ~1 minute
+    .venv/bin/python bench/bench_pubsub.py --libs rostui   # one library only
+    .venv/bin/python bench/bench_pubsub.py --json out.json --window 3 --round-trips 2000
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import xmlrpc.client
+from pathlib import Path
+
+BENCH = Path(__file__).resolve().parent
+ROOT = BENCH.parent
+BUILD = BENCH / "_build"
+CPP_SRC = BENCH / "roscpp_peer.cpp"
+CPP_BIN = BUILD / "roscpp_peer"
+CPP_LIBS = ["-lroscpp", "-lrosconsole", "-lroscpp_serialization", "-lrostime", "-lxmlrpcpp",
+            "-lcpp_common", "-lboost_system"]
+SYSTEM_PYTHON = "/usr/bin/python3"
+LIBS = ("rospy", "roscpp", "rostui")
+SMALL = 16
+LARGE = 1_000_000
+
+TARGETS = {  # metric: (rostui/rospy ratio wanted, higher is better)
+    "small_msgs_s": (4.0, True),
+    "large_MB_s": (1.5, True),
+    "p50_us": (0.5, False),
+}
+
+
+def venv_python() -> str:
+    """The project's venv interpreter, or the one running this script."""
+    candidate = ROOT / ".venv" / "bin" / "python"
+    return str(candidate) if candidate.exists() else sys.executable
+
+
+def build_cpp_peer() -> Path:
+    """Compile bench/roscpp_peer.cpp unless the binary is newer than the source."""
+    BUILD.mkdir(exist_ok=True)
+    if CPP_BIN.exists() and CPP_BIN.stat().st_mtime >= CPP_SRC.stat().st_mtime:
+        return CPP_BIN
+    cmd = ["g++", "-O2", str(CPP_SRC), "-o", str(CPP_BIN), "-I/usr/include", *CPP_LIBS]
+    print("building", CPP_BIN.relative_to(ROOT), "...", flush=True)
+    subprocess.run(cmd, check=True, timeout=180)
+    return CPP_BIN
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class Run:
+    """One benchmark run: a private ROS_HOME, a master, and the processes started."""
+
+    def __init__(self, master: str) -> None:
+        self.tmp = Path(tempfile.mkdtemp(prefix="rostui-bench-"))
+        self.port = free_port()
+        self.env = dict(os.environ)
+        for key in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME"):
+            self.env.pop(key, None)
+        self.env.update(ROS_IP="127.0.0.1", ROS_HOME=str(self.tmp / "ros_home"),
+                        ROS_MASTER_URI=f"http://127.0.0.1:{self.port}", PYTHONUNBUFFERED="1")
+        (self.tmp / "ros_home").mkdir()
+        self.procs: list[subprocess.Popen[str]] = []
+        self.master_kind = master
+        self._n = 0
+
+    # -- processes --------------------------------------------------------------
+    def spawn(self, cmd: list[str], name: str) -> subprocess.Popen[str]:
+        self._n += 1
+        err = open(self.tmp / f"{self._n:02d}-{name}.err", "w")
+        proc = subprocess.Popen(cmd, env=self.env, stdout=subprocess.PIPE, stderr=err, text=True,
+                                start_new_session=True, cwd=str(ROOT))
+        err.close()
+        self.procs.append(proc)
+        return proc
+
+    def stop(self, proc: subprocess.Popen[str], grace: float = 3.0) -> None:
+        """SIGINT the process group, then SIGKILL it if it lingers."""
+        if proc.poll() is None:
+            try:
+                os.killpg(proc.pid, signal.SIGINT)
+                proc.wait(grace)
+            except (ProcessLookupError, subprocess.TimeoutExpired):
+                pass
+        if proc.poll() is None:
+            try:
+                os.killpg(proc.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+            proc.wait(5)
+        if proc.stdout:
+            proc.stdout.close()
+
+    def close(self) -> None:
+        for proc in reversed(self.procs):
+            self.stop(proc, grace=2.0)
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    # -- master ------------------------------------------------------------------
+    def start_master(self) -> None:
+        if self.master_kind == "rostui":
+            code = f"import sys; from rostui.cli.core_cmd import run_core; sys.exit(run_core({self.port}))"
+            cmd = [venv_python(), "-c", code]
+        else:
+            cmd = ["rosmaster", "--core", "-p", str(self.port)]
+        self.master = self.spawn(cmd, "master")
+        proxy = xmlrpc.client.ServerProxy(self.env["ROS_MASTER_URI"])
+        deadline = time.monotonic() + 15
+        while time.monotonic() < deadline:
+            if self.master.poll() is not None:
+                raise RuntimeError(f"master exited with {self.master.returncode}")
+            try:
+                proxy.getUri("/bench")
+                return
+            except OSError:
+                time.sleep(0.1)
+        raise RuntimeError("master did not answer within 15 s")
+
+    # -- peers ---------------------------------------------------------------------
+    def peer_cmd(self, lib: str, *args: str) -> list[str]:
+        if lib == "roscpp":
+            return [str(CPP_BIN), *args]
+        if lib == "rospy":
+            return [SYSTEM_PYTHON, str(BENCH / "rospy_peer.py"), *args]
+        return [venv_python(), str(BENCH / "rostui_peer.py"), *args]
+
+    def throughput(self, lib: str, size: int, window: float) -> dict[str, float]:
+        topic = f"/bench/{lib}/flood_{size}"
+        counter = self.spawn(self.peer_cmd(lib, "count", topic, str(window)), f"{lib}-count-{size}")
+        flooder = self.spawn(self.peer_cmd(lib, "flood", topic, str(size), str(window + 20)),
+                             f"{lib}-flood-{size}")
+        try:
+            out, _ = counter.communicate(timeout=window + 25)
+        except subprocess.TimeoutExpired:
+            self.stop(counter)
+            raise RuntimeError(f"{lib} count ({size} B) timed out") from None
+        finally:
+            self.stop(flooder)
+        m = re.search(r"count=(\d+) bytes=(\d+) seconds=([\d.]+)", out or "")
+        if not m:
+            raise RuntimeError(f"{lib} count ({size} B) printed {out!r}, exit {counter.returncode}")
+        n, nbytes, secs = int(m[1]), int(m[2]), float(m[3])
+        return {"msgs_s": n / secs, "MB_s": nbytes / secs / 1e6, "count": n, "seconds": secs}
+
+    def latency(self, lib: str, round_trips: int) -> dict[str, float]:
+        a, b = f"/bench/{lib}/ping", f"/bench/{lib}/pong"
+        ponger = self.spawn(self.peer_cmd(lib, "pong", a, b), f"{lib}-pong")
+        pinger = self.spawn(self.peer_cmd(lib, "ping", a, b, str(round_trips)), f"{lib}-ping")
+        try:
+            out, _ = pinger.communicate(timeout=60)
+        except subprocess.TimeoutExpired:
+            self.stop(pinger)
+            raise RuntimeError(f"{lib} ping timed out") from None
+        finally:
+            self.stop(ponger)
+        fields = dict(re.findall(r"(\w+)=([\d.]+)", out or ""))
+        if "p50_us" not in fields:
+            raise RuntimeError(f"{lib} ping printed {out!r}, exit {pinger.returncode}")
+        return {k: float(v) for k, v in fields.items()}
+
+
+def measure(run: Run, lib: str, args: argparse.Namespace) -> dict[str, float]:
+    small = run.throughput(lib, SMALL, args.window)
+    large = run.throughput(lib, LARGE, args.window)
+    lat = run.latency(lib, args.round_trips)
+    return {"small_msgs_s": small["msgs_s"], "large_MB_s": large["MB_s"], "large_msgs_s": large["msgs_s"],
+            "p50_us": lat["p50_us"], "p99_us": lat["p99_us"], "mean_us": lat.get("mean_us", 0.0)}
+
+
+def report(results: dict[str, dict[str, float]], master: str, args: argparse.Namespace) -> None:
+    cols = [("small_msgs_s", "16 B msgs/s", "{:,.0f}"), ("large_MB_s", "1 MB MB/s", "{:,.1f}"),
+            ("p50_us", "RTT p50 µs", "{:,.1f}"), ("p99_us", "RTT p99 µs", "{:,.1f}")]
+    print()
+    print(f"std_msgs/String pub/sub, separate processes, master: {master}, 127.0.0.1;"
+          f" throughput window {args.window:g} s, {args.round_trips} round trips")
+    print(f"{'library':<10}" + "".join(f"{title:>16}" for _, title, _ in cols))
+    for lib, row in results.items():
+        print(f"{lib:<10}" + "".join(f"{fmt.format(row[key]):>16}" for key, _, fmt in cols))
+    if "rostui" not in results:
+        return
+    ours = results["rostui"]
+    for peer in ("rospy", "roscpp"):
+        if peer not in results:
+            continue
+        print(f"{'rostui/' + peer:<10}" + "".join(
+            f"{ours[key] / results[peer][key]:>15.2f}x" for key, _, _ in cols))
+    if "rospy" in results:
+        print()
+        for key, (want, higher) in TARGETS.items():
+            ratio = ours[key] / results["rospy"][key]
+            ok = ratio >= want if higher else ratio <= want
+            sign = ">=" if higher else "<="
+            print(f"target {key:<13} rostui/rospy {ratio:6.2f}x  (want {sign} {want}x)  {'MET' if ok else 'MISSED'}")
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--libs", default=",".join(LIBS), help="comma list of rospy,roscpp,rostui")
+    parser.add_argument("--window", type=float, default=5.0, help="throughput window, seconds")
+    parser.add_argument("--round-trips", type=int, default=5000, help="timed ping-pong round trips")
+    parser.add_argument("--master", choices=("rostui", "rosmaster"), default="rostui",
+                        help="which master all peers use (default: rostui core)")
+    parser.add_argument("--json", help="also write the results to this file")
+    args = parser.parse_args()
+    libs = [x for x in args.libs.split(",") if x]
+    unknown = set(libs) - set(LIBS)
+    if unknown:
+        parser.error(f"unknown libraries: {', '.join(sorted(unknown))}")
+    if "roscpp" in libs:
+        build_cpp_peer()
+    run = Run(args.master)
+    results: dict[str, dict[str, float]] = {}
+    started = time.monotonic()
+    try:
+        run.start_master()
+        for lib in libs:
+            t = time.monotonic()
+            results[lib] = measure(run, lib, args)
+            print(f"{lib}: done in {time.monotonic() - t:.1f} s  {results[lib]}", flush=True)
+    except KeyboardInterrupt:
+        return 130
+    finally:
+        run.close()
+    report(results, "rostui core" if args.master == "rostui" else "rosmaster", args)
+    print(f"\nwhole run {time.monotonic() - started:.0f} s")
+    if args.json:
+        Path(args.json).write_text(json.dumps({"master": args.master, "window": args.window,
+                                               "round_trips": args.round_trips, "results": results},
+                                              indent=2))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -7,17 +7,14 @@ import errno
 import signal
 import sys
 
-from rostui.core.master import Master
+from rostui.core.master import DEFAULT_ROSDISTRO, DEFAULT_ROSVERSION, Master
 from rostui.core.network import resolve_addressing
 from rostui.core.node.engine import new_event_loop
 from rostui.core.rosout import RosoutNode
 
-ROSDISTRO = "noetic"
-
 
 async def serve_core(port: int, stop: asyncio.Event) -> int:
     """Run master and rosout until ``stop`` is set; return the exit status."""
-    master_uri_guess = f"http://localhost:{port}/"
     addressing = resolve_addressing(None)
     master = Master(addressing.bind_host, port, advertise_host=addressing.advertise_host)
     try:
@@ -30,12 +27,12 @@ async def serve_core(port: int, stop: asyncio.Event) -> int:
             print(f"ERROR: rostui core cannot listen on port {port}: {exc.strerror or exc}", file=sys.stderr)
         return 1
     print("SUMMARY\n========\n\nPARAMETERS")
-    print(f" * /rosdistro: {ROSDISTRO}")
-    print(" * /rosversion: 1.15.15\n")
+    print(f" * /rosdistro: {DEFAULT_ROSDISTRO.strip()}")
+    print(f" * /rosversion: {DEFAULT_ROSVERSION.strip()}\n")
     print(f"started master on port {port}")
     print(f"ROS_MASTER_URI={master.uri}\n")
     print(f"setting /run_id to {master.run_id}")
-    rosout = RosoutNode(master.uri or master_uri_guess)
+    rosout = RosoutNode(master.uri)
     await rosout.start()
     print("started core service [/rosout]", flush=True)
     await stop.wait()

@@ -13,6 +13,11 @@ app = typer.Typer(
 )
 
 
+@app.callback()
+def root() -> None:
+    """rostui: roscore, rostopic, rosnode, rosservice, rosparam and friends, in one terminal tool."""
+
+
 @app.command("core")
 def core_command(
     port: int = typer.Option(11311, "-p", "--port", help="Port the master listens on."),

@@ -109,14 +109,19 @@ class FrameReader:
         """Bytes buffered that do not yet form a complete frame."""
         return len(self._buf)
 
-    def feed(self, data: bytes) -> list[bytes]:
-        """Add received bytes; return every frame now complete, in order."""
+    def feed(self, data: bytes, limit: int | None = None) -> list[bytes]:
+        """Add received bytes; return the frames now complete, in order.
+
+        With ``limit``, at most that many frames are taken; the rest stays
+        buffered for the next call (so a cap can change after a header).
+        """
         buf = self._buf
-        buf += data
+        if data:
+            buf += data
         frames: list[bytes] = []
         pos, end = 0, len(buf)
         unpack_from, cap = LEN.unpack_from, self.max_frame
-        while end - pos >= 4:
+        while end - pos >= 4 and (limit is None or len(frames) < limit):
             (size,) = unpack_from(buf, pos)
             if size > cap:
                 raise FrameTooLargeError(f"frame length {size} exceeds the cap of {cap} bytes")

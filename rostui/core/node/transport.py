@@ -118,30 +118,34 @@ class InboundConnection(asyncio.Protocol):
     def data_received(self, data: bytes) -> None:
         """Read the header, route, then pass frames to the handler."""
         try:
+            if self.handler is None:
+                if not self._read_header(data):
+                    return
+                data = b""
             frames = self.reader.feed(data)
         except TcprosError as exc:
-            self.refuse(str(exc))
-            return
-        if self._watch is not None:
-            self._watch.progress(self.reader.pending)
-        if not frames:
-            return
-        if self.handler is None:
-            try:
-                header = decode_header(frames[0])
-            except TcprosError as exc:
+            if self.handler is None:
                 self.refuse(str(exc))
-                return
-            routed = self.router.route_inbound(header, self)
-            if isinstance(routed, str):
-                self.refuse(routed)
-                return
-            self.handler = routed
-            self.reader.max_frame = max_frame_from_env()
-            frames = frames[1:]
-            if not frames or self.transport is None or self.transport.is_closing():
-                return
-        self.handler.frames_received(frames)
+            else:
+                self.drop(str(exc))
+            return
+        finally:
+            if self._watch is not None:
+                self._watch.progress(self.reader.pending)
+        if frames and self.handler is not None:
+            self.handler.frames_received(frames)
+
+    def _read_header(self, data: bytes) -> bool:
+        """Take the peer's header and route the connection; True once routed."""
+        frames = self.reader.feed(data, limit=1)
+        if not frames:
+            return False
+        routed = self.router.route_inbound(decode_header(frames[0]), self)
+        if isinstance(routed, str):
+            raise TcprosError(routed)
+        self.handler = routed
+        self.reader.max_frame = max_frame_from_env()
+        return self.transport is not None and not self.transport.is_closing()
 
     def write(self, data: bytes) -> None:
         """Send bytes unless the connection is closing."""
@@ -221,31 +225,27 @@ class SubscriberConnection(asyncio.Protocol):
         """Parse the publisher header, then message frames."""
         self.bytes_received += len(data)
         try:
+            if self.header is None:
+                frames = self.reader.feed(data, limit=1)
+                if not frames:
+                    return
+                header = decode_header(frames[0])
+                problem = header.get("error") or self.on_header(header)
+                if problem:
+                    raise TcprosError(problem)
+                self.header = header
+                self.reader.max_frame = max_frame_from_env()
+                data = b""
             frames = self.reader.feed(data)
         except TcprosError as exc:
             self.drop(str(exc))
             return
-        if self._watch is not None:
-            self._watch.progress(self.reader.pending)
-        if not frames:
-            return
-        if self.header is None:
-            try:
-                header = decode_header(frames[0])
-            except TcprosError as exc:
-                self.drop(str(exc))
-                return
-            problem = header.get("error") or self.on_header(header)
-            if problem:
-                self.drop(problem)
-                return
-            self.header = header
-            self.reader.max_frame = max_frame_from_env()
-            frames = frames[1:]
-            if not frames:
-                return
-        self.messages_received += len(frames)
-        self.on_frames(frames, self.header)
+        finally:
+            if self._watch is not None:
+                self._watch.progress(self.reader.pending)
+        if frames:
+            self.messages_received += len(frames)
+            self.on_frames(frames, self.header)
 
     def drop(self, reason: str) -> None:
         """Close the connection, remembering why."""

@@ -456,3 +456,8 @@ def node_global_name(
     if anonymous:
         name = anonymous_name(name)
     return node_namespace(args, env) + name
+
+
+def resolve_for_caller(name: str, caller_id: str) -> str:
+    """Resolve a name the way the master does for a caller: in the caller's namespace, ``~`` under it."""
+    return resolve_name(name, namespace_of(caller_id), caller_id)

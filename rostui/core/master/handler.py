@@ -15,7 +15,9 @@ import logging
 import os
 from typing import Any, Callable
 
-from .names import SEP, canonicalize, resolve
+from rostui.core.names import SEP
+from rostui.core.names import canonicalize_name as canonicalize
+from rostui.core.names import resolve_for_caller as resolve
 from .notify import Notifier
 from .params import ParamTree, Update, compute_updates
 from .registrations import PUBLICATIONS, NodeRef, RegistrationManager

@@ -10,7 +10,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from .names import SEP, canonicalize, ns_join
+from rostui.core.names import SEP
+from rostui.core.names import canonicalize_name as canonicalize
+from rostui.core.names import join_names as ns_join
 from .registrations import Provider, Registrations
 
 #: One notification batch: (subscribers, key sent, value sent).

@@ -12,7 +12,7 @@ import functools
 import logging
 from typing import Any, Callable, Sequence
 
-from .names import resolve
+from rostui.core.names import resolve_for_caller as resolve
 
 _log = logging.getLogger("rostui.master")
 

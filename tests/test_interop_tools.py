@@ -130,3 +130,23 @@ def test_rosparam_set_get_list_dump(rostui_core, ros_env, tmp_path):
     missing = run_tool(["rosparam", "get", "/robot/speed"], ros_env, check=False)
     assert missing.returncode != 0
     assert "/robot/speed" in missing.stderr
+
+
+
+def test_rosnode_ping_and_kill(any_master, spawn, ros_env):
+    """`rosnode ping` reaches a rostui node; `rosnode kill` makes it exit and unregister.
+
+    Repeated a few times: a node that exits before its unregister calls are
+    done leaves a stale entry that `rosnode list` keeps showing.
+    """
+    for attempt in range(4):
+        listener = spawn(example("listener.py", "__name:=ears"), label=f"rostui listener #{attempt}")
+        wait_for_node(ros_env, "/ears")
+        ping = run_tool(["rosnode", "ping", "-c", "1", "/ears"], ros_env).stdout
+        assert re.search(r"reply from " + URI + r"\ttime=", ping), ping
+        out = run_tool(["rosnode", "kill", "/ears"], ros_env).stdout
+        assert "killed" in out, out
+        listener.wait_exit()
+        assert "Shutdown request received" in listener.output, listener.describe()
+        assert "/ears" not in run_tool(["rosnode", "list"], ros_env).stdout.split(), (
+            f"attempt {attempt}: /ears still registered after it exited\n{listener.describe()}")

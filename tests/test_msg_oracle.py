@@ -66,34 +66,6 @@ def oracle_types() -> dict[str, Any]:
     return json.loads(r.stdout)
 
 
-def _normalize_definition(text: str) -> list[str]:
-    """A definition without comments, blank lines or extra spaces; per section constants first, then fields.
-
-    Our .msg files are written from the spec (no copied comments) and list
-    constants before fields; what must agree is every declaration and its order.
-    """
-    out: list[str] = []
-    consts: list[str] = []
-    fields: list[str] = []
-    for line in text.split("\n") + ["=" * 80]:
-        if line.startswith("=" * 80) or line.startswith("MSG: "):
-            out += consts + fields
-            consts, fields = [], []
-            out.append(line.strip())
-            continue
-        clean = line.split("#", 1)[0].strip()
-        if not clean:
-            continue
-        if "=" in clean:
-            if clean.split()[0] == "string":
-                clean = line.strip()  # string constants keep '#'
-            t, rest = clean.split(None, 1)
-            consts.append(t + " " + "".join(rest.split()))
-        else:
-            fields.append(" ".join(clean.split()))
-    return out
-
-
 def test_every_debian_type_exists_here(oracle_types: dict[str, Any]) -> None:
     ours = set()
     for pkg in PACKAGES:
@@ -110,7 +82,7 @@ def test_md5_and_full_text_match_genpy(oracle_types: dict[str, Any]) -> None:
             cls = get_message_class(t)
             if cls._md5sum != e["md5"]:
                 problems.append(f"{t}: md5 {cls._md5sum} != {e['md5']}")
-            if _normalize_definition(cls._full_text) != _normalize_definition(e["full_text"]):
+            if cls._full_text != e["full_text"]:
                 problems.append(f"{t}: full_text differs")
             if cls._slot_types != e["slot_types"] or list(cls.__slots__) != e["slots"]:
                 problems.append(f"{t}: slots differ")
@@ -121,7 +93,7 @@ def test_md5_and_full_text_match_genpy(oracle_types: dict[str, Any]) -> None:
             for k, c in (("req", srv._request_class), ("resp", srv._response_class)):
                 if c._type != e[k]["type"] or c._md5sum != e[k]["md5"]:
                     problems.append(f"{t}: {k} {c._type} {c._md5sum} != {e[k]['type']} {e[k]['md5']}")
-                if _normalize_definition(c._full_text) != _normalize_definition(e[k]["full_text"]):
+                if c._full_text != e[k]["full_text"]:
                     problems.append(f"{t}: {k} full_text differs")
     assert not problems, "\n".join(problems)
 

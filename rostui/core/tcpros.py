@@ -128,7 +128,7 @@ class FrameReader:
             stop = pos + 4 + size
             if stop > end:
                 break
-            frames.append(bytes(buf[pos + 4 : stop]))
+            frames.append(bytes(buf[pos + 4 : stop]) if size < 65536 else bytes(memoryview(buf)[pos + 4 : stop]))
             pos = stop
         if pos:
             del buf[:pos]

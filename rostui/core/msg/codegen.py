@@ -264,7 +264,8 @@ class _DeserWalker(_Gen):
                 e = self.var("_e")
                 self.emit(ind, f"{e} = _o + {ln}")
                 self.emit(ind, f"if {e} > _n: raise _DeserErr('{f.name}: string runs past end of buffer')")
-                self.emit(ind, f"{target} = _buf[_o:{e}].decode('utf-8', 'replace')")
+                self.emit(ind, f"{target} = _buf[_o:{e}].decode('utf-8', 'replace') if {ln} < 65536 "
+                               f"else _str(_memoryview(_buf)[_o:{e}], 'utf-8', 'replace')")
                 self.emit(ind, f"_o = {e}")
             elif t in ("time", "duration"):
                 v = self.var("_t")
@@ -359,7 +360,7 @@ def build_message_class(
     must be buildable first; ROS types cannot be recursive).
     """
     ns: dict[str, Any] = {
-        "_Time": Time, "_Duration": Duration, "_new": object.__new__, "_range": range,
+        "_Time": Time, "_Duration": Duration, "_new": object.__new__, "_range": range, "_str": str, "_memoryview": memoryview,
         "_pack": struct.pack, "_pack_I": struct.Struct("<I").pack,
         "_unpack_from": struct.unpack_from, "_unpack_I": struct.Struct("<I").unpack_from,
         "_as_bytes": _as_bytes, "_SerErr": SerializationError, "_DeserErr": DeserializationError,

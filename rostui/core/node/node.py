@@ -17,6 +17,7 @@ from urllib.parse import urlparse
 
 from rostui.core import names
 from rostui.core.log import ConsoleLogger
+from rostui.core.memory import tune_allocator
 from rostui.core.network import Addressing, master_uri_from_env, resolve_addressing
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.params import ParamCache
@@ -132,6 +133,7 @@ class AsyncNode:
     # -- lifecycle --------------------------------------------------------------
     async def start(self) -> "AsyncNode":
         """Open the slave API and TCPROS servers; set ``_param:=`` parameters."""
+        tune_allocator()
         self.loop = asyncio.get_running_loop()
         self.loop_thread_id = threading.get_ident()
         self._done = asyncio.Event()

@@ -18,7 +18,7 @@ import collections
 import logging
 import threading
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator
 
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.transport import InboundConnection, SubscriberConnection, set_nodelay
@@ -42,6 +42,26 @@ class TopicType:
     def of(cls, msg_class: Any) -> "TopicType":
         """The TopicType of a generated message class."""
         return cls(msg_class._type, msg_class._md5sum, msg_class._full_text)
+
+
+COALESCE_BYTES = 64 * 1024
+
+
+def coalesce(frames: Iterable[bytes]) -> Iterator[tuple[bytes, int]]:
+    """Group consecutive small frames into writes of about 64 KiB; big frames go alone.
+
+    Yields ``(data, number_of_frames)``; a frame is never split.
+    """
+    group: list[bytes] = []
+    size = 0
+    for data in frames:
+        if size + len(data) > COALESCE_BYTES and group:
+            yield b"".join(group), len(group)
+            group, size = [], 0
+        group.append(data)
+        size += len(data)
+    if group:
+        yield (group[0] if len(group) == 1 else b"".join(group)), len(group)
 
 
 class OutgoingLink:
@@ -182,9 +202,9 @@ class Publication:
         if not batch:
             return
         if self.links:
-            data = b"".join(item[0] for item in batch)
-            for link in self.links:
-                link.send(data, len(batch))
+            for chunk, count in coalesce(item[0] for item in batch):
+                for link in self.links:
+                    link.send(chunk, count)
         for data, msg in batch:
             self._after_send(data, msg)
         self.messages_published += len(batch)

@@ -128,6 +128,18 @@ def _accepts_arg(fn: Callable[..., Any]) -> bool:
 def _atexit() -> None:
     if _state.node is not None and not _state.node.is_shutdown:
         signal_shutdown("atexit")
+    _wait_shutdown_done()
+
+
+def _wait_shutdown_done() -> None:
+    """Block until a shutdown that has begun has unregistered everything."""
+    engine, node = _state.engine, _state.node
+    if engine is None or node is None or not node.is_shutdown or engine.on_engine_thread:
+        return
+    try:
+        engine.run(node.wait_shutdown(), timeout=5)
+    except Exception:
+        pass
 
 
 def signal_shutdown(reason: str) -> None:
@@ -168,6 +180,7 @@ def spin() -> None:
             pass
     except KeyboardInterrupt:
         signal_shutdown("keyboard interrupt")
+    _wait_shutdown_done()
 
 
 def get_name() -> str:

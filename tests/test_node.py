@@ -215,3 +215,38 @@ def test_servers_bind_loopback_unless_told_otherwise(monkeypatch: pytest.MonkeyP
         assert node.uri.startswith("http://127.0.0.1:")
         await node.shutdown()
     run(scenario())
+
+
+def test_subscriber_queue_size_keeps_only_the_newest_backlog(rostui_core: Any, ros_env: dict[str, str]) -> None:
+    script = textwrap.dedent("""
+        import time
+        from rostui import client as ros
+        String = ros.msg("std_msgs/String")
+        ros.init_node("burst")
+        pub = ros.Publisher("burst", String, queue_size=1000)
+        while pub.get_num_connections() == 0:
+            time.sleep(0.01)
+        for i in range(200):
+            pub.publish(String(data=str(i)))
+        time.sleep(2)
+    """)
+
+    async def scenario() -> None:
+        node = await AsyncNode("slow_sub").start()
+        got: list[int] = []
+
+        def slow(msg: Any) -> None:
+            got.append(int(msg.data))
+            if len(got) == 1:
+                import time
+                time.sleep(0.5)  # the rest of the burst piles up meanwhile
+
+        await node.subscribe("burst", String, slow, queue_size=1)
+        proc = await asyncio.create_subprocess_exec(sys.executable, "-c", script, env=ros_env)
+        try:
+            await until(lambda: bool(got) and got[-1] == 199, timeout=20)
+            assert len(got) < 200
+        finally:
+            await proc.wait()
+            await node.shutdown()
+    run(scenario())

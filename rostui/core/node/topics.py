@@ -404,9 +404,13 @@ class Subscription:
         return None
 
     def _frames_handler(self) -> Callable[[list[bytes], dict[str, str]], None]:
+        """The per-connection frame callback; with a queue_size, only the newest frames of a backlog run."""
         dispatch = self._dispatch
+        keep = self.queue_size if self.queue_size and self.queue_size > 0 else None
         if self.raw:
             def on_raw(frames: list[bytes], header: dict[str, str]) -> None:
+                if keep is not None and len(frames) > keep:
+                    frames = frames[-keep:]
                 for data in frames:
                     msg = AnyMsg(data)
                     msg._connection_header = header
@@ -416,6 +420,8 @@ class Subscription:
         topic = self.topic
 
         def on_frames(frames: list[bytes], _header: dict[str, str]) -> None:
+            if keep is not None and len(frames) > keep:
+                frames = frames[-keep:]
             for data in frames:
                 try:
                     msg = deserialize(data)

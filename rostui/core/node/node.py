@@ -36,6 +36,14 @@ class MasterError(Exception):
     """The master could not be reached or refused a call."""
 
 
+class MasterUnreachableError(MasterError):
+    """The master did not answer at all (down, wrong URI, network)."""
+
+
+class MasterRefusedError(MasterError):
+    """The master answered with a failure code (e.g. no such parameter or service)."""
+
+
 class Publisher:
     """A handle to publish on a topic; several handles may share a Publication."""
 
@@ -250,9 +258,9 @@ class AsyncNode:
         try:
             return ros_result(await self._master.call(method, self.name, *args))
         except XmlRpcConnectionError as exc:
-            raise MasterError(f"Unable to communicate with master at {self.master_uri}: {exc}") from exc
+            raise MasterUnreachableError(f"Unable to communicate with master at {self.master_uri}: {exc}") from exc
         except RosApiError as exc:
-            raise MasterError(f"master refused {method}: {exc}") from exc
+            raise MasterRefusedError(f"master refused {method}: {exc}") from exc
 
     def _client(self, uri: str) -> XmlRpcClient:
         client = self._clients.get(uri)
@@ -284,9 +292,9 @@ class AsyncNode:
         """The rosrpc URI of a service, or ServiceException if none is registered."""
         try:
             return str(await self.master_call("lookupService", name))
-        except MasterError as exc:
-            if "Unable to communicate" in str(exc):
-                raise ServiceException(str(exc)) from exc
+        except MasterUnreachableError as exc:
+            raise ServiceException(str(exc)) from exc
+        except MasterRefusedError as exc:
             raise ServiceException(f"service [{name}] unavailable") from exc
 
     # -- TCPROS routing ------------------------------------------------------------
@@ -414,9 +422,7 @@ class AsyncNode:
         key = self.resolve(name)
         try:
             return await self.master_call("getParam", key)
-        except MasterError as exc:
-            if "Unable to communicate" in str(exc):
-                raise
+        except MasterRefusedError:
             if default is ...:
                 raise KeyError(key) from None
             return default
@@ -447,18 +453,14 @@ class AsyncNode:
         key = self.resolve(name)
         try:
             await self.master_call("deleteParam", key)
-        except MasterError as exc:
-            if "Unable to communicate" in str(exc):
-                raise
+        except MasterRefusedError:
             raise KeyError(key) from None
 
     async def search_param(self, name: str) -> str | None:
         """The closest parameter name up the namespace tree, or None."""
         try:
             found = await self.master_call("searchParam", name)
-        except MasterError as exc:
-            if "Unable to communicate" in str(exc):
-                raise
+        except MasterRefusedError:
             return None
         return found or None
 

@@ -324,6 +324,14 @@ class Timer:
 
 
 # -- topics -----------------------------------------------------------------------------
+def _unregister(engine: Engine, handle: _node.Publisher | _node.Subscriber) -> None:
+    """Unregister a topic handle: wait from user threads, schedule from callbacks."""
+    if engine.on_engine_thread:
+        engine.loop.create_task(handle.unregister())
+    else:
+        engine.run(handle.unregister())
+
+
 class Publisher:
     """Publish messages on a topic (rospy.Publisher)."""
 
@@ -348,10 +356,7 @@ class Publisher:
 
     def unregister(self) -> None:
         """Stop publishing."""
-        if not self._engine.on_engine_thread:
-            self._engine.run(self._impl.unregister())
-        else:
-            self._engine.loop.create_task(self._impl.unregister())
+        _unregister(self._engine, self._impl)
 
 
 class Subscriber:
@@ -374,10 +379,7 @@ class Subscriber:
 
     def unregister(self) -> None:
         """Stop receiving."""
-        if not self._engine.on_engine_thread:
-            self._engine.run(self._impl.unregister())
-        else:
-            self._engine.loop.create_task(self._impl.unregister())
+        _unregister(self._engine, self._impl)
 
 
 def wait_for_message(topic: str, topic_type: Any, timeout: float | None = None) -> Any:

@@ -9,7 +9,9 @@ same and only the node side differs):
   the publisher can (queue 1000); messages/s *received* by the subscriber over
   a fixed window that starts at the first message;
 * large throughput: the same with a 1 MB payload, in MB/s (10^6 bytes) received;
-* latency: ping-pong round trips (N after a warm-up), p50 and p99 in µs.
+* latency: ping-pong round trips (N after a warm-up), p50 and p99 in µs, and
+  the pinging process's CPU time per round trip (less sensitive to load from
+  other work on the machine than wall-clock latency).
 
 Peers: bench/roscpp_peer.cpp (built here into bench/_build/),
 bench/rospy_peer.py (system /usr/bin/python3) and bench/rostui_peer.py (this
@@ -17,9 +19,13 @@ project's venv).  Everything runs on 127.0.0.1 with a private ROS_HOME and a
 free port; every process is stopped at the end.  Not a test: it prints a table
 and the ratios rostui/rospy and rostui/roscpp, and the targets.
 
-    .venv/bin/python bench/bench_pubsub.py                 # whole run, ~1 minute
-    .venv/bin/python bench/bench_pubsub.py --libs rostui   # one library only
-    .venv/bin/python bench/bench_pubsub.py --json out.json --window 3 --round-trips 2000
+    .venv/bin/python bench/bench_pubsub.py                 # 3 rounds, about 2 minutes
+    .venv/bin/python bench/bench_pubsub.py --libs rostui,rospy --rounds 1
+    .venv/bin/python bench/bench_pubsub.py --json out.json --window 5 --round-trips 3000
+
+Each round measures every library once (order rotated between rounds) and
+the table shows the median per metric with its range, so a burst of load from
+other work on the machine moves one round, not the result.
 """
 
 from __future__ import annotations
@@ -191,74 +197,103 @@ class Run:
         return {k: float(v) for k, v in fields.items()}
 
 
+METRICS = ("small_msgs_s", "large_MB_s", "p50_us", "p99_us", "ping_cpu_us")
+
+
 def measure(run: Run, lib: str, args: argparse.Namespace) -> dict[str, float]:
+    """One round for one library: both throughputs, then latency."""
     small = run.throughput(lib, SMALL, args.window)
     large = run.throughput(lib, LARGE, args.window)
     lat = run.latency(lib, args.round_trips)
-    return {"small_msgs_s": small["msgs_s"], "large_MB_s": large["MB_s"], "large_msgs_s": large["msgs_s"],
-            "p50_us": lat["p50_us"], "p99_us": lat["p99_us"], "mean_us": lat.get("mean_us", 0.0)}
+    return {"small_msgs_s": small["msgs_s"], "large_MB_s": large["MB_s"],
+            "p50_us": lat["p50_us"], "p99_us": lat["p99_us"], "ping_cpu_us": lat.get("cpu_us", float("nan"))}
 
 
-def report(results: dict[str, dict[str, float]], master: str, args: argparse.Namespace) -> None:
+def median(values: list[float]) -> float:
+    values = sorted(values)
+    k = len(values)
+    return values[k // 2] if k % 2 else (values[k // 2 - 1] + values[k // 2]) / 2
+
+
+def summarize(rounds: dict[str, list[dict[str, float]]]) -> dict[str, dict[str, float]]:
+    """Per library, the median of each metric over the rounds."""
+    return {lib: {key: median([r[key] for r in rows]) for key in METRICS} for lib, rows in rounds.items() if rows}
+
+
+def report(rounds: dict[str, list[dict[str, float]]], master: str, args: argparse.Namespace) -> None:
+    results = summarize(rounds)
     cols = [("small_msgs_s", "16 B msgs/s", "{:,.0f}"), ("large_MB_s", "1 MB MB/s", "{:,.1f}"),
-            ("p50_us", "RTT p50 µs", "{:,.1f}"), ("p99_us", "RTT p99 µs", "{:,.1f}")]
+            ("p50_us", "RTT p50 µs", "{:,.1f}"), ("p99_us", "RTT p99 µs", "{:,.1f}"),
+            ("ping_cpu_us", "ping CPU µs/RT", "{:,.1f}")]
     print()
-    print(f"std_msgs/String pub/sub, separate processes, master: {master}, 127.0.0.1;"
-          f" throughput window {args.window:g} s, {args.round_trips} round trips")
-    print(f"{'library':<10}" + "".join(f"{title:>16}" for _, title, _ in cols))
+    print(f"std_msgs/String pub/sub, publisher and subscriber in separate processes of the same library,"
+          f" one master ({master}), 127.0.0.1")
+    print(f"median of {args.rounds} interleaved rounds; throughput window {args.window:g} s;"
+          f" {args.round_trips} round trips per round after warm-up;"
+          f" {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}")
+    print(f"{'library':<14}" + "".join(f"{title:>16}" for _, title, _ in cols))
     for lib, row in results.items():
-        print(f"{lib:<10}" + "".join(f"{fmt.format(row[key]):>16}" for key, _, fmt in cols))
+        print(f"{lib:<14}" + "".join(f"{fmt.format(row[key]):>16}" for key, _, fmt in cols))
+        if len(rounds[lib]) > 1:
+            spread = ["{}..{}".format(fmt.format(min(r[key] for r in rounds[lib])),
+                                      fmt.format(max(r[key] for r in rounds[lib]))) for key, _, fmt in cols]
+            print(f"{'  (range)':<14}" + "".join(f"{x:>16}" for x in spread))
     if "rostui" not in results:
         return
     ours = results["rostui"]
     for peer in ("rospy", "roscpp"):
-        if peer not in results:
-            continue
-        print(f"{'rostui/' + peer:<10}" + "".join(
-            f"{ours[key] / results[peer][key]:>15.2f}x" for key, _, _ in cols))
+        if peer in results:
+            print(f"{'rostui/' + peer:<14}" + "".join(
+                f"{ours[key] / results[peer][key]:>15.2f}x" for key, _, _ in cols))
     if "rospy" in results:
         print()
         for key, (want, higher) in TARGETS.items():
             ratio = ours[key] / results["rospy"][key]
             ok = ratio >= want if higher else ratio <= want
             sign = ">=" if higher else "<="
-            print(f"target {key:<13} rostui/rospy {ratio:6.2f}x  (want {sign} {want}x)  {'MET' if ok else 'MISSED'}")
+            print(f"target {key:<13} rostui/rospy {ratio:6.2f}x  (want {sign} {want}x)  {'met' if ok else 'MISSED'}")
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--libs", default=",".join(LIBS), help="comma list of rospy,roscpp,rostui")
-    parser.add_argument("--window", type=float, default=5.0, help="throughput window, seconds")
-    parser.add_argument("--round-trips", type=int, default=5000, help="timed ping-pong round trips")
+    parser.add_argument("--rounds", type=int, default=3, help="interleaved rounds; the table shows medians")
+    parser.add_argument("--window", type=float, default=3.0, help="throughput window per round, seconds")
+    parser.add_argument("--round-trips", type=int, default=5000, help="timed ping-pong round trips per round")
     parser.add_argument("--master", choices=("rostui", "rosmaster"), default="rostui",
                         help="which master all peers use (default: rostui core)")
-    parser.add_argument("--json", help="also write the results to this file")
+    parser.add_argument("--json", help="also write every round's results to this file")
     args = parser.parse_args()
     libs = [x for x in args.libs.split(",") if x]
     unknown = set(libs) - set(LIBS)
-    if unknown:
+    if unknown or not libs:
         parser.error(f"unknown libraries: {', '.join(sorted(unknown))}")
     if "roscpp" in libs:
         build_cpp_peer()
     run = Run(args.master)
-    results: dict[str, dict[str, float]] = {}
+    rounds: dict[str, list[dict[str, float]]] = {lib: [] for lib in libs}
     started = time.monotonic()
     try:
         run.start_master()
-        for lib in libs:
-            t = time.monotonic()
-            results[lib] = measure(run, lib, args)
-            print(f"{lib}: done in {time.monotonic() - t:.1f} s  {results[lib]}", flush=True)
+        for i in range(args.rounds):
+            order = libs[i % len(libs):] + libs[:i % len(libs)]  # rotate so no library always goes first
+            for lib in order:
+                t = time.monotonic()
+                row = measure(run, lib, args)
+                rounds[lib].append(row)
+                shown = "  ".join(f"{k}={v:,.1f}" for k, v in row.items())
+                print(f"round {i + 1} {lib:<7} {time.monotonic() - t:5.1f} s  {shown}", flush=True)
     except KeyboardInterrupt:
         return 130
     finally:
         run.close()
-    report(results, "rostui core" if args.master == "rostui" else "rosmaster", args)
+    master = "rostui core" if args.master == "rostui" else "rosmaster"
+    report(rounds, master, args)
     print(f"\nwhole run {time.monotonic() - started:.0f} s")
     if args.json:
         Path(args.json).write_text(json.dumps({"master": args.master, "window": args.window,
-                                               "round_trips": args.round_trips, "results": results},
-                                              indent=2))
+                                               "round_trips": args.round_trips, "rounds": rounds,
+                                               "median": summarize(rounds)}, indent=2))
     return 0
 
 

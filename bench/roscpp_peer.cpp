@@ -23,7 +23,8 @@
 //                            "count=N bytes=B seconds=S"
 //   pong IN OUT              echo every std_msgs/String from IN to OUT (tcp_nodelay)
 //   ping OUT IN N            N timed round trips after a warm-up; print
-//                            "n=N p50_us=X p99_us=Y mean_us=M min_us=A max_us=B"
+//                            "n=N p50_us=X p99_us=Y mean_us=M min_us=A max_us=B cpu_us=C"
+//                            (cpu_us: this process's CPU time per timed round trip)
 //
 // std_srvs/SetBool is declared below (wire traits written for this file) so the
 // peer builds with libroscpp-dev and std_msgs alone, without libstd-srvs-dev.
@@ -36,6 +37,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -300,7 +302,9 @@ int mode_ping(ros::NodeHandle& nh, const std::string& out, const std::string& in
   long warm = std::max(100L, n / 10);
   std::vector<double> rtt;
   rtt.reserve(static_cast<size_t>(n));
+  std::clock_t cpu0 = 0;
   for (long i = 0; i < warm + n && ros::ok(); ++i) {
+    if (i == warm) cpu0 = std::clock();
     msg.data = "ping " + std::to_string(i);
     auto t0 = Clock::now();
     pub.publish(msg);
@@ -314,12 +318,13 @@ int mode_ping(ros::NodeHandle& nh, const std::string& out, const std::string& in
     if (i >= warm) rtt.push_back(seconds_since(t0) * 1e6);
   }
   if (rtt.empty()) return 1;
+  double cpu_us = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC * 1e6 / rtt.size();
   std::sort(rtt.begin(), rtt.end());
   double sum = 0;
   for (double x : rtt) sum += x;
   auto pct = [&](double p) { return rtt[std::min(rtt.size() - 1, static_cast<size_t>(p * rtt.size()))]; };
-  std::printf("n=%zu p50_us=%.1f p99_us=%.1f mean_us=%.1f min_us=%.1f max_us=%.1f\n", rtt.size(), pct(0.50),
-              pct(0.99), sum / rtt.size(), rtt.front(), rtt.back());
+  std::printf("n=%zu p50_us=%.1f p99_us=%.1f mean_us=%.1f min_us=%.1f max_us=%.1f cpu_us=%.1f\n", rtt.size(),
+              pct(0.50), pct(0.99), sum / rtt.size(), rtt.front(), rtt.back(), cpu_us);
   std::fflush(stdout);
   return 0;
 }

@@ -9,7 +9,8 @@ Same modes and output as bench/roscpp_peer.cpp and bench/rospy_peer.py:
                              SECONDS after the first message; print "count=N bytes=B seconds=S"
   pong IN OUT                echo every std_msgs/String from IN to OUT
   ping OUT IN N              N timed round trips after a warm-up; print
-                             "n=N p50_us=X p99_us=Y mean_us=M min_us=A max_us=B"
+                             "n=N p50_us=X p99_us=Y mean_us=M min_us=A max_us=B cpu_us=C"
+                             (cpu_us: this process's CPU time per timed round trip)
 
 Written the way a rostui user would: callbacks on the engine (I/O) thread, the
 main thread publishing and waiting.  ROS remaps (from:=to) are accepted.
@@ -105,7 +106,10 @@ def ping(topic_out, topic_in, n):
         return 1
     warm = max(100, n // 10)
     rtt = []
+    cpu0 = 0.0
     for i in range(warm + n):
+        if i == warm:
+            cpu0 = time.process_time()
         text = "ping %d" % i
         msg = String(data=text)
         t0 = time.perf_counter()
@@ -118,16 +122,16 @@ def ping(topic_out, topic_in, n):
             got.clear()
         if i >= warm:
             rtt.append((time.perf_counter() - t0) * 1e6)
-    print_latency(rtt)
+    print_latency(rtt, (time.process_time() - cpu0) / n * 1e6)
     return 0
 
 
-def print_latency(rtt):
+def print_latency(rtt, cpu_us):
     rtt.sort()
     k = len(rtt)
     pct = lambda p: rtt[min(k - 1, int(p * k))]  # noqa: E731
-    print("n=%d p50_us=%.1f p99_us=%.1f mean_us=%.1f min_us=%.1f max_us=%.1f"
-          % (k, pct(0.50), pct(0.99), sum(rtt) / k, rtt[0], rtt[-1]), flush=True)
+    print("n=%d p50_us=%.1f p99_us=%.1f mean_us=%.1f min_us=%.1f max_us=%.1f cpu_us=%.1f"
+          % (k, pct(0.50), pct(0.99), sum(rtt) / k, rtt[0], rtt[-1], cpu_us), flush=True)
 
 
 def main():

@@ -231,20 +231,21 @@ def report(rounds: dict[str, list[dict[str, float]]], master: str, args: argpars
     print(f"median of {args.rounds} interleaved rounds; throughput window {args.window:g} s;"
           f" {args.round_trips} round trips per round after warm-up;"
           f" {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}")
-    print(f"{'library':<14}" + "".join(f"{title:>16}" for _, title, _ in cols))
+    w = 19
+    print(f"{'library':<14}" + "".join(f"{title:>{w}}" for _, title, _ in cols))
     for lib, row in results.items():
-        print(f"{lib:<14}" + "".join(f"{fmt.format(row[key]):>16}" for key, _, fmt in cols))
+        print(f"{lib:<14}" + "".join(f"{fmt.format(row[key]):>{w}}" for key, _, fmt in cols))
         if len(rounds[lib]) > 1:
             spread = ["{}..{}".format(fmt.format(min(r[key] for r in rounds[lib])),
                                       fmt.format(max(r[key] for r in rounds[lib]))) for key, _, fmt in cols]
-            print(f"{'  (range)':<14}" + "".join(f"{x:>16}" for x in spread))
+            print(f"{'  (range)':<14}" + "".join(f"{x:>{w}}" for x in spread))
     if "rostui" not in results:
         return
     ours = results["rostui"]
     for peer in ("rospy", "roscpp"):
         if peer in results:
             print(f"{'rostui/' + peer:<14}" + "".join(
-                f"{ours[key] / results[peer][key]:>15.2f}x" for key, _, _ in cols))
+                f"{ours[key] / results[peer][key]:>{w - 1}.2f}x" for key, _, _ in cols))
     if "rospy" in results:
         print()
         for key, (want, higher) in TARGETS.items():

@@ -14,7 +14,7 @@ same and only the node side differs):
   other work on the machine than wall-clock latency).
 
 Peers: bench/roscpp_peer.cpp (built here into bench/_build/),
-bench/rospy_peer.py (system /usr/bin/python3) and bench/rostui_peer.py (this
+bench/py_peer.py rospy (system /usr/bin/python3) and bench/py_peer.py rostui (this
 project's venv).  Everything runs on 127.0.0.1 with a private ROS_HOME and a
 free port; every process is stopped at the end.  Not a test: it prints a table
 and the ratios rostui/rospy and rostui/roscpp, and the targets.
@@ -159,8 +159,8 @@ class Run:
         if lib == "roscpp":
             return [str(CPP_BIN), *args]
         if lib == "rospy":
-            return [SYSTEM_PYTHON, str(BENCH / "rospy_peer.py"), *args]
-        return [venv_python(), str(BENCH / "rostui_peer.py"), *args]
+            return [SYSTEM_PYTHON, str(BENCH / "py_peer.py"), "rospy", *args]
+        return [venv_python(), str(BENCH / "py_peer.py"), "rostui", *args]
 
     def throughput(self, lib: str, size: int, window: float) -> dict[str, float]:
         topic = f"/bench/{lib}/flood_{size}"

@@ -166,6 +166,8 @@ class AsyncNode:
                 await self.master_call("getPid")
                 return
             except MasterError:
+                if self.is_shutdown:
+                    raise MasterUnreachableError("node shut down while waiting for the master") from None
                 if deadline is not None and self.loop.time() >= deadline:
                     raise
                 if not warned and on_wait is not None:

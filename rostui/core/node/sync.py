@@ -77,12 +77,17 @@ _previous_excepthook = sys.excepthook
 def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = False,
               log_level: int | Level | None = None, disable_signals: bool = False,
               master_uri: str | None = None, wait_for_master: bool = True) -> None:
-    """Start this process's node; ``argv`` defaults to ``sys.argv[1:]``."""
+    """Start this process's node.
+
+    ``argv`` is the full command line, program name first, as in rospy
+    (default ``sys.argv``); its ROS arguments (remaps, ``__name:=``,
+    ``_param:=``...) configure the node.
+    """
     global _previous_excepthook
     if _state.node is not None:
         raise ROSException(f"init_node() was already called for {_state.node.name}")
     engine = Engine()
-    node = _node.AsyncNode(name, argv=sys.argv[1:] if argv is None else argv, anonymous=anonymous,
+    node = _node.AsyncNode(name, argv=list(sys.argv if argv is None else argv)[1:], anonymous=anonymous,
                            master_uri=master_uri)
     if log_level is not None:
         node.console.level = Level(int(log_level))
@@ -100,7 +105,12 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     if wait_for_master:
         def warn() -> None:
             node.console.warn(f"Unable to contact the master at [{node.master_uri}]; will keep trying.")
-        engine.run(node.wait_for_master(on_wait=warn))
+        try:
+            engine.run(node.wait_for_master(on_wait=warn))
+        except _node.MasterError:
+            if node.is_shutdown:
+                raise ROSInterruptException("shutdown while waiting for the master") from None
+            raise
 
 
 def _on_signal(signum: int, _frame: Any) -> None:

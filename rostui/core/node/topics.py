@@ -16,9 +16,11 @@ from __future__ import annotations
 import asyncio
 import collections
 import logging
+import os
+import socket
 import threading
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, Sequence
 
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.transport import InboundConnection, SubscriberConnection, set_nodelay
@@ -65,7 +67,12 @@ def coalesce(frames: Iterable[bytes]) -> Iterator[tuple[bytes, int]]:
 
 
 class OutgoingLink:
-    """One subscriber's connection to a publication, with its own drop queue."""
+    """One subscriber's connection to a publication, with its own drop queue.
+
+    Writes happen under the publication's lock: on the engine thread through
+    the transport, or, from a user thread while the transport has nothing
+    buffered, straight to the socket (no thread hand-off).
+    """
 
     def __init__(self, pub: "Publication", conn: InboundConnection, header: dict[str, str]) -> None:
         self.pub = pub
@@ -77,9 +84,11 @@ class OutgoingLink:
         self.bytes_sent = 0
         self.dropped = 0
         self.id = pub.node.next_connection_id()
+        self.remainder_pending = False
+        self._sock = _direct_socket(conn)
 
     def send(self, data: bytes, count: int = 1) -> None:
-        """Write framed bytes, or queue them while the peer is slow."""
+        """Write framed bytes on the engine thread, or queue them while the peer is slow."""
         if self.paused:
             if len(self.backlog) == self.backlog.maxlen:
                 self.dropped += 1
@@ -88,6 +97,33 @@ class OutgoingLink:
         self.conn.write(data)
         self.messages_sent += count
         self.bytes_sent += len(data)
+
+    def can_send_direct(self) -> bool:
+        """True when a user thread may write to the socket itself (nothing queued anywhere)."""
+        transport = self.conn.transport
+        return (self._sock is not None and not self.paused and not self.remainder_pending
+                and transport is not None and not transport.is_closing()
+                and transport.get_write_buffer_size() == 0)
+
+    def send_direct(self, data: bytes) -> None:
+        """Write from a user thread; a part the socket does not take goes to the engine."""
+        assert self._sock is not None
+        try:
+            sent = self._sock.send(data)
+        except BlockingIOError:
+            sent = 0
+        except OSError:
+            return  # the transport sees the broken connection and closes the link
+        self.messages_sent += 1
+        self.bytes_sent += len(data)
+        if sent < len(data):
+            self.remainder_pending = True
+            self.pub.node.loop.call_soon_threadsafe(self._write_remainder, data[sent:])
+
+    def _write_remainder(self, rest: bytes) -> None:
+        with self.pub.lock:
+            self.conn.write(rest)
+            self.remainder_pending = False
 
     def frames_received(self, frames: list[bytes]) -> None:
         """Subscribers send nothing after their header; ignore stray bytes."""
@@ -98,13 +134,29 @@ class OutgoingLink:
 
     def resume_writing(self) -> None:
         """Flush what queued while paused."""
-        self.paused = False
-        while self.backlog and not self.paused:
-            self.send(self.backlog.popleft())
+        with self.pub.lock:
+            self.paused = False
+            while self.backlog and not self.paused:
+                self.send(self.backlog.popleft())
 
     def connection_lost(self) -> None:
         """Forget this subscriber."""
         self.pub.remove_link(self)
+        if self._sock is not None:
+            self._sock.close()
+            self._sock = None
+
+
+def _direct_socket(conn: InboundConnection) -> socket.socket | None:
+    """A second handle on the connection's socket for writes from user threads."""
+    transport = conn.transport
+    raw = transport.get_extra_info("socket") if transport is not None else None
+    if raw is None:
+        return None
+    try:
+        return socket.socket(fileno=os.dup(raw.fileno()))
+    except OSError:
+        return None
 
 
 class Publication:
@@ -128,7 +180,7 @@ class Publication:
         self.messages_published = 0
         self._pending: collections.deque[tuple[bytes, Any]] = collections.deque(maxlen=self.queue_limit)
         self._flush_scheduled = False
-        self._lock = threading.Lock()
+        self.lock = threading.Lock()
 
     # -- connections ---------------------------------------------------------
     def accept(self, header: dict[str, str], conn: InboundConnection) -> OutgoingLink | str:
@@ -154,9 +206,10 @@ class Publication:
             "topic": self.topic,
         }
         conn.write(encode_header(reply))
-        self.links = self.links + (link,)
-        if self.latch and self.latched_frame is not None:
-            link.send(self.latched_frame)
+        with self.lock:
+            self.links = self.links + (link,)
+            if self.latch and self.latched_frame is not None:
+                link.send(self.latched_frame)
         return link
 
     def remove_link(self, link: OutgoingLink) -> None:
@@ -185,9 +238,18 @@ class Publication:
         payload = msg.serialize() if not isinstance(msg, AnyMsg) else msg._buff
         data = LEN.pack(len(payload)) + payload
         if threading.get_ident() == self.node.loop_thread_id:
-            self._send(data, msg)
+            with self.lock:
+                for link in self.links:
+                    link.send(data)
+                self._remember(data, msg, 1)
+            self._deliver_local((msg,))
             return
-        with self._lock:
+        with self.lock:
+            if not self._flush_scheduled and not self.local and all(x.can_send_direct() for x in self.links):
+                for link in self.links:
+                    link.send_direct(data)
+                self._remember(data, msg, 1)
+                return
             self._pending.append((data, msg))
             if self._flush_scheduled:
                 return
@@ -195,32 +257,32 @@ class Publication:
         self.node.loop.call_soon_threadsafe(self._flush)
 
     def _flush(self) -> None:
-        with self._lock:
+        """Engine side of publishes from user threads that could not go direct."""
+        with self.lock:
             batch = list(self._pending)
             self._pending.clear()
             self._flush_scheduled = False
-        if not batch:
-            return
-        if self.links:
-            for chunk, count in coalesce(item[0] for item in batch):
-                for link in self.links:
-                    link.send(chunk, count)
-        for data, msg in batch:
-            self._after_send(data, msg)
-        self.messages_published += len(batch)
+            if not batch:
+                return
+            if self.links:
+                for chunk, count in coalesce(item[0] for item in batch):
+                    for link in self.links:
+                        link.send(chunk, count)
+            self._remember(batch[-1][0], batch[-1][1], len(batch))
+        self._deliver_local([msg for _, msg in batch])
 
-    def _send(self, data: bytes, msg: Any) -> None:
-        for link in self.links:
-            link.send(data)
-        self._after_send(data, msg)
-        self.messages_published += 1
-
-    def _after_send(self, data: bytes, msg: Any) -> None:
+    def _remember(self, data: bytes, msg: Any, count: int) -> None:
+        """Count what was sent and keep the last message of a latched topic."""
+        self.messages_published += count
         if self.latch:
             self.latched_frame = data
             self.latched_msg = msg
+
+    def _deliver_local(self, msgs: Sequence[Any]) -> None:
+        """Hand messages to same-process subscribers (engine thread, outside the lock)."""
         for sub in self.local:
-            sub.deliver_local(msg, self)
+            for msg in msgs:
+                sub.deliver_local(msg, self)
 
     def close(self) -> None:
         """Close every subscriber connection."""

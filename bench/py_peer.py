@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
-"""rostui side of the pub/sub benchmarks: run with the project venv (.venv/bin/python).
+"""Python side of the pub/sub benchmarks, for rospy and for rostui: the same code.
 
-Same modes and output as bench/roscpp_peer.cpp and bench/rospy_peer.py:
+``py_peer.py rospy MODE ...`` runs on rospy (use the SYSTEM python,
+/usr/bin/python3); ``py_peer.py rostui MODE ...`` runs on rostui's client API
+(the project venv).  rostui's client mirrors rospy's, so only the imports
+differ.  Same modes and output as bench/roscpp_peer.cpp:
 
   flood TOPIC SIZE SECONDS   publish SIZE-byte std_msgs/String as fast as possible
                              (queue_size=1000) once subscribed, for SECONDS
@@ -12,16 +15,23 @@ Same modes and output as bench/roscpp_peer.cpp and bench/rospy_peer.py:
                              "n=N p50_us=X p99_us=Y mean_us=M min_us=A max_us=B cpu_us=C"
                              (cpu_us: this process's CPU time per timed round trip)
 
-Written the way a rostui user would: callbacks on the engine (I/O) thread, the
-main thread publishing and waiting.  ROS remaps (from:=to) are accepted.
+Written the way a rospy user would: callbacks on the library's receive thread,
+the main thread publishing and waiting.  ROS remaps (from:=to) are accepted.
 """
 
 import sys
 import threading
 import time
 
-from rostui import client as ros
-String = ros.msg("std_msgs/String")
+LIBRARY = sys.argv.pop(1) if len(sys.argv) > 1 else ""
+if LIBRARY == "rospy":
+    import rospy as ros
+    from std_msgs.msg import String
+elif LIBRARY == "rostui":
+    from rostui import client as ros
+    String = ros.msg("std_msgs/String")
+else:
+    sys.exit("usage: py_peer.py rospy|rostui MODE ARGS...")
 
 
 def usage():
@@ -142,7 +152,7 @@ def main():
              "ping": (3, lambda a: ping(a[0], a[1], int(a[2])))}
     if not args or args[0] not in modes or len(args) != modes[args[0]][0] + 1:
         return usage()
-    ros.init_node("rostui_peer", argv=sys.argv, anonymous=True)
+    ros.init_node(LIBRARY + "_peer", argv=sys.argv, anonymous=True)
     try:
         return modes[args[0]][1](args[1:])
     finally:

@@ -197,6 +197,19 @@ class Run:
         return {k: float(v) for k, v in fields.items()}
 
 
+    def floor(self, round_trips: int) -> float:
+        """p50 of a no-ROS TCP ping-pong with the ROS ping's threading (bench/tcp_floor.py)."""
+        port = free_port()
+        ponger = self.spawn([venv_python(), str(BENCH / "tcp_floor.py"), "pong", str(port)], "floor-pong")
+        time.sleep(0.3)
+        try:
+            out = subprocess.run([venv_python(), str(BENCH / "tcp_floor.py"), "ping", str(port), str(round_trips)],
+                                 capture_output=True, text=True, timeout=60).stdout
+        finally:
+            self.stop(ponger)
+        return float(dict(re.findall(r"(\w+)=([\d.]+)", out))["p50_us"])
+
+
 METRICS = ("small_msgs_s", "large_MB_s", "p50_us", "p99_us", "ping_cpu_us")
 
 
@@ -220,7 +233,8 @@ def summarize(rounds: dict[str, list[dict[str, float]]]) -> dict[str, dict[str, 
     return {lib: {key: median([r[key] for r in rows]) for key in METRICS} for lib, rows in rounds.items() if rows}
 
 
-def report(rounds: dict[str, list[dict[str, float]]], master: str, args: argparse.Namespace) -> None:
+def report(rounds: dict[str, list[dict[str, float]]], master: str, args: argparse.Namespace,
+           floors: list[float]) -> None:
     results = summarize(rounds)
     cols = [("small_msgs_s", "16 B msgs/s", "{:,.0f}"), ("large_MB_s", "1 MB MB/s", "{:,.1f}"),
             ("p50_us", "RTT p50 µs", "{:,.1f}"), ("p99_us", "RTT p99 µs", "{:,.1f}"),
@@ -248,6 +262,11 @@ def report(rounds: dict[str, list[dict[str, float]]], master: str, args: argpars
                 f"{ours[key] / results[peer][key]:>{w - 1}.2f}x" for key, _, _ in cols))
     if "rospy" in results:
         print()
+        if floors:
+            floor = median(floors)
+            print(f"no-ROS floor: a Python TCP ping-pong with the same threading (bench/tcp_floor.py) has"
+                  f" p50 {floor:,.1f} µs = {floor / results['rospy']['p50_us']:.2f}x rospy's p50;"
+                  f" rostui is {ours['p50_us'] / floor:.2f}x the floor")
         for key, (want, higher) in TARGETS.items():
             ratio = ours[key] / results["rospy"][key]
             ok = ratio >= want if higher else ratio <= want
@@ -273,11 +292,14 @@ def main() -> int:
         build_cpp_peer()
     run = Run(args.master)
     rounds: dict[str, list[dict[str, float]]] = {lib: [] for lib in libs}
+    floors: list[float] = []
     started = time.monotonic()
     try:
         run.start_master()
         for i in range(args.rounds):
             order = libs[i % len(libs):] + libs[:i % len(libs)]  # rotate so no library always goes first
+            floors.append(run.floor(args.round_trips))
+            print(f"round {i + 1} floor   p50_us={floors[-1]:,.1f}", flush=True)
             for lib in order:
                 t = time.monotonic()
                 row = measure(run, lib, args)
@@ -289,7 +311,7 @@ def main() -> int:
     finally:
         run.close()
     master = "rostui core" if args.master == "rostui" else "rosmaster"
-    report(rounds, master, args)
+    report(rounds, master, args, floors)
     print(f"\nwhole run {time.monotonic() - started:.0f} s")
     if args.json:
         Path(args.json).write_text(json.dumps({"master": args.master, "window": args.window,

@@ -116,6 +116,10 @@ class FrameReader:
         buffered for the next call (so a cap can change after a header).
         """
         buf = self._buf
+        if not buf and limit is None and len(data) >= 4:
+            (size,) = LEN.unpack_from(data)
+            if size + 4 == len(data) and size <= self.max_frame:
+                return [data[4:]]  # the usual case: one read, one whole frame
         if data:
             buf += data
         frames: list[bytes] = []

@@ -355,10 +355,14 @@ class Publisher:
         self.resolved_name = self._impl.name
         self.data_class = data_class
         self.type = (topic_type.type if topic_type else data_class._type)
+        self._publication = self._impl.impl
 
     def publish(self, *args: Any, **kwargs: Any) -> None:
         """Publish a message, or one built from fields; never blocks on slow subscribers."""
-        self._impl.publish(*args, **kwargs)
+        if len(args) == 1 and not kwargs and args[0].__class__ is self.data_class and not self._impl._closed:
+            self._publication.publish(args[0])
+        else:
+            self._impl.publish(*args, **kwargs)
 
     def get_num_connections(self) -> int:
         """Connected subscribers."""

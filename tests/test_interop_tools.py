@@ -40,9 +40,10 @@ def test_rosnode_info(chatter, ros_env):
     out = lines(run_tool(["rosnode", "info", "/mouth"], ros_env).stdout)
     assert "Node [/mouth]" in out
     pubs = out.index("Publications:")
-    assert out[pubs + 1] == " * /chatter [std_msgs/String]"
+    assert out[pubs + 1: pubs + 3] == [" * /chatter [std_msgs/String]", " * /rosout [rosgraph_msgs/Log]"]
     assert "Subscriptions: None" in out
-    assert "Services: None" in out
+    srvs = out.index("Services:")
+    assert out[srvs + 1: srvs + 3] == [" * /mouth/get_loggers", " * /mouth/set_logger_level"]
     assert f"Pid: {talker.proc.pid}" in out
     conns = out[out.index("Connections:"):]
     assert " * topic: /chatter" in conns
@@ -52,7 +53,8 @@ def test_rosnode_info(chatter, ros_env):
 
     out = lines(run_tool(["rosnode", "info", "/ears"], ros_env).stdout)
     assert "Node [/ears]" in out
-    assert "Publications: None" in out
+    pubs = out.index("Publications:")
+    assert out[pubs + 1: pubs + 3] == [" * /rosout [rosgraph_msgs/Log]", ""]
     subs = out.index("Subscriptions:")
     assert out[subs + 1] == " * /chatter [std_msgs/String]"
     assert f"Pid: {listener.proc.pid}" in out

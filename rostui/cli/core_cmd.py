@@ -7,10 +7,21 @@ import errno
 import signal
 import sys
 
+from rostui.core.log import DISK_CHECK_NOTICE, DISK_OK_NOTICE, disk_usage_warning, log_root
 from rostui.core.master import DEFAULT_ROSDISTRO, DEFAULT_ROSVERSION, Master
 from rostui.core.network import resolve_addressing
 from rostui.core.node.engine import new_event_loop
 from rostui.core.rosout import RosoutNode
+
+
+def check_log_disk_usage() -> None:
+    """Warn, as roscore does, when the log directory holds more than 1 GB."""
+    print(DISK_CHECK_NOTICE, flush=True)
+    warning = disk_usage_warning(log_root(), tool="rostui clean")
+    if warning:
+        print(warning, file=sys.stderr, flush=True)
+    else:
+        print(DISK_OK_NOTICE, flush=True)
 
 
 async def serve_core(port: int, stop: asyncio.Event) -> int:
@@ -32,7 +43,7 @@ async def serve_core(port: int, stop: asyncio.Event) -> int:
     print(f"started master on port {port}")
     print(f"ROS_MASTER_URI={master.uri}\n")
     print(f"setting /run_id to {master.run_id}")
-    rosout = RosoutNode(master.uri)
+    rosout = RosoutNode(master.uri, master.run_id)
     await rosout.start()
     print("started core service [/rosout]", flush=True)
     await stop.wait()
@@ -43,6 +54,7 @@ async def serve_core(port: int, stop: asyncio.Event) -> int:
 
 def run_core(port: int) -> int:
     """Blocking entry point; Ctrl-C or SIGTERM stops everything cleanly."""
+    check_log_disk_usage()
     loop = new_event_loop()
     asyncio.set_event_loop(loop)
     stop = asyncio.Event()

@@ -135,3 +135,12 @@ def clear_cache() -> None:
     global _cache_key
     with _lock:
         _cache_key = None
+
+
+def package_of(path: Path | str) -> str | None:
+    """The name of the package holding a file: the nearest package.xml above it, or None."""
+    here = Path(path).resolve()
+    for folder in [here, *here.parents] if here.is_dir() else here.parents:
+        if (folder / "package.xml").is_file():
+            return _package_name(folder)
+    return None

@@ -16,10 +16,11 @@ from typing import Any, Callable, Sequence
 from urllib.parse import urlparse
 
 from rostui.core import names
-from rostui.core.log import ConsoleLogger
+from rostui.core.log import Console, LoggerTree, NodeLog, package_logger
 from rostui.core.memory import tune_allocator
 from rostui.core.network import Addressing, master_uri_from_env, resolve_addressing
 from rostui.core.node.anymsg import AnyMsg
+from rostui.core.node.logging_link import NodeLogging
 from rostui.core.node.params import ParamCache
 from rostui.core.node.services import ServiceException, ServiceProxy, ServiceServer
 from rostui.core.node.slave import SlaveApi
@@ -111,7 +112,7 @@ class AsyncNode:
     """
 
     def __init__(self, name: str, *, argv: Sequence[str] | None = None, anonymous: bool = False,
-                 master_uri: str | None = None) -> None:
+                 master_uri: str | None = None, package: str | None = None) -> None:
         args = names.parse_argv(list(argv or []))
         self.args = args
         self.argv = list(args.args)
@@ -124,7 +125,8 @@ class AsyncNode:
         self.subscriptions: dict[str, Subscription] = {}
         self.services: dict[str, ServiceServer] = {}
         self.params = ParamCache()
-        self.console = ConsoleLogger(self.name)
+        self.log = NodeLog(self.name, package_logger(package), LoggerTree(), Console())
+        self.logging = NodeLogging(self)
         self.uri = ""
         self.tcpros_port = 0
         self.loop: asyncio.AbstractEventLoop = None  # type: ignore[assignment]
@@ -139,8 +141,13 @@ class AsyncNode:
         self._clients: dict[str, XmlRpcClient] = {}
 
     # -- lifecycle --------------------------------------------------------------
-    async def start(self) -> "AsyncNode":
-        """Open the slave API and TCPROS servers; set ``_param:=`` parameters."""
+    async def start(self, *, announce: bool = True, publish_rosout: bool = True) -> "AsyncNode":
+        """Open the slave API and TCPROS servers; set ``_param:=`` parameters.
+
+        With ``announce`` (the default) the node also registers its logging
+        with the master at once (see :meth:`announce`); pass False to do that
+        later, e.g. after waiting for the master.
+        """
         tune_allocator()
         self.loop = asyncio.get_running_loop()
         self.loop_thread_id = threading.get_ident()
@@ -155,7 +162,17 @@ class AsyncNode:
         _LOCAL_NODES[self.uri] = self
         for key, value in self.args.params.items():
             await self.set_param("~" + key, value)
+        if announce:
+            try:
+                await self.announce(publish_rosout=publish_rosout)
+            except BaseException:
+                await self.shutdown("could not register with the master")
+                raise
         return self
+
+    async def announce(self, *, publish_rosout: bool = True) -> None:
+        """Publish log records on /rosout, serve the logger-level services, open the log file."""
+        await self.logging.announce(publish_rosout=publish_rosout)
 
     async def wait_for_master(self, timeout: float | None = None, on_wait: Callable[[], None] | None = None) -> None:
         """Wait until the master answers; ``on_wait`` is called once if it does not at first."""
@@ -183,7 +200,7 @@ class AsyncNode:
     def request_shutdown(self, reason: str) -> None:
         """Begin shutdown on a slave ``shutdown`` call, logging why, as roscpp does."""
         if self.shutdown_reason is None:
-            self.console.warn(f"Shutdown request received. Reason given for shutdown: [{reason}]")
+            self.log.warn("Shutdown request received. Reason given for shutdown: [%s]", reason)
             self.loop.create_task(self.shutdown(reason))
 
     async def wait_shutdown(self) -> str:
@@ -230,6 +247,7 @@ class AsyncNode:
         for client in [self._master, *self._clients.values()]:
             if client is not None:
                 await client.close()
+        self.logging.close()
         assert self._done is not None
         self._done.set()
 

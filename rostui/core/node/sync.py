@@ -22,6 +22,7 @@ thread, callbacks included.
 from __future__ import annotations
 
 import atexit
+import os
 import signal
 import sys
 import threading
@@ -29,9 +30,11 @@ import time
 from typing import Any, Callable, Sequence
 
 from rostui.core import names
-from rostui.core.log import Level
+from rostui.core.log import Console, Level, LoggerTree, NodeLog, package_logger
 from rostui.core.node import node as _node
 from rostui.core.node.engine import Engine
+from rostui.core.packages import package_of
+from rostui.core.msg import get_service_class
 from rostui.core.node.services import ServiceException, probe_service
 from rostui.core.node.topics import TopicType
 from rostui.core.rostime import Duration, Time
@@ -87,11 +90,12 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     if _state.node is not None:
         raise ROSException(f"init_node() was already called for {_state.node.name}")
     engine = Engine()
-    node = _node.AsyncNode(name, argv=list(sys.argv if argv is None else argv)[1:], anonymous=anonymous,
-                           master_uri=master_uri)
+    argv = list(sys.argv if argv is None else argv)
+    package = package_of(argv[0]) if argv and argv[0] and os.path.exists(argv[0]) else None
+    node = _node.AsyncNode(name, argv=argv[1:], anonymous=anonymous, master_uri=master_uri, package=package)
     if log_level is not None:
-        node.console.level = Level(int(log_level))
-    engine.run(node.start())
+        node.log.set_level(Level(int(log_level)))
+    engine.run(node.start(announce=False))
     node.shutdown_hooks.append(_on_node_shutdown)
     _state.engine, _state.node = engine, node
     _state.shutdown.clear()
@@ -104,13 +108,14 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
         sys.excepthook = _excepthook
     if wait_for_master:
         def warn() -> None:
-            node.console.warn(f"Unable to contact the master at [{node.master_uri}]; will keep trying.")
+            node.log.warn("Unable to contact the master at [%s]; will keep trying.", node.master_uri)
         try:
             engine.run(node.wait_for_master(on_wait=warn))
         except _node.MasterError:
             if node.is_shutdown:
                 raise ROSInterruptException("shutdown while waiting for the master") from None
             raise
+        engine.run(node.announce())
 
 
 def _on_signal(signum: int, _frame: Any) -> None:
@@ -574,27 +579,102 @@ def get_param_names() -> list[str]:
     return list(_param_call("getParamNames"))
 
 
-# -- logging (console for now; /rosout comes with the logging layer) --------------------------
-def logdebug(msg: str, *args: Any) -> None:
-    """Log at DEBUG."""
-    _require()[1].console.debug(msg % args if args else msg)
+# -- logging ----------------------------------------------------------------------------------
+_console_only = NodeLog("", package_logger(None), LoggerTree(), Console())
 
 
-def loginfo(msg: str, *args: Any) -> None:
-    """Log at INFO."""
-    _require()[1].console.info(msg % args if args else msg)
+def _log() -> NodeLog:
+    """The node's log, or a console-only one before init_node()."""
+    return _state.node.log if _state.node is not None else _console_only
 
 
-def logwarn(msg: str, *args: Any) -> None:
+def logdebug(msg: Any, *args: Any, logger: str | None = None) -> None:
+    """Log at DEBUG (formatted only when DEBUG is enabled)."""
+    _log().log(1, msg, *args, logger=logger, stacklevel=2)
+
+
+def loginfo(msg: Any, *args: Any, logger: str | None = None) -> None:
+    """Log at INFO: console, /rosout and the node's log file."""
+    _log().log(2, msg, *args, logger=logger, stacklevel=2)
+
+
+def logwarn(msg: Any, *args: Any, logger: str | None = None) -> None:
     """Log at WARN."""
-    _require()[1].console.warn(msg % args if args else msg)
+    _log().log(4, msg, *args, logger=logger, stacklevel=2)
 
 
-def logerr(msg: str, *args: Any) -> None:
+def logerr(msg: Any, *args: Any, logger: str | None = None) -> None:
     """Log at ERROR."""
-    _require()[1].console.error(msg % args if args else msg)
+    _log().log(8, msg, *args, logger=logger, stacklevel=2)
 
 
-def logfatal(msg: str, *args: Any) -> None:
+def logfatal(msg: Any, *args: Any, logger: str | None = None) -> None:
     """Log at FATAL."""
-    _require()[1].console.fatal(msg % args if args else msg)
+    _log().log(16, msg, *args, logger=logger, stacklevel=2)
+
+
+def logdebug_once(msg: Any, *args: Any, logger: str | None = None) -> None:
+    """Log at DEBUG the first time this line runs, never again."""
+    _log().log_once(1, msg, *args, logger=logger, stacklevel=2)
+
+
+def loginfo_once(msg: Any, *args: Any, logger: str | None = None) -> None:
+    """Log at INFO the first time this line runs."""
+    _log().log_once(2, msg, *args, logger=logger, stacklevel=2)
+
+
+def logwarn_once(msg: Any, *args: Any, logger: str | None = None) -> None:
+    """Log at WARN the first time this line runs."""
+    _log().log_once(4, msg, *args, logger=logger, stacklevel=2)
+
+
+def logerr_once(msg: Any, *args: Any, logger: str | None = None) -> None:
+    """Log at ERROR the first time this line runs."""
+    _log().log_once(8, msg, *args, logger=logger, stacklevel=2)
+
+
+def logfatal_once(msg: Any, *args: Any, logger: str | None = None) -> None:
+    """Log at FATAL the first time this line runs."""
+    _log().log_once(16, msg, *args, logger=logger, stacklevel=2)
+
+
+def logdebug_throttle(period: float, msg: Any, *args: Any, logger: str | None = None) -> None:
+    """Log at DEBUG at most once per ``period`` seconds from this line."""
+    _log().log_throttle(period, 1, msg, *args, logger=logger, stacklevel=2)
+
+
+def loginfo_throttle(period: float, msg: Any, *args: Any, logger: str | None = None) -> None:
+    """Log at INFO at most once per ``period`` seconds from this line."""
+    _log().log_throttle(period, 2, msg, *args, logger=logger, stacklevel=2)
+
+
+def logwarn_throttle(period: float, msg: Any, *args: Any, logger: str | None = None) -> None:
+    """Log at WARN at most once per ``period`` seconds from this line."""
+    _log().log_throttle(period, 4, msg, *args, logger=logger, stacklevel=2)
+
+
+def logerr_throttle(period: float, msg: Any, *args: Any, logger: str | None = None) -> None:
+    """Log at ERROR at most once per ``period`` seconds from this line."""
+    _log().log_throttle(period, 8, msg, *args, logger=logger, stacklevel=2)
+
+
+def logfatal_throttle(period: float, msg: Any, *args: Any, logger: str | None = None) -> None:
+    """Log at FATAL at most once per ``period`` seconds from this line."""
+    _log().log_throttle(period, 16, msg, *args, logger=logger, stacklevel=2)
+
+
+def get_loggers(node_name: str) -> list[tuple[str, str]]:
+    """``(logger, level)`` pairs of any node (rostui, roscpp or rospy) via its ``get_loggers`` service."""
+    srv = get_service_class("roscpp/GetLoggers")
+    proxy = ServiceProxy(_join(node_name, "get_loggers"), srv)
+    return [(item.name, item.level) for item in proxy().loggers]
+
+
+def set_logger_level(node_name: str, logger: str, level: str) -> None:
+    """Set a logger's level on any node via its ``set_logger_level`` service; ServiceException on failure."""
+    srv = get_service_class("roscpp/SetLoggerLevel")
+    ServiceProxy(_join(node_name, "set_logger_level"), srv)(logger=logger, level=level)
+
+
+def _join(node_name: str, service: str) -> str:
+    return node_name.rstrip("/") + "/" + service

@@ -178,6 +178,7 @@ class Publication:
         self.latched_msg: Any = None
         self.handles = 0
         self.messages_published = 0
+        self.seq = 0
         self._pending: collections.deque[tuple[bytes, Any]] = collections.deque(maxlen=self.queue_limit)
         self._flush_scheduled = False
         self.lock = threading.Lock()
@@ -234,7 +235,14 @@ class Publication:
 
     # -- publishing -----------------------------------------------------------
     def publish(self, msg: Any) -> None:
-        """Serialise once and send to every subscriber (any thread)."""
+        """Serialise once and send to every subscriber (any thread).
+
+        Messages with a Header get the next sequence number, as rospy does.
+        """
+        if msg._has_header:
+            with self.lock:
+                msg.header.seq = self.seq
+                self.seq += 1
         payload = msg.serialize() if not isinstance(msg, AnyMsg) else msg._buff
         data = LEN.pack(len(payload)) + payload
         if threading.get_ident() == self.node.loop_thread_id:

@@ -1,0 +1,83 @@
+"""Connects a node's NodeLog to ROS: /rosout, its log file, and the logger-level services.
+
+Once the master answers, a node publishes every record it logs on ``/rosout``
+as rosgraph_msgs/Log, appends it to its own file in the run's log directory,
+and serves ``~get_loggers`` / ``~set_logger_level`` (roscpp's services) so
+that levels can be read and changed from outside at run time.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from rostui.core.log import Level, LogRecord, NodeLogFile, log_root, run_log_dir
+from rostui.core.msg import get_message_class, get_service_class
+from rostui.core.node.services import ServiceException
+from rostui.core.rostime import Time
+
+if TYPE_CHECKING:
+    from rostui.core.node.node import AsyncNode, Publisher
+
+ROSOUT_QUEUE = 100
+
+
+class NodeLogging:
+    """The ROS side of one node's logging."""
+
+    def __init__(self, node: "AsyncNode") -> None:
+        self.node = node
+        self.log_class = get_message_class("rosgraph_msgs/Log")
+        self.rosout: "Publisher | None" = None
+        self.file: NodeLogFile | None = None
+
+    async def announce(self, *, publish_rosout: bool = True) -> None:
+        """Register /rosout and the logger services; open the node's log file."""
+        node = self.node
+        if publish_rosout:
+            self.rosout = await node.advertise("/rosout", self.log_class, queue_size=ROSOUT_QUEUE)
+            node.log.add_sink(self.publish)
+        await node.advertise_service("~get_loggers", get_service_class("roscpp/GetLoggers"), self.get_loggers)
+        await node.advertise_service("~set_logger_level", get_service_class("roscpp/SetLoggerLevel"),
+                                     self.set_logger_level)
+        run_id = await node.get_param("/run_id", None)
+        folder = run_log_dir(str(run_id)) if run_id else log_root()
+        self.file = NodeLogFile.for_node(node.name, folder, node.args.log)
+        node.log.add_sink(self.file)
+
+    def publish(self, record: LogRecord) -> None:
+        """The /rosout sink: one rosgraph_msgs/Log per record."""
+        if self.rosout is None or self.node.is_shutdown:
+            return
+        msg = self.log_class()
+        msg.header.stamp = Time(record.secs, record.nsecs)
+        msg.level = int(record.level)
+        msg.name = record.node
+        msg.msg = record.message
+        msg.file = record.file
+        msg.function = record.function
+        msg.line = record.line
+        msg.topics = sorted(self.node.publications)
+        self.rosout.publish(msg)
+
+    def get_loggers(self, _request: Any) -> Any:
+        """roscpp/GetLoggers: every logger with its effective level."""
+        logger_class = get_message_class("roscpp/Logger")
+        loggers = [logger_class(name=name, level=level.text) for name, level in self.node.log.tree.loggers()]
+        return get_service_class("roscpp/GetLoggers")._response_class(loggers=loggers)
+
+    def set_logger_level(self, request: Any) -> Any:
+        """roscpp/SetLoggerLevel: change a logger's level now; unknown levels are an error."""
+        try:
+            level = Level.parse(request.level)
+            self.node.log.tree.set_level(request.logger, level)
+        except ValueError as exc:
+            raise ServiceException(str(exc)) from None
+        return get_service_class("roscpp/SetLoggerLevel")._response_class()
+
+    def close(self) -> None:
+        """Stop writing the log file."""
+        if self.file is not None:
+            self.node.log.remove_sink(self.file)
+            self.file.close()
+        if self.rosout is not None:
+            self.node.log.remove_sink(self.publish)

@@ -590,27 +590,27 @@ def _log() -> NodeLog:
 
 def logdebug(msg: Any, *args: Any, logger: str | None = None) -> None:
     """Log at DEBUG (formatted only when DEBUG is enabled)."""
-    _log().log(1, msg, *args, logger=logger, stacklevel=2)
+    _log().debug(msg, *args, logger=logger, stacklevel=2)
 
 
 def loginfo(msg: Any, *args: Any, logger: str | None = None) -> None:
     """Log at INFO: console, /rosout and the node's log file."""
-    _log().log(2, msg, *args, logger=logger, stacklevel=2)
+    _log().info(msg, *args, logger=logger, stacklevel=2)
 
 
 def logwarn(msg: Any, *args: Any, logger: str | None = None) -> None:
     """Log at WARN."""
-    _log().log(4, msg, *args, logger=logger, stacklevel=2)
+    _log().warn(msg, *args, logger=logger, stacklevel=2)
 
 
 def logerr(msg: Any, *args: Any, logger: str | None = None) -> None:
     """Log at ERROR."""
-    _log().log(8, msg, *args, logger=logger, stacklevel=2)
+    _log().error(msg, *args, logger=logger, stacklevel=2)
 
 
 def logfatal(msg: Any, *args: Any, logger: str | None = None) -> None:
     """Log at FATAL."""
-    _log().log(16, msg, *args, logger=logger, stacklevel=2)
+    _log().fatal(msg, *args, logger=logger, stacklevel=2)
 
 
 def logdebug_once(msg: Any, *args: Any, logger: str | None = None) -> None:

@@ -1,15 +1,26 @@
-"""The `rostui` command: a Typer app whose subcommands import their work lazily."""
+"""The `rostui` command: a Typer app; each command group lives in its own module.
+
+Every ``rostui/cli/<group>_cmd.py`` exposes ``register(app)``; its command
+functions import their work lazily, so commands that only talk to the master
+start fast and never import Textual.
+"""
 
 from __future__ import annotations
 
 import typer
 
+from rostui.cli import (
+    clean_cmd, msg_cmd, node_cmd, param_cmd, pkg_cmd, run_cmd, service_cmd, topic_cmd, wtf_cmd,
+)
+
+CONTEXT = {"help_option_names": ["-h", "--help"]}
+
 app = typer.Typer(
     name="rostui",
     help="The ROS 1 developer toolbox for the terminal.",
     no_args_is_help=True,
-    add_completion=False,
-    context_settings={"help_option_names": ["-h", "--help"]},
+    add_completion=True,
+    context_settings=CONTEXT,
 )
 
 
@@ -28,30 +39,8 @@ def core_command(
     raise typer.Exit(run_core(port))
 
 
-clean_app = typer.Typer(
-    name="clean", help="Check and purge ROS log files (like `rosclean`).", no_args_is_help=True,
-    context_settings={"help_option_names": ["-h", "--help"]},
-)
-app.add_typer(clean_app, name="clean")
-
-
-@clean_app.command("check")
-def clean_check_command() -> None:
-    """Print the disk usage of the ROS log directory (like `rosclean check`)."""
-    from rostui.cli.clean_cmd import run_check
-
-    raise typer.Exit(run_check())
-
-
-@clean_app.command("purge")
-def clean_purge_command(
-    yes: bool = typer.Option(False, "-y", "--yes", help="Do not ask for confirmation."),
-    size: int | None = typer.Option(None, "--size", help="Remove oldest logs until at most this many MB remain."),
-) -> None:
-    """Delete old ROS logs, keeping the current run (like `rosclean purge`)."""
-    from rostui.cli.clean_cmd import run_purge
-
-    raise typer.Exit(run_purge(yes, size))
+for _module in (run_cmd, node_cmd, topic_cmd, msg_cmd, service_cmd, param_cmd, pkg_cmd, wtf_cmd, clean_cmd):
+    _module.register(app)
 
 
 def main() -> None:

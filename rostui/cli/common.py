@@ -1,0 +1,45 @@
+"""What every command shares: one-line errors, exit codes, master calls, JSON output."""
+
+from __future__ import annotations
+
+import json
+import sys
+from typing import Any, NoReturn
+
+import typer
+
+from rostui.core.network import master_uri_from_env
+
+
+def fail(message: str, code: int = 1) -> NoReturn:
+    """Print one error line to stderr and exit with ``code``."""
+    print(message, file=sys.stderr, flush=True)
+    raise typer.Exit(code)
+
+
+def master_uri() -> str:
+    """The master URI the command uses (ROS_MASTER_URI or the ROS default)."""
+    return master_uri_from_env()
+
+
+def master_call(caller_id: str, method: str, *args: Any) -> Any:
+    """Call the master and unwrap ``[code, msg, value]``; exit with one clear line on failure.
+
+    No master: ``ERROR: Unable to communicate with master at <uri>``.  A
+    refusal (code != 1) raises RosApiError for the caller to word.
+    """
+    from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync, ros_result
+
+    uri = master_uri()
+    try:
+        return ros_result(call_sync(uri, method, caller_id, *args, timeout=10.0))
+    except XmlRpcConnectionError:
+        fail(f"ERROR: Unable to communicate with master at {uri}")
+
+
+def print_json(value: Any) -> None:
+    """Write ``value`` as indented JSON on stdout (``--json`` output)."""
+    print(json.dumps(value, indent=2, sort_keys=False, default=str))
+
+
+JSON_OPTION_HELP = "Print machine-readable JSON instead of ROS's text."

@@ -8,6 +8,7 @@ that levels can be read and changed from outside at run time.
 
 from __future__ import annotations
 
+import logging
 from typing import TYPE_CHECKING, Any
 
 from rostui.core.log import Level, LogRecord, NodeLogFile, log_root, run_log_dir
@@ -21,6 +22,50 @@ if TYPE_CHECKING:
 ROSOUT_QUEUE = 100
 
 
+_PY_TO_ROS = {logging.DEBUG: Level.DEBUG, logging.INFO: Level.INFO, logging.WARNING: Level.WARN,
+              logging.ERROR: Level.ERROR, logging.CRITICAL: Level.FATAL}
+
+
+class LibraryLogForwarder(logging.Handler):
+    """Sends rostui's own diagnostics (stdlib ``logging`` under ``rostui``) into a node's log.
+
+    So a dropped connection appears on the console in ROS's format and on
+    /rosout, like roscpp's own warnings do.
+    """
+
+    def __init__(self, node: "AsyncNode") -> None:
+        super().__init__(logging.WARNING)
+        self.node = node
+
+    def emit(self, record: logging.LogRecord) -> None:
+        """Forward one record at its ROS level."""
+        level = _PY_TO_ROS.get(record.levelno, Level.WARN)
+        try:
+            self.node.log.log(level, "%s", record.getMessage(), logger="rostui")
+        except Exception:
+            self.handleError(record)
+
+
+def attach_library_log(node: "AsyncNode") -> LibraryLogForwarder | None:
+    """Forward rostui's library warnings to ``node`` unless another node already receives them."""
+    library = logging.getLogger("rostui")
+    if any(isinstance(h, LibraryLogForwarder) for h in library.handlers):
+        return None
+    handler = LibraryLogForwarder(node)
+    library.addHandler(handler)
+    library.propagate = False
+    return handler
+
+
+def detach_library_log(handler: LibraryLogForwarder | None) -> None:
+    """Stop forwarding (the node shut down)."""
+    if handler is not None:
+        library = logging.getLogger("rostui")
+        library.removeHandler(handler)
+        if not any(isinstance(h, LibraryLogForwarder) for h in library.handlers):
+            library.propagate = True
+
+
 class NodeLogging:
     """The ROS side of one node's logging."""
 
@@ -29,6 +74,11 @@ class NodeLogging:
         self.log_class = get_message_class("rosgraph_msgs/Log")
         self.rosout: "Publisher | None" = None
         self.file: NodeLogFile | None = None
+        self.forwarder: LibraryLogForwarder | None = None
+
+    def attach(self) -> None:
+        """Start receiving rostui's library warnings (called when the node starts)."""
+        self.forwarder = attach_library_log(self.node)
 
     async def announce(self, *, publish_rosout: bool = True) -> None:
         """Register /rosout and the logger services; open the node's log file."""
@@ -75,7 +125,9 @@ class NodeLogging:
         return get_service_class("roscpp/SetLoggerLevel")._response_class()
 
     def close(self) -> None:
-        """Stop writing the log file."""
+        """Stop writing the log file and forwarding library warnings."""
+        detach_library_log(self.forwarder)
+        self.forwarder = None
         if self.file is not None:
             self.node.log.remove_sink(self.file)
             self.file.close()

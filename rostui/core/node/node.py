@@ -149,6 +149,7 @@ class AsyncNode:
         later, e.g. after waiting for the master.
         """
         tune_allocator()
+        self.logging.attach()
         self.loop = asyncio.get_running_loop()
         self.loop_thread_id = threading.get_ident()
         self._done = asyncio.Event()

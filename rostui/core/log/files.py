@@ -145,6 +145,15 @@ def node_log_filename(node_name: str) -> str:
     return name + ".log"
 
 
+def close_quietly(handle: TextIO | None) -> None:
+    """Close a log file, ignoring the errors a full or vanished disk gives."""
+    if handle is not None:
+        try:
+            handle.close()
+        except OSError:
+            pass
+
+
 _PY_LEVEL_NAMES = {1: "DEBUG", 2: "INFO", 4: "WARNING", 8: "ERROR", 16: "CRITICAL"}
 
 
@@ -197,9 +206,5 @@ class NodeLogFile:
     def close(self) -> None:
         """Close the file; later records reopen it."""
         with self._lock:
-            if self._file is not None:
-                try:
-                    self._file.close()
-                except OSError:
-                    pass
-                self._file = None
+            close_quietly(self._file)
+            self._file = None

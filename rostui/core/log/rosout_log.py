@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any, Callable, Sequence, TextIO
 
 from rostui.core.log.record import LogRecord
+from rostui.core.log.files import close_quietly
 
 __all__ = ["ROSOUT_LEVEL_NAMES", "RosoutLogWriter", "format_rosout_line", "startup_text"]
 
@@ -133,9 +134,5 @@ class RosoutLogWriter:
     def close(self) -> None:
         """Close the file."""
         with self._lock:
-            if self._file is not None:
-                try:
-                    self._file.close()
-                except OSError:
-                    pass
-                self._file = None
+            close_quietly(self._file)
+            self._file = None

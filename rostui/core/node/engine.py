@@ -54,6 +54,8 @@ class Engine:
         try:
             return future.result(timeout)
         except concurrent.futures.TimeoutError:
+            if future.done():
+                raise  # the coroutine's own TimeoutError (the same class since Python 3.11)
             future.cancel()
             raise TimeoutError("operation timed out") from None
 

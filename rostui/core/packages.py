@@ -9,6 +9,7 @@ whenever ROS_PACKAGE_PATH changes (or :func:`clear_cache` is called).
 from __future__ import annotations
 
 import os
+import stat
 import threading
 from pathlib import Path
 
@@ -20,6 +21,11 @@ __all__ = [
     "find_package",
     "get_package_path",
     "clear_cache",
+    "package_of",
+    "executable_dirs",
+    "is_executable_file",
+    "find_executables",
+    "list_executables",
 ]
 
 BUILTIN_SHARE: Path = Path(__file__).resolve().parent.parent / "share"
@@ -144,3 +150,99 @@ def package_of(path: Path | str) -> str | None:
         if (folder / "package.xml").is_file():
             return _package_name(folder)
     return None
+
+
+# -- executables (``rostui run``) ----------------------------------------------
+
+def executable_dirs(package: str) -> list[Path]:
+    """Directories searched for *package*'s executables.
+
+    The package directory, and for an installed package at
+    ``<prefix>/share/<pkg>`` also catkin's libexec directory ``<prefix>/lib/<pkg>``
+    when it exists (where Debian and catkin installs put node executables).
+    Raises :class:`PackageNotFoundError`.
+    """
+    pkg_dir = get_package_path(package)
+    dirs = [pkg_dir]
+    if pkg_dir.parent.name == "share":
+        libexec = pkg_dir.parent.parent / "lib" / pkg_dir.name
+        if libexec.is_dir():
+            dirs.insert(0, libexec)
+    return dirs
+
+
+def _walk_entries(top: Path, skip_build: bool, follow: bool = True) -> list[Path]:
+    """Every entry below *top* in ``find``'s order (directory order, depth first, pre-order).
+
+    Symlinked directories are followed when *follow* (each real directory once);
+    with *skip_build*, ``top/build`` is not entered.
+    """
+    out: list[Path] = []
+    seen: set[tuple[int, int]] = set()
+
+    def visit(d: Path) -> None:
+        try:
+            st = os.stat(d)
+        except OSError:
+            return
+        if (st.st_dev, st.st_ino) in seen:
+            return
+        seen.add((st.st_dev, st.st_ino))
+        try:
+            entries = list(os.scandir(d))
+        except OSError:
+            return
+        for entry in entries:
+            path = Path(entry.path)
+            out.append(path)
+            try:
+                is_dir = entry.is_dir(follow_symlinks=follow)
+            except OSError:
+                is_dir = False
+            if is_dir and not (skip_build and d == top and entry.name == "build"):
+                visit(path)
+
+    visit(top)
+    return out
+
+
+def is_executable_file(path: Path) -> bool:
+    """True for a regular file (after symlinks) with any execute bit set, like ``find -perm /111``."""
+    try:
+        st = path.stat()
+    except OSError:
+        return False
+    return stat.S_ISREG(st.st_mode) and bool(st.st_mode & 0o111)
+
+
+def find_executables(package: str, name: str) -> tuple[list[Path], list[Path]]:
+    """Files named *name* for ``rostui run``, in rosrun's (``find``'s) order.
+
+    Returns ``(executables, others)``: executable regular files below the
+    package's :func:`executable_dirs` (``build/`` directly in the package
+    skipped), and every entry named *name* in the package directory that is
+    not among them (what rosrun lists as "not files, or not executable").
+    Raises :class:`PackageNotFoundError`.
+    """
+    executables: list[Path] = []
+    for top in executable_dirs(package):
+        for path in _walk_entries(top, skip_build=True):
+            if path.name == name and is_executable_file(path) and path not in executables:
+                executables.append(path)
+    others = [p for p in _walk_entries(get_package_path(package), skip_build=False, follow=False)
+              if p.name == name and p not in executables]
+    return executables, others
+
+
+def list_executables(package: str) -> list[str]:
+    """Names of the files ``rostui run`` can start from *package* (executables and ``.py`` files), sorted."""
+    names: set[str] = set()
+    try:
+        dirs = executable_dirs(package)
+    except PackageNotFoundError:
+        return []
+    for top in dirs:
+        for path in _walk_entries(top, skip_build=True):
+            if path.suffix == ".py" or is_executable_file(path):
+                names.add(path.name)
+    return sorted(names)

@@ -1,0 +1,146 @@
+"""`rostui run PKG EXE [args...]`: find an executable in a package and replace this process with it.
+
+Behaves like rosrun: the executable is any file named EXE with an execute bit
+below the package directory (``build/`` excluded; catkin's ``<prefix>/lib/<pkg>``
+searched too); ``EXE`` containing ``/`` is a path relative to the package.
+Arguments are passed through untouched.  Differences, by design: a ``.py`` file
+without execute bit is run with this Python, Python scripts of rostui's built-in
+packages always run with this Python, and rosrun's error lines go to stderr.
+"""
+
+from __future__ import annotations
+
+import os
+import shlex
+import sys
+from pathlib import Path
+from typing import Callable, Sequence, TextIO
+
+from rostui.core import packages
+
+__all__ = ["RunError", "resolve", "choose_interactively", "exec_argv"]
+
+#: rosrun's exit codes.
+EXIT_BAD_NAME = 1
+EXIT_NO_PACKAGE = 2
+EXIT_NO_EXECUTABLE = 3
+
+
+class RunError(Exception):
+    """The executable cannot be run; ``lines`` are the message, ``code`` the exit status."""
+
+    def __init__(self, lines: list[str], code: int) -> None:
+        """Keep the message lines and the exit code."""
+        super().__init__("\n".join(lines))
+        self.lines = lines
+        self.code = code
+
+
+def _argv_for(path: Path, args: Sequence[str], prefix: str | None) -> list[str]:
+    """The argv that starts *path*: Python files of built-in packages and non-executable .py use this Python."""
+    argv: list[str]
+    if _runs_with_this_python(path):
+        argv = [sys.executable, str(path), *args]
+    else:
+        argv = [str(path), *args]
+    if prefix:
+        argv = shlex.split(prefix) + argv
+    return argv
+
+
+def _runs_with_this_python(path: Path) -> bool:
+    if not packages.is_executable_file(path):
+        return True  # only .py files get here
+    try:
+        inside_share = path.resolve().is_relative_to(packages.BUILTIN_SHARE)
+    except OSError:
+        inside_share = False
+    if not inside_share:
+        return False
+    if path.suffix == ".py":
+        return True
+    try:
+        with path.open("rb") as fh:
+            first = fh.readline(200)
+    except OSError:
+        return False
+    return first.startswith(b"#!") and b"python" in first
+
+
+def resolve(package: str, executable: str, args: Sequence[str] = (), *, prefix: str | None = None,
+            choose: Callable[[list[Path]], Path | None] | None = None) -> list[str]:
+    """The argv that runs *executable* of *package* with *args*; raises :class:`RunError`.
+
+    *choose* picks one of several matches (rosrun's numbered prompt); without
+    it several matches are an error listing them, and so is a None answer.
+    """
+    if executable.endswith("/"):
+        raise RunError([f"Invalid filename:  {executable}"], EXIT_BAD_NAME)
+    try:
+        pkg_dir = packages.get_package_path(package)
+    except packages.PackageNotFoundError:
+        raise RunError([f"[rospack] Error: package '{package}' not found"], EXIT_NO_PACKAGE) from None
+    if "/" in executable:
+        path = pkg_dir / executable
+        if path.is_file() and (packages.is_executable_file(path) or path.suffix == ".py"):
+            return _argv_for(path, args, prefix)
+        raise RunError([f"[rosrun] Couldn't find executable named {path}"], EXIT_NO_EXECUTABLE)
+    found, others = packages.find_executables(package, executable)
+    if not found:
+        scripts = [p for p in others if p.suffix == ".py" and p.is_file()]
+        if scripts:
+            found = scripts
+    if not found:
+        lines = [f"[rosrun] Couldn't find executable named {executable} below {pkg_dir}"]
+        if others:
+            lines += ["[rosrun] Found the following, but they're either not files,",
+                      "[rosrun] or not executable:"]
+            lines += [f"[rosrun]   {p}" for p in others]
+        raise RunError(lines, EXIT_NO_EXECUTABLE)
+    if len(found) == 1:
+        return _argv_for(found[0], args, prefix)
+    if choose is None:
+        raise RunError(["[rosrun] You have chosen a non-unique executable, please pick one of the following:",
+                        *(f"[rosrun]   {p}" for p in found)], EXIT_NO_EXECUTABLE)
+    picked = choose(found)
+    if picked is None:
+        raise RunError(["[rosrun] No executable chosen"], EXIT_NO_EXECUTABLE)
+    return _argv_for(picked, args, prefix)
+
+
+def choose_interactively(candidates: list[Path], stdin: TextIO | None = None,
+                         stderr: TextIO | None = None) -> Path | None:
+    """rosrun's prompt: the header, a numbered list and ``#? ``; None on EOF or a bad answer."""
+    stdin = stdin or sys.stdin
+    stderr = stderr or sys.stderr
+    print("[rosrun] You have chosen a non-unique executable, please pick one of the following:",
+          file=stderr)
+    for i, p in enumerate(candidates, 1):
+        print(f"{i}) {p}", file=stderr)
+    stderr.write("#? ")
+    stderr.flush()
+    line = stdin.readline()
+    if not line:
+        stderr.write("\n")
+    answer = line.strip()
+    if answer.isdigit() and 1 <= int(answer) <= len(candidates):
+        return candidates[int(answer) - 1]
+    return None
+
+
+def exec_argv(argv: list[str]) -> None:
+    """Replace this process with *argv* (signals and exit status become the child's).
+
+    A script without ``#!`` line is run by ``/bin/sh``, as a shell's ``exec`` does.
+    Returns only by raising OSError.
+    """
+    sys.stdout.flush()
+    sys.stderr.flush()
+    try:
+        os.execvp(argv[0], argv)
+    except OSError as exc:
+        import errno
+
+        if exc.errno == errno.ENOEXEC:
+            os.execv("/bin/sh", ["/bin/sh", *argv])
+        raise

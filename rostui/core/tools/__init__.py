@@ -1,0 +1,1 @@
+"""Logic behind the command-line tools (no typer/rich/textual here)."""

@@ -1,6 +1,14 @@
-"""`rostui topic`: Topics: list, info, type, find, echo, hz, bw, pub (like `rostopic`)."""
+"""`rostui topic`: Topics: list, info, type, find, echo, hz, bw, pub (like `rostopic`).
+
+Commands parse, call :mod:`rostui.core.tools.topic` and print; everything
+heavier than Typer is imported inside the command that needs it, so
+``rostui topic list`` starts fast.
+"""
 
 from __future__ import annotations
+
+import sys
+from typing import Any, List, Optional
 
 import typer
 
@@ -8,7 +16,279 @@ CONTEXT = {"help_option_names": ["-h", "--help"]}
 
 topic_app = typer.Typer(name="topic", help="Topics: list, info, type, find, echo, hz, bw, pub (like `rostopic`).", no_args_is_help=True, context_settings=CONTEXT)
 
+_JSON_HELP = "Print machine-readable JSON instead of ROS's text."
+
 
 def register(app: typer.Typer) -> None:
     """Add ``rostui topic ...``."""
     app.add_typer(topic_app, name="topic")
+
+
+# ----------------------------------------------------------------------------- shell completion
+def _complete_topic(incomplete: str) -> List[str]:
+    from rostui.core.tools.topic import complete_topics
+
+    return complete_topics(incomplete)
+
+
+def _complete_type(incomplete: str) -> List[str]:
+    from rostui.core.tools.topic import complete_types
+
+    return complete_types(incomplete)
+
+
+# ----------------------------------------------------------------------------- helpers
+def _call(method: str, *args: Any) -> Any:
+    """A master call as rostopic makes it; no master -> one line, exit 1."""
+    from rostui.cli.common import master_call
+
+    return master_call("/rostopic", method, *args)
+
+
+def _resolve(name: str) -> str:
+    from rostui.core.tools.topic import resolve_topic
+
+    try:
+        return resolve_topic(name)
+    except Exception as e:  # invalid names
+        _fail(f"ERROR: invalid topic name [{name}]: {e}")
+
+
+def _fail(message: str) -> None:
+    from rostui.cli.common import fail
+
+    fail(message)
+
+
+def _out(text: str) -> None:
+    sys.stdout.write(text)
+    sys.stdout.flush()
+
+
+def _run_async(coro: Any) -> int:
+    """Run a long-running tool; one-line errors for what it reports."""
+    import asyncio
+
+    from rostui.core.tools.topic import TopicToolError
+
+    try:
+        import uvloop
+
+        runner = uvloop.run
+    except ImportError:  # pragma: no cover - uvloop is a dependency
+        runner = asyncio.run
+    try:
+        return runner(coro)
+    except TopicToolError as e:
+        _fail(f"ERROR: {e}")
+    except KeyboardInterrupt:
+        return 0
+    except BrokenPipeError:
+        return 0
+    return 0
+
+
+def _check_master() -> None:
+    _call("getPid")
+
+
+# ----------------------------------------------------------------------------- master-only commands
+@topic_app.command("list")
+def list_command(
+    namespace: Optional[str] = typer.Argument(None, help="Only topics in this namespace.", autocompletion=_complete_topic),
+    verbose: bool = typer.Option(False, "-v", "--verbose", help="List full details about each topic."),
+    publishers: bool = typer.Option(False, "-p", help="List only publishers."),
+    subscribers: bool = typer.Option(False, "-s", help="List only subscribers."),
+    as_json: bool = typer.Option(False, "--json", help=_JSON_HELP),
+) -> None:
+    """List active topics (like `rostopic list`)."""
+    from rostui.core.tools import topic as tools
+
+    if publishers and subscribers:
+        _fail("ERROR: you may only specify one of -p, -s")
+    ns = _resolve(namespace) if namespace else None
+    pubs, subs = tools.topic_list(_call)
+    if as_json:
+        from rostui.cli.common import print_json
+
+        print_json(tools.list_json(pubs, subs, namespace=ns))
+        return
+    _out(tools.format_list(pubs, subs, verbose=verbose, publishers_only=publishers,
+                           subscribers_only=subscribers, namespace=ns))
+
+
+@topic_app.command("info")
+def info_command(
+    topic: str = typer.Argument(..., help="Topic name.", autocompletion=_complete_topic),
+    as_json: bool = typer.Option(False, "--json", help=_JSON_HELP),
+) -> None:
+    """Print type, publishers and subscribers of a topic (like `rostopic info`)."""
+    from rostui.core.tools import topic as tools
+
+    try:
+        info = tools.topic_info(_call, _resolve(topic))
+    except tools.TopicToolError as e:
+        _fail(f"ERROR: {e}")
+    if as_json:
+        from rostui.cli.common import print_json
+
+        print_json(info)
+        return
+    _out(tools.format_info(info) + "\n")
+
+
+@topic_app.command("type")
+def type_command(
+    topic: str = typer.Argument(..., help="Topic or field name (/topic/field).", autocompletion=_complete_topic),
+    as_json: bool = typer.Option(False, "--json", help=_JSON_HELP),
+) -> None:
+    """Print the message type of a topic or field (like `rostopic type`)."""
+    from rostui.core.tools import topic as tools
+
+    name = _resolve(topic)
+    try:
+        text = tools.type_text(_call, name)
+    except tools.TopicToolError as e:
+        _fail(str(e))
+    if as_json:
+        from rostui.cli.common import print_json
+
+        parts = text.split(" ")
+        value = {"topic": name, "type": parts[0]}
+        if len(parts) == 3:
+            value.update(field=parts[1], field_type=parts[2])
+        print_json(value)
+        return
+    _out(text + "\n")
+
+
+@topic_app.command("find")
+def find_command(
+    msg_type: str = typer.Argument(..., metavar="TYPE", help="Message type (pkg/Type).", autocompletion=_complete_type),
+    as_json: bool = typer.Option(False, "--json", help=_JSON_HELP),
+) -> None:
+    """List the topics of a message type (like `rostopic find`)."""
+    from rostui.core.tools import topic as tools
+
+    found = tools.find_by_type(_call, msg_type)
+    if as_json:
+        from rostui.cli.common import print_json
+
+        print_json(found)
+        return
+    _out("\n".join(found) + "\n")
+
+
+# ----------------------------------------------------------------------------- node commands
+@topic_app.command("echo")
+def echo_command(
+    topic: str = typer.Argument(..., help="Topic, or a field of it (/turtle1/pose/x, /a/b[0]).", autocompletion=_complete_topic),
+    count: Optional[int] = typer.Option(None, "-n", metavar="COUNT", help="Number of messages to echo."),
+    plot: bool = typer.Option(False, "-p", help="Echo in a plotting friendly format (CSV)."),
+    noarr: bool = typer.Option(False, "--noarr", help="Exclude arrays."),
+    nostr: bool = typer.Option(False, "--nostr", help="Exclude string fields."),
+    offset: bool = typer.Option(False, "--offset", help="Display time as offsets from current time."),
+    width: Optional[int] = typer.Option(None, "-w", metavar="NUM_WIDTH", help="Fixed width for numeric values."),
+    clear: bool = typer.Option(False, "-c", "--clear", help="Clear screen before printing next message."),
+) -> None:
+    """Print messages of a topic (like `rostopic echo`); waits until the topic is published."""
+    if width is not None and width < 2:
+        _fail("ERROR: Fixed width for numeric values must be at least 2")
+    from rostui.core.tools import topic as tools
+
+    name = _resolve(topic)
+    try:
+        tools.field_evaluator(name)  # malformed [index] specs are reported before connecting
+    except tools.UsageError as e:
+        _fail(f"ERROR: {e}")
+    _check_master()
+    raise typer.Exit(_run_async(tools.run_echo(
+        name, _out, plot=plot, noarr=noarr, nostr=nostr, offset=offset, count=count,
+        fixed_width=width, clear=clear)))
+
+
+@topic_app.command("hz")
+def hz_command(
+    topics: List[str] = typer.Argument(..., help="Topic names.", autocompletion=_complete_topic),
+    window: int = typer.Option(-1, "-w", "--window", metavar="WINDOW", help="Window size, in # of messages, for calculating rate."),
+) -> None:
+    """Print the publishing rate of topics every second (like `rostopic hz`)."""
+    from rostui.core.tools import topic as tools
+
+    names = [_resolve(t) for t in topics]
+    _check_master()
+    raise typer.Exit(_run_async(tools.run_hz(names, window, _out)))
+
+
+@topic_app.command("bw")
+def bw_command(
+    topic: str = typer.Argument(..., help="Topic name.", autocompletion=_complete_topic),
+    window: Optional[int] = typer.Option(None, "-w", "--window", metavar="WINDOW", help="Window size, in # of messages, for calculating rate."),
+) -> None:
+    """Print the bandwidth used by a topic every second (like `rostopic bw`)."""
+    from rostui.core.tools import topic as tools
+
+    name = _resolve(topic)
+    _check_master()
+    raise typer.Exit(_run_async(tools.run_bw(name, window, _out)))
+
+
+@topic_app.command("pub", context_settings={"ignore_unknown_options": True})
+def pub_command(
+    topic: str = typer.Argument(..., help="Topic name.", autocompletion=_complete_topic),
+    msg_type: str = typer.Argument(..., metavar="TYPE", help="Message type (pkg/Type).", autocompletion=_complete_type),
+    values: Optional[List[str]] = typer.Argument(None, metavar="[ARGS]...", help="Field values in `msg show` order, or one YAML dict."),
+    rate: Optional[float] = typer.Option(None, "-r", "--rate", help="Publishing rate (Hz). For -f and stdin input, this defaults to 10."),
+    once: bool = typer.Option(False, "-1", "--once", help="Publish one message and exit."),
+    file: Optional[str] = typer.Option(None, "-f", "--file", metavar="FILE", help="Read messages from a YAML file (echo format, --- separated)."),
+    latch: bool = typer.Option(False, "-l", "--latch", help="Enable latching for -f, -r and piped input (latches the first message)."),
+    substitute: bool = typer.Option(False, "-s", "--substitute-keywords", help="With a rate, substitute 'now'/'auto' for each message."),
+    verbose: bool = typer.Option(False, "-v", help="Print verbose output."),
+) -> None:
+    """Publish a message to a topic (like `rostopic pub`); latched unless a rate is given."""
+    from rostui.core.tools import topic as tools
+
+    values = list(values or [])
+    if rate is not None:
+        if once:
+            _fail("ERROR: You cannot select both -r and -1 (--once)")
+        if rate <= 0:
+            _fail("ERROR: rate must be greater than zero")
+    if values and file:
+        _fail("ERROR: args conflict with -f setting")
+    try:
+        pub_args = tools.parse_yaml_args(values)
+    except tools.UsageError as e:
+        _fail(f"ERROR: {e}")
+    _check_master()
+    name = _resolve(topic)
+    try:
+        cls = tools.message_class(msg_type)
+    except tools.TopicToolError as e:
+        _fail(f"ERROR: {e}")
+    documents = None
+    single = False
+    if not pub_args and len(cls.__slots__):
+        if file:
+            try:
+                docs = tools.yaml_documents_from_file(file)
+            except tools.TopicToolError as e:
+                _fail(f"ERROR: {e}")
+            single = len(docs) == 1
+            documents = docs
+        elif sys.stdin.isatty():
+            _fail("ERROR: Please specify message values")
+        else:
+            documents = tools.stdin_documents()
+        if rate is None and not latch and not once:
+            rate = 10.0
+    else:
+        from rostui.core.rostime import Time
+
+        try:
+            tools.build_message(cls, pub_args, Time.now())  # bad values: one line before advertising
+        except tools.TopicToolError as e:
+            _fail(f"ERROR: {e}")
+    raise typer.Exit(_run_async(tools.run_pub(
+        name, cls, pub_args, _out, rate=rate, once=once, latch=latch, documents=documents,
+        verbose=verbose, substitute=substitute, single_document=single)))

@@ -1,5 +1,5 @@
 """Allow ``python -m rostui``."""
 
-from rostui.cli.main import main
+from rostui.cli.fast import main
 
 main()

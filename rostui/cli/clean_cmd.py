@@ -6,11 +6,11 @@ import sys
 
 import typer
 
-from rostui.core.log import clean
-
 
 def run_check() -> int:
     """Print ``<size> ROS node logs`` for the log directory (nothing when it does not exist)."""
+    from rostui.core.log import clean
+
     for line in clean.check_lines():
         print(line)
     return 0
@@ -29,6 +29,8 @@ def _ask() -> bool:
 
 def run_purge(yes: bool, size_mb: int | None = None) -> int:
     """Remove old runs from the log directory, keeping the current one; 1 on refusal or failure."""
+    from rostui.core.log import clean
+
     limit = None if size_mb is None else size_mb * 1024 * 1024
     plan = clean.plan_purge(size_limit=limit)
     print(f"Purging {clean.LOG_LABEL}.")

@@ -6,15 +6,13 @@ import json
 import sys
 from typing import Any, NoReturn
 
-import typer
-
 from rostui.core.network import master_uri_from_env
 
 
 def fail(message: str, code: int = 1) -> NoReturn:
-    """Print one error line to stderr and exit with ``code``."""
+    """Print one error line to stderr and exit with ``code`` (SystemExit: no Typer needed)."""
     print(message, file=sys.stderr, flush=True)
-    raise typer.Exit(code)
+    raise SystemExit(code)
 
 
 def master_uri() -> str:

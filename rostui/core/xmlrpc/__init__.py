@@ -7,11 +7,26 @@ transport is asyncio streams speaking HTTP/1.1 with keep-alive and
 
 from __future__ import annotations
 
-from .client import XmlRpcClient, call_sync
+from typing import Any
+
+from .blocking import call_sync
 from .errors import RosApiError, XmlRpcConnectionError, XmlRpcError, XmlRpcFault, XmlRpcProtocolError
 from .marshal import EncodedResponse
 from .result import ros_result
-from .server import DEFAULT_MAX_BODY, XmlRpcServer
+
+_LAZY = {"XmlRpcClient": "client", "XmlRpcServer": "server", "DEFAULT_MAX_BODY": "server"}
+
+
+def __getattr__(name: str) -> Any:
+    """Import the asyncio client and server only when used, so blocking callers start fast."""
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    from importlib import import_module
+
+    value = getattr(import_module(f"{__name__}.{module}"), name)
+    globals()[name] = value
+    return value
 
 __all__ = [
     "DEFAULT_MAX_BODY",

@@ -1,42 +1,23 @@
-"""XML-RPC clients: an asyncio client with one persistent connection, and a blocking helper."""
+"""The asyncio XML-RPC client: one persistent HTTP/1.1 connection per server."""
 
 from __future__ import annotations
 
 import asyncio
-import http.client
 import socket
 import sys
 import zlib
 from typing import Any
-from urllib.parse import urlsplit
 
+from .blocking import MAX_RESPONSE, call_sync, split_uri as _split_uri, unwrap_response as _unwrap
 from .errors import XmlRpcConnectionError, XmlRpcFault, XmlRpcProtocolError
-from .marshal import Fault, decode_response, encode_call
+from .marshal import encode_call
 
 __all__ = ["XmlRpcClient", "call_sync"]
-
-#: Largest response body the clients accept (256 MiB).
-MAX_RESPONSE = 256 * 1024 * 1024
 
 if sys.version_info >= (3, 11):
     _timeout = asyncio.timeout
 else:  # pragma: no cover - Python 3.10
     from .server import _timeout  # type: ignore[attr-defined]
-
-
-class _Dropped(Exception):
-    """The connection closed before any byte of the response arrived."""
-
-
-def _split_uri(uri: str) -> tuple[str, int, str]:
-    parts = urlsplit(uri)
-    if parts.scheme not in ("http", "") or not parts.hostname:
-        raise XmlRpcConnectionError(uri, "not an http:// URI")
-    try:
-        port = parts.port or 80
-    except ValueError:
-        raise XmlRpcConnectionError(uri, "bad port in URI") from None
-    return parts.hostname, port, parts.path or "/"
 
 
 def _request_head(host: str, port: int, path: str, length: int) -> bytes:
@@ -46,13 +27,9 @@ def _request_head(host: str, port: int, path: str, length: int) -> bytes:
     ).encode("latin-1")
 
 
-def _unwrap(uri: str, body: bytes) -> Any:
-    try:
-        return decode_response(body)
-    except Fault as fault:
-        raise XmlRpcFault(fault.faultCode, fault.faultString, uri) from None
-    except Exception as exc:
-        raise XmlRpcProtocolError(uri, f"unparseable XML-RPC response: {exc}") from None
+
+class _Dropped(Exception):
+    """The connection closed before any byte of the response arrived."""
 
 
 class XmlRpcClient:
@@ -232,36 +209,3 @@ class XmlRpcClient:
 
     async def __aexit__(self, *exc: object) -> None:
         await self.close()
-
-
-def call_sync(uri: str, method: str, *args: Any, timeout: float = 10.0) -> Any:
-    """Call ``method(*args)`` on ``uri`` and block for the answer (no event loop).
-
-    Raises the same exceptions as :meth:`XmlRpcClient.call`.
-    """
-    host, port, path = _split_uri(uri)
-    body = encode_call(method, args)
-    conn = http.client.HTTPConnection(host, port, timeout=timeout)
-    try:
-        try:
-            conn.request("POST", path, body, {"Content-Type": "text/xml", "User-Agent": "rostui-xmlrpc"})
-            response = conn.getresponse()
-            data = response.read(MAX_RESPONSE + 1)
-        except ConnectionRefusedError:
-            raise XmlRpcConnectionError(uri, "connection refused") from None
-        except (socket.timeout, TimeoutError):
-            raise XmlRpcConnectionError(uri, f"no answer to {method} within {timeout:g}s") from None
-        except http.client.HTTPException as exc:
-            raise XmlRpcProtocolError(uri, f"{type(exc).__name__}: {exc}") from None
-        except OSError as exc:
-            raise XmlRpcConnectionError(uri, exc.strerror or str(exc)) from None
-    finally:
-        conn.close()
-    if response.status != 200:
-        raise XmlRpcProtocolError(uri, f"HTTP {response.status} {response.reason}")
-    if response.getheader("Content-Encoding", "").lower() in ("gzip", "x-gzip"):
-        try:
-            data = zlib.decompress(data, 16 + zlib.MAX_WBITS)
-        except zlib.error as exc:
-            raise XmlRpcProtocolError(uri, f"bad gzip body: {exc}") from None
-    return _unwrap(uri, data)

@@ -1,0 +1,40 @@
+"""The `rostui` entry point: the commonest master-only queries answered before Typer loads.
+
+Scripts call `rostui topic list` or `rostui param get NAME` in loops; loading
+Typer costs more than the query itself.  Exactly these plain forms (no
+options) run here, through the same ``rostui.core.tools`` functions the Typer
+commands use; anything else, including ``--help``, goes to the full CLI.
+"""
+
+from __future__ import annotations
+
+import sys
+from typing import Callable, Sequence
+
+
+def _topic_list(args: Sequence[str]) -> int:
+    from rostui.cli.common import master_call
+    from rostui.core.tools import topic as tools
+
+    pubs, subs = tools.topic_list(lambda method, *a: master_call("/rostopic", method, *a))
+    sys.stdout.write(tools.format_list(pubs, subs, verbose=False, publishers_only=False,
+                                      subscribers_only=False, namespace=None))
+    return 0
+
+
+FAST: dict[tuple[str, str], tuple[int, Callable[[Sequence[str]], int]]] = {
+    ("topic", "list"): (0, _topic_list),
+}
+
+
+def main() -> None:
+    """Console-script entry point."""
+    argv = sys.argv[1:]
+    entry = FAST.get(tuple(argv[:2]))  # type: ignore[arg-type]
+    rest = argv[2:]
+    if entry is not None and len(rest) == entry[0] and not any(a.startswith("-") for a in rest):
+        sys.stdout.flush()
+        raise SystemExit(entry[1](rest))
+    from rostui.cli.main import main as full_cli
+
+    full_cli()

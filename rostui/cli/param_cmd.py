@@ -2,11 +2,205 @@
 
 from __future__ import annotations
 
+from typing import Any, Callable, List, Optional
+
 import typer
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
 
 param_app = typer.Typer(name="param", help="Parameters: list, get, set, delete, dump, load (like `rosparam`).", no_args_is_help=True, context_settings=CONTEXT)
+
+CALLER = "/rosparam"
+_JSON_HELP = "Print machine-readable JSON instead of ROS's text."
+
+
+def _call() -> Callable[..., Any]:
+    """``call(method, *args)`` against the master, with rosparam's caller id."""
+    from rostui.cli.common import master_call
+
+    return lambda method, *args: master_call(CALLER, method, *args)
+
+
+def complete_params(incomplete: str) -> List[str]:
+    """Tab completion: parameter names from the live master (quiet and quick without one)."""
+    from rostui.core.tools.node import quick_master_call
+
+    found = quick_master_call(CALLER, "getParamNames") or []
+    return [n for n in sorted(found) if n.startswith(incomplete)]
+
+
+def _resolve(name: str) -> str:
+    from rostui.core.tools.param import script_resolve
+
+    return script_resolve(name)
+
+
+def _fail(exc: Exception) -> None:
+    from rostui.cli.common import fail
+
+    fail(str(exc))
+
+
+@param_app.command("list")
+def list_command(
+    namespace: Optional[str] = typer.Argument(None, help="Only names under this namespace.",
+                                              autocompletion=complete_params),
+    json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
+) -> None:
+    """List parameter names (like `rosparam list`)."""
+    from rostui.core.tools.param import list_names
+
+    ns = _resolve(namespace) if namespace else None
+    found = list_names(_call()("getParamNames"), ns)
+    if json_out:
+        from rostui.cli.common import print_json
+
+        print_json(found)
+        return
+    print("\n".join(found))
+
+
+@param_app.command("get")
+def get_command(
+    name: str = typer.Argument(..., help="Parameter or namespace.", autocompletion=complete_params),
+    json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
+) -> None:
+    """Print a parameter's value as YAML (like `rosparam get`)."""
+    from rostui.core.xmlrpc import RosApiError
+
+    key = _resolve(name)
+    try:
+        value = _call()("getParam", key)
+    except RosApiError:
+        from rostui.cli.common import fail
+
+        fail(f"ERROR: Parameter [{key}] is not set")
+    if json_out:
+        import base64
+
+        from rostui.cli.common import print_json
+
+        print_json(_jsonable(value, base64))
+        return
+    from rostui.core.tools.param import format_get
+
+    print(format_get(value))
+
+
+def _jsonable(value: Any, base64: Any) -> Any:
+    if isinstance(value, dict):
+        return {k: _jsonable(v, base64) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_jsonable(v, base64) for v in value]
+    data = getattr(value, "data", None)
+    if isinstance(data, bytes):
+        return base64.b64encode(data).decode("ascii")
+    return value
+
+
+@param_app.command("set")
+def set_command(
+    name: str = typer.Argument(..., help="Parameter (or namespace, for a YAML dictionary).",
+                               autocompletion=complete_params),
+    value: Optional[str] = typer.Argument(None, help="The value, typed as YAML."),
+    textfile: Optional[str] = typer.Option(None, "-t", "--textfile", help="Set to the contents of a text file."),
+    verbose: bool = typer.Option(False, "-v", help="Print what is set."),
+) -> None:
+    """Set a parameter; the value is YAML-typed, a dictionary merges into the namespace (like `rosparam set`)."""
+    from rostui.core.tools.param import ParamError, apply_assignments, check_marshallable, leaf_assignments, set_param
+
+    key = _resolve(name)
+    call = _call()
+    try:
+        if textfile is not None:
+            if value is not None:
+                _fail(ParamError("ERROR: give either a value or -t FILE, not both"))
+            from rostui.core.tools.param import read_param_file
+
+            text = read_param_file(textfile)
+            check_marshallable(key, text)
+            apply_assignments(call, leaf_assignments(key, text))
+        elif value is None:
+            _fail(ParamError("ERROR: rosparam set requires a parameter name and a value"))
+        else:
+            set_param(call, key, value)
+    except ParamError as exc:
+        _fail(exc)
+    if verbose:
+        print(f"set parameter [{key}]")
+
+
+@param_app.command("delete")
+def delete_command(
+    name: str = typer.Argument(..., help="Parameter or namespace to delete.", autocompletion=complete_params),
+    verbose: bool = typer.Option(False, "-v", help="Print what is deleted."),
+) -> None:
+    """Delete a parameter or a whole namespace (like `rosparam delete`)."""
+    from rostui.core.tools.param import ParamError, delete_param
+
+    key = _resolve(name)
+    try:
+        delete_param(_call(), key)
+    except ParamError as exc:
+        _fail(exc)
+    if verbose:
+        print(f"deleted parameter [{key}]")
+
+
+@param_app.command("dump")
+def dump_command(
+    file: str = typer.Argument(..., help="File to write ('-' for stdout)."),
+    namespace: Optional[str] = typer.Argument(None, help="Namespace to dump (default /).",
+                                              autocompletion=complete_params),
+    verbose: bool = typer.Option(False, "-v", help="Print what is dumped."),
+) -> None:
+    """Write a namespace's parameters to a YAML file (like `rosparam dump`)."""
+    from rostui.core.tools.param import format_dump
+    from rostui.core.xmlrpc import RosApiError
+
+    key = _resolve(namespace or "/")
+    try:
+        value = _call()("getParam", key)
+    except RosApiError:
+        from rostui.cli.common import fail
+
+        fail(f"ERROR: Parameter [{key}] is not set")
+    text = format_dump(value)
+    if verbose:
+        print(f"dumping namespace [{key}] to file [{file}]")
+    if file == "-":
+        import sys
+
+        sys.stdout.write(text)
+        return
+    try:
+        with open(file, "w", encoding="utf-8") as f:
+            f.write(text)
+    except OSError as exc:
+        from rostui.cli.common import fail
+
+        fail(f"ERROR: cannot write [{file}]: {exc.strerror or exc}")
+
+
+@param_app.command("load")
+def load_command(
+    file: str = typer.Argument(..., help="YAML file to load ('-' for stdin)."),
+    namespace: Optional[str] = typer.Argument(None, help="Namespace to load into (default /).",
+                                              autocompletion=complete_params),
+    verbose: bool = typer.Option(False, "-v", help="Print what is loaded."),
+) -> None:
+    """Load parameters from a YAML file, merging into the namespace (like `rosparam load`)."""
+    from rostui.core.tools.param import ParamError, apply_assignments, load_text, read_param_file
+
+    ns = _resolve(namespace or "/")
+    try:
+        assignments = load_text(read_param_file(file), ns, file)
+    except ParamError as exc:
+        _fail(exc)
+    apply_assignments(_call(), assignments)
+    if verbose:
+        for key, _ in assignments:
+            print(f"set parameter [{key}]")
 
 
 def register(app: typer.Typer) -> None:

@@ -2,11 +2,230 @@
 
 from __future__ import annotations
 
+import sys
+from typing import Any, Callable, List, Optional
+
 import typer
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
 
 service_app = typer.Typer(name="service", help="Services: list, info, node, type, find, args, uri, call (like `rosservice`).", no_args_is_help=True, context_settings=CONTEXT)
+
+CALLER = "/rosservice"
+_JSON_HELP = "Print machine-readable JSON instead of ROS's text."
+
+
+def _call() -> Callable[..., Any]:
+    from rostui.cli.common import master_call
+
+    return lambda method, *args: master_call(CALLER, method, *args)
+
+
+def _state() -> Any:
+    from rostui.core.tools.node import system_state
+
+    return system_state(_call())
+
+
+def _resolve(name: str) -> str:
+    from rostui.core.tools.node import script_resolve
+
+    return script_resolve(name)
+
+
+def _fail(exc: Exception) -> None:
+    from rostui.cli.common import fail
+
+    fail(str(exc))
+
+
+def complete_services(incomplete: str) -> List[str]:
+    """Tab completion: service names from the live master (quiet and quick without one)."""
+    from rostui.core.tools.node import SystemState, quick_master_call
+
+    value = quick_master_call(CALLER, "getSystemState")
+    if not value:
+        return []
+    try:
+        services = sorted(SystemState.from_wire(value).services)
+    except (TypeError, ValueError):
+        return []
+    return [s for s in services if s.startswith(incomplete)]
+
+
+def complete_service_types(incomplete: str) -> List[str]:
+    """Tab completion: service types of the running services, then every known package's types."""
+    found: set[str] = set()
+    try:
+        from rostui.core.msg import list_service_types
+        from rostui.core.packages import list_packages  # type: ignore[attr-defined]
+
+        for pkg in list_packages():
+            name = getattr(pkg, "name", pkg)
+            if str(name).startswith(incomplete.split("/")[0]):
+                try:
+                    found.update(list_service_types(str(name)))
+                except Exception:
+                    continue
+    except Exception:
+        pass
+    return sorted(t for t in found if t.startswith(incomplete))
+
+
+@service_app.command("list")
+def list_command(
+    namespace: Optional[str] = typer.Argument(None, help="Only services under this namespace."),
+    nodes: bool = typer.Option(False, "-n", "--nodes", help="Print the nodes that provide each service."),
+    json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
+) -> None:
+    """List active services (like `rosservice list`)."""
+    from rostui.core.tools.service import list_services
+
+    items = list_services(_state(), _resolve(namespace) if namespace else None)
+    if json_out:
+        from rostui.cli.common import print_json
+
+        print_json([{"service": s, "nodes": n} for s, n in items] if nodes else [s for s, _ in items])
+        return
+    for service, providers in items:
+        print(f"{service} {' '.join(providers)}" if nodes else service)
+
+
+@service_app.command("info")
+def info_command(
+    service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services),
+    json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
+) -> None:
+    """Print a service's node, URI, type and arguments (like `rosservice info`)."""
+    from rostui.core.tools.service import ServiceToolError, request_fields, service_node, service_uri, probe_type
+
+    name = _resolve(service)
+    call = _call()
+    node = service_node(_state(), name)
+    uri = service_uri(call, name)
+    if node is None or uri is None:
+        _fail(ServiceToolError("ERROR: unknown service"))
+    try:
+        type_name = probe_type(uri, name)
+        fields = request_fields(type_name)
+    except ServiceToolError as exc:
+        _fail(exc)
+    if json_out:
+        from rostui.cli.common import print_json
+
+        print_json({"service": name, "node": node, "uri": uri, "type": type_name, "args": fields})
+        return
+    print(f"Node: {node}\nURI: {uri}\nType: {type_name}\nArgs: {' '.join(fields)}")
+
+
+@service_app.command("node")
+def node_command(service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services)) -> None:
+    """Print the node that provides a service (like `rosservice node`)."""
+    from rostui.core.tools.service import service_node
+
+    name = _resolve(service)
+    node = service_node(_state(), name)
+    if node is None:
+        from rostui.cli.common import fail
+
+        fail(f"Unknown service: {name}")
+    print(node)
+
+
+@service_app.command("uri")
+def uri_command(service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services)) -> None:
+    """Print a service's rosrpc URI (like `rosservice uri`)."""
+    from rostui.core.tools.service import service_uri
+
+    name = _resolve(service)
+    uri = service_uri(_call(), name)
+    if uri is None:
+        from rostui.cli.common import fail
+
+        fail(f"Unknown service: {name}")
+    print(uri)
+
+
+@service_app.command("type")
+def type_command(service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services)) -> None:
+    """Print a service's type (like `rosservice type`)."""
+    from rostui.core.tools.service import ServiceToolError, service_type
+
+    name = _resolve(service)
+    try:
+        type_name = service_type(_call(), name)
+    except ServiceToolError as exc:
+        _fail(exc)
+    if type_name is None:
+        from rostui.cli.common import fail
+
+        fail(f"Unknown service [{name}]")
+    print(type_name)
+
+
+@service_app.command("args")
+def args_command(service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services)) -> None:
+    """Print a service's request fields (like `rosservice args`)."""
+    from rostui.core.tools.service import ServiceToolError, service_args
+
+    try:
+        print(" ".join(service_args(_call(), _resolve(service))))
+    except ServiceToolError as exc:
+        _fail(exc)
+
+
+@service_app.command("find")
+def find_command(
+    type_name: str = typer.Argument(..., metavar="TYPE", help="Service type, e.g. std_srvs/SetBool.",
+                                    autocompletion=complete_service_types),
+    json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
+) -> None:
+    """List the services of a type (like `rosservice find`)."""
+    from rostui.core.tools.service import find_services
+
+    found = find_services(_call(), _state(), type_name)
+    if json_out:
+        from rostui.cli.common import print_json
+
+        print_json(found)
+        return
+    print("\n".join(found))
+
+
+@service_app.command("call", context_settings={"ignore_unknown_options": True, "allow_interspersed_args": False})
+def call_command(
+    service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services),
+    args: Optional[List[str]] = typer.Argument(None, help="Request fields in order, or one YAML dictionary."),
+    verbose: bool = typer.Option(False, "-v", help="Also print the request."),
+    wait: bool = typer.Option(False, "--wait", help="Wait for the service to be advertised."),
+) -> None:
+    """Call a service and print its response as YAML (like `rosservice call`).
+
+    With no arguments and stdin not a terminal, the first YAML document on
+    stdin is the request, as with rosservice (empty stdin: no call).
+    """
+    from rostui.core.msg.convert import message_to_yaml
+    from rostui.core.tools.service import (
+        ServiceToolError, build_request, build_request_from_value, call_service, parse_stdin_requests,
+        resolve_call_type,
+    )
+
+    name = _resolve(service)
+    argv = [a for a in (args or []) if ":=" not in a]  # ROS remapping arguments are not request fields
+    try:
+        srv_class = resolve_call_type(_call(), name, wait=wait)
+        if argv or sys.stdin is None or sys.stdin.isatty() or not srv_class._request_class.__slots__:
+            requests = [build_request(srv_class, argv)]
+        else:
+            docs = parse_stdin_requests(sys.stdin.read())
+            requests = [build_request_from_value(srv_class, doc) for doc in docs[:1]]  # rosservice: first only
+        for request, response in zip(requests, call_service(name, srv_class, requests)):
+            if verbose:
+                print(message_to_yaml(request))
+                print("---")
+            print(message_to_yaml(response))
+    except ServiceToolError as exc:
+        _fail(exc)
 
 
 def register(app: typer.Typer) -> None:

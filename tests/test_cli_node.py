@@ -1,0 +1,153 @@
+"""`rostui node` against `rosnode` on the same live system (rostui core or a real roscore)."""
+
+from __future__ import annotations
+
+import os
+import re
+import signal
+
+import pytest
+
+from cli_helpers import normalize, rostui
+from interop_helpers import example, run_tool, spawn, wait_for_node, wait_until  # noqa: F401
+
+
+@pytest.fixture
+def graph(any_master, spawn, ros_env):
+    """rostui talker /mouth, listener /ears, toggle_server /toggle_server, connected."""
+    listener = spawn(example("listener.py", "__name:=ears"), label="listener")
+    wait_for_node(ros_env, "/ears")
+    talker = spawn(example("talker.py", "__name:=mouth"), label="talker")
+    server = spawn(example("toggle_server.py"), label="toggle_server")
+    listener.wait_for(r"I heard: hello world \d+$")
+    wait_for_node(ros_env, "/toggle_server")
+    return talker, listener, server
+
+
+def same(ours, theirs):
+    assert normalize(ours.stdout) == normalize(theirs.stdout), f"ours:\n{ours.stdout}\ntheirs:\n{theirs.stdout}"
+
+
+@pytest.mark.parametrize("args", [["list"], ["list", "-u"], ["list", "-a"], ["list", "/ears"], ["list", "/nons"],
+                                  ["list", "ears"]])
+def test_list(graph, ros_env, args):
+    theirs = run_tool(["rosnode", *args], ros_env)
+    ours = rostui(["node", *args], ros_env)
+    assert ours.returncode == 0, ours.stderr
+    if "-u" in args or "-a" in args:  # URIs are ephemeral: compare as sets of lines
+        assert sorted(ours.stdout.splitlines()) == sorted(theirs.stdout.splitlines())
+    else:
+        assert ours.stdout == theirs.stdout
+
+
+def test_list_json(graph, ros_env):
+    import json
+
+    ours = json.loads(rostui(["node", "list", "--json"], ros_env).stdout)
+    assert [e["node"] for e in ours] == ["/ears", "/mouth", "/rosout", "/toggle_server"]
+    assert all(e["uri"].startswith("http://") for e in ours)
+
+
+@pytest.mark.parametrize("node", ["/mouth", "/ears", "/toggle_server", "/nope"])
+def test_info(graph, ros_env, node):
+    theirs = run_tool(["rosnode", "info", node], ros_env)
+    ours = rostui(["node", "info", node], ros_env)
+    assert ours.returncode == theirs.returncode
+    # Connection lists come in the node's own order; compare sorted blocks.
+    assert normalize(ours.stdout).split("Connections:")[0] == normalize(theirs.stdout).split("Connections:")[0]
+    assert sorted(normalize(ours.stdout).splitlines()) == sorted(normalize(theirs.stdout).splitlines())
+    assert ours.stderr == theirs.stderr
+
+
+def test_info_quiet_and_json(graph, ros_env):
+    import json
+
+    same(rostui(["node", "info", "-q", "/toggle_server"], ros_env),
+         run_tool(["rosnode", "info", "-q", "/toggle_server"], ros_env))
+    talker = graph[0]
+    data = json.loads(rostui(["node", "info", "--json", "/mouth"], ros_env).stdout)
+    assert data["pid"] == talker.proc.pid
+    assert {"topic": "/chatter", "type": "std_msgs/String"} in data["publications"]
+
+
+def test_ping(graph, ros_env):
+    theirs = run_tool(["rosnode", "ping", "-c", "2", "/ears"], ros_env)
+    ours = rostui(["node", "ping", "-c", "2", "/ears"], ros_env)
+    assert ours.returncode == 0
+    mask = lambda t: re.sub(r"[\d.]+ms", "Xms", normalize(t))  # noqa: E731
+    assert mask(ours.stdout) == mask(theirs.stdout)
+    assert ours.stdout.count("xmlrpc reply from ") == 2 and "ping average: " in ours.stdout
+    theirs = run_tool(["rosnode", "ping", "-c", "1", "/nope"], ros_env, check=False)
+    ours = rostui(["node", "ping", "-c", "1", "/nope"], ros_env)
+    assert (ours.stdout, ours.stderr, ours.returncode) == (theirs.stdout, theirs.stderr, theirs.returncode)
+
+
+def test_ping_all(graph, ros_env):
+    ours = rostui(["node", "ping", "-a"], ros_env)
+    theirs = run_tool(["rosnode", "ping", "-a"], ros_env)
+    strip = lambda t: sorted(re.sub(r"[\d.]+ms", "Xms", normalize(t)).splitlines())  # noqa: E731
+    assert strip(ours.stdout) == strip(theirs.stdout)
+
+
+def test_kill(graph, spawn, ros_env):
+    spawn(example("talker.py", "__name:=victim", "__ns:=/grp"), label="victim")
+    spawn(example("talker.py", "__name:=victim2"), label="victim2")
+    wait_for_node(ros_env, "/grp/victim")
+    wait_for_node(ros_env, "/victim2")
+    theirs = run_tool(["rosnode", "kill", "/grp/victim"], ros_env)
+    ours = rostui(["node", "kill", "/victim2"], ros_env)
+    assert ours.returncode == 0, ours.stderr
+    assert ours.stdout == theirs.stdout.replace("/grp/victim", "/victim2")
+    nodes = lambda: run_tool(["rosnode", "list"], ros_env).stdout.split()  # noqa: E731
+    wait_until(lambda: "/victim2" not in nodes() and "/grp/victim" not in nodes(), "killed nodes to unregister")
+    theirs = run_tool(["rosnode", "kill", "/nope"], ros_env, check=False)
+    ours = rostui(["node", "kill", "/nope"], ros_env)
+    assert (ours.stdout, ours.stderr, ours.returncode) == (theirs.stdout, theirs.stderr, 1)
+
+
+def test_cleanup(graph, spawn, ros_env):
+    for name in ("deadA", "deadB"):
+        peer = spawn(example("talker.py", f"__name:={name}"), label=name)
+        wait_for_node(ros_env, f"/{name}")
+        os.kill(peer.proc.pid, signal.SIGKILL)
+        peer.proc.wait()
+    # "n": nothing purged, rosnode's words.
+    ours = rostui(["node", "cleanup"], ros_env, input="n\n")
+    theirs = run_tool_input(["rosnode", "cleanup"], ros_env, "n\n")
+    assert sorted(ours.stdout.splitlines()) == sorted(theirs.stdout.splitlines())  # rosnode: set order
+    assert "Please type y or n to continue:\naborting\n" in ours.stdout
+    # stdin at EOF: rosnode would loop forever; rostui aborts.
+    ours = rostui(["node", "cleanup"], ros_env)
+    assert ours.stdout.endswith("aborting\n") and ours.returncode == 0
+    assert "/deadA" in run_tool(["rosnode", "list"], ros_env).stdout
+    ours = rostui(["node", "cleanup"], ros_env, input="y\n")
+    assert ours.stdout.endswith("Unregistering /deadA\nUnregistering /deadB\ndone\n"), ours.stdout
+    assert "ERROR: connection refused to [http://" in ours.stderr
+    assert {"/deadA", "/deadB"}.isdisjoint(run_tool(["rosnode", "list"], ros_env).stdout.split())
+    assert rostui(["node", "cleanup", "-y"], ros_env).stdout == ""
+
+
+def run_tool_input(argv, env, text):
+    import subprocess
+
+    return subprocess.run(argv, env=env, input=text, capture_output=True, text=True, timeout=30)
+
+
+def test_no_master(ros_env):
+    for args in (["list"], ["info", "/x"], ["ping", "-c", "1", "/x"], ["kill", "/x"], ["cleanup"]):
+        ours = rostui(["node", *args], ros_env)
+        assert ours.returncode == 1
+        assert ours.stderr.startswith("ERROR: Unable to communicate with master at http://127.0.0.1:")
+        assert len(ours.stderr.splitlines()) == 1 and ours.stdout in ("", "rosnode: node is [/x]\n")
+
+
+def test_completion_without_master(ros_env):
+    from rostui.cli.node_cmd import complete_nodes
+
+    assert complete_nodes("/") == []
+
+
+def test_completion_live(graph, ros_env):
+    from rostui.cli.node_cmd import complete_nodes
+
+    assert complete_nodes("/m") == ["/mouth"]

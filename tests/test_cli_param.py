@@ -89,18 +89,19 @@ def test_json(any_master, ros_env):
     assert json.loads(rostui(["param", "list", "--json", "/j"], ros_env).stdout) == ["/j/a", "/j/b"]
 
 
-def test_fast_get_matches(any_master, ros_env):
+def test_fast_path_matches_full_command(any_master, ros_env):
+    """`rostui param get NAME` answered before Typer loads prints exactly what the Typer command prints."""
     import subprocess
     import sys
 
     from interop_helpers import wait_until
 
     wait_until(lambda: "/run_id" in run_tool(["rosparam", "list"], ros_env).stdout, "/run_id to be set")
-    code = "import sys; from rostui.core.tools.param import fast_get; sys.exit(fast_get(sys.argv[1:]))"
+    full_cli = "import sys; sys.argv[0] = 'rostui'; from rostui.cli.main import main; main()"
     for key in ("/run_id", "/", "/nope"):
-        fast = subprocess.run([sys.executable, "-c", code, "param", "get", key], env=ros_env, capture_output=True,
-                              text=True, timeout=30)
-        full = rostui(["param", "get", key], ros_env)
+        fast = rostui(["param", "get", key], ros_env)
+        full = subprocess.run([sys.executable, "-c", full_cli, "param", "get", key], env=ros_env,
+                              capture_output=True, text=True, timeout=30)
         assert (fast.stdout, fast.stderr, fast.returncode) == (full.stdout, full.stderr, full.returncode)
 
 

@@ -9,7 +9,10 @@ commands use; anything else, including ``--help``, goes to the full CLI.
 from __future__ import annotations
 
 import sys
-from typing import Callable, Sequence
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
 
 
 def _topic_list(args: Sequence[str]) -> int:
@@ -22,8 +25,23 @@ def _topic_list(args: Sequence[str]) -> int:
     return 0
 
 
+def _param_get(args: Sequence[str]) -> int:
+    from rostui.cli.common import fail, master_call
+    from rostui.core.tools.param import format_get, script_resolve
+    from rostui.core.xmlrpc import RosApiError
+
+    key = script_resolve(args[0])
+    try:
+        value = master_call("/rosparam", "getParam", key)
+    except RosApiError:
+        fail(f"ERROR: Parameter [{key}] is not set")
+    print(format_get(value))
+    return 0
+
+
 FAST: dict[tuple[str, str], tuple[int, Callable[[Sequence[str]], int]]] = {
     ("topic", "list"): (0, _topic_list),
+    ("param", "get"): (1, _param_get),
 }
 
 

@@ -8,10 +8,8 @@ as ROS 1 does.
 
 from __future__ import annotations
 
-import ipaddress
 import os
-import socket
-from dataclasses import dataclass
+from typing import NamedTuple
 from urllib.parse import urlparse
 
 DEFAULT_MASTER_URI = "http://localhost:11311"
@@ -27,14 +25,15 @@ def is_loopback_host(host: str) -> bool:
     """True for localhost names and 127.0.0.0/8 or ::1 addresses."""
     if host in ("localhost", "localhost.localdomain", "ip6-localhost"):
         return True
+    import ipaddress
+
     try:
         return ipaddress.ip_address(host).is_loopback
     except ValueError:
         return False
 
 
-@dataclass(frozen=True)
-class Addressing:
+class Addressing(NamedTuple):
     """The interface servers bind to and the host name they advertise in URIs."""
 
     bind_host: str
@@ -55,7 +54,11 @@ def resolve_addressing(
     master_host = urlparse(master_uri_from_env(master_uri)).hostname or "localhost"
     if hostname is None and ip is None and is_loopback_host(master_host):
         return Addressing(bind_host="127.0.0.1", advertise_host="127.0.0.1")
-    advertise = hostname or ip or socket.gethostname()
+    if hostname is None and ip is None:
+        import socket
+
+        hostname = socket.gethostname()
+    advertise = hostname or ip or ""
     if is_loopback_host(advertise):
         return Addressing(bind_host="127.0.0.1" if ":" not in advertise else "::1",
                           advertise_host=advertise)

@@ -303,33 +303,3 @@ def read_param_file(path: str) -> str:
             return f.read()
     except (OSError, UnicodeDecodeError) as exc:
         raise ParamError(f"ERROR: cannot read [{path}]: {exc}") from None
-
-
-def fast_get(argv: list[str]) -> int | None:
-    """``rostui param get NAME`` without the Typer app: for a start-up hook in ``rostui/__main__``.
-
-    ``argv`` is ``sys.argv[1:]``.  Returns the exit status when it handled the
-    command, None when the arguments need the full command line (options,
-    help, anything unusual).  Uses only the standard library's XML-RPC client
-    and PyYAML, so it starts about as fast as ``rosparam get``.
-    """
-    import sys
-
-    if len(argv) != 3 or argv[:2] != ["param", "get"] or argv[2].startswith("-"):
-        return None
-    import xmlrpc.client
-
-    from rostui.core.network import master_uri_from_env
-
-    key = script_resolve(argv[2])
-    uri = master_uri_from_env()
-    try:
-        code, _msg, value = xmlrpc.client.ServerProxy(uri).getParam("/rosparam", key)
-    except (OSError, xmlrpc.client.Error):
-        print(f"ERROR: Unable to communicate with master at {uri}", file=sys.stderr)
-        return 1
-    if code != 1:
-        print(f"ERROR: Parameter [{key}] is not set", file=sys.stderr)
-        return 1
-    print(format_get(value))
-    return 0

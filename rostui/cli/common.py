@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 import sys
-from typing import Any, NoReturn
+from typing import Any, Callable, NoReturn
 
 from rostui.core.network import master_uri_from_env
 
@@ -33,6 +33,11 @@ def master_call(caller_id: str, method: str, *args: Any) -> Any:
         return ros_result(call_sync(uri, method, caller_id, *args, timeout=10.0))
     except XmlRpcConnectionError:
         fail(f"ERROR: Unable to communicate with master at {uri}")
+
+
+def master_caller(caller_id: str) -> Callable[..., Any]:
+    """``call(method, *args)`` against the master with a tool's caller id (see master_call)."""
+    return lambda method, *args: master_call(caller_id, method, *args)
 
 
 def print_json(value: Any) -> None:

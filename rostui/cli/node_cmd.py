@@ -3,36 +3,19 @@
 from __future__ import annotations
 
 import sys
-from typing import Any, Callable, List, Optional
+from typing import List, Optional
 
 import typer
+
+from rostui.cli.common import JSON_OPTION_HELP as _JSON_HELP
+from rostui.cli.common import master_caller
+from rostui.cli.complete import complete_nodes
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
 
 node_app = typer.Typer(name="node", help="Nodes: list, info, kill, cleanup, ping (like `rosnode`).", no_args_is_help=True, context_settings=CONTEXT)
 
 CALLER = "/rosnode"
-_JSON_HELP = "Print machine-readable JSON instead of ROS's text."
-
-
-def _call() -> Callable[..., Any]:
-    from rostui.cli.common import master_call
-
-    return lambda method, *args: master_call(CALLER, method, *args)
-
-
-def complete_nodes(incomplete: str) -> List[str]:
-    """Tab completion: node names from the live master (quiet and quick without one)."""
-    from rostui.core.tools.node import SystemState, quick_master_call
-
-    value = quick_master_call(CALLER, "getSystemState")
-    if not value:
-        return []
-    try:
-        nodes = SystemState.from_wire(value).nodes()
-    except (TypeError, ValueError):
-        return []
-    return [n for n in nodes if n.startswith(incomplete)]
 
 
 def _echo(text: str, err: bool = False) -> None:
@@ -50,7 +33,7 @@ def list_command(
     """List active nodes (like `rosnode list`)."""
     from rostui.core.tools.node import filter_namespace, format_list, lookup_uris, script_resolve, system_state
 
-    call = _call()
+    call = master_caller(CALLER)
     nodes = filter_namespace(system_state(call).nodes(), script_resolve(namespace) if namespace else None)
     uris = lookup_uris(call, nodes) if (uri or all_ or json_out) else None
     if json_out:
@@ -70,7 +53,7 @@ def info_command(
     """Print a node's publications, subscriptions, services, pid and connections (like `rosnode info`)."""
     from rostui.core.tools.node import format_info, node_info, script_resolve
 
-    call = _call()
+    call = master_caller(CALLER)
     infos = [node_info(call, script_resolve(n), quiet=quiet) for n in nodes]
     if json_out:
         from rostui.cli.common import print_json
@@ -100,7 +83,7 @@ def ping_command(
     from rostui.core.tools.node import PING_TIMEOUT, PingError, lookup_uris, ping_node, script_resolve, system_state
     from rostui.cli.common import fail
 
-    call = _call()
+    call = master_caller(CALLER)
     if all_:
         if count is not None:
             fail("ERROR: -c is not available with --all")
@@ -160,7 +143,7 @@ def kill_command(
     from rostui.core.tools.node import kill_nodes, script_resolve, system_state
     from rostui.cli.common import fail
 
-    call = _call()
+    call = master_caller(CALLER)
     if all_:
         targets = system_state(call).nodes()
     elif nodes:
@@ -192,7 +175,7 @@ def cleanup_command(
     """
     from rostui.core.tools.node import cleanup_nodes, system_state, unreachable_nodes
 
-    call = _call()
+    call = master_caller(CALLER)
     dead = unreachable_nodes(call, system_state(call).nodes(), on_error=lambda line: _echo(line, err=True))
     if not dead:
         return

@@ -2,31 +2,19 @@
 
 from __future__ import annotations
 
-from typing import Any, Callable, List, Optional
+from typing import Any, Optional
 
 import typer
+
+from rostui.cli.common import JSON_OPTION_HELP as _JSON_HELP
+from rostui.cli.common import master_caller
+from rostui.cli.complete import complete_params
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
 
 param_app = typer.Typer(name="param", help="Parameters: list, get, set, delete, dump, load (like `rosparam`).", no_args_is_help=True, context_settings=CONTEXT)
 
 CALLER = "/rosparam"
-_JSON_HELP = "Print machine-readable JSON instead of ROS's text."
-
-
-def _call() -> Callable[..., Any]:
-    """``call(method, *args)`` against the master, with rosparam's caller id."""
-    from rostui.cli.common import master_call
-
-    return lambda method, *args: master_call(CALLER, method, *args)
-
-
-def complete_params(incomplete: str) -> List[str]:
-    """Tab completion: parameter names from the live master (quiet and quick without one)."""
-    from rostui.core.tools.node import quick_master_call
-
-    found = quick_master_call(CALLER, "getParamNames") or []
-    return [n for n in sorted(found) if n.startswith(incomplete)]
 
 
 def _resolve(name: str) -> str:
@@ -51,7 +39,7 @@ def list_command(
     from rostui.core.tools.param import list_names
 
     ns = _resolve(namespace) if namespace else None
-    found = list_names(_call()("getParamNames"), ns)
+    found = list_names(master_caller(CALLER)("getParamNames"), ns)
     if json_out:
         from rostui.cli.common import print_json
 
@@ -70,7 +58,7 @@ def get_command(
 
     key = _resolve(name)
     try:
-        value = _call()("getParam", key)
+        value = master_caller(CALLER)("getParam", key)
     except RosApiError:
         from rostui.cli.common import fail
 
@@ -110,7 +98,7 @@ def set_command(
     from rostui.core.tools.param import ParamError, apply_assignments, check_marshallable, leaf_assignments, set_param
 
     key = _resolve(name)
-    call = _call()
+    call = master_caller(CALLER)
     try:
         if textfile is not None:
             if value is not None:
@@ -140,7 +128,7 @@ def delete_command(
 
     key = _resolve(name)
     try:
-        delete_param(_call(), key)
+        delete_param(master_caller(CALLER), key)
     except ParamError as exc:
         _fail(exc)
     if verbose:
@@ -160,7 +148,7 @@ def dump_command(
 
     key = _resolve(namespace or "/")
     try:
-        value = _call()("getParam", key)
+        value = master_caller(CALLER)("getParam", key)
     except RosApiError:
         from rostui.cli.common import fail
 
@@ -197,7 +185,7 @@ def load_command(
         assignments = load_text(read_param_file(file), ns, file)
     except ParamError as exc:
         _fail(exc)
-    apply_assignments(_call(), assignments)
+    apply_assignments(master_caller(CALLER), assignments)
     if verbose:
         for key, _ in assignments:
             print(f"set parameter [{key}]")

@@ -3,28 +3,26 @@
 from __future__ import annotations
 
 import sys
-from typing import Any, Callable, List, Optional
+from typing import Any, List, Optional
 
 import typer
+
+from rostui.cli.common import JSON_OPTION_HELP as _JSON_HELP
+from rostui.cli.common import master_caller
+from rostui.cli.complete import complete_services
+from rostui.cli.complete import complete_srv_types as complete_service_types
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
 
 service_app = typer.Typer(name="service", help="Services: list, info, node, type, find, args, uri, call (like `rosservice`).", no_args_is_help=True, context_settings=CONTEXT)
 
 CALLER = "/rosservice"
-_JSON_HELP = "Print machine-readable JSON instead of ROS's text."
-
-
-def _call() -> Callable[..., Any]:
-    from rostui.cli.common import master_call
-
-    return lambda method, *args: master_call(CALLER, method, *args)
 
 
 def _state() -> Any:
     from rostui.core.tools.node import system_state
 
-    return system_state(_call())
+    return system_state(master_caller(CALLER))
 
 
 def _resolve(name: str) -> str:
@@ -37,39 +35,6 @@ def _fail(exc: Exception) -> None:
     from rostui.cli.common import fail
 
     fail(str(exc))
-
-
-def complete_services(incomplete: str) -> List[str]:
-    """Tab completion: service names from the live master (quiet and quick without one)."""
-    from rostui.core.tools.node import SystemState, quick_master_call
-
-    value = quick_master_call(CALLER, "getSystemState")
-    if not value:
-        return []
-    try:
-        services = sorted(SystemState.from_wire(value).services)
-    except (TypeError, ValueError):
-        return []
-    return [s for s in services if s.startswith(incomplete)]
-
-
-def complete_service_types(incomplete: str) -> List[str]:
-    """Tab completion: service types of the running services, then every known package's types."""
-    found: set[str] = set()
-    try:
-        from rostui.core.msg import list_service_types
-        from rostui.core.packages import list_packages  # type: ignore[attr-defined]
-
-        for pkg in list_packages():
-            name = getattr(pkg, "name", pkg)
-            if str(name).startswith(incomplete.split("/")[0]):
-                try:
-                    found.update(list_service_types(str(name)))
-                except Exception:
-                    continue
-    except Exception:
-        pass
-    return sorted(t for t in found if t.startswith(incomplete))
 
 
 @service_app.command("list")
@@ -100,7 +65,7 @@ def info_command(
     from rostui.core.tools.service import ServiceToolError, request_fields, service_node, service_uri, probe_type
 
     name = _resolve(service)
-    call = _call()
+    call = master_caller(CALLER)
     node = service_node(_state(), name)
     uri = service_uri(call, name)
     if node is None or uri is None:
@@ -138,7 +103,7 @@ def uri_command(service: str = typer.Argument(..., help="Service name.", autocom
     from rostui.core.tools.service import service_uri
 
     name = _resolve(service)
-    uri = service_uri(_call(), name)
+    uri = service_uri(master_caller(CALLER), name)
     if uri is None:
         from rostui.cli.common import fail
 
@@ -153,7 +118,7 @@ def type_command(service: str = typer.Argument(..., help="Service name.", autoco
 
     name = _resolve(service)
     try:
-        type_name = service_type(_call(), name)
+        type_name = service_type(master_caller(CALLER), name)
     except ServiceToolError as exc:
         _fail(exc)
     if type_name is None:
@@ -169,7 +134,7 @@ def args_command(service: str = typer.Argument(..., help="Service name.", autoco
     from rostui.core.tools.service import ServiceToolError, service_args
 
     try:
-        print(" ".join(service_args(_call(), _resolve(service))))
+        print(" ".join(service_args(master_caller(CALLER), _resolve(service))))
     except ServiceToolError as exc:
         _fail(exc)
 
@@ -183,7 +148,7 @@ def find_command(
     """List the services of a type (like `rosservice find`)."""
     from rostui.core.tools.service import find_services
 
-    found = find_services(_call(), _state(), type_name)
+    found = find_services(master_caller(CALLER), _state(), type_name)
     if json_out:
         from rostui.cli.common import print_json
 
@@ -213,7 +178,7 @@ def call_command(
     name = _resolve(service)
     argv = [a for a in (args or []) if ":=" not in a]  # ROS remapping arguments are not request fields
     try:
-        srv_class = resolve_call_type(_call(), name, wait=wait)
+        srv_class = resolve_call_type(master_caller(CALLER), name, wait=wait)
         if argv or sys.stdin is None or sys.stdin.isatty() or not srv_class._request_class.__slots__:
             requests = [build_request(srv_class, argv)]
         else:

@@ -12,11 +12,14 @@ from typing import Any, List, Optional
 
 import typer
 
+from rostui.cli.common import JSON_OPTION_HELP as _JSON_HELP
+from rostui.cli.complete import complete_msg_types as _complete_type
+from rostui.cli.complete import complete_topics as _complete_topic
+
 CONTEXT = {"help_option_names": ["-h", "--help"]}
 
 topic_app = typer.Typer(name="topic", help="Topics: list, info, type, find, echo, hz, bw, pub (like `rostopic`).", no_args_is_help=True, context_settings=CONTEXT)
 
-_JSON_HELP = "Print machine-readable JSON instead of ROS's text."
 
 
 def register(app: typer.Typer) -> None:
@@ -25,18 +28,6 @@ def register(app: typer.Typer) -> None:
 
 
 # ----------------------------------------------------------------------------- shell completion
-def _complete_topic(incomplete: str) -> List[str]:
-    from rostui.core.tools.topic import complete_topics
-
-    return complete_topics(incomplete)
-
-
-def _complete_type(incomplete: str) -> List[str]:
-    from rostui.core.tools.topic import complete_types
-
-    return complete_types(incomplete)
-
-
 # ----------------------------------------------------------------------------- helpers
 def _call(method: str, *args: Any) -> Any:
     """A master call as rostopic makes it; no master -> one line, exit 1."""

@@ -274,7 +274,7 @@ def ping_node(uri: str, timeout: float = PING_TIMEOUT) -> float:
 
 def kill_nodes(call: Call, nodes: Sequence[str], *, caller: str = "/rosnode") -> tuple[list[str], list[str]]:
     """Ask each node to shut down; return (killed, unknown)."""
-    from rostui.core.xmlrpc import RosApiError, XmlRpcError, call_sync
+    from rostui.core.xmlrpc import XmlRpcError, call_sync
 
     uris = lookup_uris(call, nodes)
     unknown = [n for n in nodes if uris.get(n) is None]

@@ -978,37 +978,3 @@ def stdin_documents() -> Iterator[Any]:
 
 
 # ----------------------------------------------------------------------------- completion
-def complete_topics(incomplete: str, timeout: float = 0.5) -> list[str]:
-    """Topic names from the master that start with *incomplete* (empty when no master answers)."""
-    from rostui.core.network import master_uri_from_env
-    from rostui.core.xmlrpc import call_sync, ros_result
-
-    try:
-        pubs, subs, _ = ros_result(call_sync(master_uri_from_env(), "getSystemState", CALLER_ID, timeout=timeout))
-    except Exception:
-        return []
-    names = sorted({t for t, _ in pubs} | {t for t, _ in subs})
-    return [t for t in names if t.startswith(incomplete)]
-
-
-def complete_types(incomplete: str) -> list[str]:
-    """Message types of every known package that start with *incomplete*."""
-    from rostui.core import packages
-    from rostui.core.msg import list_message_types
-
-    out: list[str] = []
-    pkg_hint = incomplete.split("/", 1)[0] if "/" in incomplete else None
-    try:
-        pkgs = packages.list_packages()
-    except Exception:
-        return []
-    for pkg in sorted(pkgs):
-        if pkg_hint is not None and pkg != pkg_hint:
-            continue
-        if pkg_hint is None and not pkg.startswith(incomplete):
-            continue
-        try:
-            out.extend(t for t in list_message_types(pkg) if t.startswith(incomplete))
-        except Exception:
-            continue
-    return out

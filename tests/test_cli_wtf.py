@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import threading
 from pathlib import Path
 from typing import Any, Iterator
@@ -12,6 +13,7 @@ from xmlrpc.server import SimpleXMLRPCServer
 import pytest
 
 from cli_helpers import rostui
+from interop_helpers import run_tool
 from rostui.core.xmlrpc import call_sync
 
 
@@ -148,3 +150,40 @@ def test_live_completions_without_master(ros_env: dict[str, str]) -> None:
 
     assert complete.complete_nodes("") == [] and complete.complete_topics("") == []
     assert complete.complete_services("") == [] and complete.complete_params("") == []
+
+
+def _roswtf_findings(text: str) -> tuple[set[str], set[tuple[str, str]]]:
+    """Dead nodes and unconnected (node, topic) subscriptions from real roswtf's report."""
+    text = re.sub(r"\x1b\[[0-9;]*m", "", text)
+    dead: set[str] = set()
+    unconnected: set[tuple[str, str]] = set()
+    section, node = "", ""
+    for line in text.splitlines():
+        if "Could not contact the following nodes" in line:
+            section = "dead"
+        elif "node subscriptions are unconnected" in line:
+            section = "unconnected"
+        elif not line.strip() or not line.startswith(" "):
+            section = section if line.startswith(" ") else ""
+        elif section == "dead" and line.startswith(" * "):
+            dead.add(line[3:].strip())
+        elif section == "unconnected" and line.startswith(" * "):
+            node = line[3:].strip().rstrip(":")
+        elif section == "unconnected" and line.strip().startswith("* "):
+            unconnected.add((node, line.strip()[2:]))
+    return dead, unconnected
+
+
+def test_same_findings_as_real_roswtf(any_master: str, ros_env: dict[str, str]) -> None:
+    register(ros_env, "/deadnode", "http://127.0.0.1:1/", subs=[["/lonely", "std_msgs/Int32"]])
+    real = run_tool(["roswtf"], ros_env, timeout=120, check=False)
+    dead, unconnected = _roswtf_findings(real.stdout + real.stderr)
+    assert dead == {"/deadnode"} and ("/deadnode", "/lonely") in unconnected
+
+    code, out = wtf(ros_env, "--json")
+    findings = json.loads("\n".join(out))["findings"]
+    ours_dead = {re.match(r"node (\S+)", f["message"]).group(1) for f in findings if f["check"] == "dead_node"}
+    ours_unconnected = {tuple(reversed(re.match(r"topic (\S+) is subscribed by (\S+)", f["message"]).groups()))
+                        for f in findings if f["check"] == "unconnected"}
+    assert code == 1
+    assert (ours_dead, ours_unconnected) == (dead, unconnected)

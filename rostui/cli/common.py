@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import sys
 from typing import Any, Callable, NoReturn
 
@@ -42,6 +41,8 @@ def master_caller(caller_id: str) -> Callable[..., Any]:
 
 def print_json(value: Any) -> None:
     """Write ``value`` as indented JSON on stdout (``--json`` output)."""
+    import json
+
     print(json.dumps(value, indent=2, sort_keys=False, default=str))
 
 

@@ -59,27 +59,27 @@ def _md5(kind: str, type_name: str) -> None:
 
 
 def _package(kind: str, package: str, single_line: bool, as_json: bool) -> None:
-    from rostui.cli.common import fail, print_json
+    from rostui.cli.common import fail
     from rostui.core.tools.msgtypes import TypeLookupError, package_types
 
     try:
         names = package_types(kind, package)  # type: ignore[arg-type]
     except TypeLookupError as exc:
         fail(exc.message, exc.code)
-    if as_json:
-        print_json(names)
-    elif single_line:
-        print(" ".join(names))
-    else:
-        print("\n".join(names))
+    _print_names(names, single_line, as_json)
 
 
 def _packages(kind: str, single_line: bool, as_json: bool) -> None:
-    from rostui.cli.common import print_json
     from rostui.core.tools.msgtypes import packages_with_types
 
-    names = packages_with_types(kind)  # type: ignore[arg-type]
+    _print_names(packages_with_types(kind), single_line, as_json)  # type: ignore[arg-type]
+
+
+def _print_names(names: list[str], single_line: bool, as_json: bool) -> None:
+    """A list of names as JSON, on one line (``-s``) or one per line, as rosmsg prints them."""
     if as_json:
+        from rostui.cli.common import print_json
+
         print_json(names)
     elif single_line:
         print(" ".join(names))

@@ -433,6 +433,8 @@ class AsyncNode:
                 writer.close()
                 return
             except (ServiceException, OSError, asyncio.TimeoutError) as exc:
+                if self.is_shutdown:
+                    raise MasterUnreachableError(f"node shut down while waiting for service {resolved}") from None
                 if deadline is not None and self.loop.time() >= deadline:
                     raise TimeoutError(f"timeout exceeded while waiting for service {resolved}") from exc
             await asyncio.sleep(0.1)

@@ -500,6 +500,10 @@ def wait_for_service(service: str, timeout: float | None = None) -> None:
         engine.run(node.wait_for_service(service, timeout))
     except TimeoutError as exc:
         raise ROSException(str(exc)) from None
+    except _node.MasterError:
+        if node.is_shutdown:
+            raise ROSInterruptException("shutdown while waiting for a service") from None
+        raise
 
 
 def probe_service_header(service: str, timeout: float = 5.0) -> dict[str, str]:

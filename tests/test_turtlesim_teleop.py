@@ -1,0 +1,226 @@
+"""turtle_teleop_key in a real terminal (a detached tmux pane) against `rostui core`.
+
+Arrow keys typed with ``tmux send-keys`` must publish one Twist on
+/turtle1/cmd_vel and one turtlesim/Velocity on /turtle1/command_velocity per
+press, with ROS's default scale of 2.0; ``q`` quits and leaves the terminal
+as it found it.
+"""
+
+from __future__ import annotations
+
+import os
+import shlex
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any, Iterator
+
+import pytest
+
+from rostui.turtlesim.teleop import BANNER, KeyDecoder, key_to_command
+
+from conftest import REPO, rostui_cmd
+from live_helpers import DEADLINE, Watcher, wait_until
+
+pytestmark = pytest.mark.skipif(shutil.which("tmux") is None, reason="tmux is not installed")
+
+
+class Pane:
+    """A command running in a detached tmux session on a private tmux server."""
+
+    def __init__(self, env: dict[str, str], tmp: Path, command: list[str]) -> None:
+        self.env = env
+        self.socket = f"rostui-test-{os.getpid()}-{id(self)}"
+        self.tmp = tmp
+        self.before = tmp / "stty.before"
+        self.after = tmp / "stty.after"
+        self.status = tmp / "status"
+        # The shell traps Ctrl-C (instead of dying of it) so that it can record what follows.
+        script = (f"trap true INT; stty -g > {self.before}; {shlex.join(command)}; echo $? > {self.status}; "
+                  f"stty -g > {self.after}; sleep 600")
+        self.tmux("new-session", "-d", "-s", "teleop", "-x", "100", "-y", "30", "sh", "-c", script)
+
+    def tmux(self, *args: str) -> str:
+        """Run a tmux command on this pane's server; its stdout."""
+        result = subprocess.run(["tmux", "-L", self.socket, *args], env=self.env, cwd=REPO,
+                                capture_output=True, text=True, timeout=DEADLINE)
+        assert result.returncode == 0, f"tmux {' '.join(args)} failed: {result.stderr}"
+        return result.stdout
+
+    def screen(self) -> str:
+        """The visible text of the pane."""
+        return self.tmux("capture-pane", "-p", "-t", "teleop")
+
+    def keys(self, *keys: str) -> None:
+        """Type keys (tmux key names such as Up, Left, q)."""
+        self.tmux("send-keys", "-t", "teleop", *keys)
+
+    def terminal_mode(self) -> str:
+        """``stty -a`` of the pane's terminal, read from outside."""
+        tty = self.tmux("display-message", "-p", "-t", "teleop", "#{pane_tty}").strip()
+        return subprocess.run(["stty", "-a", "-F", tty], capture_output=True, text=True, check=True).stdout
+
+    def wait_for_text(self, text: str) -> None:
+        """Wait until ``text`` shows on the screen."""
+        wait_until(lambda: text in self.screen(), f"{text!r} on the tmux screen")
+
+    def exit_status(self) -> int:
+        """Wait for the command to end; its exit status."""
+        wait_until(lambda: self.status.exists() and self.status.read_text().strip() != "", "the teleop to exit")
+        wait_until(self.after.exists, "the terminal mode after exit")
+        return int(self.status.read_text())
+
+    def close(self) -> None:
+        """Kill the private tmux server."""
+        subprocess.run(["tmux", "-L", self.socket, "kill-server"], env=self.env, capture_output=True)
+
+
+@pytest.fixture
+def watcher(rostui_core: Any) -> Iterator[Watcher]:
+    """A test node on the live master."""
+    w = Watcher()
+    try:
+        yield w
+    finally:
+        w.close()
+
+
+def start_teleop(env: dict[str, str], tmp: Path, *args: str) -> Pane:
+    """`rostui run turtlesim turtle_teleop_key ARGS` in a tmux pane, banner shown."""
+    pane = Pane(env, tmp, rostui_cmd("run", "turtlesim", "turtle_teleop_key", *args))
+    try:
+        pane.wait_for_text(BANNER[-1])
+    except AssertionError:
+        screen = pane.screen()
+        pane.close()
+        raise AssertionError(f"the teleop did not show its banner:\n{screen}") from None
+    return pane
+
+
+def twist_values(msg: Any) -> tuple[float, float]:
+    """``(linear.x, angular.z)`` of a Twist."""
+    return msg.linear.x, msg.angular.z
+
+
+def test_key_bindings_follow_ros() -> None:
+    assert key_to_command("up") == (2.0, 0.0)
+    assert key_to_command("down") == (-2.0, 0.0)
+    assert key_to_command("left") == (0.0, 2.0)
+    assert key_to_command("right") == (0.0, -2.0)
+    assert key_to_command("up", scale_linear=0.5) == (0.5, 0.0)
+    assert key_to_command("x") is None
+
+
+def test_escape_sequences_decode_whole_and_split() -> None:
+    decoder = KeyDecoder()
+    assert decoder.feed(b"\x1b[A\x1bOD\x1b[1;5C") == ["up", "left", "right"]
+    assert decoder.feed(b"\x1b") == [] and decoder.feed(b"[") == [] and decoder.feed(b"B") == ["down"]
+    assert decoder.feed(b"\x1b[200~q") == ["q"]  # an unknown sequence is swallowed whole
+    assert decoder.feed(b"\x1b") == [] and decoder.flush() == ["escape"]
+    assert decoder.feed(b"A") == ["A"]  # a capital A is not the Up key
+
+
+def test_arrow_keys_publish_twist_and_velocity(watcher: Watcher, ros_env: dict[str, str], tmp_path: Path) -> None:
+    twists = watcher.record("/turtle1/cmd_vel", "geometry_msgs/Twist")
+    velocities = watcher.record("/turtle1/command_velocity", "turtlesim/Velocity")
+    pane = start_teleop(ros_env, tmp_path)
+    try:
+        screen = pane.screen()
+        for line in BANNER:
+            assert line in screen
+        assert "-icanon" in pane.terminal_mode().split()
+        twists.wait_connected()
+        velocities.wait_connected()
+        pane.keys("Up")
+        twists.wait_for_count(1)
+        pane.keys("Left")
+        twists.wait_for_count(2)
+        pane.keys("Down")
+        twists.wait_for_count(3)
+        pane.keys("Right")
+        twists.wait_for_count(4)
+        velocities.wait_for_count(4)
+        pane.keys("x")  # not bound: nothing is published
+        pane.keys("q")
+        assert pane.exit_status() == 0
+        assert [twist_values(m) for m in twists.messages] == [(2.0, 0.0), (0.0, 2.0), (-2.0, 0.0), (0.0, -2.0)]
+        assert [(m.linear, m.angular) for m in velocities.messages] == [
+            (2.0, 0.0), (0.0, 2.0), (-2.0, 0.0), (0.0, -2.0)]
+        assert pane.before.read_text() == pane.after.read_text()
+        assert not watcher.lookup_node("/teleop_turtle")
+    finally:
+        pane.close()
+
+
+def test_scale_param_and_remaps(watcher: Watcher, ros_env: dict[str, str], tmp_path: Path) -> None:
+    twists = watcher.record("/foo/cmd_vel", "geometry_msgs/Twist")
+    velocities = watcher.record("/foo/command_velocity", "turtlesim/Velocity")
+    pane = start_teleop(ros_env, tmp_path, "_scale_linear:=0.5", "turtle1/cmd_vel:=/foo/cmd_vel",
+                        "turtle1/command_velocity:=/foo/command_velocity")
+    try:
+        twists.wait_connected()
+        velocities.wait_connected()
+        pane.keys("Up")
+        pane.keys("Left")
+        twists.wait_for_count(2)
+        velocities.wait_for_count(2)
+        assert [twist_values(m) for m in twists.messages] == [(0.5, 0.0), (0.0, 2.0)]
+        assert [(m.linear, m.angular) for m in velocities.messages] == [(0.5, 0.0), (0.0, 2.0)]
+        assert watcher.get_param("/teleop_turtle/scale_linear") == 0.5
+        pane.keys("q")
+        assert pane.exit_status() == 0
+    finally:
+        pane.close()
+
+
+def test_ctrl_c_restores_the_terminal(watcher: Watcher, ros_env: dict[str, str], tmp_path: Path) -> None:
+    pane = start_teleop(ros_env, tmp_path)
+    try:
+        wait_until(lambda: watcher.lookup_node("/teleop_turtle"), "the teleop node to register")
+        pane.keys("C-c")
+        pane.exit_status()
+        assert pane.before.read_text() == pane.after.read_text()
+        wait_until(lambda: not watcher.lookup_node("/teleop_turtle"), "the teleop node to unregister")
+    finally:
+        pane.close()
+
+
+def test_bad_scale_is_one_line_and_exit_1(watcher: Watcher, ros_env: dict[str, str], tmp_path: Path) -> None:
+    pane = Pane(ros_env, tmp_path, rostui_cmd("run", "turtlesim", "turtle_teleop_key", "_scale_linear:=fast"))
+    try:
+        assert pane.exit_status() == 1
+        assert "parameter ~scale_linear must be a number, got 'fast'" in pane.screen()
+        assert pane.before.read_text() == pane.after.read_text()
+    finally:
+        pane.close()
+
+
+def test_stdin_not_a_terminal_is_one_line_and_exit_1(ros_env: dict[str, str]) -> None:
+    result = subprocess.run(rostui_cmd("run", "turtlesim", "turtle_teleop_key"), env=ros_env, cwd=REPO,
+                            stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=DEADLINE)
+    assert result.returncode == 1
+    assert result.stdout == ""
+    assert result.stderr.splitlines() == [
+        "turtle_teleop_key: standard input is not a terminal; run it in a terminal to read the arrow keys"]
+
+
+def test_run_teleop_with_a_topic_publishes_only_twist_there(watcher: Watcher, ros_env: dict[str, str],
+                                                            tmp_path: Path) -> None:
+    script = "import sys; from rostui.turtlesim.teleop import run_teleop; sys.exit(run_teleop([], topic='/foo/cmd_vel'))"
+    twists = watcher.record("/foo/cmd_vel", "geometry_msgs/Twist")
+    pane = Pane(ros_env, tmp_path, [sys.executable, "-c", script])
+    try:
+        pane.wait_for_text(BANNER[-1])
+        twists.wait_connected()
+        pane.keys("Down")
+        twists.wait_for_count(1)
+        assert twist_values(twists.messages[0]) == (-2.0, 0.0)
+        wait_until(lambda: watcher.lookup_node("/teleop_turtle"), "the teleop node")
+        publications = watcher.engine.run(watcher.node.master_call("getSystemState"))[0]
+        published = {topic for topic, nodes in publications if "/teleop_turtle" in nodes}
+        assert published == {"/foo/cmd_vel", "/rosout"}
+        pane.keys("q")
+        assert pane.exit_status() == 0
+    finally:
+        pane.close()

@@ -10,7 +10,7 @@ from __future__ import annotations
 import typer
 
 from rostui.cli import (
-    clean_cmd, msg_cmd, node_cmd, param_cmd, pkg_cmd, run_cmd, service_cmd, topic_cmd, wtf_cmd,
+    clean_cmd, msg_cmd, node_cmd, param_cmd, pkg_cmd, run_cmd, service_cmd, topic_cmd, turtlesim_cmd, wtf_cmd,
 )
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
@@ -39,7 +39,8 @@ def core_command(
     raise typer.Exit(run_core(port))
 
 
-for _module in (run_cmd, node_cmd, topic_cmd, msg_cmd, service_cmd, param_cmd, pkg_cmd, wtf_cmd, clean_cmd):
+for _module in (run_cmd, node_cmd, topic_cmd, msg_cmd, service_cmd, param_cmd, pkg_cmd, wtf_cmd, clean_cmd,
+                turtlesim_cmd):
     _module.register(app)
 
 

@@ -1,0 +1,321 @@
+"""TurtlesimApp: the turtlesim node, its renderer and arrow-key teleop in one terminal app.
+
+On start the app makes sure a master answers (starting an embedded one when
+none does and ROS_MASTER_URI names this machine), then runs two nodes on
+Textual's event loop, as the book's two terminals would: ``/turtlesim``
+(:class:`~rostui.turtlesim.node.TurtlesimNode`) and ``/teleop_turtle``, which
+publishes each arrow key as ``geometry_msgs/Twist`` on ``<turtle>/cmd_vel``
+and ``turtlesim/Velocity`` on the book's ``<turtle>/command_velocity``.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import random
+import signal
+import sys
+from dataclasses import dataclass
+from typing import Sequence
+
+from textual import events
+from textual.app import App, ComposeResult
+from textual.binding import Binding
+from textual.widgets import Static
+
+from rostui.core import names
+from rostui.core.master.embedded import EmbeddedMaster, MasterUnavailableError, ensure_master
+from rostui.core.msg import get_message_class, get_service_class
+from rostui.core.network import master_uri_from_env
+from rostui.core.node.node import AsyncNode, Publisher
+from rostui.turtlesim.node import TurtlesimNode
+from rostui.turtlesim.render import TurtleView
+from rostui.turtlesim.teleop import NODE_NAME as TELEOP_NODE_NAME
+from rostui.turtlesim.teleop import key_to_command
+from rostui.turtlesim.world import WORLD_SIZE
+
+#: Status line refreshes per second (the pose text changes on every update while a turtle moves).
+STATUS_RATE = 10.0
+
+#: ROS arguments the teleop node shares with the turtlesim node (not its name, remaps or params).
+_SHARED_SPECIALS = ("__ns", "__master", "__ip", "__hostname")
+
+#: Key help: the first part ends the pose line, the second the master line.
+TELEOP_KEYS = ("↑↓←→ drive  Tab next  q quit", "s spawn  c clear  r reset")
+VIEW_KEYS = ("Tab next  q quit", "")
+
+
+@dataclass(frozen=True)
+class StatusInfo:
+    """What the status line shows."""
+
+    turtle: str
+    x: float
+    y: float
+    theta: float
+    rate: float
+    master_uri: str
+    embedded: bool
+    teleop: bool
+    state: str = "running"
+
+    def lines(self) -> str:
+        """Two lines: pose, rate and the main keys; the master and the other keys."""
+        keys = TELEOP_KEYS if self.teleop else VIEW_KEYS
+        master = f"embedded master {self.master_uri}" if self.embedded else f"master {self.master_uri}"
+        if self.state != "running":
+            return f"{self.state}…\n{master}"
+        pose = f"{self.turtle} x {self.x:.2f} y {self.y:.2f} θ {self.theta:.2f}" if self.turtle else "no turtle"
+        first = f"{pose} │ {self.rate:4.1f} Hz │ {keys[0]}"
+        second = f"{master} │ {keys[1]}" if keys[1] else master
+        return f"{first}\n{second}"
+
+
+class StatusLine(Static):
+    """Two lines under the world: the selected turtle's pose, update rate, master URI; key help."""
+
+    def show(self, info: StatusInfo) -> None:
+        """Display ``info`` (repaints only when the text changed)."""
+        text = info.lines()
+        if text != getattr(self, "_shown", None):
+            self._shown = text
+            self.update(text)
+
+
+class TurtlesimApp(App[int]):
+    """turtlesim in the terminal: the simulator node, its view and (with ``teleop``) arrow-key driving.
+
+    ``argv`` holds ROS arguments for the turtlesim node (``__name:=``,
+    ``__ns:=``, remaps, ``_param:=``).  ``started`` is set once the nodes run.
+    """
+
+    CSS_PATH = "app.tcss"
+    TITLE = "turtlesim"
+    ENABLE_COMMAND_PALETTE = False
+
+    BINDINGS = [
+        Binding("q", "quit", "quit"),
+        Binding("tab", "select_next", "next turtle", priority=True),
+        Binding("shift+tab", "select_previous", "previous turtle", priority=True),
+        Binding("s", "spawn", "spawn"),
+        Binding("c", "clear", "clear"),
+        Binding("r", "reset", "reset"),
+    ]
+
+    def __init__(self, argv: Sequence[str] = (), *, teleop: bool = True) -> None:
+        super().__init__()
+        self.argv = list(argv)
+        self.teleop = teleop
+        args = names.parse_argv(self.argv)
+        self.master_uri = master_uri_from_env(args.master)
+        self.sim = TurtlesimNode(self.argv, master_uri=self.master_uri, console=False)
+        self.embedded: EmbeddedMaster | None = None
+        self.teleop_node: AsyncNode | None = None
+        self.started = asyncio.Event()
+        self._teleop_argv = [f"{key}:={args.specials[key]}" for key in _SHARED_SPECIALS if key in args.specials]
+        self._publishers: dict[str, tuple[Publisher, Publisher]] = {}
+        self._stopping = False
+        self._selected = ""
+
+    # -- composition ---------------------------------------------------------------
+    def compose(self) -> ComposeResult:
+        """The world view above the status line."""
+        yield TurtleView(self.sim.world, id="world")
+        yield StatusLine(id="status")
+
+    def on_mount(self) -> None:
+        """Start ROS in the background, refresh the status line, stop cleanly on SIGTERM/SIGHUP."""
+        self.run_worker(self._start_ros(), name="start-ros", exclusive=True, exit_on_error=False)
+        self.set_interval(1.0 / STATUS_RATE, self.refresh_status)
+        self.refresh_status()
+        loop = asyncio.get_running_loop()
+        for sig in (signal.SIGTERM, signal.SIGHUP):
+            try:
+                loop.add_signal_handler(sig, lambda: self.call_later(self.action_quit))
+            except (NotImplementedError, RuntimeError, ValueError):
+                pass
+
+    @property
+    def view(self) -> TurtleView:
+        """The world view."""
+        return self.query_one("#world", TurtleView)
+
+    @property
+    def selected(self) -> str:
+        """Name of the turtle the arrow keys drive."""
+        return self._selected
+
+    def select(self, name: str) -> None:
+        """Make ``name`` the selected turtle."""
+        self._selected = name
+        self.view.selected = name
+        if self.teleop and self.started.is_set() and name:
+            self.run_worker(self._publishers_for(name), group="advertise")
+        self.refresh_status()
+
+    # -- ROS -------------------------------------------------------------------------
+    async def _start_ros(self) -> None:
+        try:
+            self.embedded = await ensure_master(self.master_uri)
+            await self.sim.start()
+            if self.teleop:
+                self.teleop_node = AsyncNode(TELEOP_NODE_NAME, argv=self._teleop_argv, master_uri=self.master_uri)
+                await self.teleop_node.start()
+        except MasterUnavailableError as exc:
+            await self._fail(f"ERROR: {exc}")
+            return
+        except Exception as exc:  # a node could not register: say why in one line
+            await self._fail(f"ERROR: turtlesim could not start: {exc}")
+            return
+        self.started.set()
+        self.select(next(iter(self.sim.world.turtles), ""))
+        reason = await self.sim.wait_stopped()
+        if not self._stopping:  # `rostui node kill /turtlesim`, a same-name node, or the master asked
+            await self._fail(f"turtlesim node shut down: {reason}")
+
+    async def _fail(self, message: str) -> None:
+        await self._stop_ros()
+        self.exit(1, return_code=1, message=message)
+
+    async def _stop_ros(self) -> None:
+        """Shut both nodes down (unregistering them), then the embedded master; idempotent."""
+        if self._stopping:
+            return
+        self._stopping = True
+        for stop in (
+            lambda: self.teleop_node.shutdown("turtlesim app quit") if self.teleop_node else None,
+            lambda: self.sim.stop("turtlesim app quit"),
+            lambda: self.embedded.stop() if self.embedded else None,
+        ):
+            try:
+                pending = stop()
+                if pending is not None:
+                    await asyncio.wait_for(pending, 5.0)
+            except Exception:  # keep stopping the rest; the process is ending anyway
+                pass
+
+    async def _publishers_for(self, turtle: str) -> tuple[Publisher, Publisher] | None:
+        """The (Twist, Velocity) publishers of ``turtle``, advertised on first use."""
+        pubs = self._publishers.get(turtle)
+        if pubs is None and self.teleop_node is not None and self.sim.node is not None:
+            twist = await self.teleop_node.advertise(
+                self.sim.node.resolve(f"{turtle}/cmd_vel"), get_message_class("geometry_msgs/Twist"), queue_size=1)
+            velocity = await self.teleop_node.advertise(
+                self.sim.node.resolve(f"{turtle}/command_velocity"), get_message_class("turtlesim/Velocity"),
+                queue_size=1)
+            pubs = self._publishers.setdefault(turtle, (twist, velocity))
+        return pubs
+
+    async def drive(self, turtle: str, linear: float, angular: float) -> None:
+        """Publish one teleop command to ``turtle`` on both its command topics."""
+        pubs = await self._publishers_for(turtle)
+        if pubs is None:
+            return
+        twist_pub, velocity_pub = pubs
+        for _ in range(40):  # a just-advertised topic: give the simulator a moment to connect
+            if twist_pub.get_num_connections() > 0 or self._stopping:
+                break
+            await asyncio.sleep(0.025)
+        twist = twist_pub.msg_class()
+        twist.linear.x = linear
+        twist.angular.z = angular
+        twist_pub.publish(twist)
+        velocity_pub.publish(velocity_pub.msg_class(linear=linear, angular=angular))
+
+    # -- status ------------------------------------------------------------------------
+    def status_info(self) -> StatusInfo:
+        """The values the status line shows now."""
+        turtle = self.sim.world.turtles.get(self._selected)
+        state = "running" if self.started.is_set() else "starting"
+        return StatusInfo(
+            turtle=turtle.name if turtle else "",
+            x=turtle.x if turtle else 0.0,
+            y=turtle.y if turtle else 0.0,
+            theta=turtle.theta if turtle else 0.0,
+            rate=self.sim.rate,
+            master_uri=self.embedded.uri if self.embedded else self.master_uri,
+            embedded=self.embedded is not None,
+            teleop=self.teleop,
+            state=state,
+        )
+
+    def refresh_status(self) -> None:
+        """Keep the selection valid and show the current status."""
+        turtles = self.sim.world.turtles
+        if self.started.is_set() and self._selected not in turtles and turtles:
+            self.select(next(iter(turtles)))
+            return
+        self.query_one("#status", StatusLine).show(self.status_info())
+
+    # -- keys ---------------------------------------------------------------------------
+    def on_key(self, event: events.Key) -> None:
+        """Arrow keys drive the selected turtle (teleop mode)."""
+        command = key_to_command(event.key)
+        if command is None or not self.teleop:
+            return
+        event.stop()
+        if self.started.is_set() and self._selected:
+            self.run_worker(self.drive(self._selected, *command), group="drive")
+
+    def _step_selection(self, step: int) -> None:
+        names_ = list(self.sim.world.turtles)
+        if not names_:
+            return
+        index = names_.index(self._selected) if self._selected in names_ else -step
+        self.select(names_[(index + step) % len(names_)])
+
+    def action_select_next(self) -> None:
+        """Tab: select the next turtle (spawn order)."""
+        self._step_selection(1)
+
+    def action_select_previous(self) -> None:
+        """Shift+Tab: select the previous turtle."""
+        self._step_selection(-1)
+
+    async def action_spawn(self) -> None:
+        """Spawn a turtle at a random pose and select it."""
+        if not self.started.is_set() or not self.teleop:
+            return
+        margin = 1.0
+        name = await self.sim.spawn("", random.uniform(margin, WORLD_SIZE - margin),
+                                    random.uniform(margin, WORLD_SIZE - margin), random.uniform(-3.14, 3.14))
+        self.select(name)
+
+    async def action_clear(self) -> None:
+        """Clear the trails through the node's ``clear`` service (re-reads the background params)."""
+        await self._call_empty_service("clear")
+
+    async def action_reset(self) -> None:
+        """Reset the simulator through the node's ``reset`` service."""
+        await self._call_empty_service("reset")
+
+    async def _call_empty_service(self, name: str) -> None:
+        if not self.started.is_set() or self.teleop_node is None or self.sim.node is None:
+            return
+        proxy = self.teleop_node.service_proxy(self.sim.node.resolve(name), get_service_class("std_srvs/Empty"))
+        try:
+            await proxy.call()
+        except Exception as exc:
+            self.notify(f"{name} failed: {exc}", severity="error")
+
+    async def action_quit(self) -> None:
+        """q: unregister the nodes, stop the embedded master and leave."""
+        await self._stop_ros()
+        self.exit(0)
+
+
+def run_app(argv: Sequence[str], *, teleop: bool = True) -> int:
+    """Run :class:`TurtlesimApp` in this terminal; returns the exit status.
+
+    Prints one line and returns 1 when stdin or stdout is not a terminal.
+    """
+    if not (sys.stdin.isatty() and sys.stdout.isatty()):
+        print("ERROR: turtlesim draws in a terminal: stdin and stdout must be a TTY "
+              "(use `rostui run turtlesim turtlesim_node --headless` without one)", file=sys.stderr)
+        return 1
+    try:
+        app = TurtlesimApp(argv, teleop=teleop)
+    except (names.InvalidNameError, ValueError) as exc:
+        print(f"ERROR: {exc}", file=sys.stderr)
+        return 1
+    app.run()
+    return app.return_code or 0

@@ -15,6 +15,7 @@ import random
 import signal
 import sys
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Sequence
 
 from textual import events
@@ -88,7 +89,7 @@ class TurtlesimApp(App[int]):
     ``__ns:=``, remaps, ``_param:=``).  ``started`` is set once the nodes run.
     """
 
-    CSS_PATH = "app.tcss"
+    CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "turtlesim"
     ENABLE_COMMAND_PALETTE = False
 
@@ -296,6 +297,10 @@ class TurtlesimApp(App[int]):
             await proxy.call()
         except Exception as exc:
             self.notify(f"{name} failed: {exc}", severity="error")
+
+    async def on_unmount(self) -> None:
+        """However the app ends, the nodes unregister and the embedded master stops."""
+        await self._stop_ros()
 
     async def action_quit(self) -> None:
         """q: unregister the nodes, stop the embedded master and leave."""

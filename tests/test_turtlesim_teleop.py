@@ -68,7 +68,8 @@ class Pane:
     def exit_status(self) -> int:
         """Wait for the command to end; its exit status."""
         wait_until(lambda: self.status.exists() and self.status.read_text().strip() != "", "the teleop to exit")
-        wait_until(self.after.exists, "the terminal mode after exit")
+        wait_until(lambda: self.after.exists() and self.after.read_text().endswith("\n"),
+                   "the terminal mode after exit")
         return int(self.status.read_text())
 
     def close(self) -> None:

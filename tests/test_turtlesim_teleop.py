@@ -12,7 +12,6 @@ import os
 import shlex
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 from typing import Any, Iterator
 
@@ -206,11 +205,10 @@ def test_stdin_not_a_terminal_is_one_line_and_exit_1(ros_env: dict[str, str]) ->
         "turtle_teleop_key: standard input is not a terminal; run it in a terminal to read the arrow keys"]
 
 
-def test_run_teleop_with_a_topic_publishes_only_twist_there(watcher: Watcher, ros_env: dict[str, str],
-                                                            tmp_path: Path) -> None:
-    script = "import sys; from rostui.turtlesim.teleop import run_teleop; sys.exit(run_teleop([], topic='/foo/cmd_vel'))"
+def test_rostui_teleop_topic_publishes_only_twist_there(watcher: Watcher, ros_env: dict[str, str],
+                                                        tmp_path: Path) -> None:
     twists = watcher.record("/foo/cmd_vel", "geometry_msgs/Twist")
-    pane = Pane(ros_env, tmp_path, [sys.executable, "-c", script])
+    pane = Pane(ros_env, tmp_path, rostui_cmd("teleop", "/foo/cmd_vel"))
     try:
         pane.wait_for_text(BANNER[-1])
         twists.wait_connected()

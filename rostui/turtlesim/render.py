@@ -48,12 +48,13 @@ FALLBACK_COLORS: tuple[RGB, ...] = ((255, 255, 255), (0, 0, 0), (255, 255, 0), (
 _SYSTEMS = {"256": ColorSystem.EIGHT_BIT, "standard": ColorSystem.STANDARD, "windows": ColorSystem.WINDOWS}
 
 
-def terminal_color(rgb: RGB, system: ColorSystem | None) -> Color:
-    """``rgb`` as the terminal will show it under ``system`` (None or TRUECOLOR: unchanged)."""
-    color = Color.from_rgb(*rgb)
+def terminal_color(rgb: RGB, system: ColorSystem | None) -> int | RGB:
+    """What the terminal gets for ``rgb`` under ``system``: a palette number, or the RGB itself."""
     if system is None or system == ColorSystem.TRUECOLOR:
-        return color
-    return color.downgrade(system)
+        return rgb
+    number = Color.from_rgb(*rgb).downgrade(system).number
+    assert number is not None
+    return number
 
 
 def legible(rgb: RGB, background: RGB, system: ColorSystem | None) -> RGB:

@@ -1,0 +1,200 @@
+"""`rostui turtlesim` end to end in a real terminal: tmux (screen-256color and xterm) and over `ssh -t`.
+
+A shell runs in a detached 80x24 tmux pane; the test types the command there
+with a fresh ROS_HOME and a master URI on a free port where nothing listens,
+so the app embeds its master.  It waits for the status line, sends arrow
+keys with `tmux send-keys`, reads the moved pose from the screen and from
+`rostui topic echo -n 1 /turtle1/pose`, then quits with q and checks that
+the shell prompt is back with exit status 0 and the master is gone.
+"""
+
+from __future__ import annotations
+
+import getpass
+import os
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Iterator
+
+import pytest
+
+from cli_helpers import rostui
+from conftest import REPO, free_port, master_port, need_peer, stop_process, wait_for_port
+
+DEADLINE = 30.0
+POSE = re.compile(r"turtle1 x (-?\d+\.\d+) y (-?\d+\.\d+) \S (-?\d+\.\d+)")
+EXIT_MARK = "TURTLESIM_EXIT="
+
+
+def wait_until(predicate: Callable[[], bool], what: str, timeout: float = DEADLINE) -> None:
+    """Poll ``predicate`` until it holds; fail with ``what`` when it never does."""
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        if time.monotonic() > deadline:
+            raise AssertionError(f"timed out waiting for {what}")
+        time.sleep(0.1)
+
+
+@dataclass
+class Pane:
+    """One tmux session with a plain shell, on a private tmux server."""
+
+    socket: str
+    session: str
+
+    def tmux(self, *args: str) -> str:
+        """Run a tmux command against this server; return its stdout."""
+        result = subprocess.run(["tmux", "-u", "-L", self.socket, *args], capture_output=True, text=True,
+                                timeout=DEADLINE)
+        assert result.returncode == 0, f"tmux {' '.join(args)}: {result.stderr}"
+        return result.stdout
+
+    def screen(self) -> str:
+        """The visible screen text."""
+        return self.tmux("capture-pane", "-p", "-t", self.session)
+
+    def type(self, line: str) -> None:
+        """Type a command line and Enter."""
+        self.tmux("send-keys", "-t", self.session, "-l", line)
+        self.tmux("send-keys", "-t", self.session, "Enter")
+
+    def keys(self, *keys: str) -> None:
+        """Send key names (``Up``, ``Left``, ``q``)."""
+        self.tmux("send-keys", "-t", self.session, *keys)
+
+    def pose(self) -> tuple[float, float, float] | None:
+        """turtle1's pose as the status line shows it, if it is on screen."""
+        match = POSE.search(self.screen())
+        return None if match is None else (float(match[1]), float(match[2]), float(match[3]))
+
+
+@pytest.fixture
+def pane(tmp_path: Path) -> Iterator[Pane]:
+    """A detached 80x24 tmux session running /bin/sh with a plain prompt."""
+    need_peer(shutil.which("tmux") is not None, "tmux")
+    pane = Pane(socket=f"rostui-test-{os.getpid()}-{tmp_path.name}", session="turtles")
+    subprocess.run(["tmux", "-u", "-L", pane.socket, "-f", "/dev/null", "new-session", "-d", "-s", pane.session,
+                    "-x", "80", "-y", "24", "env PS1='$ ' /bin/sh"], check=True, timeout=DEADLINE)
+    try:
+        pane.tmux("set-option", "-t", pane.session, "status", "off")
+        yield pane
+    finally:
+        subprocess.run(["tmux", "-L", pane.socket, "kill-server"], capture_output=True, timeout=DEADLINE)
+
+
+def turtlesim_command(env: dict[str, str], term: str) -> str:
+    """The shell line that starts `rostui turtlesim` with the test's ROS environment."""
+    values = {key: env[key] for key in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")}
+    values["TERM"] = term
+    assignments = " ".join(f"{k}={shlex.quote(v)}" for k, v in values.items())
+    return f"env -u COLORTERM {assignments} {shlex.quote(sys.executable)} -m rostui turtlesim"
+
+
+def drive_and_quit(pane: Pane, env: dict[str, str]) -> None:
+    """The user's session: wait for the app, drive turtle1, compare screen and topic, quit."""
+    wait_until(lambda: pane.pose() == (5.54, 5.54, 0.0), "the status line with turtle1 at the centre")
+    wait_until(lambda: "(@)" in pane.screen(), "turtle1 drawn")
+    assert "embedded master" in pane.screen()
+    for _ in range(3):
+        pane.keys("Up")
+        time.sleep(0.2)
+    wait_until(lambda: (pane.pose() or (0, 0, 0))[0] > 6.5, "turtle1 to move east on screen")
+    pane.keys("Left")
+    wait_until(lambda: (pane.pose() or (0, 0, 0))[2] > 0.5, "turtle1 to turn left on screen")
+    settled: list[tuple[float, float, float] | None] = [None]
+
+    def still() -> bool:
+        before = pane.pose()
+        time.sleep(0.5)
+        settled[0] = pane.pose()
+        return before is not None and before == settled[0]
+
+    wait_until(still, "turtle1 to stop (commands expire after 1 s)")
+    echo = rostui(["topic", "echo", "-n", "1", "/turtle1/pose"], env)
+    assert echo.returncode == 0, echo.stderr
+    fields = dict(line.split(": ", 1) for line in echo.stdout.splitlines() if ": " in line)
+    x, y, theta = settled[0]
+    assert abs(float(fields["x"]) - x) < 0.006
+    assert abs(float(fields["y"]) - y) < 0.006
+    assert abs(float(fields["theta"]) - theta) < 0.006
+    pane.keys("q")
+    wait_until(lambda: f"{EXIT_MARK}0" in pane.screen(), "the shell to report exit status 0 after q")
+    screen = pane.screen()
+    assert POSE.search(screen) is None, "the app's screen was left behind"
+    assert screen.rstrip().endswith("$"), "no shell prompt after the app quit"
+
+
+@pytest.mark.parametrize("term", ["screen-256color", "xterm"])
+def test_turtlesim_in_tmux(pane: Pane, ros_env: dict[str, str], term: str) -> None:
+    """One command on a fresh ROS_HOME: embedded master, arrow keys drive, screen and topic agree, q quits."""
+    port = master_port(ros_env)
+    pane.type(f"{turtlesim_command(ros_env, term)}; echo {EXIT_MARK}$?")
+    drive_and_quit(pane, ros_env)
+    result = rostui(["node", "list"], ros_env)
+    assert result.returncode != 0 and "Unable to communicate with master" in result.stderr, \
+        f"master on port {port} still answers after q"
+
+
+@dataclass
+class SshServer:
+    """A private sshd on 127.0.0.1 that accepts one key for the current user."""
+
+    port: int
+    key: Path
+
+
+@pytest.fixture
+def sshd(tmp_path: Path) -> Iterator[SshServer]:
+    """`/usr/sbin/sshd -D` on a free port with a temporary host key and authorized key."""
+    need_peer(Path("/usr/sbin/sshd").exists() and shutil.which("ssh") is not None
+              and shutil.which("ssh-keygen") is not None, "sshd and ssh (openssh-server, openssh-client)")
+    root = tmp_path / "sshd"
+    root.mkdir()
+    for name in ("host_key", "client_key"):
+        subprocess.run(["ssh-keygen", "-q", "-t", "ed25519", "-N", "", "-f", str(root / name)], check=True,
+                       timeout=DEADLINE)
+    (root / "authorized_keys").write_text((root / "client_key.pub").read_text())
+    if os.geteuid() == 0:
+        Path("/run/sshd").mkdir(mode=0o755, exist_ok=True)  # sshd's privilege-separation directory
+    port = free_port()
+    config = root / "sshd_config"
+    config.write_text("\n".join([
+        f"Port {port}",
+        "ListenAddress 127.0.0.1",
+        f"HostKey {root / 'host_key'}",
+        f"AuthorizedKeysFile {root / 'authorized_keys'}",
+        f"PidFile {root / 'sshd.pid'}",
+        "PubkeyAuthentication yes",
+        "PasswordAuthentication no",
+        "KbdInteractiveAuthentication no",
+        "PermitRootLogin prohibit-password",
+        "StrictModes no",
+        "UsePAM no",
+        "",
+    ]))
+    log = open(root / "sshd.log", "w")
+    proc = subprocess.Popen(["/usr/sbin/sshd", "-D", "-e", "-f", str(config)], stdout=log, stderr=subprocess.STDOUT)
+    try:
+        wait_for_port(port, proc=proc)
+        yield SshServer(port, root / "client_key")
+    finally:
+        stop_process(proc)
+        log.close()
+
+
+def test_turtlesim_over_ssh(pane: Pane, sshd: SshServer, ros_env: dict[str, str]) -> None:
+    """`ssh -t` to this machine and run `rostui turtlesim` there: same keys, same screen, same pose."""
+    remote = f"cd {shlex.quote(str(REPO))} && {turtlesim_command(ros_env, 'xterm-256color')}"
+    ssh = [
+        "ssh", "-t", "-F", "/dev/null", "-p", str(sshd.port), "-i", str(sshd.key),
+        "-o", "StrictHostKeyChecking=no", "-o", "UserKnownHostsFile=/dev/null", "-o", "BatchMode=yes",
+        "-o", "LogLevel=ERROR", f"{getpass.getuser()}@127.0.0.1", remote,
+    ]
+    pane.type(f"{shlex.join(ssh)}; echo {EXIT_MARK}$?")
+    drive_and_quit(pane, ros_env)

@@ -26,6 +26,7 @@ import sys
 from dataclasses import dataclass
 from typing import Any, Callable, Sequence
 
+from rostui.core.log import NodeLog
 from rostui.core.msg import get_message_class, get_service_class
 from rostui.core.node.node import AsyncNode, Publisher, Subscriber
 from rostui.core.node.services import ServiceException, ServiceServer
@@ -97,7 +98,7 @@ class TurtlesimNode:
 
     # -- lifecycle ---------------------------------------------------------------------
     @property
-    def log(self):  # noqa: ANN201 - the node's NodeLog
+    def log(self) -> NodeLog:
         """The node's logger (console, /rosout and log file)."""
         return self.node.log
 
@@ -142,6 +143,8 @@ class TurtlesimNode:
         if self._watch is not None and self._watch is not asyncio.current_task():
             self._watch.cancel()
         self._endpoints.clear()
+        if self.node.loop is None:  # never started: nothing is registered or open
+            return
         await self.node.shutdown(reason)
 
     async def wait_stopped(self) -> str:

@@ -12,6 +12,7 @@ import re
 import subprocess
 import threading
 import time
+import xmlrpc.client
 from pathlib import Path
 from typing import Any, Callable, Sequence
 
@@ -109,6 +110,15 @@ class Watcher:
         except Exception:
             return False
         return True
+
+    def connected_subscribers(self, node: str, topic: str) -> set[str]:
+        """The subscribers ``node``'s publisher on ``topic`` is connected to (its slave API's getBusInfo)."""
+        try:
+            uri = self.engine.run(self.node.master_call("lookupNode", node), timeout=DEADLINE)
+            code, _, info = xmlrpc.client.ServerProxy(uri).getBusInfo("/test_watcher")
+        except Exception:
+            return set()
+        return {row[1] for row in info if row[2] == "o" and row[4] == topic} if code == 1 else set()
 
     def close(self) -> None:
         """Unregister the node and stop its engine."""

@@ -20,7 +20,7 @@ import pytest
 from rostui.turtlesim.teleop import BANNER, KeyDecoder, key_to_command
 
 from conftest import REPO, rostui_cmd
-from live_helpers import DEADLINE, Watcher, wait_until
+from live_helpers import DEADLINE, Program, Watcher, start_headless_sim, stop_all, wait_until
 
 pytestmark = pytest.mark.skipif(shutil.which("tmux") is None, reason="tmux is not installed")
 
@@ -172,6 +172,37 @@ def test_scale_param_and_remaps(watcher: Watcher, ros_env: dict[str, str], tmp_p
         assert pane.exit_status() == 0
     finally:
         pane.close()
+
+
+def test_book_reverse_remap_drives_the_turtle_backwards(watcher: Watcher, ros_env: dict[str, str],
+                                                        tmp_path: Path) -> None:
+    """The book's reverse.launch by hand: Up through reverse_cmd_vel moves the turtle backwards.
+
+    turtlesim also listens on cmd_vel, so the teleop must not send its Twist
+    around the translator that listens on the book's topic.
+    """
+    sim = start_headless_sim(ros_env, tmp_path, "turtle1/command_velocity:=turtle1/command_velocity_reversed")
+    reverse = Program(ros_env, tmp_path, "agitr", "reverse_cmd_vel")
+    items: list[Program | Watcher] = [sim, reverse]
+    twists = watcher.record("/turtle1/cmd_vel", "geometry_msgs/Twist")
+    reversed_commands = watcher.record("/turtle1/command_velocity_reversed", "turtlesim/Velocity")
+    poses = watcher.record("/turtle1/pose", "turtlesim/Pose")
+    pane = start_teleop(ros_env, tmp_path)
+    try:
+        start = poses.wait_for_count(1)[-1]
+        wait_until(lambda: "/reverse_velocity" in watcher.connected_subscribers(
+            "/teleop_turtle", "/turtle1/command_velocity") and "/turtlesim" in watcher.connected_subscribers(
+            "/teleop_turtle", "/turtle1/cmd_vel"), "the book's graph to connect")
+        pane.keys("Up")
+        reversed_commands.wait_for(lambda m: m.linear == -2.0, "a reversed command")
+        poses.wait_for(lambda p: p.x < start.x - 0.5, "the turtle to back up")
+        assert all(p.x <= start.x + 1e-6 for p in poses.messages), "the turtle went forward"
+        assert twists.messages == [], "the teleop sent a Twist around reverse_cmd_vel"
+        pane.keys("q")
+        assert pane.exit_status() == 0
+    finally:
+        pane.close()
+        stop_all(items)
 
 
 def test_ctrl_c_restores_the_terminal(watcher: Watcher, ros_env: dict[str, str], tmp_path: Path) -> None:

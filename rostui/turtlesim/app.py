@@ -31,7 +31,7 @@ from rostui.core.node.node import AsyncNode, Publisher
 from rostui.turtlesim.node import TurtlesimNode
 from rostui.turtlesim.render import TurtleView
 from rostui.turtlesim.teleop import NODE_NAME as TELEOP_NODE_NAME
-from rostui.turtlesim.teleop import key_to_command
+from rostui.turtlesim.teleop import key_to_command, twist_bypasses_translator
 from rostui.turtlesim.world import WORLD_SIZE
 
 #: Status line refreshes per second (the pose text changes on every update while a turtle moves).
@@ -219,7 +219,8 @@ class TurtlesimApp(App[int]):
         twist = twist_pub.msg_class()
         twist.linear.x = linear
         twist.angular.z = angular
-        twist_pub.publish(twist)
+        if not twist_bypasses_translator(twist_pub.subscriber_names(), velocity_pub.subscriber_names()):
+            twist_pub.publish(twist)
         velocity_pub.publish(velocity_pub.msg_class(linear=linear, angular=angular))
 
     # -- status ------------------------------------------------------------------------

@@ -11,6 +11,12 @@ Two faces share the same key bindings and scales:
   ``turtle1/cmd_vel`` (today's turtlesim) and ``turtlesim/Velocity`` on
   ``turtle1/command_velocity`` (the book's topic); both names can be remapped.
 
+Sending the Twist too would defeat the book's remapping examples: in
+``reverse.launch`` a translator node listens on the book's topic while the
+simulator also listens on ``cmd_vel``, so an unreversed Twist would reach the
+turtle beside the reversed command.  :func:`twist_bypasses_translator` spots
+that case, and the Twist is then left out.
+
 Scales come from the parameters ``~scale_linear`` and ``~scale_angular``
 (``_scale_linear:=0.5`` on the command line); like ROS's teleop the node also
 honours the relative names ``scale_linear`` / ``scale_angular``.  Both default
@@ -27,7 +33,7 @@ from typing import Any, Callable, Iterator, Sequence
 
 __all__ = [
     "DEFAULT_SCALE_ANGULAR", "DEFAULT_SCALE_LINEAR", "BANNER", "KeyDecoder", "TeleopError",
-    "key_to_command", "read_scales", "run_teleop", "main",
+    "key_to_command", "read_scales", "run_teleop", "twist_bypasses_translator", "main",
 ]
 
 DEFAULT_SCALE_LINEAR = 2.0
@@ -74,6 +80,17 @@ def key_to_command(key: str, scale_linear: float = DEFAULT_SCALE_LINEAR,
     if direction is None:
         return None
     return direction[0] * scale_linear, direction[1] * scale_angular
+
+
+def twist_bypasses_translator(twist_subscribers: set[str], velocity_subscribers: set[str]) -> bool:
+    """True when a node listening on the book's velocity topic does not also listen on ``cmd_vel``.
+
+    That node (reverse_cmd_vel, a recorder, a relay) sits between the teleop
+    and a simulator; a Twist sent beside the Velocity would reach the
+    simulator around it.  A turtlesim that listens on both topics is not such
+    a node: it gets the same command twice, which changes nothing.
+    """
+    return bool(velocity_subscribers - twist_subscribers)
 
 
 def read_scales(get_param: Callable[[str, Any], Any]) -> tuple[float, float]:
@@ -248,9 +265,12 @@ def run_teleop(argv: Sequence[str], *, topic: str | None = None) -> int:
             twist = Twist()
             twist.linear.x = linear
             twist.angular.z = angular
-            twist_pub.publish(twist)
-            if velocity_pub is not None:
-                velocity_pub.publish(Velocity(linear=linear, angular=angular))
+            if velocity_pub is None:
+                twist_pub.publish(twist)
+                continue
+            if not twist_bypasses_translator(twist_pub.subscriber_names(), velocity_pub.subscriber_names()):
+                twist_pub.publish(twist)
+            velocity_pub.publish(Velocity(linear=linear, angular=angular))
     ros.signal_shutdown("teleop finished")
     return 0
 

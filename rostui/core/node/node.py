@@ -70,6 +70,10 @@ class Publisher:
         """How many subscribers are connected."""
         return self.impl.num_subscribers
 
+    def subscriber_names(self) -> set[str]:
+        """Node names of the connected subscribers."""
+        return self.impl.subscriber_names()
+
     async def unregister(self) -> None:
         """Stop publishing; the last handle unregisters the topic."""
         if not self._closed:

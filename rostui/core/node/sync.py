@@ -373,6 +373,10 @@ class Publisher:
         """Connected subscribers."""
         return self._impl.get_num_connections()
 
+    def subscriber_names(self) -> set[str]:
+        """Node names of the connected subscribers."""
+        return self._impl.subscriber_names()
+
     def unregister(self) -> None:
         """Stop publishing."""
         _unregister(self._engine, self._impl)

@@ -233,6 +233,10 @@ class Publication:
         """Connected subscribers, remote and in-process."""
         return len(self.links) + len(self.local)
 
+    def subscriber_names(self) -> set[str]:
+        """Node names (callerids) of the connected subscribers, remote and in-process."""
+        return {link.callerid for link in self.links} | {sub.node.name for sub in self.local}
+
     # -- publishing -----------------------------------------------------------
     def publish(self, msg: Any) -> None:
         """Serialise once and send to every subscriber (any thread).

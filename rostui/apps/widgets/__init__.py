@@ -1,0 +1,1 @@
+"""Widgets shared by two or more rostui apps."""

@@ -42,6 +42,7 @@ def core_command(
 for _module in (run_cmd, node_cmd, topic_cmd, msg_cmd, service_cmd, param_cmd, pkg_cmd, wtf_cmd, clean_cmd,
                 turtlesim_cmd):
     _module.register(app)
+__import__("rostui.cli.console_cmd", fromlist=["register"]).register(app)
 
 
 def main() -> None:

@@ -165,6 +165,19 @@ def test_tab_selects_a_spawned_turtle_and_keys_drive_it(rostui_core: Any) -> Non
     run_app(TurtlesimApp(), scenario)
 
 
+def test_hitting_the_wall_shows_the_warning(rostui_core: Any) -> None:
+    """Driving into the east wall: the status line shows turtlesim's WARN, as its terminal would."""
+    async def scenario(pilot: Pilot, app: TurtlesimApp) -> None:
+        world = app.sim.world
+        world.teleport_absolute("turtle1", 10.8, 5.5, 0.0)
+        turtle = world.turtles["turtle1"]
+        await pilot.press("up")
+        await until(lambda: "[WARN] Oh no! I hit the wall!" in status_text(app), "the wall WARN in the status line")
+        assert turtle.x <= 11.09
+
+    run_app(TurtlesimApp(), scenario)
+
+
 def test_ros_args_reach_the_turtlesim_node(rostui_core: Any) -> None:
     """`__ns:=sim1` puts both nodes and the turtle's topics in /sim1; the keys still drive turtle1."""
     async def scenario(pilot: Pilot, app: TurtlesimApp) -> None:

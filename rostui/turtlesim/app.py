@@ -14,6 +14,7 @@ import asyncio
 import random
 import signal
 import sys
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
@@ -24,6 +25,7 @@ from textual.binding import Binding
 from textual.widgets import Static
 
 from rostui.core import names
+from rostui.core.log import Level, LogRecord
 from rostui.core.master.embedded import EmbeddedMaster, MasterUnavailableError, ensure_master
 from rostui.core.msg import get_message_class, get_service_class
 from rostui.core.network import master_uri_from_env
@@ -36,6 +38,9 @@ from rostui.turtlesim.world import WORLD_SIZE
 
 #: Status line refreshes per second (the pose text changes on every update while a turtle moves).
 STATUS_RATE = 10.0
+
+#: Seconds a WARN or ERROR of the turtlesim node stays in the status line.
+NOTICE_SECONDS = 3.0
 
 #: ROS arguments the teleop node shares with the turtlesim node (not its name, remaps or params).
 _SHARED_SPECIALS = ("__ns", "__master", "__ip", "__hostname")
@@ -58,9 +63,10 @@ class StatusInfo:
     embedded: bool
     teleop: bool
     state: str = "running"
+    notice: str = ""
 
     def lines(self) -> str:
-        """Two lines: pose, rate and the main keys; the master and the other keys."""
+        """Two lines: pose, rate and the main keys; the master and the other keys (or a fresh WARN)."""
         keys = TELEOP_KEYS if self.teleop else VIEW_KEYS
         master = f"embedded master {self.master_uri}" if self.embedded else f"master {self.master_uri}"
         if self.state != "running":
@@ -68,6 +74,8 @@ class StatusInfo:
         pose = f"{self.turtle} x {self.x:.2f} y {self.y:.2f} θ {self.theta:.2f}" if self.turtle else "no turtle"
         first = f"{pose} │ {self.rate:4.1f} Hz │ {keys[0]}"
         second = f"{master} │ {keys[1]}" if keys[1] else master
+        if self.notice:
+            second = self.notice
         return f"{first}\n{second}"
 
 
@@ -116,12 +124,14 @@ class TurtlesimApp(App[int]):
         self._publishers: dict[str, tuple[Publisher, Publisher]] = {}
         self._stopping = False
         self._selected = ""
+        self._notice: tuple[float, str] = (0.0, "")
+        self.sim.log.add_sink(self._on_log)
 
     # -- composition ---------------------------------------------------------------
     def compose(self) -> ComposeResult:
         """The world view above the status line."""
         yield TurtleView(self.sim.world, id="world")
-        yield StatusLine(id="status")
+        yield StatusLine(id="status", markup=False)
 
     def on_mount(self) -> None:
         """Start ROS in the background, refresh the status line, stop cleanly on SIGTERM/SIGHUP."""
@@ -223,11 +233,17 @@ class TurtlesimApp(App[int]):
             twist_pub.publish(twist)
         velocity_pub.publish(velocity_pub.msg_class(linear=linear, angular=angular))
 
+    def _on_log(self, record: LogRecord) -> None:
+        """Keep the turtlesim node's last WARN/ERROR (e.g. the wall) for the status line."""
+        if record.level >= Level.WARN:
+            self._notice = (time.monotonic(), f"[{record.level.name}] {record.message}")
+
     # -- status ------------------------------------------------------------------------
     def status_info(self) -> StatusInfo:
         """The values the status line shows now."""
         turtle = self.sim.world.turtles.get(self._selected)
         state = "running" if self.started.is_set() else "starting"
+        stamp, notice = self._notice
         return StatusInfo(
             turtle=turtle.name if turtle else "",
             x=turtle.x if turtle else 0.0,
@@ -238,6 +254,7 @@ class TurtlesimApp(App[int]):
             embedded=self.embedded is not None,
             teleop=self.teleop,
             state=state,
+            notice=notice if time.monotonic() - stamp < NOTICE_SECONDS else "",
         )
 
     def refresh_status(self) -> None:

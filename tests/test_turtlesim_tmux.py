@@ -1,4 +1,4 @@
-"""`rostui turtlesim` end to end in a real terminal: tmux (screen-256color and xterm) and over `ssh -t`.
+"""`rostui turtlesim` end to end in real terminals: tmux (screen-256color, xterm), `ssh -t`, raw ptys.
 
 A shell runs in a detached 80x24 tmux pane; the test types the command there
 with a fresh ROS_HOME and a master URI on a free port where nothing listens,
@@ -10,13 +10,18 @@ the shell prompt is back with exit status 0 and the master is gone.
 
 from __future__ import annotations
 
+import fcntl
 import getpass
 import os
+import pty
 import re
+import select
 import shlex
 import shutil
+import struct
 import subprocess
 import sys
+import termios
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -139,6 +144,53 @@ def test_turtlesim_in_tmux(pane: Pane, ros_env: dict[str, str], term: str) -> No
     result = rostui(["node", "list"], ros_env)
     assert result.returncode != 0 and "Unable to communicate with master" in result.stderr, \
         f"master on port {port} still answers after q"
+
+
+def sgr_codes(output: bytes) -> list[set[str]]:
+    """The parameter sets of every SGR (colour/attribute) escape sequence in ``output``."""
+    return [set(m.decode().split(";")) for m in re.findall(rb"\x1b\[([0-9;]*)m", output)]
+
+
+@pytest.mark.parametrize("term,colorterm,forbidden", [
+    ("xterm", None, ("38;2;", "48;2;", "38;5;", "48;5;")),
+    ("xterm-256color", None, ("38;2;", "48;2;")),
+])
+def test_colour_codes_follow_the_terminal(ros_env: dict[str, str], term: str, colorterm: str | None,
+                                          forbidden: tuple[str, ...]) -> None:
+    """Under TERM=xterm only 16-colour codes reach the terminal: the world in bright blue (104) and
+    turtle1 in bold bright yellow on it (1;93;104); with 256 colours no truecolor codes."""
+    env = dict(ros_env, TERM=term)
+    env.pop("COLORTERM", None)
+    if colorterm:
+        env["COLORTERM"] = colorterm
+    master, slave = pty.openpty()
+    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 80, 0, 0))
+    proc = subprocess.Popen([sys.executable, "-m", "rostui", "turtlesim"], env=env, cwd=REPO, stdin=slave,
+                            stdout=slave, stderr=slave, start_new_session=True)
+    os.close(slave)
+    output = bytearray()
+    try:
+        deadline = time.monotonic() + DEADLINE
+        while b"turtle1 x 5.54" not in output or b"(@)" not in output:
+            ready, _, _ = select.select([master], [], [], 0.2)
+            if ready:
+                output += os.read(master, 65536)
+            assert time.monotonic() < deadline, "the app did not draw turtle1 and its status line"
+        os.write(master, b"q")
+        proc.wait(timeout=DEADLINE)
+        assert proc.returncode == 0
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+        os.close(master)
+    text = bytes(output).decode(errors="replace")
+    for code in forbidden:
+        assert code not in text
+    if term == "xterm":
+        codes = sgr_codes(bytes(output))
+        assert any({"104"} <= c for c in codes), "no bright blue world"
+        assert any({"1", "93", "104"} <= c for c in codes), "no bold bright yellow turtle on the world"
 
 
 @dataclass

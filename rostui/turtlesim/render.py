@@ -176,10 +176,9 @@ class TurtleView(Widget):
                 or self._layout.height != self.size.height:
             self._rebuild()
             return True
-        if world.generation == self._seen_generation:
+        if world.generation == self._seen_generation or self._raster is None:
             return False
         self._seen_generation = world.generation
-        assert self._raster is not None
         layout = self._layout
         dirty: set[int] = set()
         grid_rows = self._raster.sync()

@@ -1,0 +1,199 @@
+"""Logger levels of running nodes, read and set as rqt_logger_level does (no UI here).
+
+Every roscpp, rospy and rostui node serves ``<node>/get_loggers`` and
+``<node>/set_logger_level`` (roscpp/GetLoggers, roscpp/SetLoggerLevel).
+:class:`LoggerLevels` finds those nodes in the master's service list and calls
+the services from an unannounced node on the caller's event loop, with a
+timeout on every call.  Each failure becomes one :class:`LoggerToolError`
+line naming what went wrong: the master, the node or the service.
+
+Nodes spell levels differently: roscpp and rostui answer ``info``, rospy
+``INFO``.  Levels are shown upper case; requests send upper case names,
+which all three accept (their ``set_logger_level`` is case-insensitive).
+"""
+
+from __future__ import annotations
+
+import asyncio
+from dataclasses import dataclass
+from typing import Any, Iterable, Sequence
+
+from rostui.core.log import Level
+
+__all__ = [
+    "LEVEL_NAMES",
+    "GET_LOGGERS",
+    "SET_LOGGER_LEVEL",
+    "DEFAULT_TIMEOUT",
+    "LoggerNode",
+    "LoggerLevel",
+    "LoggerToolError",
+    "MasterGoneError",
+    "NodeGoneError",
+    "ServiceFailedError",
+    "ServiceTimeoutError",
+    "display_level",
+    "request_level",
+    "logger_nodes",
+    "LoggerLevels",
+]
+
+#: The levels a logger can be set to, lowest first.
+LEVEL_NAMES: tuple[str, ...] = tuple(level.name for level in Level)
+
+#: The services every node offers under its own name.
+GET_LOGGERS = "get_loggers"
+SET_LOGGER_LEVEL = "set_logger_level"
+
+#: Seconds a master query or a service call may take before it counts as failed.
+DEFAULT_TIMEOUT = 3.0
+
+
+@dataclass(frozen=True)
+class LoggerNode:
+    """A node that serves ``get_loggers``; ``can_set`` when it also serves ``set_logger_level``."""
+
+    name: str
+    can_set: bool = True
+
+
+@dataclass(frozen=True)
+class LoggerLevel:
+    """One logger of a node: its name, its level as shown (``DEBUG``...) and as the node spelled it."""
+
+    name: str
+    level: str
+    raw: str
+
+
+class LoggerToolError(Exception):
+    """A one-line, user-facing reason a logger query or change failed."""
+
+
+class MasterGoneError(LoggerToolError):
+    """The master does not answer (not running, or went away)."""
+
+
+class NodeGoneError(LoggerToolError):
+    """The node no longer serves its logger services or does not accept connections."""
+
+
+class ServiceFailedError(LoggerToolError):
+    """The node answered the call with an error, or dropped the connection."""
+
+
+class ServiceTimeoutError(LoggerToolError):
+    """The node did not answer within the timeout."""
+
+
+def display_level(text: str) -> str:
+    """A level as shown to the user: ``DEBUG``...``FATAL``; anything else upper-cased as sent."""
+    try:
+        return Level.parse(text).name
+    except ValueError:
+        return str(text).strip().upper()
+
+
+def request_level(level: str | Level) -> str:
+    """The level name to send in a SetLoggerLevel request (``DEBUG``...); ValueError if unknown."""
+    return Level.parse(level).name
+
+
+def logger_nodes(services: Iterable[Sequence[Any]]) -> list[LoggerNode]:
+    """Nodes serving ``<node>/get_loggers``, sorted, from getSystemState's ``[service, providers]`` list."""
+    names = {str(entry[0]) for entry in services}
+    suffix = "/" + GET_LOGGERS
+    found = []
+    for service in names:
+        if service.endswith(suffix) and len(service) > len(suffix):
+            node = service[: -len(suffix)]
+            found.append(LoggerNode(node, can_set=f"{node}/{SET_LOGGER_LEVEL}" in names))
+    return sorted(found, key=lambda n: n.name)
+
+
+class LoggerLevels:
+    """Lists logger nodes and reads and sets their levels, on the running event loop.
+
+    The node used for the calls registers nothing with the master, so it does
+    not appear in node lists.  Call :meth:`start` before use and :meth:`close`
+    when done.
+    """
+
+    def __init__(self, master_uri: str | None = None, *, timeout: float = DEFAULT_TIMEOUT) -> None:
+        from rostui.core.node import AsyncNode
+
+        self.timeout = timeout
+        self._node = AsyncNode("rostui_loggers", anonymous=True, argv=[], master_uri=master_uri)
+        self._started = False
+
+    @property
+    def master_uri(self) -> str:
+        """The master this client asks."""
+        return self._node.master_uri
+
+    async def start(self) -> "LoggerLevels":
+        """Open the node's servers (no master needed yet)."""
+        if not self._started:
+            await self._node.start(announce=False)
+            self._started = True
+        return self
+
+    async def close(self) -> None:
+        """Shut the calling node down."""
+        if self._started:
+            await self._node.shutdown("rostui loggers done")
+
+    async def nodes(self) -> list[LoggerNode]:
+        """Nodes that serve ``get_loggers`` now, sorted by name."""
+        from rostui.core.node.node import MasterError
+
+        try:
+            _, _, services = await asyncio.wait_for(self._node.master_call("getSystemState"), self.timeout)
+        except asyncio.TimeoutError:
+            raise MasterGoneError(f"master at {self.master_uri} did not answer within {self.timeout:g} s") from None
+        except MasterError:
+            raise MasterGoneError(f"master at {self.master_uri} is not answering") from None
+        return logger_nodes(services)
+
+    async def loggers(self, node: str) -> list[LoggerLevel]:
+        """The loggers of ``node`` with their levels, sorted by name."""
+        response = await self._call(node, GET_LOGGERS, "roscpp/GetLoggers")
+        items = [LoggerLevel(item.name, display_level(item.level), item.level) for item in response.loggers]
+        return sorted(items, key=lambda item: item.name)
+
+    async def set_level(self, node: str, logger: str, level: str | Level) -> str:
+        """Set ``logger`` of ``node`` to ``level``; returns the level name sent.
+
+        ValueError (before any call) for a level that is not DEBUG, INFO, WARN, ERROR or FATAL.
+        """
+        name = request_level(level)
+        await self._call(node, SET_LOGGER_LEVEL, "roscpp/SetLoggerLevel", logger=logger, level=name)
+        return name
+
+    async def _call(self, node: str, service: str, type_name: str, **fields: Any) -> Any:
+        from rostui.core.msg import get_service_class
+        from rostui.core.node.node import MasterRefusedError, MasterUnreachableError
+        from rostui.core.node.services import ServiceException
+
+        name = f"{node.rstrip('/')}/{service}"
+        proxy = self._node.service_proxy(name, get_service_class(type_name))
+        try:
+            return await asyncio.wait_for(proxy.call(**fields), self.timeout)
+        except asyncio.TimeoutError:
+            raise ServiceTimeoutError(f"{name} did not answer within {self.timeout:g} s") from None
+        except ServiceException as exc:
+            cause = exc.__cause__
+            if isinstance(cause, MasterUnreachableError):
+                raise MasterGoneError(f"master at {self.master_uri} is not answering") from None
+            if isinstance(cause, MasterRefusedError):
+                raise NodeGoneError(f"node {node} is gone: {name} is not registered with the master") from None
+            if isinstance(cause, OSError):
+                raise NodeGoneError(f"node {node} does not answer ({_reason(cause)}): it has probably died") \
+                    from None
+            raise ServiceFailedError(f"{name} failed: {exc}") from None
+
+
+def _reason(error: OSError) -> str:
+    """``connection refused`` and the like, from an OSError."""
+    text = error.strerror or str(error) or type(error).__name__
+    return text[:1].lower() + text[1:]

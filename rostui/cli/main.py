@@ -43,6 +43,7 @@ for _module in (run_cmd, node_cmd, topic_cmd, msg_cmd, service_cmd, param_cmd, p
                 turtlesim_cmd):
     _module.register(app)
 __import__("rostui.cli.console_cmd", fromlist=["register"]).register(app)
+__import__("rostui.cli.loggers_cmd", fromlist=["register"]).register(app)
 
 
 def main() -> None:

@@ -36,6 +36,10 @@ __all__ = [
     "request_level",
     "logger_nodes",
     "LoggerLevels",
+    "resolve_node_name",
+    "fetch_loggers",
+    "change_level",
+    "format_loggers",
 ]
 
 #: The levels a logger can be set to, lowest first.
@@ -191,6 +195,49 @@ class LoggerLevels:
                 raise NodeGoneError(f"node {node} does not answer ({_reason(cause)}): it has probably died") \
                     from None
             raise ServiceFailedError(f"{name} failed: {exc}") from None
+
+
+def resolve_node_name(name: str) -> str:
+    """A node name typed by the user, made global in ``ROS_NAMESPACE`` (as rosnode does)."""
+    import os
+
+    from rostui.core import names
+
+    return names.resolve_name(name.rstrip("/") or "/", os.environ.get("ROS_NAMESPACE") or "/")
+
+
+def fetch_loggers(node: str, *, master_uri: str | None = None,
+                  timeout: float = DEFAULT_TIMEOUT) -> list[LoggerLevel]:
+    """The loggers of ``node`` (blocking; runs its own event loop)."""
+    async def run() -> list[LoggerLevel]:
+        client = await LoggerLevels(master_uri, timeout=timeout).start()
+        try:
+            return await client.loggers(node)
+        finally:
+            await client.close()
+
+    return asyncio.run(run())
+
+
+def change_level(node: str, logger: str, level: str, *, master_uri: str | None = None,
+                 timeout: float = DEFAULT_TIMEOUT) -> str:
+    """Set one logger's level (blocking); returns the level name sent.  ValueError for an unknown level."""
+    name = request_level(level)
+
+    async def run() -> str:
+        client = await LoggerLevels(master_uri, timeout=timeout).start()
+        try:
+            return await client.set_level(node, logger, name)
+        finally:
+            await client.close()
+
+    return asyncio.run(run())
+
+
+def format_loggers(items: Sequence[LoggerLevel]) -> str:
+    """One ``logger  LEVEL`` line per logger, levels aligned in a column."""
+    width = max((len(item.name) for item in items), default=0)
+    return "".join(f"{item.name.ljust(width)}  {item.level}\n" for item in items)
 
 
 def _reason(error: OSError) -> str:

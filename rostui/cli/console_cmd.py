@@ -33,8 +33,9 @@ def console_command(
 ) -> None:
     """Browse ROS log messages: live from /rosout_agg, or from a rosout.log file.
 
-    Keys: d/i/w/e/f toggle levels, / search, n node filter, h highlight, p pause,
-    c clear, Enter details, s save, End or F follow, q quit.
+    Keys: 1-5 show/hide DEBUG..FATAL, / search (r: regular expression), h highlight,
+    n / x only / hide the selected message's node (N: all nodes), p pause, c clear,
+    Enter details, s save the shown messages (rosout.log format), End or F follow, q quit.
     """
     from rostui.cli.common import fail
     from rostui.core.log import Level
@@ -49,14 +50,14 @@ def console_command(
     loaded = None
     if path is not None:
         try:
-            loaded = read_rosout_log(path)
+            loaded = read_rosout_log(path, min_level=level, keep=max_messages)
         except RosoutLogError as exc:
             fail(f"ERROR: {exc}")
     from rostui.apps.console.app import ConsoleOptions, run_app
 
     options = ConsoleOptions(min_level=level, max_messages=max_messages, include_nodes=tuple(node),
                              exclude_nodes=tuple(exclude_node), search=search, regex=regex)
-    raise typer.Exit(run_app(options, loaded))
+    raise typer.Exit(run_app(options, loaded, log_name=str(path) if path is not None else None))
 
 
 def register(app: typer.Typer) -> None:

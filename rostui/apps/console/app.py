@@ -1,0 +1,455 @@
+"""ConsoleApp: rqt_console in the terminal.
+
+Live, the app runs a node on Textual's loop that subscribes to /rosout_agg
+(:class:`~rostui.apps.console.source.LiveSource`); offline, it shows the
+messages of a rosout.log read before it started.  Either way messages reach
+the :class:`~rostui.apps.console.model.ConsoleModel` through :meth:`ConsoleApp.ingest`,
+in batches on a timer, and the table repaints once per batch, never per
+message.  Filters apply to the model; the table draws only visible rows.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import signal
+import sys
+import time
+from dataclasses import replace
+from pathlib import Path
+from typing import ClassVar, Iterable
+
+from textual.app import App, ComposeResult
+from textual.binding import Binding, BindingType
+from textual.containers import VerticalScroll
+from textual.widgets import Input, Static
+
+from rostui.apps.console.bars import KEY_HELP, Bar, StatusInfo, detail_markup, filter_markup, status_markup
+from rostui.apps.console.filters import FilterError, FilterSpec, HighlightRule, compile_text
+from rostui.apps.console.model import ConsoleModel, ConsoleOptions
+from rostui.apps.console.source import LiveSource, SourceState
+from rostui.apps.console.table import LogTable
+from rostui.core.log.levels import Level
+from rostui.core.log.rosout_read import RosoutEntry, RosoutLog, entries_text
+from rostui.core.network import master_uri_from_env
+
+__all__ = ["ConsoleApp", "ConsoleOptions", "run_app"]
+
+#: Batches per second: how often arrived messages are taken into the model and the screen updated.
+INGEST_RATE = 20.0
+
+#: Seconds a notice (saved, cleared...) stays in the status line.
+NOTICE_SECONDS = 4.0
+
+#: Seconds the search waits after a keystroke before filtering (typing fast filters once).
+SEARCH_DELAY = 0.06
+
+
+class Prompt(Input):
+    """The one-line input for search text, highlight rules and the save path; Escape cancels it."""
+
+    BINDINGS: ClassVar[list[BindingType]] = [Binding("escape", "cancel", "cancel", show=False)]
+
+    def __init__(self, *, id: str | None = None) -> None:
+        super().__init__(id=id)
+        self.purpose = ""
+
+    def action_cancel(self) -> None:
+        """Close without applying (a search goes back to what it was)."""
+        app = self.app
+        assert isinstance(app, ConsoleApp)
+        app.close_prompt(cancelled=True)
+
+
+class ConsoleApp(App[int]):
+    """Browse ROS log messages: live from /rosout_agg, or a rosout.log (``log``).
+
+    ``master_uri`` defaults to ROS_MASTER_URI.  ``log_name`` is how the file
+    is named on screen (the path as the user gave it).
+    """
+
+    CSS_PATH = Path(__file__).with_name("app.tcss")
+    TITLE = "rostui console"
+    ENABLE_COMMAND_PALETTE = False
+
+    BINDINGS: ClassVar[list[BindingType]] = [
+        Binding("q", "quit", "quit"),
+        Binding("1", "toggle_level(1)", "DEBUG", show=False),
+        Binding("2", "toggle_level(2)", "INFO", show=False),
+        Binding("3", "toggle_level(4)", "WARN", show=False),
+        Binding("4", "toggle_level(8)", "ERROR", show=False),
+        Binding("5", "toggle_level(16)", "FATAL", show=False),
+        Binding("slash", "open_prompt('search')", "search"),
+        Binding("r", "toggle_regex", "regex"),
+        Binding("escape", "clear_search", "clear search", show=False),
+        Binding("h", "open_prompt('highlight')", "highlight"),
+        Binding("H", "clear_highlights", "clear highlights", show=False),
+        Binding("n", "include_node", "only this node"),
+        Binding("x", "exclude_node", "hide this node"),
+        Binding("N", "clear_nodes", "all nodes", show=False),
+        Binding("p,space", "toggle_pause", "pause"),
+        Binding("c", "clear", "clear"),
+        Binding("enter", "toggle_detail", "detail"),
+        Binding("s", "open_prompt('save')", "save"),
+        Binding("F,f", "follow", "follow"),
+    ]
+
+    def __init__(self, options: ConsoleOptions | None = None, log: RosoutLog | None = None, *,
+                 master_uri: str | None = None, log_name: str | None = None) -> None:
+        super().__init__()
+        self.options = options or ConsoleOptions()
+        self.model = ConsoleModel(self.options.max_messages, min_level=self.options.min_level)
+        self.spec = self.options.filter_spec()
+        self.highlights: list[HighlightRule] = []
+        self.log_file = log
+        self.log_name = log_name or (str(log.path) if log is not None else "")
+        self.master_uri = master_uri or master_uri_from_env()
+        self.source: LiveSource | None = None if log is not None else LiveSource(self.master_uri, self._on_state)
+        self.source_state = self.source.state if self.source else None
+        self.regex_error = ""
+        self._notice: tuple[float, str] = (0.0, "")
+        self._before_prompt: FilterSpec | None = None
+        self._search_timer: object | None = None
+        self._shown_version = -1
+        self.batches = 0
+
+    # -- composition -----------------------------------------------------------------------------
+    def compose(self) -> ComposeResult:
+        """Filter bar, table, detail pane, prompt, status line and key help."""
+        yield Bar(id="filters")
+        yield LogTable(self.model, id="table")
+        with VerticalScroll(id="detail"):
+            yield Static(id="detail-text", markup=True)
+        yield Prompt(id="prompt")
+        yield Bar(id="status")
+        yield Bar(KEY_HELP, id="keys")
+
+    @property
+    def table(self) -> LogTable:
+        """The message table."""
+        return self.query_one("#table", LogTable)
+
+    def on_mount(self) -> None:
+        """Apply the first filters, load the file or start listening, and start the ingest timer."""
+        try:
+            self.model.set_filter(self.spec)
+        except FilterError as exc:
+            self.regex_error = str(exc)
+            self.spec = _with(self.spec, search="", regex=True)
+            self.model.set_filter(self.spec)
+        self.query_one("#prompt", Prompt).display = False
+        self.query_one("#detail").display = False
+        if self.log_file is not None:
+            self.model.dropped += self.log_file.dropped
+            self.model.below_level += self.log_file.below_level
+            self.ingest(self.log_file.entries)
+            if self.log_file.malformed_count:
+                self.notify(self.log_file.malformed_summary(), title="malformed lines", severity="warning", timeout=8)
+        elif self.source is not None:
+            self.run_worker(self.source.run(), name="rosout_agg", exclusive=True, exit_on_error=False)
+        self.set_interval(1.0 / INGEST_RATE, self.take_batch)
+        self.table.focus()
+        self.refresh_bars()
+        loop = asyncio.get_running_loop()
+        for sig in (signal.SIGTERM, signal.SIGHUP):
+            try:
+                loop.add_signal_handler(sig, lambda: self.call_later(self.action_quit))
+            except (NotImplementedError, RuntimeError, ValueError):
+                pass
+
+    # -- messages in ---------------------------------------------------------------------------------
+    def ingest(self, entries: Iterable[RosoutEntry]) -> int:
+        """Take a batch of messages into the model and update the screen once; returns how many were kept."""
+        taken = self.model.ingest(entries)
+        self.batches += 1
+        self.show_model()
+        return taken
+
+    def take_batch(self) -> None:
+        """Timer: move what the live source received into the model (one screen update per batch)."""
+        if self.source is not None and self.source.inbox:
+            self.ingest(self.source.take())
+        else:
+            self.refresh_bars()
+
+    def show_model(self) -> None:
+        """Repaint the table if the rows changed, and the bars."""
+        if self.model.version != self._shown_version:
+            self._shown_version = self.model.version
+            self.table.sync()
+        self.refresh_bars()
+
+    def _on_state(self, state: SourceState) -> None:
+        previous, self.source_state = self.source_state, state
+        if state.status == "lost":
+            self.notify(state.text(), title="master", severity="error", timeout=6)
+        elif state.status == "connected" and previous is not None and previous.status == "lost":
+            self.notify(f"master {state.master_uri} is back: listening to /rosout_agg again", title="master",
+                        timeout=6)
+        self.refresh_bars()
+
+    # -- bars ------------------------------------------------------------------------------------------
+    def say(self, text: str) -> None:
+        """Show a notice in the status line for a few seconds."""
+        self._notice = (time.monotonic(), text)
+        self.refresh_bars()
+
+    def status_info(self) -> StatusInfo:
+        """The status line's state besides the model's counters."""
+        stamp, notice = self._notice
+        notice = notice if time.monotonic() - stamp < NOTICE_SECONDS else ""
+        if self.log_file is not None:
+            source, ok = f"file {self.log_name}", True
+            malformed = self.log_file.malformed_summary()
+        else:
+            state = self.source_state or SourceState("waiting", self.master_uri)
+            source, ok, malformed = state.text(), state.status == "connected", ""
+        return StatusInfo(follow=self.table.follow, source=source, source_ok=ok, malformed=malformed, notice=notice)
+
+    def refresh_bars(self) -> None:
+        """Bring the filter bar and status line up to date (each repaints only if its text changed)."""
+        self.query_one("#filters", Bar).show(filter_markup(self.spec, self.model, self.highlights, self.regex_error))
+        self.query_one("#status", Bar).show(status_markup(self.model, self.status_info()))
+
+    def on_log_table_follow_changed(self, _message: LogTable.FollowChanged) -> None:
+        """The status line shows FOLLOW or SCROLL."""
+        self.refresh_bars()
+
+    def on_log_table_cursor_moved(self, message: LogTable.CursorMoved) -> None:
+        """The detail pane follows the selected message."""
+        if self.query_one("#detail").display:
+            self._show_detail(message.seq)
+
+    def _show_detail(self, seq: int | None) -> None:
+        entry = None
+        if seq is not None and self.model.first <= seq < self.model.end:
+            entry = self.model.entry(seq)
+        self.query_one("#detail-text", Static).update(detail_markup(seq, entry, self.log_name))
+
+    # -- filters -------------------------------------------------------------------------------------------
+    def apply_filter(self, spec: FilterSpec) -> bool:
+        """Show the messages passing ``spec``; a bad regular expression is reported and changes nothing."""
+        try:
+            self.model.set_filter(spec)
+        except FilterError as exc:
+            self.regex_error = str(exc)
+            self.refresh_bars()
+            return False
+        self.spec = spec
+        self.regex_error = ""
+        self._shown_version = self.model.version
+        self.table.refilter()
+        self.refresh_bars()
+        return True
+
+    def action_toggle_level(self, level: int) -> None:
+        """Show or hide one level; a level under --min-level starts being kept from now on."""
+        if level < self.model.min_level:
+            self.model.set_min_level(level)
+            self.apply_filter(_with(self.spec, levels=self.spec.levels | {level}))
+            self.say(f"keeping {Level(level).name} messages from now on")
+            return
+        self.apply_filter(self.spec.toggle_level(level))
+
+    def _selected_node(self) -> str | None:
+        seq = self.table.cursor_seq
+        if seq is None or not self.model.first <= seq < self.model.end:
+            self.say("select a message first")
+            return None
+        return self.model.entry(seq).node
+
+    def action_include_node(self) -> None:
+        """Show only the selected message's node (again: undo; on several rows: several nodes)."""
+        node = self._selected_node()
+        if node is not None:
+            self.apply_filter(self.spec.toggle_include(node))
+
+    def action_exclude_node(self) -> None:
+        """Hide the selected message's node (undo with N)."""
+        node = self._selected_node()
+        if node is not None:
+            self.apply_filter(self.spec.toggle_exclude(node))
+
+    def action_clear_nodes(self) -> None:
+        """Show every node again."""
+        self.apply_filter(self.spec.without_nodes())
+
+    def action_toggle_regex(self) -> None:
+        """Switch search and new highlight rules between plain text and regular expressions."""
+        self.apply_filter(_with(self.spec, regex=not self.spec.regex))
+        if self.regex_error:  # the text is no valid regex: keep regex mode, search nothing until it is fixed
+            self.apply_filter(_with(self.spec, regex=True, search=""))
+            self.regex_error = f"bad regular expression: not searching ({self.regex_error})"
+            self.refresh_bars()
+
+    def action_clear_search(self) -> None:
+        """Escape: drop the search."""
+        if self.spec.search or self.regex_error:
+            self.regex_error = ""
+            self.apply_filter(_with(self.spec, search=""))
+
+    def action_clear_highlights(self) -> None:
+        """Remove every highlight rule."""
+        self.highlights.clear()
+        self.table.highlights = self.highlights
+        self.table.restyle()
+        self.refresh_bars()
+
+    def add_highlight(self, pattern: str, regex: bool) -> bool:
+        """Mark messages matching ``pattern`` with the next highlight colour; False for a bad regex."""
+        try:
+            rule = HighlightRule(pattern, regex)
+        except FilterError as exc:
+            self.regex_error = str(exc)
+            self.refresh_bars()
+            return False
+        self.regex_error = ""
+        self.highlights.append(rule)
+        self.table.highlights = self.highlights
+        self.table.restyle()
+        self.refresh_bars()
+        return True
+
+    # -- pause, clear, follow, detail ------------------------------------------------------------------------
+    def action_toggle_pause(self) -> None:
+        """Freeze the view (messages keep arriving into the buffer) or show what arrived meanwhile."""
+        if self.model.paused:
+            count = self.model.resume()
+            self.say(f"resumed: {count:,} new messages")
+            self.show_model()
+        else:
+            self.model.pause()
+            self.refresh_bars()
+
+    def action_clear(self) -> None:
+        """Forget the messages shown so far."""
+        self.model.clear()
+        self.show_model()
+        self.say("cleared")
+
+    def action_follow(self) -> None:
+        """Follow the newest messages."""
+        self.table.set_follow(True)
+        self.refresh_bars()
+
+    def action_toggle_detail(self) -> None:
+        """Show or hide every field of the selected message."""
+        detail = self.query_one("#detail")
+        detail.display = not detail.display
+        if detail.display:
+            self._show_detail(self.table.cursor_seq)
+
+    # -- prompt ------------------------------------------------------------------------------------------------
+    def action_open_prompt(self, purpose: str) -> None:
+        """Open the input line for ``search``, ``highlight`` or ``save``."""
+        prompt = self.query_one("#prompt", Prompt)
+        prompt.purpose = purpose
+        kind = "regex" if self.spec.regex else "text"
+        if purpose == "search":
+            self._before_prompt = self.spec
+            prompt.placeholder = f"search messages ({kind}; Enter keeps it, Escape cancels)"
+            prompt.value = self.spec.search
+        elif purpose == "highlight":
+            prompt.placeholder = f"highlight messages matching ({kind})"
+            prompt.value = ""
+        else:
+            prompt.placeholder = "save the shown messages (rosout.log format) to"
+            prompt.value = time.strftime("rostui_console_%Y%m%d-%H%M%S.log")
+        prompt.border_title = {"search": f"search ({kind})", "highlight": f"highlight ({kind})",
+                               "save": "save shown messages as rosout.log"}[purpose]
+        prompt.display = True
+        prompt.focus()
+        prompt.cursor_position = len(prompt.value)
+
+    def close_prompt(self, cancelled: bool = False) -> None:
+        """Hide the input line (a cancelled search goes back to the filter before it)."""
+        prompt = self.query_one("#prompt", Prompt)
+        if cancelled and prompt.purpose == "search" and self._before_prompt is not None:
+            self.regex_error = ""
+            self.apply_filter(self._before_prompt)
+        prompt.remove_class("-invalid")
+        prompt.display = False
+        prompt.purpose = ""
+        self._before_prompt = None
+        self.table.focus()
+
+    def on_input_changed(self, event: Input.Changed) -> None:
+        """Search as the user types (after a short pause), marking an invalid regex."""
+        prompt = self.query_one("#prompt", Prompt)
+        if prompt.purpose == "search":
+            if self._search_timer is not None:
+                self._search_timer.stop()  # type: ignore[attr-defined]
+            self._search_timer = self.set_timer(SEARCH_DELAY, lambda: self._search(event.value))
+        elif prompt.purpose == "highlight" and self.spec.regex:
+            try:
+                compile_text(event.value, True)
+                prompt.remove_class("-invalid")
+            except FilterError:
+                prompt.add_class("-invalid")
+
+    def _search(self, text: str) -> None:
+        self._search_timer = None
+        ok = self.apply_filter(_with(self.spec, search=text))
+        self.query_one("#prompt", Prompt).set_class(not ok, "-invalid")
+
+    def on_input_submitted(self, event: Input.Submitted) -> None:
+        """Enter: keep the search, add the highlight rule, or save the file."""
+        prompt = self.query_one("#prompt", Prompt)
+        value = event.value
+        if prompt.purpose == "search":
+            if self._search_timer is not None:
+                self._search_timer.stop()  # type: ignore[attr-defined]
+                self._search_timer = None
+            if not self.apply_filter(_with(self.spec, search=value)):
+                prompt.add_class("-invalid")
+                return
+        elif prompt.purpose == "highlight":
+            if value and not self.add_highlight(value, self.spec.regex):
+                prompt.add_class("-invalid")
+                return
+        elif prompt.purpose == "save":
+            if not self.save(value):
+                return
+        self.close_prompt()
+
+    def save(self, path_text: str) -> bool:
+        """Write the shown messages to ``path_text`` in rosout.log format; False (and a notice) on failure."""
+        if not path_text.strip():
+            self.say("save: no file name given")
+            return False
+        path = Path(path_text.strip()).expanduser()
+        entries = [entry for _, entry in self.model.shown()]
+        try:
+            path.write_text(entries_text(entries), encoding="utf-8")
+        except OSError as exc:
+            self.say(f"save failed: {path}: {exc.strerror or exc}")
+            self.notify(f"{path}: {exc.strerror or exc}", title="save failed", severity="error")
+            return False
+        self.say(f"saved {len(entries):,} messages to {path}")
+        return True
+
+    # -- leaving ---------------------------------------------------------------------------------------------------
+    async def on_unmount(self) -> None:
+        """However the app ends, the node unregisters."""
+        if self.source is not None:
+            await self.source.stop()
+
+    async def action_quit(self) -> None:
+        """q: unregister and leave."""
+        if self.source is not None:
+            await self.source.stop()
+        self.exit(0)
+
+
+def _with(spec: FilterSpec, **changes: object) -> FilterSpec:
+    return replace(spec, **changes)  # type: ignore[arg-type]
+
+
+def run_app(options: ConsoleOptions, log: RosoutLog | None = None, log_name: str | None = None) -> int:
+    """Run :class:`ConsoleApp` in this terminal; returns the exit status (1 without a terminal)."""
+    if not (sys.stdin.isatty() and sys.stdout.isatty()):
+        print("ERROR: rostui console draws in a terminal: stdin and stdout must be a TTY "
+              "(use `rostui topic echo /rosout_agg` without one)", file=sys.stderr)
+        return 1
+    app = ConsoleApp(options, log, log_name=log_name)
+    app.run()
+    return app.return_code or 0

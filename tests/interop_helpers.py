@@ -19,7 +19,7 @@ from typing import Callable, Iterator, Sequence
 
 import pytest
 
-from conftest import REPO, SYSTEM_PYTHON, need_peer, stop_process
+from conftest import REPO, SYSTEM_PYTHON, need_peer, stop_process, wait_until  # noqa: F401  (re-exported)
 
 PEERS = Path(__file__).resolve().parent / "peers"
 EXAMPLES = REPO / "examples"
@@ -151,13 +151,6 @@ def run_tool(argv: Sequence[str], env: dict[str, str], timeout: float = PATIENCE
     return proc
 
 
-def wait_until(predicate: Callable[[], bool], what: str, timeout: float = PATIENCE) -> None:
-    """Poll ``predicate`` until it is true; fail with ``what`` otherwise."""
-    deadline = time.monotonic() + timeout
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.1)
 
 
 def wait_for_node(env: dict[str, str], node: str) -> None:

@@ -11,7 +11,6 @@ from __future__ import annotations
 import re
 import subprocess
 import threading
-import time
 import xmlrpc.client
 from pathlib import Path
 from typing import Any, Callable, Sequence
@@ -20,19 +19,12 @@ from rostui.core.msg import get_message_class, get_service_class
 from rostui.core.node import AsyncNode
 from rostui.core.node.engine import Engine
 
-from conftest import REPO, rostui_cmd, stop_process
+from conftest import REPO, rostui_cmd, stop_process, wait_until  # noqa: F401  (re-exported)
 
 DEADLINE = 30.0
 """Seconds a test waits for a condition before it fails (generous: CI machines are slow)."""
 
 
-def wait_until(predicate: Callable[[], bool], what: str, timeout: float = DEADLINE) -> None:
-    """Poll ``predicate`` until it holds; fail with ``what`` when it never does."""
-    deadline = time.monotonic() + timeout
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.02)
 
 
 class Recording:

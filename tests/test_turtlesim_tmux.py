@@ -25,25 +25,18 @@ import termios
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Iterator
+from typing import Iterator
 
 import pytest
 
 from cli_helpers import rostui
-from conftest import REPO, free_port, master_port, need_peer, stop_process, wait_for_port
+from conftest import REPO, free_port, master_port, need_peer, stop_process, wait_for_port, wait_until
 
 DEADLINE = 30.0
 POSE = re.compile(r"turtle1 x (-?\d+\.\d+) y (-?\d+\.\d+) \S (-?\d+\.\d+)")
 EXIT_MARK = "TURTLESIM_EXIT="
 
 
-def wait_until(predicate: Callable[[], bool], what: str, timeout: float = DEADLINE) -> None:
-    """Poll ``predicate`` until it holds; fail with ``what`` when it never does."""
-    deadline = time.monotonic() + timeout
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.1)
 
 
 @dataclass

@@ -35,6 +35,7 @@ __all__ = [
     "display_level",
     "request_level",
     "logger_nodes",
+    "preferred_logger",
     "LoggerLevels",
     "resolve_node_name",
     "fetch_loggers",
@@ -113,6 +114,24 @@ def logger_nodes(services: Iterable[Sequence[Any]]) -> list[LoggerNode]:
             node = service[: -len(suffix)]
             found.append(LoggerNode(node, can_set=f"{node}/{SET_LOGGER_LEVEL}" in names))
     return sorted(found, key=lambda n: n.name)
+
+
+def preferred_logger(names: Sequence[str]) -> str | None:
+    """The logger a user most likely wants to change on a node (the book: "almost certainly ros.<package>").
+
+    rospy's user messages go through ``rosout``; roscpp's and rostui's through
+    ``ros.<package>``, next to roscpp's internal ``ros.roscpp*`` loggers.  Falls
+    back to the root ``ros``, then to the first name.
+    """
+    if "rosout" in names and any(name == "rospy" or name.startswith("rospy.") for name in names):
+        return "rosout"
+    for name in names:
+        parts = name.split(".")
+        if len(parts) == 2 and parts[0] == "ros" and parts[1] != "roscpp":
+            return name
+    if "ros" in names:
+        return "ros"
+    return names[0] if names else None
 
 
 class LoggerLevels:
@@ -242,5 +261,9 @@ def format_loggers(items: Sequence[LoggerLevel]) -> str:
 
 def _reason(error: OSError) -> str:
     """``connection refused`` and the like, from an OSError."""
+    for kind, text in ((ConnectionRefusedError, "connection refused"), (ConnectionResetError, "connection reset"),
+                       (TimeoutError, "connection timed out")):
+        if isinstance(error, kind):
+            return text
     text = error.strerror or str(error) or type(error).__name__
     return text[:1].lower() + text[1:]

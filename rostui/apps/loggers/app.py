@@ -1,0 +1,318 @@
+"""LoggersApp: rqt_logger_level in the terminal.
+
+Left, the nodes that serve ``get_loggers`` (the master's service list, asked
+again every second); middle, the selected node's loggers and levels (asked
+again every two seconds); right, the five levels with the selected logger's
+current one marked.  ``d``/``i``/``w``/``e``/``f``, Enter on a level or a
+click sets it through the node's ``set_logger_level``.  Whatever fails (no
+master, node gone, a call refused or timed out) is said in red under the
+panel it concerns, and the app keeps running and retrying.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import signal
+import sys
+from pathlib import Path
+
+from textual.app import App, ComposeResult
+from textual.binding import Binding
+from textual.containers import Horizontal, Vertical
+from textual.widgets import DataTable, Footer, OptionList
+from textual.worker import Worker
+
+from rostui.apps.loggers.panels import LevelList, LoggerTable, NodeList, Notice
+from rostui.core.tools.loggers import (
+    DEFAULT_TIMEOUT, LoggerLevel, LoggerLevels, LoggerNode, LoggerToolError, MasterGoneError, NodeGoneError,
+    preferred_logger,
+)
+
+#: Seconds between two readings of the master's node list.
+NODE_PERIOD = 1.0
+
+#: Seconds between two readings of the selected node's loggers.
+LOGGER_PERIOD = 2.0
+
+SET_HINT = "d i w e f or Enter: set level"
+
+
+class LoggersApp(App[int]):
+    """Lists nodes, their loggers and levels; sets a logger's level with a key or a click.
+
+    ``master_uri`` defaults to ROS_MASTER_URI; ``timeout`` bounds every master
+    query and service call.
+    """
+
+    CSS_PATH = Path(__file__).with_name("app.tcss")
+    TITLE = "rostui loggers"
+    ENABLE_COMMAND_PALETTE = False
+
+    BINDINGS = [
+        Binding("q", "quit", "quit"),
+        Binding("r", "refresh", "refresh"),
+        Binding("d", "set_level('DEBUG')", "DEBUG"),
+        Binding("i", "set_level('INFO')", "INFO"),
+        Binding("w", "set_level('WARN')", "WARN"),
+        Binding("e", "set_level('ERROR')", "ERROR"),
+        Binding("f", "set_level('FATAL')", "FATAL"),
+    ]
+
+    def __init__(self, *, master_uri: str | None = None, timeout: float = DEFAULT_TIMEOUT,
+                 node_period: float = NODE_PERIOD, logger_period: float = LOGGER_PERIOD) -> None:
+        super().__init__()
+        self.client = LoggerLevels(master_uri, timeout=timeout)
+        self.node_period = node_period
+        self.logger_period = logger_period
+        self.node = ""
+        self.logger = ""
+        self.nodes: dict[str, LoggerNode] = {}
+        self.loggers: dict[str, LoggerLevel] = {}
+        self.master_ok: bool | None = None
+        self.started = asyncio.Event()
+        self._nodes_worker: Worker[None] | None = None
+        self._loggers_worker: Worker[None] | None = None
+        self._closed = False
+
+    # -- composition -----------------------------------------------------------------
+    def compose(self) -> ComposeResult:
+        """Three panels side by side, the master line and the key footer."""
+        with Horizontal(id="panels"):
+            with Vertical(id="nodes-panel", classes="panel"):
+                yield NodeList(id="nodes")
+                yield Notice(id="nodes-notice")
+            with Vertical(id="loggers-panel", classes="panel"):
+                yield LoggerTable(id="loggers")
+                yield Notice(id="loggers-notice")
+            with Vertical(id="levels-panel", classes="panel"):
+                yield LevelList(id="levels")
+                yield Notice(id="levels-notice")
+        yield Notice(id="master")
+        yield Footer()
+
+    def on_mount(self) -> None:
+        """Titles and first notices; start asking the master; stop cleanly on SIGTERM/SIGHUP."""
+        self.query_one("#nodes-panel").border_title = "Nodes"
+        self._set_titles()
+        self.notice("nodes").say("asking the master…")
+        self.notice("loggers").say("select a node")
+        self.notice("levels").say("select a logger")
+        self.notice("master").say(f"master {self.master_label()}")
+        self.query_one(NodeList).focus()
+        self.run_worker(self._start(), name="start", exit_on_error=False)
+        loop = asyncio.get_running_loop()
+        for sig in (signal.SIGTERM, signal.SIGHUP):
+            try:
+                loop.add_signal_handler(sig, lambda: self.call_later(self.action_quit))
+            except (NotImplementedError, RuntimeError, ValueError):
+                pass
+
+    async def _start(self) -> None:
+        await self.client.start()
+        self.set_interval(self.node_period, self._tick_nodes)
+        self.set_interval(self.logger_period, self._tick_loggers)
+        await self._refresh_nodes()
+        self.started.set()
+
+    def notice(self, panel: str) -> Notice:
+        """The notice line of ``nodes``, ``loggers``, ``levels`` or ``master``."""
+        return self.query_one(f"#{panel}" if panel == "master" else f"#{panel}-notice", Notice)
+
+    def master_label(self) -> str:
+        """How the master is named on screen (its URI)."""
+        return self.client.master_uri
+
+    def _set_titles(self) -> None:
+        self.query_one("#loggers-panel").border_title = f"Loggers · {self.node}" if self.node else "Loggers"
+        self.query_one("#levels-panel").border_title = f"Level · {self.logger}" if self.logger else "Level"
+
+    # -- nodes ---------------------------------------------------------------------------
+    def _tick_nodes(self) -> None:
+        if self._nodes_worker is None or self._nodes_worker.is_finished:
+            self._nodes_worker = self.run_worker(self._refresh_nodes(), group="nodes", exit_on_error=False)
+
+    async def _refresh_nodes(self) -> None:
+        try:
+            nodes = await self.client.nodes()
+        except LoggerToolError as exc:
+            self._master_lost(str(exc))
+            return
+        self._master_found(nodes)
+
+    def _master_lost(self, reason: str) -> None:
+        self.master_ok = False
+        self.notice("master").say(f"{reason}; retrying every {self.node_period:g} s", "error")
+        self.notice("nodes").say("no master", "error")
+        self.nodes = {}
+        self.query_one(NodeList).show_nodes([], None)
+        if self.node:
+            self._drop_node(f"{self.node}: the master is not answering", "error")
+
+    def _master_found(self, nodes: list[LoggerNode]) -> None:
+        if self.master_ok is False:
+            self.notice("master").say(f"master {self.master_label()} is answering again", "ok")
+        elif self.master_ok is None:
+            self.notice("master").say(f"master {self.master_label()}")
+        self.master_ok = True
+        self.nodes = {node.name: node for node in nodes}
+        node_list = self.query_one(NodeList)
+        node_list.show_nodes(nodes, node_list.highlighted_name or self.node)
+        count = len(nodes)
+        self.notice("nodes").say(f"{count} node{'s' if count != 1 else ''} serve{'s' if count == 1 else ''} "
+                                 "get_loggers" if count else "no node serves get_loggers")
+        if self.node and self.node not in self.nodes:
+            self._drop_node(f"node {self.node} is gone: the master no longer lists it", "error")
+
+    def on_option_list_option_highlighted(self, event: OptionList.OptionHighlighted) -> None:
+        """Highlighting a node selects it."""
+        if event.option_list.id == "nodes" and event.option.id and event.option.id != self.node:
+            self.select_node(event.option.id)
+
+    def on_option_list_option_selected(self, event: OptionList.OptionSelected) -> None:
+        """Enter or a click: on a node, go to its loggers; on a level, set it."""
+        if event.option_list.id == "nodes":
+            if event.option.id and event.option.id != self.node:
+                self.select_node(event.option.id)
+            self.query_one(LoggerTable).focus()
+        elif event.option_list.id == "levels" and event.option.id:
+            self.action_set_level(event.option.id)
+
+    def select_node(self, name: str) -> None:
+        """Make ``name`` the selected node and ask it for its loggers."""
+        self.node = name
+        self.logger = ""
+        self.loggers = {}
+        self.query_one(LoggerTable).clear_loggers()
+        self._show_levels()
+        self.notice("loggers").say(f"asking {name}…")
+        self._load(name)
+
+    def _drop_node(self, message: str, kind: str) -> None:
+        """Forget the selected node, saying why under the loggers panel."""
+        self.node = ""
+        self.logger = ""
+        self.loggers = {}
+        self.query_one(LoggerTable).clear_loggers()
+        self._show_levels()
+        self.notice("loggers").say(message, kind)
+
+    # -- loggers --------------------------------------------------------------------------
+    def _tick_loggers(self) -> None:
+        if self.node and (self._loggers_worker is None or self._loggers_worker.is_finished):
+            self._load(self.node)
+
+    def _load(self, node: str) -> None:
+        self._loggers_worker = self.run_worker(self._load_loggers(node), group="loggers", exclusive=True,
+                                               exit_on_error=False)
+
+    async def _load_loggers(self, node: str) -> None:
+        try:
+            items = await self.client.loggers(node)
+        except LoggerToolError as exc:
+            if node == self.node:
+                self._loggers_failed(exc)
+            return
+        if node == self.node:
+            self._show_loggers(items)
+
+    def _loggers_failed(self, exc: LoggerToolError) -> None:
+        if isinstance(exc, (NodeGoneError, MasterGoneError)):
+            self._drop_node(str(exc), "error")
+        else:  # the node is there but did not answer this time: keep the last rows, say why
+            self.notice("loggers").say(str(exc), "error")
+
+    def _show_loggers(self, items: list[LoggerLevel]) -> None:
+        self.loggers = {item.name: item for item in items}
+        table = self.query_one(LoggerTable)
+        keep = self.logger if self.logger in self.loggers else preferred_logger([item.name for item in items])
+        table.show_loggers(items, keep)
+        before, self.logger = self.logger, table.highlighted_name or ""
+        self._show_levels(hint=self.logger != before)
+        count = len(items)
+        self.notice("loggers").say(f"{count} logger{'s' if count != 1 else ''}" if count else "no loggers")
+
+    def on_data_table_row_highlighted(self, event: DataTable.RowHighlighted) -> None:
+        """Moving the cursor in the logger table selects that logger."""
+        name = event.row_key.value
+        if name in self.loggers and name != self.logger:
+            self.logger = name
+            self._show_levels()
+
+    def on_data_table_row_selected(self, event: DataTable.RowSelected) -> None:
+        """Enter or a click on the selected logger: go to the levels."""
+        self.query_one(LevelList).focus()
+
+    # -- levels ----------------------------------------------------------------------------
+    def _show_levels(self, *, hint: bool = True) -> None:
+        """Mark the selected logger's level; with ``hint``, replace the level notice with the key help."""
+        self._set_titles()
+        current = self.loggers.get(self.logger)
+        self.query_one(LevelList).show_current(current.level if current else None)
+        if hint or current is None:
+            self.notice("levels").say(SET_HINT if current else "select a logger")
+
+    def action_set_level(self, level: str) -> None:
+        """Set the selected logger of the selected node to ``level``."""
+        if not self.node or not self.logger:
+            self.notice("levels").say("select a node and a logger first", "error")
+            return
+        node = self.nodes.get(self.node)
+        if node is not None and not node.can_set:
+            self.notice("levels").say(f"{self.node} does not serve set_logger_level", "error")
+            return
+        self.run_worker(self._set_level(self.node, self.logger, level), group="set", exit_on_error=False)
+
+    async def _set_level(self, node: str, logger: str, level: str) -> None:
+        self.notice("levels").say(f"setting {logger} to {level}…")
+        try:
+            sent = await self.client.set_level(node, logger, level)
+            items = await self.client.loggers(node)
+        except LoggerToolError as exc:
+            self.notice("levels").say(str(exc), "error")
+            if node == self.node:
+                self._loggers_failed(exc)
+            return
+        if node != self.node:
+            return
+        self._show_loggers(items)
+        now = self.loggers.get(logger)
+        if now is None or now.level != sent:
+            shown = now.level if now else "nothing"
+            self.notice("levels").say(f"{node} was sent {sent} for {logger} but reports {shown}", "error")
+        elif logger == self.logger:
+            self.notice("levels").say(f"{logger} set to {sent}", "ok")
+
+    # -- app ---------------------------------------------------------------------------------
+    def action_refresh(self) -> None:
+        """Ask the master and the selected node again now."""
+        self._tick_nodes()
+        if self.node:
+            self._load(self.node)
+
+    async def _close(self) -> None:
+        if not self._closed:
+            self._closed = True
+            try:
+                await asyncio.wait_for(self.client.close(), 5.0)
+            except Exception:  # the process is ending; nothing left to tell the user
+                pass
+
+    async def action_quit(self) -> None:
+        """q: close the calling node and leave."""
+        await self._close()
+        self.exit(0)
+
+    async def on_unmount(self) -> None:
+        """However the app ends, the calling node shuts down."""
+        await self._close()
+
+
+def run_app(*, timeout: float = DEFAULT_TIMEOUT) -> int:
+    """Run :class:`LoggersApp` in this terminal; returns the exit status (1 without a TTY)."""
+    if not (sys.stdin.isatty() and sys.stdout.isatty()):
+        print("ERROR: rostui loggers draws in a terminal: stdin and stdout must be a TTY "
+              "(use `rostui loggers NODE` and `rostui loggers NODE LOGGER LEVEL` without one)", file=sys.stderr)
+        return 1
+    app = LoggersApp(timeout=timeout)
+    app.run()
+    return app.return_code or 0

@@ -1,0 +1,142 @@
+"""The three panels of the loggers app: nodes, the selected node's loggers, and the levels.
+
+Each panel is a list with a one-line :class:`Notice` under it, where the
+panel says what it shows or, in red, what went wrong (master away, node gone,
+service failed), so errors appear where the user is looking.
+"""
+
+from __future__ import annotations
+
+from typing import Iterable, Sequence
+
+from rich.text import Text
+from textual.widgets import DataTable, OptionList, Static
+from textual.widgets.option_list import Option
+
+from rostui.core.tools.loggers import LEVEL_NAMES, LoggerLevel, LoggerNode
+
+#: How each level is coloured in the logger table and the level list (rqt_console's hues).
+LEVEL_STYLES = {
+    "DEBUG": "green",
+    "INFO": "",
+    "WARN": "yellow",
+    "ERROR": "red",
+    "FATAL": "bold magenta",
+}
+
+#: Marks the current level in the level list; the others get a no-break space (kept at a line start).
+CURRENT_MARK = "●"
+NOT_CURRENT_MARK = "\u00a0"
+
+#: Notice kinds and the CSS class each one sets.
+NOTICE_KINDS = ("info", "ok", "error")
+
+
+def level_text(level: str) -> Text:
+    """A level name in its colour."""
+    return Text(level, style=LEVEL_STYLES.get(level, ""))
+
+
+class Notice(Static):
+    """One line under a panel: what it shows (``info``), a change made (``ok``) or an ``error``."""
+
+    def __init__(self, *, id: str | None = None) -> None:
+        super().__init__("", id=id, markup=False)
+        self.text = ""
+        self.kind = "info"
+
+    def say(self, text: str, kind: str = "info") -> None:
+        """Show ``text`` styled as ``kind`` (one of :data:`NOTICE_KINDS`)."""
+        if kind not in NOTICE_KINDS:
+            raise ValueError(f"unknown notice kind {kind!r}")
+        self.text, self.kind = text, kind
+        for other in NOTICE_KINDS:
+            self.set_class(other == kind, f"-{other}")
+        self.update(Text(text))
+
+
+class NodeList(OptionList):
+    """Nodes that serve ``get_loggers``; the highlighted one is the selected node."""
+
+    def __init__(self, *, id: str | None = None) -> None:
+        super().__init__(id=id, markup=False)
+        self.node_names: list[str] = []
+
+    @property
+    def highlighted_name(self) -> str | None:
+        """The highlighted node's name, if any."""
+        option = self.highlighted_option
+        return None if option is None else option.id
+
+    def show_nodes(self, nodes: Sequence[LoggerNode], keep: str | None) -> bool:
+        """List ``nodes``, keeping ``keep`` highlighted when it is still there; False when nothing changed."""
+        names = [node.name for node in nodes]
+        if names == self.node_names:
+            return False
+        self.node_names = names
+        self.set_options(Option(Text(name), id=name) for name in names)
+        if keep in names:
+            self.highlighted = names.index(keep)
+        return True
+
+
+class LoggerTable(DataTable[Text]):
+    """The selected node's loggers, one row each: name and level (coloured)."""
+
+    def __init__(self, *, id: str | None = None) -> None:
+        super().__init__(id=id, cursor_type="row", zebra_stripes=False)
+        self.logger_names: list[str] = []
+
+    def on_mount(self) -> None:
+        """Two columns: logger and level."""
+        self.add_column("Logger", key="logger")
+        self.add_column("Level", key="level", width=5)
+
+    @property
+    def highlighted_name(self) -> str | None:
+        """The logger under the cursor, if any."""
+        if not self.logger_names or not 0 <= self.cursor_row < len(self.logger_names):
+            return None
+        return self.logger_names[self.cursor_row]
+
+    def show_loggers(self, loggers: Iterable[LoggerLevel], keep: str | None) -> None:
+        """Show ``loggers``; the cursor stays on ``keep`` (or goes to the first row)."""
+        items = list(loggers)
+        names = [item.name for item in items]
+        if names == self.logger_names:
+            for item in items:
+                self.update_cell(item.name, "level", level_text(item.level))
+            return
+        self.clear()
+        self.logger_names = names
+        for item in items:
+            self.add_row(Text(item.name), level_text(item.level), key=item.name)
+        if keep in names:
+            self.move_cursor(row=names.index(keep), animate=False)
+
+    def clear_loggers(self) -> None:
+        """Show no loggers."""
+        self.clear()
+        self.logger_names = []
+
+
+class LevelList(OptionList):
+    """DEBUG ... FATAL; the selected logger's current level is marked and highlighted."""
+
+    def __init__(self, *, id: str | None = None) -> None:
+        super().__init__(*(Option(self._prompt(name, False), id=name) for name in LEVEL_NAMES), id=id,
+                         markup=False)
+        self.current: str | None = None
+
+    @staticmethod
+    def _prompt(level: str, current: bool) -> Text:
+        # The mark is a span of its own, so SVG screenshots keep the indent of an unmarked, unstyled INFO.
+        mark = Text(f"{CURRENT_MARK if current else NOT_CURRENT_MARK}\u00a0", style="bold")
+        return Text.assemble(mark, level_text(level))
+
+    def show_current(self, level: str | None) -> None:
+        """Mark ``level`` (None: no logger selected, nothing marked)."""
+        self.current = level
+        for name in LEVEL_NAMES:
+            self.replace_option_prompt(name, self._prompt(name, name == level))
+        self.highlighted = LEVEL_NAMES.index(level) if level in LEVEL_NAMES else None

@@ -247,7 +247,7 @@ class LoggersApp(App[int]):
         """Mark the selected logger's level; with ``hint``, replace the level notice with the key help."""
         self._set_titles()
         current = self.loggers.get(self.logger)
-        self.query_one(LevelList).show_current(current.level if current else None)
+        self.query_one(LevelList).show_current(current.level if current else None, self.logger or None)
         if hint or current is None:
             self.notice("levels").say(SET_HINT if current else "select a logger")
 

@@ -127,6 +127,7 @@ class LevelList(OptionList):
         super().__init__(*(Option(self._prompt(name, False), id=name) for name in LEVEL_NAMES), id=id,
                          markup=False)
         self.current: str | None = None
+        self.logger: str | None = None
 
     @staticmethod
     def _prompt(level: str, current: bool) -> Text:
@@ -134,9 +135,15 @@ class LevelList(OptionList):
         mark = Text(f"{CURRENT_MARK if current else NOT_CURRENT_MARK}\u00a0", style="bold")
         return Text.assemble(mark, level_text(level))
 
-    def show_current(self, level: str | None) -> None:
-        """Mark ``level`` (None: no logger selected, nothing marked)."""
-        self.current = level
+    def show_current(self, level: str | None, logger: str | None = None) -> None:
+        """Mark ``level``, the current level of ``logger`` (None: nothing selected, nothing marked).
+
+        The cursor jumps to the current level only when the logger or its level
+        changed, so a periodic refresh never moves it under the user.
+        """
+        if (level, logger) == (self.current, self.logger):
+            return
+        self.current, self.logger = level, logger
         for name in LEVEL_NAMES:
             self.replace_option_prompt(name, self._prompt(name, name == level))
         self.highlighted = LEVEL_NAMES.index(level) if level in LEVEL_NAMES else None

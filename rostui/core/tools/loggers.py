@@ -209,7 +209,8 @@ class LoggerLevels:
             if isinstance(cause, MasterUnreachableError):
                 raise MasterGoneError(f"master at {self.master_uri} is not answering") from None
             if isinstance(cause, MasterRefusedError):
-                raise NodeGoneError(f"node {node} is gone: {name} is not registered with the master") from None
+                raise NodeGoneError(f"{name} is not registered with the master: node {node} is not running") \
+                    from None
             if isinstance(cause, OSError):
                 raise NodeGoneError(f"node {node} does not answer ({_reason(cause)}): it has probably died") \
                     from None

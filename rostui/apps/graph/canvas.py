@@ -1,0 +1,169 @@
+"""The graph drawn as characters: box-drawing lines for edges, boxes for vertices (no Textual here).
+
+Nodes are rounded boxes, topics square boxes, collapsed namespaces double
+boxes; edges are light lines with ``▶`` heads (``◀`` on the real target of an
+edge that had to point backwards to break a cycle).  Every cell remembers
+what drew it, so the widget can colour, highlight and hit-test by cell.
+"""
+
+from __future__ import annotations
+
+from rostui.core.graph.layout import Box, Layout, LayoutHint, layered_layout
+from rostui.core.graph.view import Kind, ViewGraph
+
+__all__ = ["Canvas", "draw", "label_text", "box_size", "layout_view", "MAX_LABEL"]
+
+#: Longest label drawn in full; longer names are cut in the middle with "…".
+MAX_LABEL = 48
+
+_UP, _DOWN, _LEFT, _RIGHT = 1, 2, 4, 8
+_LINES = {
+    0: " ", _UP: "│", _DOWN: "│", _UP | _DOWN: "│", _LEFT: "─", _RIGHT: "─", _LEFT | _RIGHT: "─",
+    _DOWN | _RIGHT: "╭", _DOWN | _LEFT: "╮", _UP | _RIGHT: "╰", _UP | _LEFT: "╯",
+    _UP | _DOWN | _RIGHT: "├", _UP | _DOWN | _LEFT: "┤", _LEFT | _RIGHT | _DOWN: "┬", _LEFT | _RIGHT | _UP: "┴",
+    _UP | _DOWN | _LEFT | _RIGHT: "┼",
+}
+#: Corners and sides per kind: top-left, top-right, bottom-left, bottom-right, horizontal, vertical.
+_BORDERS = {
+    Kind.NODE: "╭╮╰╯─│",
+    Kind.TOPIC: "┌┐└┘─│",
+    Kind.GROUP: "╔╗╚╝═║",
+}
+
+#: Owner value of a cell nothing drew.
+EMPTY = -1
+
+
+def label_text(name: str, limit: int = MAX_LABEL) -> str:
+    """``name`` cut in the middle with "…" when longer than ``limit``."""
+    if len(name) <= limit:
+        return name
+    head = (limit - 1) // 2
+    return name[:head] + "…" + name[len(name) - (limit - 1 - head):]
+
+
+def box_size(label: str) -> tuple[int, int]:
+    """Columns and rows of the box around ``label``."""
+    return len(label_text(label)) + 4, 3
+
+
+def layout_view(view: ViewGraph, hint: LayoutHint | None = None) -> Layout:
+    """The layered layout of ``view`` with every vertex sized for its label."""
+    sizes = {vid: box_size(v.label) for vid, v in view.vertices.items()}
+    return layered_layout(sizes, view.edges, hint)
+
+
+#: Rows per bucket of the vertical-segment index.
+_BLOCK = 64
+
+
+class Canvas:
+    """The drawing of a view at the places a layout gives, built row by row when a row is first asked for.
+
+    Each row is a list of characters plus, per cell, the index of the vertex
+    (>= 0, into ``vertex_ids``) or edge (``-2 - k`` for edge ``k`` of
+    ``edges``) that drew it; :data:`EMPTY` where nothing did.  Rows are
+    cached, so scrolling back costs nothing.
+    """
+
+    def __init__(self, view: ViewGraph, layout: Layout) -> None:
+        self.width = max(layout.width, 1)
+        self.height = max(layout.height, 1)
+        self.vertex_ids: list[str] = list(view.vertices)
+        self.boxes: dict[str, Box] = dict(layout.boxes)
+        self.edges: list[tuple[str, str]] = list(layout.edges)
+        self._horizontal: dict[int, list[tuple[int, int, int]]] = {}
+        self._vertical: dict[int, list[tuple[int, int, int, int]]] = {}
+        self._box_rows: dict[int, list[tuple[int, str, int]]] = {}
+        self._arrows: dict[int, list[tuple[int, str, int]]] = {}
+        self._cache: dict[int, tuple[list[str], list[int]]] = {}
+        for seg in layout.segments:
+            owner = -2 - seg.edge
+            if seg.y0 == seg.y1:
+                lo, hi = sorted((seg.x0, seg.x1))
+                self._horizontal.setdefault(seg.y0, []).append((lo, hi, owner))
+            else:
+                lo, hi = sorted((seg.y0, seg.y1))
+                item = (seg.x0, lo, hi, owner)
+                for block in range(lo // _BLOCK, hi // _BLOCK + 1):
+                    self._vertical.setdefault(block, []).append(item)
+        for index, vid in enumerate(self.vertex_ids):
+            box = layout.boxes.get(vid)
+            if box is None:
+                continue
+            vertex = view.vertices[vid]
+            for dy, text in enumerate(_box_lines(box, vertex.kind, label_text(vertex.label))):
+                self._box_rows.setdefault(box.y + dy, []).append((box.x, text, index))
+        for arrow in layout.arrows:
+            self._arrows.setdefault(arrow.y, []).append((arrow.x, "◀" if arrow.left else "▶", -2 - arrow.edge))
+
+    def row(self, y: int) -> tuple[list[str], list[int]]:
+        """Characters and owners of row ``y`` (built on first use)."""
+        cached = self._cache.get(y)
+        if cached is not None:
+            return cached
+        width = self.width
+        masks = bytearray(width)
+        owners = [EMPTY] * width
+        for lo, hi, owner in self._horizontal.get(y, ()):
+            if lo == hi:
+                masks[lo] |= _LEFT | _RIGHT
+                owners[lo] = owner
+                continue
+            masks[lo] |= _RIGHT
+            owners[lo] = owner
+            for x in range(lo + 1, hi):
+                masks[x] |= _LEFT | _RIGHT
+                owners[x] = owner
+            masks[hi] |= _LEFT
+            owners[hi] = owner
+        for x, lo, hi, owner in self._vertical.get(y // _BLOCK, ()):
+            if lo <= y <= hi:
+                masks[x] |= (_UP if y > lo else 0) | (_DOWN if y < hi else 0)
+                owners[x] = owner
+        lines = _LINES
+        chars = [lines[m] for m in masks]
+        for x, text, owner in self._box_rows.get(y, ()):
+            chars[x:x + len(text)] = text
+            owners[x:x + len(text)] = [owner] * len(text)
+        for x, char, owner in self._arrows.get(y, ()):
+            chars[x] = char
+            owners[x] = owner
+        self._cache[y] = (chars, owners)
+        return chars, owners
+
+    def line(self, y: int) -> str:
+        """Row ``y`` as a string."""
+        return "".join(self.row(y)[0])
+
+    def text(self) -> str:
+        """The whole drawing as lines of text (trailing spaces removed)."""
+        return "\n".join(self.line(y).rstrip() for y in range(self.height))
+
+    def owner_at(self, x: int, y: int) -> str | None:
+        """The vertex id drawn at ``(x, y)``, if a box covers it."""
+        if 0 <= y < self.height and 0 <= x < self.width:
+            owner = self.row(y)[1][x]
+            if owner >= 0:
+                return self.vertex_ids[owner]
+        return None
+
+    def edge_at(self, x: int, y: int) -> tuple[str, str] | None:
+        """The edge drawn at ``(x, y)``, if a line covers it."""
+        if 0 <= y < self.height and 0 <= x < self.width:
+            owner = self.row(y)[1][x]
+            if owner <= -2:
+                return self.edges[-2 - owner]
+        return None
+
+
+def draw(view: ViewGraph, layout: Layout) -> Canvas:
+    """Draw ``view`` at the places ``layout`` gives."""
+    return Canvas(view, layout)
+
+
+def _box_lines(box: Box, kind: Kind, label: str) -> tuple[str, str, str]:
+    """Top border, label row and bottom border of a box."""
+    tl, tr, bl, br, h, v = _BORDERS[kind]
+    inner = box.w - 2
+    return (tl + h * inner + tr, v + (" " + label).ljust(inner)[:inner] + v, bl + h * inner + br)

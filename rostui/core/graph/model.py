@@ -1,0 +1,87 @@
+"""One snapshot of the master's registrations: nodes, topics with their publishers and subscribers, services."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping, Sequence
+
+__all__ = ["RosGraph", "fetch_graph", "fetch_graph_async"]
+
+
+@dataclass(frozen=True)
+class RosGraph:
+    """What ``getSystemState`` and ``getTopicTypes`` report at one moment.
+
+    Every mapping goes from a topic (or service) name to the sorted tuple of
+    node names holding that registration; ``topic_types`` maps topic names
+    to message types (``"unknown type"`` is never stored: absent means unknown).
+    """
+
+    publishers: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    subscribers: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    services: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    topic_types: Mapping[str, str] = field(default_factory=dict)
+
+    @classmethod
+    def from_wire(cls, state: Sequence[Any], types: Sequence[Any] = ()) -> "RosGraph":
+        """Build from the values of ``getSystemState`` and ``getTopicTypes`` (already unwrapped)."""
+        pubs, subs, srvs = (list(part) for part in state)
+
+        def table(entries: list) -> dict[str, tuple[str, ...]]:
+            out: dict[str, set[str]] = {}
+            for name, nodes in entries:
+                out.setdefault(str(name), set()).update(str(n) for n in nodes)
+            return {name: tuple(sorted(nodes)) for name, nodes in sorted(out.items()) if nodes}
+
+        return cls(table(pubs), table(subs), table(srvs), {str(t): str(ty) for t, ty in types})
+
+    @classmethod
+    def build(cls, publishers: Mapping[str, Sequence[str]] | None = None,
+              subscribers: Mapping[str, Sequence[str]] | None = None,
+              services: Mapping[str, Sequence[str]] | None = None,
+              topic_types: Mapping[str, str] | None = None) -> "RosGraph":
+        """A graph from plain mappings (benchmarks, tests, merged live views)."""
+        def norm(table: Mapping[str, Sequence[str]] | None) -> dict[str, tuple[str, ...]]:
+            return {k: tuple(sorted(set(v))) for k, v in sorted((table or {}).items()) if v}
+
+        return cls(norm(publishers), norm(subscribers), norm(services), dict(topic_types or {}))
+
+    def nodes(self) -> list[str]:
+        """Every node holding a registration, sorted."""
+        found: set[str] = set()
+        for table in (self.publishers, self.subscribers, self.services):
+            for nodes in table.values():
+                found.update(nodes)
+        return sorted(found)
+
+    def topics(self) -> list[str]:
+        """Every topic with a publisher or a subscriber, sorted."""
+        return sorted(set(self.publishers) | set(self.subscribers))
+
+    def topic_type(self, topic: str) -> str:
+        """The message type of ``topic`` as the master knows it."""
+        return self.topic_types.get(topic, "unknown type")
+
+    def publications_of(self, node: str) -> list[str]:
+        """Topics ``node`` publishes, sorted."""
+        return sorted(t for t, nodes in self.publishers.items() if node in nodes)
+
+    def subscriptions_of(self, node: str) -> list[str]:
+        """Topics ``node`` subscribes to, sorted."""
+        return sorted(t for t, nodes in self.subscribers.items() if node in nodes)
+
+    def services_of(self, node: str) -> list[str]:
+        """Services ``node`` provides, sorted."""
+        return sorted(s for s, nodes in self.services.items() if node in nodes)
+
+
+def fetch_graph(call: Callable[..., Any]) -> RosGraph:
+    """Ask the master (``call(method, *args)`` returning unwrapped values) for the current graph."""
+    return RosGraph.from_wire(call("getSystemState"), call("getTopicTypes"))
+
+
+async def fetch_graph_async(call: Callable[..., Any]) -> RosGraph:
+    """:func:`fetch_graph` for an async ``call`` (e.g. a bound XmlRpcClient wrapper)."""
+    state = await call("getSystemState")
+    types = await call("getTopicTypes")
+    return RosGraph.from_wire(state, types)

@@ -111,22 +111,23 @@ class ConsoleApp(App[int]):
         self._search_timer: object | None = None
         self._shown_version = -1
         self.batches = 0
+        self.filter_bar = Bar(id="filters")
+        self.status_bar = Bar(id="status")
+        self.table = LogTable(self.model, id="table")
+        self.detail = VerticalScroll(id="detail")
+        self.detail_text = Static(id="detail-text")
+        self.prompt = Prompt(id="prompt")
 
     # -- composition -----------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
         """Filter bar, table, detail pane, prompt, status line and key help."""
-        yield Bar(id="filters")
-        yield LogTable(self.model, id="table")
-        with VerticalScroll(id="detail"):
-            yield Static(id="detail-text", markup=True)
-        yield Prompt(id="prompt")
-        yield Bar(id="status")
+        yield self.filter_bar
+        yield self.table
+        with self.detail:
+            yield self.detail_text
+        yield self.prompt
+        yield self.status_bar
         yield Bar(KEY_HELP, id="keys")
-
-    @property
-    def table(self) -> LogTable:
-        """The message table."""
-        return self.query_one("#table", LogTable)
 
     def on_mount(self) -> None:
         """Apply the first filters, load the file or start listening, and start the ingest timer."""
@@ -136,8 +137,8 @@ class ConsoleApp(App[int]):
             self.regex_error = str(exc)
             self.spec = _with(self.spec, search="", regex=True)
             self.model.set_filter(self.spec)
-        self.query_one("#prompt", Prompt).display = False
-        self.query_one("#detail").display = False
+        self.prompt.display = False
+        self.detail.display = False
         if self.log_file is not None:
             self.model.dropped += self.log_file.dropped
             self.model.below_level += self.log_file.below_level
@@ -207,8 +208,8 @@ class ConsoleApp(App[int]):
 
     def refresh_bars(self) -> None:
         """Bring the filter bar and status line up to date (each repaints only if its text changed)."""
-        self.query_one("#filters", Bar).show(filter_markup(self.spec, self.model, self.highlights, self.regex_error))
-        self.query_one("#status", Bar).show(status_markup(self.model, self.status_info()))
+        self.filter_bar.show(filter_markup(self.spec, self.model, self.highlights, self.regex_error))
+        self.status_bar.show(status_markup(self.model, self.status_info()))
 
     def on_log_table_follow_changed(self, _message: LogTable.FollowChanged) -> None:
         """The status line shows FOLLOW or SCROLL."""
@@ -216,14 +217,14 @@ class ConsoleApp(App[int]):
 
     def on_log_table_cursor_moved(self, message: LogTable.CursorMoved) -> None:
         """The detail pane follows the selected message."""
-        if self.query_one("#detail").display:
+        if self.detail.display:
             self._show_detail(message.seq)
 
     def _show_detail(self, seq: int | None) -> None:
         entry = None
         if seq is not None and self.model.first <= seq < self.model.end:
             entry = self.model.entry(seq)
-        self.query_one("#detail-text", Static).update(detail_markup(seq, entry, self.log_name))
+        self.detail_text.update(detail_markup(seq, entry, self.log_name))
 
     # -- filters -------------------------------------------------------------------------------------------
     def apply_filter(self, spec: FilterSpec) -> bool:
@@ -333,7 +334,7 @@ class ConsoleApp(App[int]):
 
     def action_toggle_detail(self) -> None:
         """Show or hide every field of the selected message."""
-        detail = self.query_one("#detail")
+        detail = self.detail
         detail.display = not detail.display
         if detail.display:
             self._show_detail(self.table.cursor_seq)
@@ -341,7 +342,7 @@ class ConsoleApp(App[int]):
     # -- prompt ------------------------------------------------------------------------------------------------
     def action_open_prompt(self, purpose: str) -> None:
         """Open the input line for ``search``, ``highlight`` or ``save``."""
-        prompt = self.query_one("#prompt", Prompt)
+        prompt = self.prompt
         prompt.purpose = purpose
         kind = "regex" if self.spec.regex else "text"
         if purpose == "search":
@@ -362,7 +363,7 @@ class ConsoleApp(App[int]):
 
     def close_prompt(self, cancelled: bool = False) -> None:
         """Hide the input line (a cancelled search goes back to the filter before it)."""
-        prompt = self.query_one("#prompt", Prompt)
+        prompt = self.prompt
         if cancelled and prompt.purpose == "search" and self._before_prompt is not None:
             self.regex_error = ""
             self.apply_filter(self._before_prompt)
@@ -374,7 +375,7 @@ class ConsoleApp(App[int]):
 
     def on_input_changed(self, event: Input.Changed) -> None:
         """Search as the user types (after a short pause), marking an invalid regex."""
-        prompt = self.query_one("#prompt", Prompt)
+        prompt = self.prompt
         if prompt.purpose == "search":
             if self._search_timer is not None:
                 self._search_timer.stop()  # type: ignore[attr-defined]
@@ -389,11 +390,11 @@ class ConsoleApp(App[int]):
     def _search(self, text: str) -> None:
         self._search_timer = None
         ok = self.apply_filter(_with(self.spec, search=text))
-        self.query_one("#prompt", Prompt).set_class(not ok, "-invalid")
+        self.prompt.set_class(not ok, "-invalid")
 
     def on_input_submitted(self, event: Input.Submitted) -> None:
         """Enter: keep the search, add the highlight rule, or save the file."""
-        prompt = self.query_one("#prompt", Prompt)
+        prompt = self.prompt
         value = event.value
         if prompt.purpose == "search":
             if self._search_timer is not None:

@@ -10,10 +10,10 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass
 
-from textual.markup import escape
 from textual.content import Content
 from textual.widget import Widget
 
+from rostui.apps.console.columns import printable
 from rostui.apps.console.filters import FilterSpec, HighlightRule
 from rostui.apps.console.model import ConsoleModel
 from rostui.apps.console.table import HIGHLIGHT_COLOURS
@@ -29,6 +29,8 @@ LEVEL_KEYS: dict[Level, str] = {Level.DEBUG: "1", Level.INFO: "2", Level.WARN: "
 _LEVEL_COLOURS = {Level.DEBUG: "$text-success", Level.INFO: "$foreground", Level.WARN: "$text-warning",
                   Level.ERROR: "$text-error", Level.FATAL: "$text-error"}
 
+_KNOWN_LEVELS = frozenset(int(level) for level in Level)
+
 _HIGHLIGHT_COLOURS = ["$secondary 35%", "$accent 35%", "$success 30%", "$warning 30%"]
 
 #: The key help line.
@@ -37,32 +39,28 @@ KEY_HELP = ("1-5 levels  / search  r regex  h highlight  n/x node  p pause  c cl
 
 
 class Bar(Widget):
-    """A one-line widget showing Textual markup; repaints only when the markup changes."""
+    """A one-line widget showing :class:`Content`; repaints only when text or styles change."""
 
     DEFAULT_CSS = """
     Bar { height: 1; }
     """
 
-    def __init__(self, markup: str = "", *, id: str | None = None) -> None:
+    def __init__(self, content: Content | str = "", *, id: str | None = None) -> None:
         super().__init__(id=id)
-        self._markup = markup
-        self._content = Content.from_markup(markup)
-
-    @property
-    def markup(self) -> str:
-        """The markup shown."""
-        return self._markup
+        self._content = Content(content) if isinstance(content, str) else content
+        self._key = _key(self._content)
 
     @property
     def plain(self) -> str:
         """The text shown, without styles."""
         return self._content.plain
 
-    def show(self, markup: str) -> None:
-        """Display ``markup``."""
-        if markup != self._markup:
-            self._markup = markup
-            self._content = Content.from_markup(markup)
+    def show(self, content: Content) -> None:
+        """Display ``content``."""
+        key = _key(content)
+        if key != self._key:
+            self._key = key
+            self._content = content
             self.refresh()
 
     def render(self) -> Content:
@@ -70,40 +68,42 @@ class Bar(Widget):
         return self._content
 
 
+def _key(content: Content) -> tuple[str, tuple[object, ...]]:
+    return content.plain, tuple(content.spans)
+
+
 def _count(value: int) -> str:
     return f"{value:,}"
 
 
 def filter_markup(spec: FilterSpec, model: ConsoleModel, highlights: list[HighlightRule],
-                  regex_error: str = "") -> str:
-    """The filter bar: level toggles with their counts, node filters, search, highlight rules."""
-    parts = []
+                  regex_error: str = "") -> Content:
+    """The filter bar: level toggles with their counts (clickable), node filters, search, highlight rules."""
+    parts: list[str | Content | tuple[str, str]] = []
     for level, key in LEVEL_KEYS.items():
-        count = model.level_counts.get(int(level), 0)
+        count = _count(model.level_counts.get(int(level), 0))
         action = f"@click=app.toggle_level({int(level)})"
+        if parts:
+            parts.append("  ")
         if int(level) < model.min_level:
-            parts.append(f"[{action} dim strike]{key} {level.name}[/]")
+            parts.append(Content.from_markup(f"[{action} dim]{key} [strike]{level.name}[/strike][/]"))
         elif int(level) in spec.levels:
-            parts.append(f"[{action}][b {_LEVEL_COLOURS[level]}]{key} {level.name}[/] {_count(count)}[/]")
+            parts.append(Content.from_markup(f"[{action}][b {_LEVEL_COLOURS[level]}]{key} {level.name}[/] {count}[/]"))
         else:
-            parts.append(f"[{action} dim]{key} [strike]{level.name}[/strike] {_count(count)}[/]")
-    line = "  ".join(parts)
-    nodes = [f"+{escape(n)}" for n in sorted(spec.include_nodes)] + [f"−{escape(n)}" for n in
-                                                                       sorted(spec.exclude_nodes)]
-    if nodes:
-        line += " │ nodes " + " ".join(nodes)
-    if spec.search or regex_error:
-        kind = "regex" if spec.regex else "text"
-        if regex_error:
-            line += f" │ [b $text-error]{escape(regex_error)}[/]"
-        else:
-            line += f" │ {kind} [b]{escape(spec.search)}[/]"
+            parts.append(Content.from_markup(f"[{action} dim]{key} [strike]{level.name}[/strike] {count}[/]"))
+    if spec.include_nodes or spec.exclude_nodes:
+        parts.append(" │ nodes")
+        parts.extend(f" +{printable(n)}" for n in sorted(spec.include_nodes))
+        parts.extend(f" −{printable(n)}" for n in sorted(spec.exclude_nodes))
+    if regex_error:
+        parts.extend([" │ ", (printable(regex_error), "bold $text-error")])
+    elif spec.search:
+        parts.extend([f" │ {'regex' if spec.regex else 'text'} ", (printable(spec.search), "bold")])
     elif spec.regex:
-        line += " │ regex mode"
+        parts.append(" │ regex mode")
     for index, rule in enumerate(highlights):
-        colour = _HIGHLIGHT_COLOURS[index % HIGHLIGHT_COLOURS]
-        line += f" [on {colour}] {escape(rule.pattern)} [/]"
-    return line
+        parts.extend([" ", (f" {printable(rule.pattern)} ", f"on {_HIGHLIGHT_COLOURS[index % HIGHLIGHT_COLOURS]}")])
+    return Content.assemble(*parts)
 
 
 @dataclass(frozen=True)
@@ -117,24 +117,24 @@ class StatusInfo:
     notice: str = ""
 
 
-def status_markup(model: ConsoleModel, info: StatusInfo) -> str:
+def status_markup(model: ConsoleModel, info: StatusInfo) -> Content:
     """Mode, rows shown of kept, drops, malformed lines, the source (master or file) and a notice."""
     if model.paused:
-        mode = f"[b reverse $text-warning] PAUSED [/] [b]{_count(model.pending)} new[/]"
+        mode = Content.from_markup(f"[b reverse $text-warning] PAUSED [/] [b]{_count(model.pending)} new[/]")
     elif info.follow:
-        mode = "[b reverse $text-success] FOLLOW [/]"
+        mode = Content.from_markup("[b reverse $text-success] FOLLOW [/]")
     else:
-        mode = "[b reverse $text-primary] SCROLL [/]"
-    parts = [mode, f"{_count(len(model))} shown / {_count(model.kept)} kept"]
+        mode = Content.from_markup("[b reverse $text-primary] SCROLL [/]")
+    parts: list[str | Content | tuple[str, str]] = [mode, f" │ {_count(len(model))} shown / {_count(model.kept)} kept"]
     if model.dropped:
-        parts.append(f"[b $text-warning]{_count(model.dropped)} dropped[/] (max {_count(model.capacity)})")
+        parts.extend([" │ ", (f"{_count(model.dropped)} dropped", "bold $text-warning"),
+                      f" (max {_count(model.capacity)})"])
     if info.malformed:
-        parts.append(f"[b $text-error]⚠ {escape(info.malformed)}[/]")
-    source = escape(info.source)
-    parts.append(source if info.source_ok else f"[b $text-error]{source}[/]")
+        parts.extend([" │ ", (f"⚠ {printable(info.malformed)}", "bold $text-error")])
+    parts.extend([" │ ", (printable(info.source), "" if info.source_ok else "bold $text-error")])
     if info.notice:
-        parts.append(escape(info.notice))
-    return " │ ".join(parts)
+        parts.extend([" │ ", printable(info.notice)])
+    return Content.assemble(*parts)
 
 
 def _full_stamp(stamp: int) -> str:
@@ -143,19 +143,21 @@ def _full_stamp(stamp: int) -> str:
     return f"{secs}.{nsecs:09d}  ({wall}.{nsecs // 1_000_000:03d})"
 
 
-def detail_markup(seq: int | None, entry: RosoutEntry | None, source_name: str = "") -> str:
+def detail_markup(seq: int | None, entry: RosoutEntry | None, source_name: str = "") -> Content:
     """Every field of the selected message, its full text last."""
     if seq is None or entry is None:
-        return "[dim]no message selected[/]"
-    colour = _LEVEL_COLOURS.get(Level(entry.level), "$foreground") if entry.level in Level._value2member_map_ \
+        return Content.from_markup("[dim]no message selected[/]")
+    colour = _LEVEL_COLOURS.get(Level(entry.level), "$foreground") if entry.level in _KNOWN_LEVELS \
         else "$foreground"
-    lines = [
-        f"[b]#{seq + 1}[/]  [b {colour}]{entry.level_name}[/]  [b]{escape(entry.node) or '(no node)'}[/]",
-        f"[dim]stamp[/]     {_full_stamp(entry.stamp)}",
-        f"[dim]location[/]  {escape(entry.location) or '-'}   [dim](file:function:line)[/]",
-        f"[dim]topics[/]    {escape(', '.join(entry.topics)) or '-'}",
+    parts: list[str | Content | tuple[str, str]] = [
+        (f"#{seq + 1}", "bold"), "  ", (entry.level_name, f"bold {colour}"), "  ",
+        (printable(entry.node) or "(no node)", "bold"),
+        ("\nstamp     ", "dim"), _full_stamp(entry.stamp),
+        ("\nlocation  ", "dim"), printable(entry.location) or "-", ("   (file:function:line)", "dim"),
+        ("\ntopics    ", "dim"), printable(", ".join(entry.topics)) or "-",
     ]
     if entry.source_line and source_name:
-        lines.append(f"[dim]read from[/] {escape(source_name)}:{entry.source_line}")
-    lines.append(escape(entry.message) if entry.message else "[dim](empty message)[/]")
-    return "\n".join(lines)
+        parts.extend([("\nread from ", "dim"), f"{printable(source_name)}:{entry.source_line}"])
+    parts.append("\n")
+    parts.append(printable(entry.message, keep_newlines=True) if entry.message else ("(empty message)", "dim"))
+    return Content.assemble(*parts, strip_control_codes=False)

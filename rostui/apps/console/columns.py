@@ -16,10 +16,10 @@ from rich.cells import cell_len, set_cell_size
 
 from rostui.core.log.rosout_read import RosoutEntry
 
-__all__ = ["Column", "Layout", "cell", "clock_text", "layout_for", "row_texts"]
+__all__ = ["Column", "Layout", "cell", "clock_text", "layout_for", "printable", "row_texts"]
 
 #: Narrowest message column before optional columns are dropped.
-MIN_MESSAGE = 24
+MIN_MESSAGE = 40
 
 #: Space between two columns.
 GAP = 1
@@ -63,8 +63,8 @@ def layout_for(width: int, seq_digits: int, node_width: int) -> Layout:
         "severity": 5,
         "node": min(max(node_width, 8), 28),
         "stamp": 12,
-        "topics": 20,
-        "location": 28,
+        "topics": 16,
+        "location": 24,
     }
     titles = {"seq": "#", "message": "Message", "severity": "Sev", "node": "Node", "stamp": "Stamp",
               "topics": "Topics", "location": "Location"}
@@ -104,6 +104,14 @@ def one_line(text: str) -> str:
 
 #: Control characters shown as their Unicode pictures (tab as a space), so none reaches the terminal.
 _VISIBLE_CONTROLS = {code: chr(0x2400 + code) for code in range(32)} | {9: " ", 0x7F: "\u2421"}
+
+
+def printable(text: str, keep_newlines: bool = False) -> str:
+    """``text`` with control characters (and tabs) replaced by visible ones; newlines kept if asked."""
+    if text.isprintable():
+        return text
+    table = _VISIBLE_CONTROLS if not keep_newlines else {**_VISIBLE_CONTROLS, 10: "\n"}
+    return text.translate(table)
 
 
 def cell(text: str, width: int) -> str:

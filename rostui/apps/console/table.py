@@ -253,12 +253,10 @@ class LogTable(ScrollView, can_focus=True):
     def watch_scroll_y(self, old: float, new: float) -> None:
         """Scrolling up by hand leaves follow mode; the view stays anchored to its top message."""
         super().watch_scroll_y(old, new)
-        if self._syncing:
-            return
-        if self.follow and new < old and new < self.max_scroll_y:
-            self.follow = False
         row = int(new)
         self._top_seq = self.model.seq_at(row) if row < len(self.model) else None
+        if not self._syncing and self.follow and new < old and new < self.max_scroll_y:
+            self.follow = False
 
     def on_click(self, event: events.Click) -> None:
         """Clicking a row selects it."""

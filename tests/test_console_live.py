@@ -1,0 +1,133 @@
+"""The console against live systems: a real rospy node under real roscore, and masters that go away.
+
+The app runs headless on the test's loop; the master (real `roscore` or
+`rostui core`) and the rospy node are separate processes with a private
+ROS_HOME on a free port.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import pytest
+from textual.pilot import Pilot
+
+from rostui.apps.console.app import ConsoleApp
+from rostui.apps.console.model import ConsoleOptions
+from rostui.core.node.node import AsyncNode
+
+from conftest import SYSTEM_PYTHON, have_rospy, master_port, need_peer, rostui_cmd, stop_process, wait_for_port
+from console_helpers import DEADLINE, until
+
+ROSPY_LOGGER = r'''
+import rospy
+rospy.init_node("console_rospy")
+n = 0
+rate = rospy.Rate(5)
+while not rospy.is_shutdown():
+    rospy.loginfo("rospy says %d", n)
+    if n % 3 == 0:
+        rospy.logwarn("rospy warns %d", n)
+    n += 1
+    rate.sleep()
+'''
+
+
+def status(app: ConsoleApp) -> str:
+    """The status line's text."""
+    return app.status_bar.plain
+
+
+def run(app: ConsoleApp, scenario: Any, size: tuple[int, int] = (140, 30)) -> None:
+    """Run ``app`` headless and play ``scenario``."""
+    async def main() -> None:
+        async with app.run_test(size=size) as pilot:
+            await scenario(pilot, app)
+
+    asyncio.run(main())
+
+
+def test_a_rospy_nodes_messages_appear_under_real_roscore(real_roscore: Any, ros_env: dict[str, str],
+                                                          tmp_path: Path) -> None:
+    """rospy logs INFO and WARN under roscore; the console shows them with the node, file and topics."""
+    need_peer(have_rospy(), "rospy (Debian python3-rospy)")
+    script = tmp_path / "console_rospy.py"
+    script.write_text(ROSPY_LOGGER)
+    proc = subprocess.Popen([SYSTEM_PYTHON, str(script)], env=ros_env, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL)
+
+    async def scenario(pilot: Pilot, app: ConsoleApp) -> None:
+        def rospy_messages() -> list[Any]:
+            return [e for _, e in app.model.shown() if e.node == "/console_rospy"]
+
+        await until(lambda: len({e.level for e in rospy_messages()}) == 2, "rospy's INFO and WARN messages")
+        entry = next(e for e in rospy_messages() if e.level == 4)
+        assert entry.message.startswith("rospy warns ")
+        assert (entry.file, entry.function, entry.line) == ("console_rospy.py", "<module>", 9)
+        assert "/rosout" in entry.topics
+        await until(lambda: any("rospy warns" in line and "WARN  /console_rospy" in line
+                                for line in app.table.visible_texts()), "a rospy warning drawn in the table")
+        await pilot.press("3")  # hide WARN
+        assert {e.level for e in rospy_messages()} == {2}
+
+    try:
+        run(ConsoleApp(ConsoleOptions()), scenario)
+    finally:
+        stop_process(proc)
+
+
+def start_master(kind: str, env: dict[str, str]) -> subprocess.Popen:
+    """Start `rostui core` or a real `roscore` on the environment's port and wait for it."""
+    port = master_port(env)
+    command = rostui_cmd("core", "-p", str(port)) if kind == "rostui" else ["roscore", "-p", str(port)]
+    proc = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    wait_for_port(port, timeout=DEADLINE, proc=proc)
+    return proc
+
+
+@pytest.mark.parametrize("kind", ["rostui", "roscore"])
+def test_master_going_away_and_coming_back(kind: str, ros_env: dict[str, str]) -> None:
+    """The master stops: the app says so and keeps running; a new master starts: messages flow again."""
+    if kind == "roscore":
+        need_peer(shutil.which("roscore") is not None, "roscore (Debian ros-core)")
+    masters = [start_master(kind, ros_env)]
+
+    async def log_until_seen(app: ConsoleApp, text: str) -> None:
+        node = AsyncNode("comeback_talker")
+        node.log.console = None
+        await node.start()
+        try:
+            loop = asyncio.get_running_loop()
+            deadline = loop.time() + DEADLINE
+            while not any(e.message == text for _, e in app.model.shown()):
+                assert loop.time() < deadline, f"{text!r} never arrived"
+                node.log.info(text)
+                await asyncio.sleep(0.2)
+        finally:
+            await node.shutdown()
+
+    async def scenario(pilot: Pilot, app: ConsoleApp) -> None:
+        await until(lambda: status(app).endswith(f"master {app.master_uri}"), "the console to connect")
+        await log_until_seen(app, "before the restart")
+        await asyncio.get_running_loop().run_in_executor(None, stop_process, masters[0])
+        await until(lambda: "gone: waiting for it to come back" in status(app), "the 'master gone' message")
+        assert any(n.title == "master" and "gone" in n.message for n in app._notifications)
+        assert app.is_running
+        masters.append(await asyncio.get_running_loop().run_in_executor(None, start_master, kind, ros_env))
+        await until(lambda: status(app).endswith(f"master {app.master_uri}"), "the console to reconnect")
+        await log_until_seen(app, "after the restart")
+        assert app.source is not None and app.source.subscriptions >= 2
+        assert [e.message for _, e in app.model.shown()].count("before the restart") >= 1
+
+    try:
+        run(ConsoleApp(ConsoleOptions()), scenario)
+    finally:
+        for proc in masters:
+            stop_process(proc)

@@ -31,7 +31,7 @@ _LEVEL_COLOURS = {Level.DEBUG: "$text-success", Level.INFO: "$foreground", Level
 
 _KNOWN_LEVELS = frozenset(int(level) for level in Level)
 
-_HIGHLIGHT_COLOURS = ["$secondary 35%", "$accent 35%", "$success 30%", "$warning 30%"]
+_HIGHLIGHT_COLOURS = ["$accent 30%", "$success 30%", "$secondary 80%", "$error 25%"]
 
 #: The key help line.
 KEY_HELP = ("1-5 levels  / search  r regex  h highlight  n/x node  p pause  c clear  "

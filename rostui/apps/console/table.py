@@ -59,10 +59,10 @@ class LogTable(ScrollView, can_focus=True):
     LogTable > .log-table--error { color: $text-error; }
     LogTable > .log-table--fatal { color: $text; background: $error 45%; text-style: bold; }
     LogTable > .log-table--cursor { background: $primary 45%; text-style: bold; }
-    LogTable > .log-table--highlight-0 { background: $secondary 35%; }
-    LogTable > .log-table--highlight-1 { background: $accent 35%; }
-    LogTable > .log-table--highlight-2 { background: $success 30%; }
-    LogTable > .log-table--highlight-3 { background: $warning 30%; }
+    LogTable > .log-table--highlight-0 { background: $accent 30%; }
+    LogTable > .log-table--highlight-1 { background: $success 30%; }
+    LogTable > .log-table--highlight-2 { background: $secondary 80%; }
+    LogTable > .log-table--highlight-3 { background: $error 25%; }
     """
 
     BINDINGS: ClassVar[list[BindingType]] = [
@@ -272,6 +272,11 @@ class LogTable(ScrollView, can_focus=True):
     def _style(self, *names: str) -> Style:
         return self.get_component_rich_style(*names)
 
+    def _overlay(self, name: str) -> Style:
+        """A component class's background (and boldness), so the level's colour shows through."""
+        full = self.get_component_rich_style(name)
+        return Style(bgcolor=full.bgcolor, bold=full.bold)
+
     def render_line(self, y: int) -> Strip:
         """Line ``y`` of the widget: the header, a message row, or blank."""
         layout = self.layout
@@ -299,9 +304,9 @@ class LogTable(ScrollView, can_focus=True):
         style = self.rich_style + self._style(_LEVEL_CLASSES.get(entry.level, "log-table--info"))
         mark = first_highlight(self.highlights, entry)
         if mark >= 0:
-            style += self._style(f"log-table--highlight-{mark % HIGHLIGHT_COLOURS}")
+            style += self._overlay(f"log-table--highlight-{mark % HIGHLIGHT_COLOURS}")
         if selected:
-            style += self._style("log-table--cursor")
+            style += self._overlay("log-table--cursor")
         texts = row_texts(seq, entry)
         gap = " " * GAP
         text = gap.join(cell(texts[c.key], c.width) for c in layout.columns)

@@ -17,7 +17,7 @@ _SHAPES = {Kind.NODE: "ellipse", Kind.TOPIC: "box", Kind.GROUP: "folder"}
 
 def _quote(text: str) -> str:
     """A DOT string literal."""
-    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n") + '"'
 
 
 def to_dot(view: ViewGraph, *, title: str = "rosgraph", label_edges: bool = False) -> str:

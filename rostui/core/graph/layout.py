@@ -110,6 +110,7 @@ def layered_layout(sizes: Mapping[str, tuple[int, int]], edges: Sequence[tuple[s
         if key not in seen:
             seen.add(key)
             unique.append((a, b))
+    unique.sort(key=lambda e: (index[e[0]], index[e[1]]))
     pairs = [(index[a], index[b]) for a, b in unique]
 
     reversed_flags = _break_cycles(n, pairs)

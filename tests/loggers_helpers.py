@@ -18,18 +18,20 @@ Scenario = Callable[[Pilot, LoggersApp], Awaitable[None]]
 
 def quick_app(**kwargs: float) -> LoggersApp:
     """The real app with short refresh periods and a short call timeout, so tests see changes soon."""
-    settings = {"node_period": 0.3, "logger_period": 0.5, "timeout": 2.0}
+    settings = {"node_period": 0.3, "ping_period": 0.5, "timeout": 2.0}
     settings.update(kwargs)
     return LoggersApp(**settings)
 
 
-async def until(predicate: Callable[[], bool], what: str, timeout: float = DEADLINE) -> None:
-    """Poll ``predicate`` on the running loop until it holds; fail with ``what`` if it never does."""
+async def until(predicate: Callable[[], bool], what: str, timeout: float = DEADLINE,
+                app: LoggersApp | None = None) -> None:
+    """Poll ``predicate`` on the running loop until it holds; fail with ``what`` (and ``app``'s notices)."""
     loop = asyncio.get_running_loop()
     deadline = loop.time() + timeout
     while not predicate():
         if loop.time() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
+            shown = "" if app is None else f"; the app shows {notices(app)}"
+            raise AssertionError(f"timed out waiting for {what}{shown}")
         await asyncio.sleep(0.02)
 
 
@@ -47,6 +49,11 @@ def notice(app: LoggersApp, panel: str) -> tuple[str, str]:
     """``(text, kind)`` of the notice under ``nodes``, ``loggers``, ``levels``, or the ``master`` line."""
     widget = app.notice(panel)
     return widget.text, widget.kind
+
+
+def notices(app: LoggersApp) -> dict[str, tuple[str, str]]:
+    """Every notice of the app, for failure messages."""
+    return {panel: notice(app, panel) for panel in ("master", "nodes", "loggers", "levels")}
 
 
 def listed_nodes(app: LoggersApp) -> list[str]:
@@ -75,7 +82,7 @@ async def select_node(pilot: Pilot, app: LoggersApp, name: str) -> None:
         names = listed_nodes(app)
         current = names.index(node_list.highlighted_name) if node_list.highlighted_name in names else -1
         await pilot.press("down" if current < names.index(name) else "up")
-    await until(lambda: app.node == name and bool(app.loggers), f"the loggers of {name}")
+    await until(lambda: app.node == name and bool(app.loggers), f"the loggers of {name}", app=app)
 
 
 async def select_logger(pilot: Pilot, app: LoggersApp, logger: str) -> None:
@@ -83,7 +90,7 @@ async def select_logger(pilot: Pilot, app: LoggersApp, logger: str) -> None:
     table = app.query_one(LoggerTable)
     table.focus()
     await pilot.pause()
-    await until(lambda: logger in table.logger_names, f"logger {logger} listed")
+    await until(lambda: logger in table.logger_names, f"logger {logger} listed", app=app)
     while table.highlighted_name != logger:
         names = table.logger_names
         await pilot.press("down" if table.cursor_row < names.index(logger) else "up")

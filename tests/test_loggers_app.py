@@ -9,6 +9,7 @@ app's loop) or started as programs.
 from __future__ import annotations
 
 import asyncio
+import re
 import signal
 import subprocess
 import xmlrpc.client
@@ -24,7 +25,7 @@ from rostui.core.log import Level
 from rostui.core.node import AsyncNode
 from rostui.core.tools.loggers import LEVEL_NAMES
 
-from conftest import free_port, master_port, rostui_cmd, stop_process, wait_for_port
+from conftest import master_port, rostui_cmd, stop_process, wait_for_port
 from live_helpers import Program
 from loggers_helpers import (
     listed_nodes, marked_level, notice, quick_app, run_app, select_logger, select_node, shown_levels, until,
@@ -159,7 +160,8 @@ def test_node_killed_while_selected(rostui_core: Any, ros_env: dict[str, str], t
             count.proc.send_signal(signal.SIGKILL)
             await until(lambda: notice(app, "loggers")[1] == "error", "an error under the loggers")
             text = notice(app, "loggers")[0]
-            assert text.startswith("node /count_and_log does not answer (connection refused)"), text
+            assert re.fullmatch(r"node /count_and_log does not answer \(connection (refused|lost: .*)\): "
+                                r"it has probably died", text), text
             assert shown_levels(app) == {} and marked_level(app) is None
             await pilot.press("d")
             assert notice(app, "levels") == ("select a node and a logger first", "error")
@@ -181,8 +183,7 @@ def test_node_shut_down_while_selected(rostui_core: Any) -> None:
         await beta.shutdown()
         await until(lambda: "/beta" not in listed_nodes(app), "/beta gone from the list")
         await until(lambda: notice(app, "loggers")[1] == "error", "an error under the loggers")
-        text = notice(app, "loggers")[0]
-        assert "/beta" in text and ("is gone" in text or "is not running" in text), text
+        assert notice(app, "loggers")[0] == "node /beta is gone: the master no longer lists it"
         assert shown_levels(app) == {} and app.node == ""
         await select_node(pilot, app, "/rosout")
         await pilot.press("w")
@@ -193,22 +194,29 @@ def test_node_shut_down_while_selected(rostui_core: Any) -> None:
 
 @pytest.fixture
 def hung_node(rostui_core: Any, ros_env: dict[str, str]) -> Iterator[str]:
-    """/hung: its logger services are registered with the master, and its server accepts but never answers."""
+    """/hung: alive (its slave API answers getPid) but its logger services accept and never answer."""
     import socket
+    import threading
+    from xmlrpc.server import SimpleXMLRPCServer
 
-    server = socket.socket()
-    server.bind(("127.0.0.1", 0))
-    server.listen(16)
-    port = server.getsockname()[1]
+    services = socket.socket()
+    services.bind(("127.0.0.1", 0))
+    services.listen(16)
+    slave = SimpleXMLRPCServer(("127.0.0.1", 0), logRequests=False, allow_none=True)
+    slave.register_function(lambda caller_id: [1, "", 4242], "getPid")
+    threading.Thread(target=slave.serve_forever, daemon=True).start()
     master = xmlrpc.client.ServerProxy(ros_env["ROS_MASTER_URI"])
-    api = f"http://127.0.0.1:{free_port()}/"
+    api = f"http://127.0.0.1:{slave.server_address[1]}/"
     for service in ("get_loggers", "set_logger_level"):
-        code, message, _ = master.registerService("/hung", f"/hung/{service}", f"rosrpc://127.0.0.1:{port}", api)
+        code, message, _ = master.registerService("/hung", f"/hung/{service}",
+                                                  f"rosrpc://127.0.0.1:{services.getsockname()[1]}", api)
         assert code == 1, message
     try:
         yield "/hung"
     finally:
-        server.close()
+        slave.shutdown()
+        slave.server_close()
+        services.close()
 
 
 def test_node_that_never_answers_times_out_in_place(hung_node: str) -> None:
@@ -220,6 +228,9 @@ def test_node_that_never_answers_times_out_in_place(hung_node: str) -> None:
         node_list.highlighted = listed_nodes(app).index(hung_node)
         await until(lambda: notice(app, "loggers")[1] == "error", "a timeout under the loggers")
         assert notice(app, "loggers")[0] == "/hung/get_loggers did not answer within 1 s"
+        await asyncio.sleep(1.5)  # pings go on (it answers them): the message stays
+        assert notice(app, "loggers") == ("/hung/get_loggers did not answer within 1 s", "error")
+        assert app.is_running
         await select_node(pilot, app, "/rosout")
         assert notice(app, "loggers")[1] == "info"
 

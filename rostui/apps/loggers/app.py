@@ -1,12 +1,19 @@
 """LoggersApp: rqt_logger_level in the terminal.
 
 Left, the nodes that serve ``get_loggers`` (the master's service list, asked
-again every second); middle, the selected node's loggers and levels (asked
-again every two seconds); right, the five levels with the selected logger's
-current one marked.  ``d``/``i``/``w``/``e``/``f``, Enter on a level or a
+again every second); middle, the selected node's loggers and levels; right,
+the five levels with the selected logger's current one marked.  ``d``/``i``/``w``/``e``/``f``, Enter on a level or a
 click sets it through the node's ``set_logger_level``.  Whatever fails (no
 master, node gone, a call refused or timed out) is said in red under the
 panel it concerns, and the app keeps running and retrying.
+
+A node's ``get_loggers`` is called only when it is selected, after a level
+is set and on ``r``; in between the selected node is pinged through its slave
+API (``getPid``, as ``rosnode ping`` does), so a node that died is reported
+promptly.  Reading loggers on a timer would be harmful: the roscpp of Debian
+12 (rosconsole 1.14 on log4cxx 1.0) crashes on the logger service call that
+follows a ``get_loggers``, so polling would kill a roscpp node that the user
+only looked at.
 """
 
 from __future__ import annotations
@@ -31,8 +38,8 @@ from rostui.core.tools.loggers import (
 #: Seconds between two readings of the master's node list.
 NODE_PERIOD = 1.0
 
-#: Seconds between two readings of the selected node's loggers.
-LOGGER_PERIOD = 2.0
+#: Seconds between two pings of the selected node.
+PING_PERIOD = 2.0
 
 SET_HINT = "d i w e f or Enter: set level"
 
@@ -59,11 +66,11 @@ class LoggersApp(App[int]):
     ]
 
     def __init__(self, *, master_uri: str | None = None, timeout: float = DEFAULT_TIMEOUT,
-                 node_period: float = NODE_PERIOD, logger_period: float = LOGGER_PERIOD) -> None:
+                 node_period: float = NODE_PERIOD, ping_period: float = PING_PERIOD) -> None:
         super().__init__()
         self.client = LoggerLevels(master_uri, timeout=timeout)
         self.node_period = node_period
-        self.logger_period = logger_period
+        self.ping_period = ping_period
         self.node = ""
         self.logger = ""
         self.nodes: dict[str, LoggerNode] = {}
@@ -110,7 +117,7 @@ class LoggersApp(App[int]):
     async def _start(self) -> None:
         await self.client.start()
         self.set_interval(self.node_period, self._tick_nodes)
-        self.set_interval(self.logger_period, self._tick_loggers)
+        self.set_interval(self.ping_period, self._tick_ping)
         await self._refresh_nodes()
         self.started.set()
 
@@ -188,18 +195,26 @@ class LoggersApp(App[int]):
         self._load(name)
 
     def _drop_node(self, message: str, kind: str) -> None:
-        """Forget the selected node, saying why under the loggers panel."""
+        """Forget the selected node, saying why under the loggers panel (a failed set stays said under levels)."""
         self.node = ""
         self.logger = ""
         self.loggers = {}
         self.query_one(LoggerTable).clear_loggers()
-        self._show_levels()
+        self._show_levels(hint=self.notice("levels").kind != "error")
         self.notice("loggers").say(message, kind)
 
     # -- loggers --------------------------------------------------------------------------
-    def _tick_loggers(self) -> None:
+    def _tick_ping(self) -> None:
         if self.node and (self._loggers_worker is None or self._loggers_worker.is_finished):
-            self._load(self.node)
+            self._loggers_worker = self.run_worker(self._ping(self.node), group="loggers", exclusive=True,
+                                                   exit_on_error=False)
+
+    async def _ping(self, node: str) -> None:
+        try:
+            await self.client.ping(node)
+        except LoggerToolError as exc:
+            if node == self.node:
+                self._loggers_failed(exc)
 
     def _load(self, node: str) -> None:
         self._loggers_worker = self.run_worker(self._load_loggers(node), group="loggers", exclusive=True,
@@ -248,7 +263,7 @@ class LoggersApp(App[int]):
         self._set_titles()
         current = self.loggers.get(self.logger)
         self.query_one(LevelList).show_current(current.level if current else None, self.logger or None)
-        if hint or current is None:
+        if hint:
             self.notice("levels").say(SET_HINT if current else "select a logger")
 
     def action_set_level(self, level: str) -> None:

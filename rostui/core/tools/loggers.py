@@ -178,6 +178,35 @@ class LoggerLevels:
             raise MasterGoneError(f"master at {self.master_uri} is not answering") from None
         return logger_nodes(services)
 
+    async def ping(self, node: str) -> int:
+        """The pid of ``node``, asked through its slave API (``rosnode ping``), without touching its loggers.
+
+        NodeGoneError when the master no longer knows it or it does not answer;
+        ServiceTimeoutError when it accepts but does not answer in time.
+        """
+        from rostui.core.node.node import MasterRefusedError, MasterUnreachableError
+        from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, XmlRpcError, ros_result
+
+        try:
+            uri = await asyncio.wait_for(self._node.master_call("lookupNode", node), self.timeout)
+        except asyncio.TimeoutError:
+            raise MasterGoneError(f"master at {self.master_uri} did not answer within {self.timeout:g} s") from None
+        except MasterUnreachableError:
+            raise MasterGoneError(f"master at {self.master_uri} is not answering") from None
+        except MasterRefusedError:
+            raise NodeGoneError(f"node {node} is gone: the master no longer lists it") from None
+        client = XmlRpcClient(str(uri), timeout=self.timeout + 1.0)  # wait_for below decides the timeout
+        try:
+            return int(ros_result(await asyncio.wait_for(client.call("getPid", self._node.name), self.timeout)))
+        except asyncio.TimeoutError:
+            raise ServiceTimeoutError(f"node {node} did not answer within {self.timeout:g} s") from None
+        except XmlRpcConnectionError as exc:
+            raise NodeGoneError(f"node {node} does not answer ({exc.reason}): it has probably died") from None
+        except (XmlRpcError, RosApiError, ValueError, TypeError) as exc:
+            raise ServiceFailedError(f"node {node} answered getPid wrongly: {exc}") from None
+        finally:
+            await client.close()
+
     async def loggers(self, node: str) -> list[LoggerLevel]:
         """The loggers of ``node`` with their levels, sorted by name."""
         response = await self._call(node, GET_LOGGERS, "roscpp/GetLoggers")

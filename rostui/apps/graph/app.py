@@ -27,7 +27,7 @@ from textual.widgets import Input, Static
 from rostui.apps.graph.canvas import Canvas, draw, layout_view
 from rostui.apps.graph.widget import GraphView
 from rostui.core.graph.layout import Layout, LayoutHint
-from rostui.core.graph.live import LiveGraph, Mark
+from rostui.core.graph.live import KEEP_REFRESHES, LiveGraph, Mark
 from rostui.core.graph.model import RosGraph
 from rostui.core.graph.search import fuzzy_rank
 from rostui.core.graph.source import GraphSource, RateReport, SourceError
@@ -52,7 +52,11 @@ PROMPTS = {"search": "search: ", "include": "include regex: ", "exclude": "exclu
 
 
 class GraphApp(App[int]):
-    """The ROS graph of the master at ``master_uri`` (ROS_MASTER_URI by default), refreshed every ``period`` s."""
+    """The ROS graph of the master at ``master_uri`` (ROS_MASTER_URI by default), refreshed every ``period`` s.
+
+    A topic's rate is measured over ``rate_seconds``; "new" and "gone" marks
+    last ``mark_refreshes`` refreshes.
+    """
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "rostui graph"
@@ -84,14 +88,15 @@ class GraphApp(App[int]):
     ]
 
     def __init__(self, options: GraphOptions | None = None, *, master_uri: str | None = None,
-                 period: float = 1.5, rate_seconds: float = RATE_SECONDS) -> None:
+                 period: float = 1.5, rate_seconds: float = RATE_SECONDS,
+                 mark_refreshes: int = KEEP_REFRESHES) -> None:
         super().__init__()
         self.options = options or GraphOptions()
         self.master_uri = master_uri_from_env(master_uri)
         self.period = period
         self.rate_seconds = rate_seconds
         self.source = GraphSource(self.master_uri)
-        self.live = LiveGraph()
+        self.live = LiveGraph(mark_refreshes)
         self.polls = 0
         self.master_ok: bool | None = None
         self.master_error = ""
@@ -110,7 +115,7 @@ class GraphApp(App[int]):
         self._prompt: str | None = None
         self._prompt_before = ""
         self._polling = False
-        self._closed = False
+        self._shut = False
 
     # -- composition -------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -142,7 +147,7 @@ class GraphApp(App[int]):
     # -- polling -------------------------------------------------------------------------
     def poll(self) -> None:
         """Ask the master for the graph (skipped while the previous poll still runs)."""
-        if not self._polling and not self._closed:
+        if not self._polling and not self._shut:
             self._polling = True
             self.run_worker(self._poll(), group="poll", exit_on_error=False)
 
@@ -188,7 +193,7 @@ class GraphApp(App[int]):
         cached = self._layouts.get(signature)
         if cached is not None:
             self._layouts.move_to_end(signature)
-            self._display(view, *cached)
+            self._show_layout(view, *cached)
         else:
             self._layout_seq += 1
             self.run_worker(self._lay_out(view, signature, self._layout_seq), group="layout", exit_on_error=False)
@@ -206,9 +211,9 @@ class GraphApp(App[int]):
         while len(self._layouts) > CACHE_SIZE:
             self._layouts.popitem(last=False)
         if seq == self._layout_seq:
-            self._display(view, layout, canvas)
+            self._show_layout(view, layout, canvas)
 
-    def _display(self, view: ViewGraph, layout: Layout, canvas: Canvas) -> None:
+    def _show_layout(self, view: ViewGraph, layout: Layout, canvas: Canvas) -> None:
         self._hint = (self.options.view, layout.hint())
         graph = self.graph_view
         if graph.canvas is not canvas:
@@ -517,8 +522,8 @@ class GraphApp(App[int]):
         await self._close()
 
     async def _close(self) -> None:
-        if not self._closed:
-            self._closed = True
+        if not self._shut:
+            self._shut = True
             await self.source.close()
 
 

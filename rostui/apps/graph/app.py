@@ -254,9 +254,9 @@ class GraphApp(App[int]):
         counts = ""
         if view is not None:
             kinds = [v.kind for v in view.vertices.values()]
-            counts = f"{kinds.count(Kind.NODE)} nodes · {kinds.count(Kind.TOPIC)} topics"
+            counts = f"{_count(kinds.count(Kind.NODE), 'node')} · {_count(kinds.count(Kind.TOPIC), 'topic')}"
             if Kind.GROUP in kinds:
-                counts += f" · {kinds.count(Kind.GROUP)} groups"
+                counts += f" · {_count(kinds.count(Kind.GROUP), 'group')}"
         parts = [self.options.describe()]
         if self.focus_center is not None:
             parts.append(f"focus {name_of(self.focus_center)} ±{self.hops}")
@@ -525,6 +525,11 @@ class GraphApp(App[int]):
         if not self._shut:
             self._shut = True
             await self.source.close()
+
+
+def _count(number: int, noun: str) -> str:
+    """``1 node``, ``2 nodes``."""
+    return f"{number} {noun}" if number == 1 else f"{number} {noun}s"
 
 
 def _section(title: str, items: Any) -> list[str]:

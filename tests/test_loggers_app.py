@@ -166,6 +166,11 @@ def test_node_killed_while_selected(rostui_core: Any, ros_env: dict[str, str], t
             await pilot.press("d")
             assert notice(app, "levels") == ("select a node and a logger first", "error")
             assert "/count_and_log" in listed_nodes(app), "the master still lists a killed node"
+            zeta = await package_node("zeta")  # the list changes: the dead node is not selected again by it
+            await until(lambda: "/zeta" in listed_nodes(app), "/zeta listed")
+            await pilot.pause()
+            assert app.node == "" and notice(app, "loggers") == (text, "error")
+            await zeta.shutdown()
             await pilot.press("r")
             await pilot.pause()
             assert app.is_running

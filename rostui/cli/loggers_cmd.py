@@ -9,10 +9,10 @@ import typer
 
 
 def loggers_command(
-    node: Optional[str] = typer.Argument(None, help="Print this node's loggers and levels instead of opening "
+    node: Optional[str] = typer.Argument(None, metavar="[NODE]", help="Print this node's loggers and levels instead of opening "
                                                     "the app."),
-    logger: Optional[str] = typer.Argument(None, help="With NODE and LEVEL: the logger to set (e.g. ros.agitr)."),
-    level: Optional[str] = typer.Argument(None, help="DEBUG, INFO, WARN, ERROR or FATAL (any case)."),
+    logger: Optional[str] = typer.Argument(None, metavar="[LOGGER]", help="With NODE and LEVEL: the logger to set (e.g. ros.agitr)."),
+    level: Optional[str] = typer.Argument(None, metavar="[LEVEL]", help="DEBUG, INFO, WARN, ERROR or FATAL (any case)."),
     timeout: float = typer.Option(3.0, "--timeout", help="Seconds to wait for the master and each node."),
 ) -> None:
     """Show and set the logger levels of running nodes (like rqt_logger_level).

@@ -74,9 +74,10 @@ class NodeList(OptionList):
         if names == self.node_names:
             return False
         self.node_names = names
-        self.set_options(Option(Text(name), id=name) for name in names)
-        if keep in names:
-            self.highlighted = names.index(keep)
+        with self.prevent(OptionList.OptionHighlighted):  # a rebuild keeps the cursor; it selects nothing
+            self.set_options(Option(Text(name), id=name) for name in names)
+            if keep in names:
+                self.highlighted = names.index(keep)
         return True
 
 

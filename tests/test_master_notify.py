@@ -13,9 +13,10 @@ from rostui.core.xmlrpc import XmlRpcClient, XmlRpcServer
 class FakeNode:
     """A slave-API stand-in that records what the master tells it."""
 
-    def __init__(self, delay: float = 0.0, param_reply: int = 1) -> None:
+    def __init__(self, gate: asyncio.Event | None = None, param_reply: int = 1) -> None:
         self.events: list[tuple[str, tuple[Any, ...]]] = []
-        self.delay = delay
+        self.gate = gate
+        self.arrived = 0
         self.param_reply = param_reply
         self.changed = asyncio.Event()
 
@@ -24,8 +25,10 @@ class FakeNode:
         self.changed.set()
 
     async def publisherUpdate(self, caller_id: str, topic: str, pubs: list[str]) -> list[Any]:
-        if self.delay:
-            await asyncio.sleep(self.delay)
+        self.arrived += 1
+        self.changed.set()
+        if self.gate is not None:
+            await self.gate.wait()  # a node that answers only when the test lets it
         self._record("publisherUpdate", (caller_id, topic, pubs))
         return [1, "", 0]
 
@@ -87,27 +90,29 @@ def test_publisher_update_on_register_and_unregister() -> None:
 
 
 def test_register_does_not_wait_for_slow_subscriber_and_keeps_order() -> None:
+    gate = asyncio.Event()
+
     async def t(m: Master, c: XmlRpcClient, nodes: list[tuple[FakeNode, str]]) -> None:
         (slow, slow_uri), = nodes
         await c.call("registerSubscriber", "/slow", "/a", "std_msgs/String", slow_uri)
         await c.call("registerSubscriber", "/slow", "/b", "std_msgs/String", slow_uri)
-        t0 = time.monotonic()
-        await c.call("registerPublisher", "/p1", "/a", "std_msgs/String", "http://127.0.0.1:1/")
-        await c.call("registerPublisher", "/p2", "/b", "std_msgs/String", "http://127.0.0.1:1/")
-        await c.call("registerPublisher", "/p3", "/a", "std_msgs/String", "http://127.0.0.1:2/")
-        assert time.monotonic() - t0 < 0.3  # the 0.5 s subscriber did not hold us up
-        events = await slow.wait_for(2, timeout=5)
-        await asyncio.sleep(0.7)
-        topics = [e[1][1] for e in slow.events]
-        # the first update for /a is in flight; the later ones are queued and the
-        # pending /a update is replaced by the newest list, in place
-        assert topics[0] == "/a"
-        assert slow.events[-1][1] in (("/master", "/b", ["http://127.0.0.1:1/"]),
-                                      ("/master", "/a", ["http://127.0.0.1:1/", "http://127.0.0.1:2/"]))
-        last_a = [e for e in slow.events if e[1][1] == "/a"][-1]
-        assert last_a[1][2] == ["http://127.0.0.1:1/", "http://127.0.0.1:2/"]
-        assert events
-    scenario(t, [FakeNode(delay=0.5)])
+        for caller, topic, uri in (("/p1", "/a", "http://127.0.0.1:1/"), ("/p2", "/b", "http://127.0.0.1:1/"),
+                                   ("/p3", "/a", "http://127.0.0.1:2/")):
+            # The subscriber has not answered anything yet: a master waiting for it would hang here.
+            await asyncio.wait_for(c.call("registerPublisher", caller, topic, "std_msgs/String", uri), 10)
+        assert slow.events == []
+        while slow.arrived < 1:  # the first update (for /a) is in flight, the later ones queued
+            slow.changed.clear()
+            await asyncio.wait_for(slow.changed.wait(), 10)
+        gate.set()
+        await slow.wait_for(3, timeout=10)
+        # the pending /a update, queued behind /b, carries the newest list
+        assert slow.events == [
+            ("publisherUpdate", ("/master", "/a", ["http://127.0.0.1:1/"])),
+            ("publisherUpdate", ("/master", "/b", ["http://127.0.0.1:1/"])),
+            ("publisherUpdate", ("/master", "/a", ["http://127.0.0.1:1/", "http://127.0.0.1:2/"])),
+        ]
+    scenario(t, [FakeNode(gate=gate)])
 
 
 def test_dead_subscriber_does_not_block_others() -> None:

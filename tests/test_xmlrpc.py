@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import asyncio
 import socket
-import time
 import xmlrpc.client
 from typing import Any, Awaitable, Callable
 
@@ -225,17 +224,27 @@ def test_bad_xml_is_a_fault(body: bytes) -> None:
     run_with_server(t)
 
 
-def test_slow_loris_does_not_block_others_and_times_out() -> None:
+def test_slow_loris_does_not_block_others() -> None:
+    async def t(server: XmlRpcServer) -> None:
+        _, writer = await asyncio.open_connection("127.0.0.1", server.port)
+        writer.write(b"POST / HTTP/1.1\r\nContent-Length: 100\r\n")  # never finished
+        await writer.drain()
+        # The unfinished request has 60 s before it times out; a server that
+        # waited for it would miss this deadline.
+        assert await asyncio.wait_for(XmlRpcClient(server.uri).call("add", 1, 1), 10) == 2
+        writer.close()
+    run_with_server(t, request_timeout=60)
+
+
+def test_slow_loris_times_out_with_408() -> None:
     async def t(server: XmlRpcServer) -> None:
         reader, writer = await asyncio.open_connection("127.0.0.1", server.port)
         writer.write(b"POST / HTTP/1.1\r\nContent-Length: 100\r\n")  # never finished
         await writer.drain()
-        t0 = time.monotonic()
-        assert await XmlRpcClient(server.uri).call("add", 1, 1) == 2
-        assert time.monotonic() - t0 < 1.0
-        reply = await asyncio.wait_for(reader.read(), 5)
+        reply = await asyncio.wait_for(reader.read(), 10)
         assert reply.startswith(b"HTTP/1.1 408 ")
         writer.close()
+        assert await XmlRpcClient(server.uri).call("add", 1, 1) == 2
     run_with_server(t, request_timeout=0.5)
 
 

@@ -20,6 +20,7 @@ import os
 import socket
 import threading
 from dataclasses import dataclass
+from threading import get_ident
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, Sequence
 
 from rostui.core.node.anymsg import AnyMsg
@@ -245,15 +246,16 @@ class Publication:
                 self.seq += 1
         payload = msg.serialize() if not isinstance(msg, AnyMsg) else msg._buff
         data = LEN.pack(len(payload)) + payload
-        if threading.get_ident() == self.node.loop_thread_id:
+        if get_ident() == self.node.loop_thread_id:
             with self.lock:
                 for link in self.links:
                     link.send(data)
                 self._remember(data, msg, 1)
-            self._deliver_local((msg,))
+            if self.local:
+                self._deliver_local((msg,))
             return
         with self.lock:
-            if not self._flush_scheduled and not self.local and all(x.can_send_direct() for x in self.links):
+            if not self._flush_scheduled and not self.local and self._all_direct():
                 for link in self.links:
                     link.send_direct(data)
                 self._remember(data, msg, 1)
@@ -278,6 +280,13 @@ class Publication:
                         link.send(chunk, count)
             self._remember(batch[-1][0], batch[-1][1], len(batch))
         self._deliver_local([msg for _, msg in batch])
+
+    def _all_direct(self) -> bool:
+        """True when a user thread may write to every subscriber's socket itself."""
+        for link in self.links:
+            if not link.can_send_direct():
+                return False
+        return True
 
     def _remember(self, data: bytes, msg: Any, count: int) -> None:
         """Count what was sent and keep the last message of a latched topic."""
@@ -347,11 +356,8 @@ class Subscription:
         self.messages_received += 1
         for cb, args in self.callbacks:
             try:
-                if args is None:
-                    result = cb(msg)
-                else:
-                    result = cb(msg, args)
-                if asyncio.iscoroutine(result):
+                result = cb(msg) if args is None else cb(msg, args)
+                if result is not None and asyncio.iscoroutine(result):
                     self.node.loop.create_task(result)
             except Exception:  # a user callback must not kill the connection
                 log.exception("error in subscriber callback for %s", self.topic)

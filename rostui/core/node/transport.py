@@ -15,6 +15,7 @@ import socket
 from typing import Any, Callable, Protocol
 
 from rostui.core.tcpros import (
+    LEN,
     MAX_HEADER,
     FrameReader,
     TcprosError,
@@ -117,6 +118,13 @@ class InboundConnection(asyncio.Protocol):
 
     def data_received(self, data: bytes) -> None:
         """Read the header, route, then pass frames to the handler."""
+        handler = self.handler
+        if handler is not None and len(data) >= 4 and not self.reader.pending:
+            # One whole frame with nothing buffered: the stall watch is idle (see SubscriberConnection).
+            (length,) = LEN.unpack_from(data)
+            if length + 4 == len(data) and length <= self.reader.max_frame:
+                handler.frames_received([data[4:]])
+                return
         try:
             if self.handler is None:
                 if not self._read_header(data):
@@ -223,7 +231,17 @@ class SubscriberConnection(asyncio.Protocol):
 
     def data_received(self, data: bytes) -> None:
         """Parse the publisher header, then message frames."""
-        self.bytes_received += len(data)
+        size = len(data)
+        self.bytes_received += size
+        header = self.header
+        if header is not None and size >= 4 and not self.reader.pending:
+            # The usual case, one read holding one whole frame: nothing is buffered
+            # and the stall watch is idle, so neither needs updating.
+            (length,) = LEN.unpack_from(data)
+            if length + 4 == size and length <= self.reader.max_frame:
+                self.messages_received += 1
+                self.on_frames([data[4:]], header)
+                return
         try:
             if self.header is None:
                 frames = self.reader.feed(data, limit=1)

@@ -250,7 +250,10 @@ class Publication:
             with self.lock:
                 for link in self.links:
                     link.send(data)
-                self._remember(data, msg, 1)
+                self.messages_published += 1
+                if self.latch:
+                    self.latched_frame = data
+                    self.latched_msg = msg
             if self.local:
                 self._deliver_local((msg,))
             return
@@ -258,7 +261,10 @@ class Publication:
             if not self._flush_scheduled and not self.local and self._all_direct():
                 for link in self.links:
                     link.send_direct(data)
-                self._remember(data, msg, 1)
+                self.messages_published += 1
+                if self.latch:
+                    self.latched_frame = data
+                    self.latched_msg = msg
                 return
             self._pending.append((data, msg))
             if self._flush_scheduled:
@@ -444,7 +450,7 @@ class Subscription:
                 done.set_result(reason or "connection closed")
 
         proto = SubscriberConnection(self._request_header(), self._check_header,
-                                     self._frames_handler(), on_lost)
+                                     self._frames_handler(), on_lost, self._frame_handler())
         try:
             await self.node.loop.create_connection(lambda: proto, host, port)
         except OSError as exc:
@@ -506,6 +512,24 @@ class Subscription:
                     continue
                 dispatch(msg)
         return on_frames
+
+    def _frame_handler(self) -> Callable[[bytes, dict[str, str]], None]:
+        """The callback for a read that holds exactly one frame (no queue trimming can apply)."""
+        frames_handler = self._frames_handler()
+        if self.raw:
+            return lambda payload, header: frames_handler([payload], header)
+        deserialize = self.msg_class.deserialize
+        dispatch = self._dispatch
+        topic = self.topic
+
+        def on_frame(data: bytes, _header: dict[str, str]) -> None:
+            try:
+                msg = deserialize(data)
+            except Exception as exc:
+                log.warning("dropping undecodable message on %s: %s", topic, exc)
+                return
+            dispatch(msg)
+        return on_frame
 
     def close(self) -> None:
         """Disconnect from every publisher."""

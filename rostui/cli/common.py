@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import sys
-from typing import Any, Callable, NoReturn
 
-from rostui.core.network import master_uri_from_env
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any, Callable, NoReturn
 
 
 def fail(message: str, code: int = 1) -> NoReturn:
@@ -16,6 +17,8 @@ def fail(message: str, code: int = 1) -> NoReturn:
 
 def master_uri() -> str:
     """The master URI the command uses (ROS_MASTER_URI or the ROS default)."""
+    from rostui.core.masteruri import master_uri_from_env
+
     return master_uri_from_env()
 
 

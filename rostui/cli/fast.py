@@ -9,8 +9,8 @@ commands use; anything else, including ``--help``, goes to the full CLI.
 from __future__ import annotations
 
 import sys
-from typing import TYPE_CHECKING
 
+TYPE_CHECKING = False
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
 
@@ -26,16 +26,26 @@ def _topic_list(args: Sequence[str]) -> int:
 
 
 def _param_get(args: Sequence[str]) -> int:
-    from rostui.cli.common import fail, master_call
-    from rostui.core.tools.param import format_get, script_resolve
-    from rostui.core.xmlrpc import RosApiError
+    """``param get NAME`` over :func:`quick_call`; PyYAML loads only for values it must format."""
+    from rostui.cli.common import fail, master_uri
+    from rostui.core.tools.param_quick import script_resolve, simple_value_text
+    from rostui.core.xmlrpc import RosApiError, XmlRpcConnectionError, ros_result
+    from rostui.core.xmlrpc.quick import quick_call
 
     key = script_resolve(args[0])
+    uri = master_uri()
     try:
-        value = master_call("/rosparam", "getParam", key)
+        value = ros_result(quick_call(uri, "getParam", "/rosparam", key, timeout=10.0))
+    except XmlRpcConnectionError:
+        fail(f"ERROR: Unable to communicate with master at {uri}")
     except RosApiError:
         fail(f"ERROR: Parameter [{key}] is not set")
-    print(format_get(value))
+    text = simple_value_text(value)
+    if text is None:
+        from rostui.core.tools.param import format_get
+
+        text = format_get(value)
+    print(text)
     return 0
 
 

@@ -12,13 +12,9 @@ import os
 from typing import NamedTuple
 from urllib.parse import urlparse
 
-DEFAULT_MASTER_URI = "http://localhost:11311"
+from .masteruri import DEFAULT_MASTER_URI, master_uri_from_env
 
-
-def master_uri_from_env(override: str | None = None) -> str:
-    """The master URI: an explicit override, else ROS_MASTER_URI, else the ROS default."""
-    uri = override or os.environ.get("ROS_MASTER_URI") or DEFAULT_MASTER_URI
-    return uri if uri.endswith("/") else uri + "/"
+__all__ = ["DEFAULT_MASTER_URI", "Addressing", "is_loopback_host", "master_uri_from_env", "resolve_addressing"]
 
 
 def is_loopback_host(host: str) -> bool:

@@ -109,6 +109,17 @@ class FrameReader:
         """Bytes buffered that do not yet form a complete frame."""
         return len(self._buf)
 
+    def whole_frame(self, data: bytes) -> bytes | None:
+        """The payload when nothing is buffered and ``data`` is exactly one frame within the cap, else None.
+
+        The common case of a small message arriving in one read; callers feed
+        anything else to :meth:`feed`.
+        """
+        if self._buf or len(data) < 4:
+            return None
+        (size,) = LEN.unpack_from(data)
+        return data[4:] if size + 4 == len(data) and size <= self.max_frame else None
+
     def feed(self, data: bytes, limit: int | None = None) -> list[bytes]:
         """Add received bytes; return the frames now complete, in order.
 

@@ -20,6 +20,7 @@ import os
 import socket
 import threading
 from dataclasses import dataclass
+from threading import get_ident
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, Sequence
 
 from rostui.core.node.anymsg import AnyMsg
@@ -249,18 +250,25 @@ class Publication:
                 self.seq += 1
         payload = msg.serialize() if not isinstance(msg, AnyMsg) else msg._buff
         data = LEN.pack(len(payload)) + payload
-        if threading.get_ident() == self.node.loop_thread_id:
+        if get_ident() == self.node.loop_thread_id:
             with self.lock:
                 for link in self.links:
                     link.send(data)
-                self._remember(data, msg, 1)
-            self._deliver_local((msg,))
+                self.messages_published += 1
+                if self.latch:
+                    self.latched_frame = data
+                    self.latched_msg = msg
+            if self.local:
+                self._deliver_local((msg,))
             return
         with self.lock:
-            if not self._flush_scheduled and not self.local and all(x.can_send_direct() for x in self.links):
+            if not self._flush_scheduled and not self.local and self._all_direct():
                 for link in self.links:
                     link.send_direct(data)
-                self._remember(data, msg, 1)
+                self.messages_published += 1
+                if self.latch:
+                    self.latched_frame = data
+                    self.latched_msg = msg
                 return
             self._pending.append((data, msg))
             if self._flush_scheduled:
@@ -282,6 +290,13 @@ class Publication:
                         link.send(chunk, count)
             self._remember(batch[-1][0], batch[-1][1], len(batch))
         self._deliver_local([msg for _, msg in batch])
+
+    def _all_direct(self) -> bool:
+        """True when a user thread may write to every subscriber's socket itself."""
+        for link in self.links:
+            if not link.can_send_direct():
+                return False
+        return True
 
     def _remember(self, data: bytes, msg: Any, count: int) -> None:
         """Count what was sent and keep the last message of a latched topic."""
@@ -351,11 +366,8 @@ class Subscription:
         self.messages_received += 1
         for cb, args in self.callbacks:
             try:
-                if args is None:
-                    result = cb(msg)
-                else:
-                    result = cb(msg, args)
-                if asyncio.iscoroutine(result):
+                result = cb(msg) if args is None else cb(msg, args)
+                if result is not None and asyncio.iscoroutine(result):
                     self.node.loop.create_task(result)
             except Exception:  # a user callback must not kill the connection
                 log.exception("error in subscriber callback for %s", self.topic)
@@ -442,7 +454,7 @@ class Subscription:
                 done.set_result(reason or "connection closed")
 
         proto = SubscriberConnection(self._request_header(), self._check_header,
-                                     self._frames_handler(), on_lost)
+                                     self._frames_handler(), on_lost, self._frame_handler())
         try:
             await self.node.loop.create_connection(lambda: proto, host, port)
         except OSError as exc:
@@ -504,6 +516,24 @@ class Subscription:
                     continue
                 dispatch(msg)
         return on_frames
+
+    def _frame_handler(self) -> Callable[[bytes, dict[str, str]], None]:
+        """The callback for a read that holds exactly one frame (no queue trimming can apply)."""
+        frames_handler = self._frames_handler()
+        if self.raw:
+            return lambda payload, header: frames_handler([payload], header)
+        deserialize = self.msg_class.deserialize
+        dispatch = self._dispatch
+        topic = self.topic
+
+        def on_frame(data: bytes, _header: dict[str, str]) -> None:
+            try:
+                msg = deserialize(data)
+            except Exception as exc:
+                log.warning("dropping undecodable message on %s: %s", topic, exc)
+                return
+            dispatch(msg)
+        return on_frame
 
     def close(self) -> None:
         """Disconnect from every publisher."""

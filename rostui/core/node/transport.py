@@ -117,6 +117,13 @@ class InboundConnection(asyncio.Protocol):
 
     def data_received(self, data: bytes) -> None:
         """Read the header, route, then pass frames to the handler."""
+        handler = self.handler
+        if handler is not None:
+            # One whole frame with nothing buffered: the stall watch is idle (see SubscriberConnection).
+            payload = self.reader.whole_frame(data)
+            if payload is not None:
+                handler.frames_received([payload])
+                return
         try:
             if self.handler is None:
                 if not self._read_header(data):
@@ -191,7 +198,9 @@ class SubscriberConnection(asyncio.Protocol):
 
     ``on_header`` validates the publisher's header and returns an error string
     or None; ``on_frames`` receives message payloads with the publisher header; ``on_lost`` is called
-    once when the connection ends.
+    once when the connection ends.  ``on_frame``, when given, takes the common
+    case of a read holding exactly one frame (``on_frame(payload, header)``)
+    and must behave like ``on_frames([payload], header)``.
     """
 
     def __init__(
@@ -200,10 +209,12 @@ class SubscriberConnection(asyncio.Protocol):
         on_header: Callable[[dict[str, str]], str | None],
         on_frames: Callable[[list[bytes], dict[str, str]], None],
         on_lost: Callable[[str | None], None],
+        on_frame: Callable[[bytes, dict[str, str]], None] | None = None,
     ) -> None:
         self.request_header = request_header
         self.on_header = on_header
         self.on_frames = on_frames
+        self.on_frame = on_frame if on_frame is not None else (lambda payload, header: on_frames([payload], header))
         self.on_lost = on_lost
         self.reader = FrameReader(MAX_HEADER)
         self.header: dict[str, str] | None = None
@@ -224,6 +235,15 @@ class SubscriberConnection(asyncio.Protocol):
     def data_received(self, data: bytes) -> None:
         """Parse the publisher header, then message frames."""
         self.bytes_received += len(data)
+        header = self.header
+        if header is not None:
+            # The usual case, one read holding one whole frame: nothing is buffered
+            # and the stall watch is idle, so neither needs updating.
+            payload = self.reader.whole_frame(data)
+            if payload is not None:
+                self.messages_received += 1
+                self.on_frame(payload, header)
+                return
         try:
             if self.header is None:
                 frames = self.reader.feed(data, limit=1)

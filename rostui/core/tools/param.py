@@ -13,6 +13,8 @@ import os
 import re
 from typing import Any, Callable, Iterable
 
+from .param_quick import script_resolve, simple_value_text
+
 __all__ = [
     "ParamError",
     "script_resolve",
@@ -36,24 +38,6 @@ _INT_MAX = 2**31 - 1
 
 class ParamError(Exception):
     """A one-line, user-facing reason why a parameter command cannot proceed."""
-
-
-def script_resolve(name: str, script: str = "rosparam") -> str:
-    """Resolve a name typed on the command line like rosparam does.
-
-    Relative names resolve in ``ROS_NAMESPACE`` (default ``/``); ``~x`` under
-    the tool's own node name ``/<script>``.
-    """
-    if name == "/" or (name.startswith("/") and "//" not in name and not name.endswith("/")):
-        return name  # already global and canonical: skip importing the name machinery
-    from rostui.core import names
-
-    ns = os.environ.get("ROS_NAMESPACE") or "/"
-    if not name:
-        return names.resolve_name("", ns)
-    if name.startswith("~"):
-        return names.resolve_name(name, ns, node_name=names.join_names(ns, script))
-    return names.resolve_name(name, ns)
 
 
 # --------------------------------------------------------------------------- YAML typing
@@ -233,6 +217,9 @@ def format_get(value: Any) -> str:
     A dictionary or list is block YAML ending in a newline (so a blank line
     follows it); a scalar is its YAML form without the ``...`` end marker.
     """
+    simple = simple_value_text(value)
+    if simple is not None:
+        return simple
     yaml = _yaml()
     text = yaml.safe_dump(_plain(value), default_flow_style=False)
     if text.endswith("\n...\n"):

@@ -7,18 +7,22 @@ transport is asyncio streams speaking HTTP/1.1 with keep-alive and
 
 from __future__ import annotations
 
-from typing import Any
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any
 
-from .blocking import call_sync
 from .errors import RosApiError, XmlRpcConnectionError, XmlRpcError, XmlRpcFault, XmlRpcProtocolError
-from .marshal import EncodedResponse
 from .result import ros_result
 
-_LAZY = {"XmlRpcClient": "client", "XmlRpcServer": "server", "DEFAULT_MAX_BODY": "server"}
+_LAZY = {"XmlRpcClient": "client", "XmlRpcServer": "server", "DEFAULT_MAX_BODY": "server",
+         "call_sync": "blocking", "EncodedResponse": "marshal"}
 
 
 def __getattr__(name: str) -> Any:
-    """Import the asyncio client and server only when used, so blocking callers start fast."""
+    """Import the asyncio client and server, http.client and xmlrpc.client only when used.
+
+    A command-line query that only needs :mod:`.quick` then starts without them.
+    """
     module = _LAZY.get(name)
     if module is None:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

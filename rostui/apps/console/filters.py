@@ -10,20 +10,34 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field, replace
-from typing import Callable, Iterable
+from itertools import repeat
+from operator import contains, itemgetter, not_
+from typing import Callable, Iterable, Sequence
 
 from rostui.core.log.levels import Level
 from rostui.core.log.rosout_read import RosoutEntry
 
 __all__ = [
-    "ALL_LEVELS", "FilterError", "FilterSpec", "HighlightRule", "Predicate", "compile_filter", "compile_text",
+    "ALL_LEVELS", "LEVEL", "MESSAGE", "NODE", "FilterError", "FilterSpec", "HighlightRule", "Predicate", "Selector", "compile_filter",
+    "compile_selector", "compile_text",
     "first_highlight", "levels_from",
 ]
+
+#: Positions of the fields filters read, in a RosoutEntry or the plain tuple the model keeps.
+LEVEL = RosoutEntry._fields.index("level")
+NODE = RosoutEntry._fields.index("node")
+MESSAGE = RosoutEntry._fields.index("message")
 
 #: The five Log levels (DEBUG .. FATAL) as bytes.
 ALL_LEVELS: frozenset[int] = frozenset(int(level) for level in Level)
 
-Predicate = Callable[[RosoutEntry], bool]
+#: A test on a message: a RosoutEntry, or the plain tuple of its fields.
+Predicate = Callable[[tuple], bool]
+
+#: Truthy values for a list of messages, one per message (see :func:`compile_selector`).
+Selector = Callable[[Sequence[tuple]], Iterable[object]]
+
+_level, _node, _message = itemgetter(LEVEL), itemgetter(NODE), itemgetter(MESSAGE)
 
 
 class FilterError(ValueError):
@@ -35,18 +49,22 @@ def levels_from(min_level: int) -> frozenset[int]:
     return frozenset(level for level in ALL_LEVELS if level >= min_level)
 
 
+def _regex(pattern: str) -> re.Pattern[str]:
+    try:
+        return re.compile(pattern)
+    except re.error as exc:
+        raise FilterError(f"bad regular expression {pattern!r}: {exc}") from None
+
+
 def compile_text(pattern: str, regex: bool) -> Callable[[str], object]:
     """A ``search(text)`` function, truthy when ``text`` matches: a regular expression, or plain text in any case.
 
     Raises :class:`FilterError` for an invalid regular expression.
     """
-    if not regex:
-        needle = pattern.lower()
-        return lambda text: needle in text.lower()
-    try:
-        return re.compile(pattern).search
-    except re.error as exc:
-        raise FilterError(f"bad regular expression {pattern!r}: {exc}") from None
+    if regex:
+        return _regex(pattern).search
+    needle = pattern.lower()
+    return lambda text: needle in text.lower()
 
 
 @dataclass(frozen=True)
@@ -87,30 +105,43 @@ class FilterSpec:
                 and not self.search)
 
 
-def compile_filter(spec: FilterSpec) -> Predicate | None:
-    """One predicate for ``spec``, or None when it lets everything through.
+def compile_selector(spec: FilterSpec) -> Selector | None:
+    """A function giving, for a list of messages, one truthy value per message that passes ``spec``.
 
+    None when ``spec`` lets everything through.  The work runs in C-level
+    ``map`` chains, so filtering 100 000 messages takes milliseconds.
     Raises :class:`FilterError` when ``spec.search`` is an invalid regular expression.
     """
-    tests: list[Predicate] = []
+    parts: list[Selector] = []
     if not spec.levels >= ALL_LEVELS:
-        hidden = ALL_LEVELS - spec.levels
-        tests.append(lambda e: e.level not in hidden)
+        hidden = (ALL_LEVELS - spec.levels).__contains__
+        parts.append(lambda msgs: map(not_, map(hidden, map(_level, msgs))))
     if spec.include_nodes:
-        include = spec.include_nodes
-        tests.append(lambda e: e.node in include)
+        include = spec.include_nodes.__contains__
+        parts.append(lambda msgs: map(include, map(_node, msgs)))
     if spec.exclude_nodes:
-        exclude = spec.exclude_nodes
-        tests.append(lambda e: e.node not in exclude)
-    if spec.search:
-        search = compile_text(spec.search, spec.regex)
-        tests.append(lambda e: bool(search(e.message)))
-    if not tests:
+        exclude = spec.exclude_nodes.__contains__
+        parts.append(lambda msgs: map(not_, map(exclude, map(_node, msgs))))
+    if spec.search and spec.regex:
+        search = _regex(spec.search).search
+        parts.append(lambda msgs: map(search, map(_message, msgs)))
+    elif spec.search:
+        needle = spec.search.lower()
+        parts.append(lambda msgs: map(contains, map(str.lower, map(_message, msgs)), repeat(needle)))
+    if not parts:
         return None
-    if len(tests) == 1:
-        return tests[0]
-    frozen = tuple(tests)
-    return lambda e: all(test(e) for test in frozen)
+    if len(parts) == 1:
+        return parts[0]
+    frozen = tuple(parts)
+    return lambda msgs: map(all, zip(*(part(msgs) for part in frozen)))
+
+
+def compile_filter(spec: FilterSpec) -> Predicate | None:
+    """One predicate for single messages (see :func:`compile_selector`), or None when everything passes."""
+    select = compile_selector(spec)
+    if select is None:
+        return None
+    return lambda entry: bool(next(iter(select((entry,)))))
 
 
 @dataclass(frozen=True)

@@ -139,7 +139,7 @@ class LogTable(ScrollView, can_focus=True):
         rows = len(self.model)
         self._syncing = True
         try:
-            self.virtual_size = Size(self.scrollable_content_region.width, rows + 1)
+            self._set_virtual_height(rows + 1)
             if self.follow:
                 self._set_cursor(self.model.seq_at(rows - 1) if rows else None)
                 self.scroll_to(y=max(0, rows + 1 - self.scrollable_content_region.height), animate=False,
@@ -154,6 +154,19 @@ class LogTable(ScrollView, can_focus=True):
         finally:
             self._syncing = False
         self.refresh()
+
+    def _set_virtual_height(self, height: int) -> None:
+        """Change the scroll range without a layout.
+
+        Setting ``virtual_size`` lays out the whole screen; at 20 batches a
+        second that is most of the app's time.  The table's box does not
+        depend on its row count (its scrollbar is always shown), so updating
+        the scroll range and the scrollbar is all a new row count needs.
+        """
+        size = Size(self.scrollable_content_region.width, height)
+        if size != self.virtual_size:
+            self.set_reactive(LogTable.virtual_size, size)
+            self._scroll_update(size)
 
     def refilter(self) -> None:
         """The filter changed: keep the selected message in view if it is still shown."""

@@ -1,0 +1,397 @@
+#!/usr/bin/env python3
+"""`rostui console` under a log flood: keypress-to-repaint latency, ingest rate, memory.
+
+A flood publisher (this script in ``flood`` mode, a separate process on the
+other CPU) publishes rosgraph_msgs/Log on /rosout at a fixed rate (default
+10 000 messages/s for 30 s: 60 % DEBUG, 30 % INFO, 8 % WARN, 2 % ERROR);
+the master's rosout relays them to /rosout_agg.  The real `rostui console`
+command runs in a 120x40 pseudo-terminal pinned to CPU 0.  While the flood
+runs, this script presses keys in the terminal and times each one from the
+write to the first bytes on the terminal that show its effect:
+
+- ``1`` (hide DEBUG: the rows are filtered again, up to --max messages) until
+  the status line's "shown" count falls below 70 % of "kept"; ``1`` again
+  until they are equal;
+- ``/`` until the search prompt's title appears (Escape closes it);
+- ``p`` until "PAUSED" appears, ``p`` again until "resumed:" does;
+- ``Up`` until "SCROLL" appears, ``End`` until "FOLLOW" is back.
+
+Once a second it samples the app's resident memory and CPU time; at the end
+it reads the app's own counters from its status line (shown, kept, dropped).
+
+There is no peer to compare with: rqt_console needs a Qt window.  The target
+(issue 6) is keypress-to-repaint under 100 ms with bounded memory.
+
+    .venv/bin/python bench/bench_console.py                     # real roscore if installed, 30 s
+    .venv/bin/python bench/bench_console.py --master rostui --rate 10000 --seconds 30 --json out.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import fcntl
+import json
+import os
+import pty
+import re
+import shutil
+import signal
+import socket
+import statistics
+import struct
+import subprocess
+import sys
+import tempfile
+import termios
+import threading
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+REPO = Path(__file__).resolve().parent.parent
+APP_CPU = 0
+COLS, ROWS = 120, 40
+LEVEL_MIX = [1] * 60 + [2] * 30 + [4] * 8 + [8] * 2
+STATUS = re.compile(rb"([\d,]+) shown / ([\d,]+) kept(?:[^\n]*?([\d,]+) dropped)?")
+
+
+def free_port() -> int:
+    """A TCP port nothing listens on now."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def wait_port(port: int, timeout: float = 30.0) -> None:
+    """Block until 127.0.0.1:port accepts connections."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            with socket.create_connection(("127.0.0.1", port), timeout=0.5):
+                return
+        except OSError:
+            time.sleep(0.05)
+    raise SystemExit(f"nothing listened on port {port} within {timeout:g}s")
+
+
+def other_cpus() -> set[int]:
+    """The CPUs for everything but the app (all of them if there is only one)."""
+    cpus = os.sched_getaffinity(0)
+    return (cpus - {APP_CPU}) or cpus
+
+
+# -- flood mode (a separate process) -----------------------------------------------------------
+async def flood(rate: float, seconds: float) -> None:
+    """Publish ``rate`` Log messages per second on /rosout for ``seconds``, in 10 ms batches."""
+    from rostui.core.msg import get_message_class
+    from rostui.core.node.node import AsyncNode
+    from rostui.core.rostime import Time
+
+    node = AsyncNode("console_flood")
+    node.log.console = None
+    await node.start(publish_rosout=False)
+    log_class = get_message_class("rosgraph_msgs/Log")
+    pub = await node.advertise("/rosout", log_class, queue_size=100_000)
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + 30
+    while pub.get_num_connections() == 0 and loop.time() < deadline:
+        await asyncio.sleep(0.05)
+    print("connected", flush=True)
+    tick, sent = 0.01, 0
+    start = loop.time()
+    while loop.time() - start < seconds:
+        due = int((loop.time() - start) * rate)
+        while sent < due:
+            msg = log_class()
+            now = time.time_ns()
+            msg.header.stamp = Time(now // 1_000_000_000, now % 1_000_000_000)
+            msg.level = LEVEL_MIX[sent % len(LEVEL_MIX)]
+            msg.name = "/console_flood"
+            msg.msg = f"flood message {sent}: motor {sent % 4} current {sent % 97 / 10:.1f} A"
+            msg.file, msg.function, msg.line = "bench_console.py", "flood", 90
+            msg.topics = ["/rosout"]
+            pub.publish(msg)
+            sent += 1
+        await asyncio.sleep(tick)
+    elapsed = loop.time() - start
+    print(f"sent={sent} seconds={elapsed:.2f}", flush=True)
+    await asyncio.sleep(1.0)
+    await node.shutdown("flood done")
+
+
+# -- the pseudo-terminal -----------------------------------------------------------------------
+@dataclass
+class Terminal:
+    """`rostui console` on the slave side of a pty; every byte it writes is kept with its arrival time."""
+
+    argv: list[str]
+    env: dict[str, str]
+    pin: set[int] | None = None
+    data: bytearray = field(default_factory=bytearray)
+    proc: subprocess.Popen | None = None
+    _fd: int = -1
+    _lock: threading.Lock = field(default_factory=threading.Lock)
+    _reader: threading.Thread | None = None
+
+    def start(self) -> None:
+        """Open the pty, size it, start the process on it and a thread reading everything it writes."""
+        master, slave = pty.openpty()
+        fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", ROWS, COLS, 0, 0))
+        pin = self.pin
+
+        def setup() -> None:
+            if pin:
+                os.sched_setaffinity(0, pin)
+
+        self.proc = subprocess.Popen(self.argv, env=self.env, cwd=REPO, stdin=slave, stdout=slave, stderr=slave,
+                                     start_new_session=True, preexec_fn=setup, close_fds=True)
+        os.close(slave)
+        self._fd = master
+        self._reader = threading.Thread(target=self._drain, daemon=True)
+        self._reader.start()
+
+    def _drain(self) -> None:
+        while True:
+            try:
+                chunk = os.read(self._fd, 65536)
+            except OSError:
+                return
+            if not chunk:
+                return
+            with self._lock:
+                self.data += chunk
+
+    @property
+    def size(self) -> int:
+        """Bytes received so far."""
+        with self._lock:
+            return len(self.data)
+
+    def since(self, offset: int) -> bytes:
+        """Bytes received after ``offset``."""
+        with self._lock:
+            return bytes(self.data[offset:])
+
+    def press(self, key: bytes, done: Callable[[bytes], bool], timeout: float = 5.0) -> float | None:
+        """Write ``key``; seconds until the output written after it satisfies ``done`` (None: timed out)."""
+        offset = self.size
+        start = time.perf_counter()
+        os.write(self._fd, key)
+        while time.perf_counter() - start < timeout:
+            if done(self.since(offset)):
+                return time.perf_counter() - start
+            time.sleep(0.0005)
+        return None
+
+    def wait_for(self, marker: bytes, timeout: float = 30.0) -> None:
+        """Block until ``marker`` appears anywhere in the output."""
+        deadline = time.monotonic() + timeout
+        while marker not in self.since(0):
+            if time.monotonic() > deadline or (self.proc and self.proc.poll() is not None):
+                tail = self.since(max(0, self.size - 2000)).decode(errors="replace")
+                raise SystemExit(f"the console never showed {marker!r}; last output:\n{tail}")
+            time.sleep(0.05)
+
+    def quit(self) -> int:
+        """Press q; wait for the exit status (kill after 15 s)."""
+        assert self.proc is not None
+        if self.proc.poll() is None:
+            os.write(self._fd, b"q")
+            try:
+                self.proc.wait(timeout=15)
+            except subprocess.TimeoutExpired:
+                os.killpg(self.proc.pid, signal.SIGKILL)
+                self.proc.wait()
+        if self._reader is not None:
+            self._reader.join(timeout=5)
+        os.close(self._fd)
+        return self.proc.returncode
+
+
+def last_status(output: bytes) -> tuple[int, int, int] | None:
+    """(shown, kept, dropped) from the last status line in ``output``."""
+    found = None
+    for match in STATUS.finditer(output):
+        found = match
+    if found is None:
+        return None
+    number = lambda b: int(b.replace(b",", b"")) if b else 0  # noqa: E731
+    return number(found[1]), number(found[2]), number(found[3])
+
+
+def filtered(output: bytes) -> bool:
+    """The output shows a status line with fewer than 70 % of the kept messages shown."""
+    status = last_status(output)
+    return status is not None and status[1] > 1000 and status[0] < 0.7 * status[1]
+
+
+def unfiltered(output: bytes) -> bool:
+    """The output shows a status line with every kept message shown."""
+    status = last_status(output)
+    return status is not None and status[1] > 1000 and status[0] == status[1]
+
+
+def proc_sample(pid: int) -> tuple[float, float]:
+    """(resident MB, CPU seconds) of a process."""
+    rss = 0.0
+    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+        if line.startswith("VmRSS:"):
+            rss = int(line.split()[1]) / 1024
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    ticks = os.sysconf("SC_CLK_TCK")
+    return rss, (int(fields[11]) + int(fields[12])) / ticks
+
+
+# -- the run ------------------------------------------------------------------------------------
+def run(args: argparse.Namespace) -> dict[str, Any]:
+    """Start master, console and flood; press keys during the flood; return the measurements."""
+    port = free_port()
+    home = tempfile.mkdtemp(prefix="bench_console_")
+    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=home, ROS_IP="127.0.0.1",
+               TERM="xterm-256color", COLORTERM="truecolor", PYTHONUNBUFFERED="1")
+    env.pop("NO_COLOR", None)
+    rest = other_cpus()
+    pin_rest = lambda: os.sched_setaffinity(0, rest)  # noqa: E731
+    if args.master == "roscore":
+        master_argv = ["roscore", "-p", str(port)]
+    else:
+        master_argv = [sys.executable, "-m", "rostui", "core", "-p", str(port)]
+    master = subprocess.Popen(master_argv, env=env, cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                              start_new_session=True, preexec_fn=pin_rest)
+    console = Terminal([sys.executable, "-m", "rostui", "console", "--max", str(args.max)], env, pin={APP_CPU})
+    flooder: subprocess.Popen | None = None
+    samples: list[tuple[float, float, float]] = []
+    latencies: dict[str, list[float]] = {}
+    misses: dict[str, int] = {}
+    try:
+        wait_port(port)
+        console.start()
+        console.wait_for(b"FOLLOW")
+        console.wait_for(f"master http://127.0.0.1:{port}".encode())
+        time.sleep(1.0)  # rosout's /rosout_agg connection to the console
+        flooder = subprocess.Popen([sys.executable, __file__, "flood", str(args.rate), str(args.seconds)], env=env,
+                                   cwd=REPO, stdout=subprocess.PIPE, text=True, preexec_fn=pin_rest)
+        assert flooder.stdout is not None
+        if flooder.stdout.readline().strip() != "connected":
+            raise SystemExit("the flood publisher never connected to rosout")
+        start = time.monotonic()
+        assert console.proc is not None
+        next_sample = start
+
+        def sample() -> None:
+            nonlocal next_sample
+            while time.monotonic() >= next_sample:
+                samples.append((time.monotonic() - start, *proc_sample(console.proc.pid)))
+                next_sample += 1.0
+
+        def measure(name: str, key: bytes, done: Callable[[bytes], bool]) -> None:
+            sample()
+            took = console.press(key, done)
+            if took is None:
+                misses[name] = misses.get(name, 0) + 1
+            else:
+                latencies.setdefault(name, []).append(took * 1000)
+            time.sleep(0.4)
+            sample()
+
+        time.sleep(2.0)
+        last_resume = 0.0
+        while time.monotonic() - start < args.seconds - 2:
+            measure("1 hide DEBUG (refilter)", b"1", filtered)
+            measure("1 show DEBUG (refilter)", b"1", unfiltered)
+            measure("/ open search", b"/", lambda out: b"search (text)" in out)
+            console.press(b"\x1b", lambda out: True)
+            time.sleep(0.4)
+            measure("Up leave follow", b"\x1b[A", lambda out: b"SCROLL" in out)
+            measure("End follow", b"\x1b[F", lambda out: b"FOLLOW" in out)
+            if time.monotonic() - last_resume > 5.0:  # the "resumed:" notice from the last one is gone
+                measure("p pause", b"p", lambda out: b"PAUSED" in out)
+                measure("p resume", b"p", lambda out: b"resumed:" in out)
+                last_resume = time.monotonic()
+        while time.monotonic() - start < args.seconds:
+            time.sleep(0.2)
+            sample()
+        flood_out, _ = flooder.communicate(timeout=60)
+        time.sleep(1.5)
+        sample()
+        final = last_status(console.since(max(0, console.size - 200_000)))
+    finally:
+        if flooder is not None and flooder.poll() is None:
+            flooder.kill()
+        code = console.quit() if console.proc is not None else None
+        master.send_signal(signal.SIGINT)
+        try:
+            master.wait(timeout=15)
+        except subprocess.TimeoutExpired:
+            os.killpg(master.pid, signal.SIGKILL)
+        shutil.rmtree(home, ignore_errors=True)
+    sent = int(re.search(r"sent=(\d+)", flood_out)[1])  # type: ignore[index]
+    shown, kept, dropped = final or (0, 0, 0)
+    by_second = {round(t): (rss, cpu) for t, rss, cpu in samples}
+    cpu_window = [c for t, _, c in samples]
+    return {
+        "master": args.master, "rate": args.rate, "seconds": args.seconds, "max": args.max,
+        "sent": sent, "received": kept + dropped, "kept": kept, "dropped": dropped,
+        "latency_ms": {k: {"n": len(v), "p50": statistics.median(v), "p95": percentile(v, 95), "max": max(v)}
+                       for k, v in latencies.items()},
+        "misses": misses,
+        "rss_mb": {t: round(by_second[t][0], 1) for t in sorted(by_second) if t % 5 == 0},
+        "rss_max_mb": max(r for _, r, _ in samples),
+        "cpu_percent": 100 * (cpu_window[-1] - cpu_window[0]) / (samples[-1][0] - samples[0][0]),
+        "exit_code": code,
+    }
+
+
+def percentile(values: list[float], pct: float) -> float:
+    """The ``pct`` percentile (nearest rank)."""
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, max(0, round(pct / 100 * len(ordered)) - 1))]
+
+
+def report(result: dict[str, Any]) -> None:
+    """Print the measurements as Markdown tables."""
+    print(f"master {result['master']}, {result['rate']:,} msg/s for {result['seconds']} s, --max {result['max']:,}")
+    print(f"sent {result['sent']:,}, the console received {result['received']:,} "
+          f"({100 * result['received'] / max(1, result['sent']):.1f} %), kept {result['kept']:,}, "
+          f"dropped {result['dropped']:,}; app CPU {result['cpu_percent']:.0f} % of one core; "
+          f"exit status {result['exit_code']}")
+    print()
+    print("| key | samples | p50 ms | p95 ms | max ms |")
+    print("| --- | --- | --- | --- | --- |")
+    for name, row in result["latency_ms"].items():
+        print(f"| {name} | {row['n']} | {row['p50']:.0f} | {row['p95']:.0f} | {row['max']:.0f} |")
+    if result["misses"]:
+        print(f"\nno repaint within 5 s: {result['misses']}")
+    print()
+    print("| s | " + " | ".join(str(t) for t in result["rss_mb"]) + " |")
+    print("| --- | " + " | ".join("---" for _ in result["rss_mb"]) + " |")
+    print("| RSS MB | " + " | ".join(str(v) for v in result["rss_mb"].values()) + " |")
+    worst = max((row["p95"] for row in result["latency_ms"].values()), default=float("inf"))
+    verdict = "meets" if worst < 100 and not result["misses"] else "misses"
+    print(f"\nworst p95 {worst:.0f} ms: {verdict} the 100 ms target")
+
+
+def main() -> int:
+    """Parse arguments; run the flood mode or the benchmark."""
+    if len(sys.argv) > 1 and sys.argv[1] == "flood":
+        asyncio.run(flood(float(sys.argv[2]), float(sys.argv[3])))
+        return 0
+    parser = argparse.ArgumentParser(description=__doc__.split("\n", 1)[0])
+    parser.add_argument("--master", choices=["roscore", "rostui"],
+                        default="roscore" if shutil.which("roscore") else "rostui")
+    parser.add_argument("--rate", type=float, default=10_000)
+    parser.add_argument("--seconds", type=float, default=30)
+    parser.add_argument("--max", type=int, default=100_000)
+    parser.add_argument("--json", type=Path)
+    args = parser.parse_args()
+    result = run(args)
+    report(result)
+    if args.json:
+        args.json.write_text(json.dumps(result, indent=2))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -6,6 +6,7 @@ option is one line on stderr and exit status 1 before any screen opens.
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 from typing import List, Optional
 
@@ -15,6 +16,9 @@ CONTEXT = {"help_option_names": ["-h", "--help"]}
 
 #: Messages kept when --max is not given.
 DEFAULT_MAX = 100_000
+
+#: Files at least this big get a "reading..." line before the screen opens.
+BIG_FILE_BYTES = 20_000_000
 
 
 def console_command(
@@ -49,6 +53,7 @@ def console_command(
         fail(f"ERROR: --max must be at least 1, got {max_messages}")
     loaded = None
     if path is not None:
+        _announce_big_file(path)
         try:
             loaded = read_rosout_log(path, min_level=level, keep=max_messages)
         except RosoutLogError as exc:
@@ -58,6 +63,16 @@ def console_command(
     options = ConsoleOptions(min_level=level, max_messages=max_messages, include_nodes=tuple(node),
                              exclude_nodes=tuple(exclude_node), search=search, regex=regex)
     raise typer.Exit(run_app(options, loaded, log_name=str(path) if path is not None else None))
+
+
+def _announce_big_file(path: Path) -> None:
+    """Say on stderr that a big file is being read (100 MB, a full rotated rosout.log, takes seconds)."""
+    try:
+        size = path.stat().st_size
+    except OSError:
+        return
+    if size >= BIG_FILE_BYTES and path.is_file():
+        print(f"reading {path} ({size / 1e6:.0f} MB)...", file=sys.stderr, flush=True)
 
 
 def register(app: typer.Typer) -> None:

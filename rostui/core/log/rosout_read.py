@@ -125,17 +125,6 @@ class RosoutLog:
         return f"{self.malformed_count} malformed {lines} (first: {first})"
 
 
-def _nanoseconds(secs: str, frac: str) -> int:
-    return int(secs) * 1_000_000_000 + int(frac.ljust(9, "0"))
-
-
-def _level(token: str) -> int | None:
-    value = _LEVELS.get(token)
-    if value is None and token.isdigit():
-        value = int(token)
-    return value
-
-
 _interned_topics: dict[str, tuple[str, ...]] = {}
 
 
@@ -150,26 +139,28 @@ def _topics(text: str | None) -> tuple[str, ...]:
     return found
 
 
-def _parse_record(text: str, lineno: int) -> RosoutEntry | MalformedLine:
-    match = _MODERN.match(text) or _OLD.match(text)
-    if match is None:
-        return MalformedLine(lineno, text, "expected '<secs>.<nsecs> <LEVEL> <node> [<file>:<line>(<function>)] "
-                                           "[topics: ...] <message>'")
-    level = _level(match["level"])
+_EXPECTED = "expected '<secs>.<nsecs> <LEVEL> <node> [<file>:<line>(<function>)] [topics: ...] <message>'"
+
+
+def _parse_record(text: str, lineno: int) -> RosoutEntry | MalformedLine | None:
+    """The message on a line, a MalformedLine for a line that starts like one but is not, or None."""
+    match = _MODERN.match(text)
+    if match is not None:
+        secs, frac, level_text, node, file, line, function, topics, msg = match.groups()
+    else:
+        match = _OLD.match(text)
+        if match is None:
+            return MalformedLine(lineno, text, _EXPECTED) if _RECORD_START.match(text) else None
+        secs, frac, level_text, file, line, function, topics, msg = match.groups()
+        node = ""
+    level = _LEVELS.get(level_text)
     if level is None:
-        return MalformedLine(lineno, text, f"unknown level '{match['level']}'")
-    groups = match.groupdict()
-    return RosoutEntry(
-        stamp=_nanoseconds(match["secs"], match["frac"]),
-        level=level,
-        node=sys.intern(groups.get("node") or ""),
-        message=match["msg"],
-        file=sys.intern(match["file"]),
-        line=int(match["line"]),
-        function=sys.intern(match["function"]),
-        topics=_topics(match["topics"]),
-        source_line=lineno,
-    )
+        if not level_text.isdigit():
+            return MalformedLine(lineno, text, f"unknown level '{level_text}'")
+        level = int(level_text)
+    nsecs = int(frac) if len(frac) == 9 else int(frac.ljust(9, "0"))
+    return RosoutEntry(int(secs) * 1_000_000_000 + nsecs, level, sys.intern(node), msg, sys.intern(file), int(line),
+                       sys.intern(function), _topics(topics), lineno)
 
 
 def parse_rosout_lines(lines: Iterable[str]) -> Iterator[RosoutEntry | MalformedLine]:
@@ -190,8 +181,8 @@ def parse_rosout_lines(lines: Iterable[str]) -> Iterator[RosoutEntry | Malformed
         elif not text:
             blanks += 1
             continue
-        elif _RECORD_START.match(text):
-            result = _parse_record(text, lineno)
+        elif text[0].isdigit() and (result := _parse_record(text, lineno)) is not None:
+            pass
         elif _STARTUP.match(text):
             result = None
         elif current is not None:

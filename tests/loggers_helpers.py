@@ -74,6 +74,12 @@ def marked_level(app: LoggersApp) -> str | None:
 
 async def select_node(pilot: Pilot, app: LoggersApp, name: str) -> None:
     """Move the node list's cursor to ``name`` with the arrow keys and wait for its loggers."""
+    await highlight_node(pilot, app, name)
+    await until(lambda: app.node == name and bool(app.loggers), f"the loggers of {name}", app=app)
+
+
+async def highlight_node(pilot: Pilot, app: LoggersApp, name: str) -> None:
+    """Move the node list's cursor to ``name`` with the arrow keys (which asks the node for its loggers)."""
     await until(lambda: name in listed_nodes(app), f"{name} in the node list")
     node_list = app.query_one(NodeList)
     node_list.focus()
@@ -82,7 +88,6 @@ async def select_node(pilot: Pilot, app: LoggersApp, name: str) -> None:
         names = listed_nodes(app)
         current = names.index(node_list.highlighted_name) if node_list.highlighted_name in names else -1
         await pilot.press("down" if current < names.index(name) else "up")
-    await until(lambda: app.node == name and bool(app.loggers), f"the loggers of {name}", app=app)
 
 
 async def select_logger(pilot: Pilot, app: LoggersApp, logger: str) -> None:

@@ -31,7 +31,9 @@ from rostui.core.node import AsyncNode
 from conftest import free_port, rostui_cmd, stop_process, wait_for_port
 from interop_helpers import roscpp_peer_bin, rospy_peer, run_tool, spawn  # noqa: F401  (fixtures)
 from live_helpers import Program
-from loggers_helpers import notice, quick_app, run_app, select_logger, select_node, shown_levels, until
+from loggers_helpers import (
+    highlight_node, notice, quick_app, run_app, select_logger, select_node, shown_levels, until,
+)
 
 
 class RosoutLog:
@@ -103,7 +105,7 @@ def roscpp_get_loggers_crash(roscpp_peer_bin: Path, tmp_path_factory: pytest.Tem
     repository inside get_loggers, so the next logger service call (or a
     later log statement) crashes the node; rosservice and rqt_logger_level
     meet the same crash.  Probed once with the real rosservice: get_loggers,
-    then set_logger_level, on a fresh roscpp node under `rostui core`.
+    set_logger_level, get_loggers, on a fresh roscpp node under `rostui core`.
     """
     home = tmp_path_factory.mktemp("probe_home")
     port = free_port()
@@ -115,8 +117,10 @@ def roscpp_get_loggers_crash(roscpp_peer_bin: Path, tmp_path_factory: pytest.Tem
         wait_for_port(port, proc=core)
         peer = subprocess.Popen([str(roscpp_peer_bin), "__name:=probe", "serve", "/probe_toggle"], env=env,
                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        run_tool(["rosservice", "call", "--wait", "/probe/get_loggers"], env)
-        run_tool(["rosservice", "call", "/probe/set_logger_level", "ros", "INFO"], env, check=False)
+        run_tool(["rosservice", "call", "--wait", "/probe/get_loggers"], env, check=False)
+        for call in (["/probe/set_logger_level", "ros", "INFO"], ["/probe/get_loggers"]):
+            if peer.poll() is None:
+                run_tool(["rosservice", "call", *call], env, check=False)
         try:
             return peer.wait(timeout=5) == -signal.SIGSEGV
         except subprocess.TimeoutExpired:
@@ -130,30 +134,37 @@ def roscpp_get_loggers_crash(roscpp_peer_bin: Path, tmp_path_factory: pytest.Tem
 def test_roscpp_levels_listed_and_changed(any_master: str, roscpp_peer_bin: Path, spawn: Any,
                                           ros_env: dict[str, str], roscpp_get_loggers_crash: bool) -> None:
     """roscpp's loggers (ros, ros.roscpp...) listed upper case; w on ros.roscpp sets WARN as rosservice then
-    reads it.  Where roscpp crashes after get_loggers (Debian 12, see roscpp_get_loggers_crash), the node
-    segfaults instead and the app says so in place and keeps working.  (A set without a get before it works
-    there too: test_loggers_cli.py.)
+    reads it.  Where roscpp crashes in or after get_loggers (Debian 12, see roscpp_get_loggers_crash), the
+    node segfaults instead, and the app says so in place and keeps working on other nodes.  (A set without a
+    get before it works there too: test_loggers_cli.py.)
     """
     peer = spawn([str(roscpp_peer_bin), "__name:=cpp_logs", "serve", "/cpp_toggle"], label="roscpp peer")
+    app = quick_app()
+
+    def listed() -> bool:
+        return app.node == "/cpp_logs" and bool(app.loggers)
 
     async def scenario(pilot: Pilot, app: LoggersApp) -> None:
-        await select_node(pilot, app, "/cpp_logs")
-        levels = shown_levels(app)
-        assert {"ros", "ros.roscpp", "ros.roscpp.superdebug"} <= set(levels), levels
-        assert levels["ros.roscpp"] == "INFO" and app.loggers["ros.roscpp"].raw == "info"
-        assert levels["ros.roscpp.superdebug"] == "WARN" and app.loggers["ros.roscpp.superdebug"].raw == "warn"
-        assert app.logger == "ros", "roscpp's root logger is preselected when no ros.<package> logger exists"
-        if not roscpp_get_loggers_crash:
-            await select_logger(pilot, app, "ros.roscpp")
-            await pilot.press("w")
-            await until(lambda: notice(app, "levels") == ("ros.roscpp set to WARN", "ok"), "ros.roscpp at WARN",
-                        app=app)
-            assert shown_levels(app)["ros.roscpp"] == "WARN"
-            out = (await asyncio.to_thread(run_tool, ["rosservice", "call", "/cpp_logs/get_loggers"],
-                                           ros_env)).stdout
-            assert re.search(r'name: "ros\.roscpp"\s+level: "warn"', out), out
-            return
-        await pilot.press("w")  # on "ros", unless the node already crashed and the app dropped it
+        await highlight_node(pilot, app, "/cpp_logs")
+        await until(lambda: listed() or (roscpp_get_loggers_crash and peer.proc.poll() is not None),
+                    "/cpp_logs's loggers (or, with the crashing roscpp, its death)", app=app)
+        if listed():
+            levels = shown_levels(app)
+            assert {"ros", "ros.roscpp", "ros.roscpp.superdebug"} <= set(levels), levels
+            assert levels["ros.roscpp"] == "INFO" and app.loggers["ros.roscpp"].raw == "info"
+            assert levels["ros.roscpp.superdebug"] == "WARN" and app.loggers["ros.roscpp.superdebug"].raw == "warn"
+            assert app.logger == "ros", "roscpp's root logger is preselected when no ros.<package> logger exists"
+            if not roscpp_get_loggers_crash:
+                await select_logger(pilot, app, "ros.roscpp")
+                await pilot.press("w")
+                await until(lambda: notice(app, "levels") == ("ros.roscpp set to WARN", "ok"),
+                            "ros.roscpp at WARN", app=app)
+                assert shown_levels(app)["ros.roscpp"] == "WARN"
+                out = (await asyncio.to_thread(run_tool, ["rosservice", "call", "/cpp_logs/get_loggers"],
+                                               ros_env)).stdout
+                assert re.search(r'name: "ros\.roscpp"\s+level: "warn"', out), out
+                return
+            await pilot.press("w")  # on "ros", unless the node already crashed and the app dropped it
         status = await asyncio.to_thread(peer.proc.wait, 30)
         assert status == -signal.SIGSEGV, f"node status {status}\n{peer.describe()}"
         await until(lambda: notice(app, "loggers")[1] == "error" and app.node == "", "the dead node reported",
@@ -168,7 +179,7 @@ def test_roscpp_levels_listed_and_changed(any_master: str, roscpp_peer_bin: Path
         finally:
             await bystander.shutdown()
 
-    run_app(quick_app(), scenario)
+    run_app(app, scenario)
 
 
 def test_rostui_count_and_log_debug_as_in_the_book(any_master: str, ros_env: dict[str, str],

@@ -185,7 +185,8 @@ def test_search_cancelled_with_escape_goes_back_to_the_previous_search(sample: P
         await pilot.press("slash")
         await type_text(pilot, "wall")
         await pilot.press("enter")
-        assert [e.message for _, e in app.model.shown()] == ["Oh no! I hit the wall! (Clamping from [x=11.112, y=5.544])"]
+        wall = "Oh no! I hit the wall! (Clamping from [x=11.112, y=5.544])"
+        assert [e.message for _, e in app.model.shown()] == [wall]
         await pilot.press("slash", "backspace", "backspace", "backspace", "backspace")
         await until(lambda: len(app.model) == 37, "the emptied search to apply")
         await pilot.press("escape")
@@ -367,6 +368,28 @@ def test_malformed_lines_are_counted_and_named_on_screen(tmp_path: Path) -> None
         assert any(n.title == "malformed lines" for n in app._notifications)
 
     run(ConsoleApp(ConsoleOptions(), read_rosout_log(path), log_name=str(path)), scenario, size=(200, 24))
+
+
+def test_command_line_filters_apply_from_the_start(sample: Path) -> None:
+    """--node, --exclude-node and --search --regex (as ConsoleOptions) filter the first screen."""
+    async def scenario(pilot: Pilot, app: ConsoleApp) -> None:
+        assert {e.node for _, e in app.model.shown()} == {"/count_and_log"}
+        assert messages(app) == ["10 is divisible by 5.", "10 is divisible by 10."]
+        assert "nodes +/count_and_log −/turtlesim" in filters(app) and "regex ^10 is" in filters(app)
+
+    run(offline(sample, include_nodes=("/count_and_log",), exclude_nodes=("/turtlesim",), search="^10 is",
+                regex=True), scenario)
+
+
+def test_a_bad_regex_on_the_command_line_is_reported_and_nothing_is_searched(sample: Path) -> None:
+    """--search '(' --regex: the filter bar names the error; every message is shown; r and / still work."""
+    async def scenario(pilot: Pilot, app: ConsoleApp) -> None:
+        assert "bad regular expression '('" in filters(app)
+        assert len(app.model) == 37
+        await pilot.press("slash", *"wall", "enter")
+        assert len(app.model) == 1 and "bad regular expression" not in filters(app)
+
+    run(offline(sample, search="(", regex=True), scenario)
 
 
 def test_control_characters_and_markup_in_messages_are_shown_as_text(tmp_path: Path) -> None:

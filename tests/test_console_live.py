@@ -10,8 +10,6 @@ from __future__ import annotations
 import asyncio
 import shutil
 import subprocess
-import sys
-import time
 from pathlib import Path
 from typing import Any
 

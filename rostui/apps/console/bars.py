@@ -125,7 +125,8 @@ def status_markup(model: ConsoleModel, info: StatusInfo) -> Content:
         mode = Content.from_markup("[b reverse $text-success] FOLLOW [/]")
     else:
         mode = Content.from_markup("[b reverse $text-primary] SCROLL [/]")
-    parts: list[str | Content | tuple[str, str]] = [mode, f" │ {_count(len(model))} shown / {_count(model.kept)} kept"]
+    parts: list[str | Content | tuple[str, str]] = [
+        mode, f" │ {_count(len(model))} shown / {_count(model.kept)} kept"]
     if model.dropped:
         parts.extend([" │ ", (f"{_count(model.dropped)} dropped", "bold $text-warning"),
                       f" (max {_count(model.capacity)})"])

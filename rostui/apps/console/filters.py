@@ -18,9 +18,8 @@ from rostui.core.log.levels import Level
 from rostui.core.log.rosout_read import RosoutEntry
 
 __all__ = [
-    "ALL_LEVELS", "LEVEL", "MESSAGE", "NODE", "FilterError", "FilterSpec", "HighlightRule", "Predicate", "Selector", "compile_filter",
-    "compile_selector", "compile_text",
-    "first_highlight", "levels_from",
+    "ALL_LEVELS", "LEVEL", "MESSAGE", "NODE", "FilterError", "FilterSpec", "HighlightRule", "Predicate", "Selector",
+    "compile_filter", "compile_selector", "compile_text", "first_highlight",
 ]
 
 #: Positions of the fields filters read, in a RosoutEntry or the plain tuple the model keeps.
@@ -42,11 +41,6 @@ _level, _node, _message = itemgetter(LEVEL), itemgetter(NODE), itemgetter(MESSAG
 
 class FilterError(ValueError):
     """A search or highlight pattern that is not a valid regular expression."""
-
-
-def levels_from(min_level: int) -> frozenset[int]:
-    """The levels at or above ``min_level``."""
-    return frozenset(level for level in ALL_LEVELS if level >= min_level)
 
 
 def _regex(pattern: str) -> re.Pattern[str]:

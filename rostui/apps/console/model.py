@@ -127,7 +127,7 @@ class ConsoleModel:
             yield seq, RosoutEntry._make(fields)
 
     def ingest(self, entries: Iterable[tuple]) -> int:
-        """Take one batch of arriving messages (RosoutEntry or its plain tuple); returns how many were kept or buffered."""
+        """Take one batch of arriving messages (RosoutEntry or its plain tuple); returns how many were kept."""
         min_level = self.min_level
         taken = 0
         if self.paused:

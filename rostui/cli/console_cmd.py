@@ -23,23 +23,26 @@ BIG_FILE_BYTES = 20_000_000
 
 def console_command(
     path: Optional[Path] = typer.Argument(
-        None, help="A rosout.log (written by ROS or rostui) to browse instead of the live /rosout_agg."),
+        None, metavar="[PATH]",
+        help="A rosout.log (written by ROS or rostui) to browse instead of the live /rosout_agg."),
     min_level: str = typer.Option(
-        "debug", "--min-level", "-l", help="Hide messages below this level (debug, info, warn, error, fatal)."),
+        "debug", "--min-level", "-l", metavar="LEVEL",
+        help="Keep only messages at or above LEVEL (debug, info, warn, error, fatal); the others are not stored."),
     max_messages: int = typer.Option(
-        DEFAULT_MAX, "--max", "-n", help="Messages kept in memory; the oldest are dropped (and counted)."),
+        DEFAULT_MAX, "--max", "-n", metavar="N", help="Messages kept; the oldest are dropped and counted."),
     node: List[str] = typer.Option(
-        [], "--node", help="Show only messages from this node (repeatable)."),
+        [], "--node", metavar="NODE", help="Show only messages from NODE (repeatable)."),
     exclude_node: List[str] = typer.Option(
-        [], "--exclude-node", help="Hide messages from this node (repeatable)."),
-    search: str = typer.Option("", "--search", "-s", help="Show only messages containing this text."),
-    regex: bool = typer.Option(False, "--regex", "-r", help="Treat --search as a regular expression."),
+        [], "--exclude-node", metavar="NODE", help="Hide messages from NODE (repeatable)."),
+    search: str = typer.Option(
+        "", "--search", "-s", metavar="TEXT", help="Show only messages containing TEXT (any case)."),
+    regex: bool = typer.Option(False, "--regex", "-r", help="TEXT is a regular expression."),
 ) -> None:
-    """Browse ROS log messages: live from /rosout_agg, or from a rosout.log file.
+    """Browse ROS log messages like rqt_console: live from /rosout_agg, or from a rosout.log file.
 
-    Keys: 1-5 show/hide DEBUG..FATAL, / search (r: regular expression), h highlight,
-    n / x only / hide the selected message's node (N: all nodes), p pause, c clear,
-    Enter details, s save the shown messages (rosout.log format), End or F follow, q quit.
+    Keys: 1-5 levels, / search, r regex, h highlight, n/x/N nodes, p pause, c clear, q quit.
+
+    Enter details, s save the shown messages (rosout.log format), Up leaves follow mode, End or F follows.
     """
     from rostui.cli.common import fail
     from rostui.core.log import Level

@@ -217,6 +217,31 @@ def test_regex_search_and_a_bad_regex(sample: Path) -> None:
     run(offline(sample), scenario)
 
 
+def test_regex_key_keeps_plain_text_when_the_search_is_no_regex(sample: Path) -> None:
+    """A plain search '(Clamping' stays plain text when r is pressed; the status line says why."""
+    async def scenario(pilot: Pilot, app: ConsoleApp) -> None:
+        await pilot.press("slash", *"(clamping", "enter")
+        assert len(app.model) == 1
+        await pilot.press("r")
+        assert "'(clamping' is not a regular expression: still searching plain text" in status(app)
+        assert "text (clamping" in filters(app) and len(app.model) == 1 and not app.spec.regex
+
+    run(offline(sample), scenario)
+
+
+def test_resizing_keeps_following_and_fits_the_columns(sample: Path) -> None:
+    """From 140 to 80 columns: location and topics give way, the newest row stays at the bottom."""
+    async def scenario(pilot: Pilot, app: ConsoleApp) -> None:
+        assert "Location" in app.table.visible_texts()[0]
+        await pilot.resize_terminal(80, 20)
+        await pilot.pause()
+        header = app.table.visible_texts()[0]
+        assert "Location" not in header and "Topics" not in header and "Stamp" in header
+        assert messages(app)[-1] == "20 is divisible by 20." and len(messages(app)) == app.table.page_rows
+
+    run(offline(sample), scenario)
+
+
 def test_highlight_rules_colour_matching_rows(sample: Path) -> None:
     """h adds a rule: matching rows get a background; H removes all rules."""
     async def scenario(pilot: Pilot, app: ConsoleApp) -> None:

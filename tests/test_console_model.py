@@ -53,6 +53,14 @@ def test_min_level_keeps_nothing_below_it() -> None:
     assert [e.level for _, e in model.shown()] == [4, 8, 1]
 
 
+def test_a_level_min_level_cannot_rank_is_kept() -> None:
+    """Levels outside DEBUG..FATAL (0, 3, 200) are kept whatever min_level says."""
+    model = ConsoleModel(10, min_level=8)
+    model.ingest([entry(0, 0), entry(1, 3), entry(2, 200), entry(3, 4)])
+    assert [e.level for _, e in model.shown()] == [0, 3, 200]
+    assert model.below_level == 1
+
+
 def test_pause_buffers_new_messages_and_resume_shows_them() -> None:
     """Paused: rows frozen, new messages wait (counted); resume shows them in order."""
     model = ConsoleModel(100)

@@ -22,6 +22,7 @@ from typing import ClassVar, Iterable
 from textual.app import App, ComposeResult
 from textual.binding import Binding, BindingType
 from textual.containers import VerticalScroll
+from textual.timer import Timer
 from textual.widgets import Input, Static
 
 from rostui.apps.console.bars import KEY_HELP, Bar, StatusInfo, detail_markup, filter_markup, status_markup
@@ -109,7 +110,7 @@ class ConsoleApp(App[int]):
         self.regex_error = ""
         self._notice: tuple[float, str] = (0.0, "")
         self._before_prompt: FilterSpec | None = None
-        self._search_timer: object | None = None
+        self._search_timer: Timer | None = None
         self._shown_version = -1
         self.batches = 0
         self.filter_bar = Bar(id="filters")
@@ -281,11 +282,9 @@ class ConsoleApp(App[int]):
 
     def action_toggle_regex(self) -> None:
         """Switch search and new highlight rules between plain text and regular expressions."""
-        self.apply_filter(_with(self.spec, regex=not self.spec.regex))
-        if self.regex_error:  # the text is no valid regex: keep regex mode, search nothing until it is fixed
-            self.apply_filter(_with(self.spec, regex=True, search=""))
-            self.regex_error = f"bad regular expression: not searching ({self.regex_error})"
-            self.refresh_bars()
+        if not self.apply_filter(_with(self.spec, regex=not self.spec.regex)):
+            self.regex_error = ""
+            self.say(f"{self.spec.search!r} is not a regular expression: still searching plain text")
 
     def action_clear_search(self) -> None:
         """Escape: drop the search."""
@@ -383,7 +382,7 @@ class ConsoleApp(App[int]):
         prompt = self.prompt
         if prompt.purpose == "search":
             if self._search_timer is not None:
-                self._search_timer.stop()  # type: ignore[attr-defined]
+                self._search_timer.stop()
             self._search_timer = self.set_timer(SEARCH_DELAY, lambda: self._search(event.value))
         elif prompt.purpose == "highlight" and self.spec.regex:
             try:
@@ -403,7 +402,7 @@ class ConsoleApp(App[int]):
         value = event.value
         if prompt.purpose == "search":
             if self._search_timer is not None:
-                self._search_timer.stop()  # type: ignore[attr-defined]
+                self._search_timer.stop()
                 self._search_timer = None
             if not self.apply_filter(_with(self.spec, search=value)):
                 prompt.add_class("-invalid")

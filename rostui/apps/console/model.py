@@ -30,6 +30,9 @@ __all__ = ["ConsoleModel", "ConsoleOptions"]
 #: Messages kept when no --max is given.
 DEFAULT_CAPACITY = 100_000
 
+#: Level bytes ``min_level`` can rank; a message with any other level is always kept.
+KNOWN_LEVELS = frozenset(int(level) for level in Level)
+
 #: Row-list entries skipped at the front before the list is compacted.
 _COMPACT_AT = 4096
 
@@ -55,7 +58,8 @@ class ConsoleModel:
     """Messages kept, the rows shown, and the counters the status line reports.
 
     ``min_level``: messages below it are not kept at all (counted in
-    ``below_level``), so a flood of DEBUG cannot push warnings out.
+    ``below_level``), so a flood of DEBUG cannot push warnings out; a level
+    outside DEBUG..FATAL cannot be ranked and is always kept.
     ``received`` counts every message kept or buffered; ``dropped`` the oldest
     ones pushed out by ``capacity`` (in the ring or the pause buffer);
     ``version`` changes whenever the rows do.
@@ -133,7 +137,7 @@ class ConsoleModel:
         if self.paused:
             pending = self._pending
             for entry in entries:
-                if entry[LEVEL] < min_level:
+                if entry[LEVEL] < min_level and entry[LEVEL] in KNOWN_LEVELS:
                     self.below_level += 1
                     continue
                 pending.append(tuple(entry))
@@ -152,7 +156,7 @@ class ConsoleModel:
         dropped = below = 0
         for entry in entries:
             level = entry[LEVEL]
-            if level < min_level:
+            if level < min_level and level in KNOWN_LEVELS:
                 below += 1
                 continue
             fields = tuple(entry)

@@ -192,6 +192,11 @@ class LogTable(ScrollView, can_focus=True):
         if follow:
             self.sync()
 
+    def on_resize(self, _event: events.Resize) -> None:
+        """A new size: new columns, and in follow mode the newest row at the bottom again."""
+        self._cache.clear()
+        self.sync()
+
     def watch_follow(self, follow: bool) -> None:
         """Tell the app, which shows the mode in the status line."""
         self.post_message(self.FollowChanged(follow))

@@ -208,7 +208,7 @@ def parse_rosout_lines(lines: Iterable[str]) -> Iterator[RosoutEntry | Malformed
 
 
 def read_rosout_log(path: str | Path, *, min_level: int = Level.DEBUG, keep: int | None = None) -> RosoutLog:
-    """Read a rosout.log: messages at or above ``min_level``, the newest ``keep`` of them.
+    """Read a rosout.log: messages at or above ``min_level`` (or of a level it cannot rank), the newest ``keep``.
 
     Raises :class:`RosoutLogError` when the file cannot be read, or when it has
     lines but none of them is a rosout.log message (the error names the first
@@ -224,7 +224,7 @@ def read_rosout_log(path: str | Path, *, min_level: int = Level.DEBUG, keep: int
                     result.malformed_count += 1
                     if len(result.malformed) < KEPT_MALFORMED:
                         result.malformed.append(item)
-                elif item.level < min_level:
+                elif item.level < min_level and item.level in _LEVELS.values():
                     result.below_level += 1
                 else:
                     if keep is not None and len(entries) == keep:

@@ -66,7 +66,12 @@ class ConsoleApp(App[int]):
     """Browse ROS log messages: live from /rosout_agg, or a rosout.log (``log``).
 
     ``master_uri`` defaults to ROS_MASTER_URI.  ``log_name`` is how the file
-    is named on screen (the path as the user gave it).
+    is named on screen (the path as the user gave it).  ``freeze_gc`` (for
+    the process that runs only this app): every repaint leaves Textual strips
+    in reference cycles, so full garbage collections run about once a second;
+    freezing what exists once the app is up (modules, the widget tree, a
+    loaded file) keeps each of them from walking ~50 000 objects that will
+    never be garbage (100 ms pauses otherwise).
     """
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
@@ -96,8 +101,9 @@ class ConsoleApp(App[int]):
     ]
 
     def __init__(self, options: ConsoleOptions | None = None, log: RosoutLog | None = None, *,
-                 master_uri: str | None = None, log_name: str | None = None) -> None:
+                 master_uri: str | None = None, log_name: str | None = None, freeze_gc: bool = False) -> None:
         super().__init__()
+        self.freeze_gc = freeze_gc
         self.options = options or ConsoleOptions()
         self.model = ConsoleModel(self.options.max_messages, min_level=self.options.min_level)
         self.spec = self.options.filter_spec()
@@ -152,10 +158,8 @@ class ConsoleApp(App[int]):
         self.set_interval(1.0 / INGEST_RATE, self.take_batch)
         self.table.focus()
         self.refresh_bars()
-        # Every repaint leaves Textual strips in reference cycles, so full collections run about once a
-        # second; freezing what exists after start-up (modules, the widget tree, a loaded file) keeps
-        # each of them from walking ~50 000 objects that will never be garbage (100 ms pauses).
-        self.call_after_refresh(gc.freeze)
+        if self.freeze_gc:
+            self.call_after_refresh(gc.freeze)
         loop = asyncio.get_running_loop()
         for sig in (signal.SIGTERM, signal.SIGHUP):
             try:
@@ -455,6 +459,6 @@ def run_app(options: ConsoleOptions, log: RosoutLog | None = None, log_name: str
         print("ERROR: rostui console draws in a terminal: stdin and stdout must be a TTY "
               "(use `rostui topic echo /rosout_agg` without one)", file=sys.stderr)
         return 1
-    app = ConsoleApp(options, log, log_name=log_name)
+    app = ConsoleApp(options, log, log_name=log_name, freeze_gc=True)
     app.run()
     return app.return_code or 0

@@ -118,7 +118,6 @@ class ConsoleApp(App[int]):
         self._before_prompt: FilterSpec | None = None
         self._search_timer: Timer | None = None
         self._shown_version = -1
-        self.batches = 0
         self.filter_bar = Bar(id="filters")
         self.status_bar = Bar(id="status")
         self.table = LogTable(self.model, id="table")
@@ -171,7 +170,6 @@ class ConsoleApp(App[int]):
     def ingest(self, entries: Iterable[RosoutEntry]) -> int:
         """Take a batch of messages into the model and update the screen once; returns how many were kept."""
         taken = self.model.ingest(entries)
-        self.batches += 1
         self.show_model()
         return taken
 

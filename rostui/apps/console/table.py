@@ -331,5 +331,5 @@ class LogTable(ScrollView, can_focus=True):
         return Strip([Segment(text, style)], layout.width)
 
     def visible_texts(self) -> Sequence[str]:
-        """The text of every visible line (header first), as drawn; for tests and the benchmark."""
+        """The text of every visible line (header first), as drawn."""
         return [self.render_line(y).text for y in range(self.scrollable_content_region.height)]

@@ -1,0 +1,80 @@
+"""`rostui launch [PKG] FILE [name:=value ...]`: run roslaunch XML files (like `roslaunch`)."""
+
+from __future__ import annotations
+
+from typing import List, Optional
+
+import typer
+
+LAUNCH_CONTEXT = {
+    "help_option_names": ["-h", "--help"],
+    "allow_extra_args": True,
+    "ignore_unknown_options": True,
+}
+
+
+def launch_command(
+    ctx: typer.Context,
+    nodes: bool = typer.Option(False, "--nodes", help="Print the names of the nodes the files would start."),
+    node_args: Optional[str] = typer.Option(None, "--args", metavar="NODE",
+                                            help="Print the command line that would start NODE."),
+    dump_params: bool = typer.Option(False, "--dump-params", help="Print the params the files would set, as YAML."),
+    files: bool = typer.Option(False, "--files", help="Print every launch file the files read."),
+    ros_args: bool = typer.Option(False, "--ros-args", help="Print the args the launch file takes."),
+    port: Optional[int] = typer.Option(None, "-p", "--port", help="Master port (when a master must be started)."),
+    screen: bool = typer.Option(False, "--screen", help="Every node's output to the screen."),
+    verbose: bool = typer.Option(False, "-v", help="Print what is loaded and started."),
+    wait: bool = typer.Option(False, "--wait", help="Wait for a master instead of starting one."),
+    sigint_timeout: float = typer.Option(15.0, "--sigint-timeout", metavar="SECONDS",
+                                         help="Seconds a node gets after SIGINT before SIGTERM."),
+    sigterm_timeout: float = typer.Option(2.0, "--sigterm-timeout", metavar="SECONDS",
+                                          help="Seconds a node gets after SIGTERM before SIGKILL."),
+) -> None:
+    """Start the nodes of launch files: `rostui launch [PKG] FILE [name:=value ...]`.
+
+    FILE is a path, or a file name found below package PKG.  `name:=value`
+    sets the file's args.  A master (with rosout) starts when none answers at
+    ROS_MASTER_URI; Ctrl-C stops every node (SIGINT, then SIGTERM, then SIGKILL).
+    """
+    import sys
+
+    from rostui.launch import inspect
+    from rostui.launch.errors import LaunchError
+    from rostui.launch.files import resolve_request
+
+    words: List[str] = list(ctx.args)
+    unknown = [w for w in words if w.startswith("-") and ":=" not in w]
+    if unknown:
+        print(f"rostui launch: unknown option {unknown[0]}", file=sys.stderr)
+        raise typer.Exit(2)
+    modes = [m for m in (nodes, node_args is not None, ros_args) if m]
+    if len(modes) > 1:
+        print("rostui launch: only one of --nodes, --args, --ros-args may be given", file=sys.stderr)
+        raise typer.Exit(2)
+    try:
+        request = resolve_request(words)
+        if node_args is not None:
+            print(inspect.node_args_line(request, node_args, inspect.default_master_uri()))
+        elif nodes:
+            listing = inspect.node_list(request)
+            print(listing)
+        elif dump_params:
+            sys.stdout.write(inspect.dump_params(request) + "\n")
+        elif files:
+            print("\n".join(inspect.file_list(request)))
+        elif ros_args:
+            print(inspect.args_doc(request))
+        else:
+            from rostui.launch.supervisor import SupervisorOptions, run_launch
+
+            options = SupervisorOptions(screen=screen, verbose=verbose, wait=wait, port=port,
+                                        sigint_timeout=sigint_timeout, sigterm_timeout=sigterm_timeout)
+            raise typer.Exit(run_launch(request, options))
+    except LaunchError as exc:
+        print(f"rostui launch: {exc}", file=sys.stderr)
+        raise typer.Exit(1)
+
+
+def register(app: typer.Typer) -> None:
+    """Add the command to the rostui app."""
+    app.command("launch", context_settings=LAUNCH_CONTEXT)(launch_command)

@@ -2,8 +2,9 @@
 
 Left, the nodes that serve ``get_loggers`` (the master's service list, asked
 again every second); middle, the selected node's loggers and levels; right,
-the five levels with the selected logger's current one marked.  ``d``/``i``/``w``/``e``/``f``, Enter on a level or a
-click sets it through the node's ``set_logger_level``.  Whatever fails (no
+the five levels with the selected logger's current one marked.  A key
+(``d`` ``i`` ``w`` ``e`` ``f``), Enter on a level or a click sets it through
+the node's ``set_logger_level``.  Whatever fails (no
 master, node gone, a call refused or timed out) is said in red under the
 panel it concerns, and the app keeps running and retrying.
 
@@ -80,6 +81,7 @@ class LoggersApp(App[int]):
         self._nodes_worker: Worker[None] | None = None
         self._loggers_worker: Worker[None] | None = None
         self._closed = False
+        self._ping_failed = False
 
     # -- composition -----------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -165,8 +167,8 @@ class LoggersApp(App[int]):
         node_list = self.query_one(NodeList)
         node_list.show_nodes(nodes, node_list.highlighted_name or self.node)
         count = len(nodes)
-        self.notice("nodes").say(f"{count} node{'s' if count != 1 else ''} serve{'s' if count == 1 else ''} "
-                                 "get_loggers" if count else "no node serves get_loggers")
+        serve = "1 node serves" if count == 1 else f"{count} nodes serve"
+        self.notice("nodes").say(f"{serve} get_loggers" if count else "no node serves get_loggers")
         if self.node and self.node not in self.nodes:
             self._drop_node(f"node {self.node} is gone: the master no longer lists it", "error")
 
@@ -215,6 +217,11 @@ class LoggersApp(App[int]):
         except LoggerToolError as exc:
             if node == self.node:
                 self._loggers_failed(exc)
+                self._ping_failed = True
+            return
+        if node == self.node and self._ping_failed:  # it answers again: its loggers are still the last read
+            self._ping_failed = False
+            self._say_logger_count()
 
     def _load(self, node: str) -> None:
         self._loggers_worker = self.run_worker(self._load_loggers(node), group="loggers", exclusive=True,
@@ -243,8 +250,12 @@ class LoggersApp(App[int]):
         table.show_loggers(items, keep)
         before, self.logger = self.logger, table.highlighted_name or ""
         self._show_levels(hint=self.logger != before)
-        count = len(items)
-        self.notice("loggers").say(f"{count} logger{'s' if count != 1 else ''}" if count else "no loggers")
+        self._ping_failed = False
+        self._say_logger_count()
+
+    def _say_logger_count(self) -> None:
+        count = len(self.loggers)
+        self.notice("loggers").say(("1 logger" if count == 1 else f"{count} loggers") if count else "no loggers")
 
     def on_data_table_row_highlighted(self, event: DataTable.RowHighlighted) -> None:
         """Moving the cursor in the logger table selects that logger."""
@@ -281,9 +292,15 @@ class LoggersApp(App[int]):
         self.notice("levels").say(f"setting {logger} to {level}…")
         try:
             sent = await self.client.set_level(node, logger, level)
-            items = await self.client.loggers(node)
         except LoggerToolError as exc:
             self.notice("levels").say(str(exc), "error")
+            if node == self.node:
+                self._loggers_failed(exc)
+            return
+        try:
+            items = await self.client.loggers(node)
+        except LoggerToolError as exc:
+            self.notice("levels").say(f"{logger} was sent {sent}; reading it back failed: {exc}", "error")
             if node == self.node:
                 self._loggers_failed(exc)
             return

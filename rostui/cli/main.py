@@ -45,6 +45,7 @@ for _module in (run_cmd, node_cmd, topic_cmd, msg_cmd, service_cmd, param_cmd, p
 __import__("rostui.cli.console_cmd", fromlist=["register"]).register(app)
 __import__("rostui.cli.loggers_cmd", fromlist=["register"]).register(app)
 __import__("rostui.cli.launch_cmd", fromlist=["register"]).register(app)
+__import__("rostui.cli.bag_cmd", fromlist=["register"]).register(app)
 
 
 def main() -> None:

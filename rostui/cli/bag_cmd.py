@@ -1,0 +1,251 @@
+"""`rostui bag record|play|info|reindex|convert`: rosbag's commands; MCAP by default, ``.bag`` by name."""
+
+from __future__ import annotations
+
+import sys
+import time
+
+import typer
+
+from rostui.cli.common import fail
+
+CONTEXT = {"help_option_names": ["-h", "--help"], "allow_interspersed_args": True}
+
+
+def _ros_log(text: str) -> None:
+    """``[ INFO] [secs]: text`` on stdout, as rosbag reports what it does."""
+    print(f"[ INFO] [{time.time():.6f}]: {text}", flush=True)
+
+
+def _status_writer(stream: object) -> object:
+    """A status-line printer: rewritten in place on a terminal, one line a second otherwise."""
+    tty = getattr(stream, "isatty", lambda: False)()
+    last = [0.0]
+
+    def show(line: str) -> None:
+        if tty:
+            stream.write("\r" + line)  # type: ignore[attr-defined]
+            stream.flush()  # type: ignore[attr-defined]
+            return
+        now = time.monotonic()
+        if now - last[0] >= 1.0:
+            last[0] = now
+            stream.write(line.rstrip() + "\n")  # type: ignore[attr-defined]
+            stream.flush()  # type: ignore[attr-defined]
+    return show
+
+
+def _split_ros_args(items: list[str]) -> tuple[list[str], list[str]]:
+    """Separate ``name:=value`` (remappings, ``__name:=``...) from plain arguments."""
+    ros = [a for a in items if ":=" in a]
+    return [a for a in items if ":=" not in a], ros
+
+
+def run_record(args: list[str], *, all_topics: bool, regex: str | None, exclude: str | None, name: str | None,
+               prefix: str | None, bz2_flag: bool, lz4_flag: bool, compression: str | None, split: bool,
+               size: float | None, duration: float | None, max_size: float | None) -> int:
+    """Record until Ctrl-C or a limit; 1 with one line on error."""
+    from rostui.core.bag.model import BagError
+    from rostui.core.bag.recorder import RecordOptions, record
+    from rostui.core.node.engine import new_event_loop
+
+    topics, ros_args = _split_ros_args(args)
+    if name and prefix:
+        fail("rostui bag record: use -O NAME or -o PREFIX, not both")
+    is_bag = (name or prefix or "").endswith(".bag")
+    kind = compression or (("bz2" if is_bag else "zstd") if bz2_flag else "lz4" if lz4_flag else "none")
+    if is_bag and kind == "zstd":
+        fail("rostui bag record: a .bag file cannot use zstd compression (none, bz2 or lz4)")
+    if kind == "bz2" and not is_bag:
+        fail("rostui bag record: MCAP files use lz4 or zstd compression, not bz2 (name the file .bag for bz2)")
+    opts = RecordOptions(topics=topics, all_topics=all_topics, regex=regex, exclude=exclude, output_name=name,
+                         output_prefix=prefix, compression=kind, split=split, size_mb=size, duration_s=duration,
+                         max_size_mb=max_size)
+    status = _status_writer(sys.stderr) if sys.stderr.isatty() else None
+    loop = new_event_loop()
+    try:
+        count, files, error = loop.run_until_complete(record(opts, ros_args, status=status, report=_ros_log))
+    except BagError as exc:
+        fail(f"rostui bag record: {exc}")
+    finally:
+        loop.close()
+    if status is not None:
+        sys.stderr.write("\n")
+    if error:
+        fail(f"rostui bag record: {error}; {', '.join(files)} holds what was recorded before")
+    _ros_log(f"Recorded {count} messages to {', '.join(files)}")
+    return 0
+
+
+def run_play(args: list[str], *, rate: float, loop_play: bool, pause: bool, start: float,
+             duration: float | None, delay: float, clock: bool, hz: float, topics: list[str] | None,
+             queue: int, quiet: bool) -> int:
+    """Play bags; 1 with one line on error."""
+    from rostui.core.bag.model import BagError
+    from rostui.core.bag.player import PlayOptions, play
+    from rostui.core.node.engine import new_event_loop
+
+    files, ros_args = _split_ros_args(args)
+    opts = PlayOptions(files=files, rate=rate, loop=loop_play, start_paused=pause, start_s=start,
+                       duration_s=duration, delay_s=delay, clock=clock, clock_hz=hz, topics=list(topics or []),
+                       queue_size=queue)
+    for path in files:
+        _ros_log(f"Opening {path}")
+    if sys.stdin.isatty() and not quiet:
+        print("\nWaiting %.1f seconds after advertising topics... done.\n\nHit space to toggle paused, "
+              "or 's' to step." % delay, flush=True)
+    status = None if quiet else _status_writer(sys.stdout)
+    ev = new_event_loop()
+    try:
+        ev.run_until_complete(play(opts, ros_args, status=status))
+    except BagError as exc:
+        fail(f"rostui bag play: {exc}")
+    finally:
+        ev.close()
+    if not quiet:
+        print("\nDone.", flush=True)
+    return 0
+
+
+def run_info(files: list[str], as_json: bool) -> int:
+    """Print info for each file; 1 when any could not be read."""
+    from rostui.core.bag.info import format_info, info_dict, summarize
+    from rostui.core.bag.model import BagError
+
+    failed = False
+    results = []
+    for i, path in enumerate(files):
+        try:
+            summary = summarize(path)
+        except BagError as exc:
+            print(f"rostui bag info: {exc}", file=sys.stderr)
+            failed = True
+            continue
+        if as_json:
+            results.append(info_dict(summary))
+        else:
+            if i:
+                print("---")
+            print(format_info(summary))
+    if as_json:
+        from rostui.cli.common import print_json
+
+        print_json(results[0] if len(files) == 1 and results else results)
+    return 1 if failed else 0
+
+
+def run_reindex(files: list[str]) -> int:
+    """Rewrite each file with a full index; the original is kept as NAME.orig.EXT."""
+    from rostui.core.bag.files import reindex
+    from rostui.core.bag.model import BagError
+
+    for path in files:
+        try:
+            count, problem = reindex(path)
+        except BagError as exc:
+            fail(f"rostui bag reindex: {exc}")
+        except OSError as exc:
+            fail(f"rostui bag reindex: {path}: {exc.strerror or exc}")
+        note = f" (the original ended early: {problem})" if problem else ""
+        print(f"{path}: reindexed {count} messages{note}", flush=True)
+    return 0
+
+
+def run_convert(src: str, dst: str, compression: str) -> int:
+    """Copy a bag into the format its new name asks for."""
+    from rostui.core.bag.files import convert
+    from rostui.core.bag.model import BagError
+
+    try:
+        count = convert(src, dst, compression)
+    except BagError as exc:
+        fail(f"rostui bag convert: {exc}")
+    except OSError as exc:
+        fail(f"rostui bag convert: {exc.strerror or exc}")
+    print(f"{dst}: {count} messages", flush=True)
+    return 0
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``rostui bag ...``."""
+    bag_app = typer.Typer(name="bag", help="Record, play and inspect bags: MCAP by default, rosbag .bag by name.",
+                          no_args_is_help=True, context_settings=CONTEXT)
+    app.add_typer(bag_app, name="bag")
+
+    @bag_app.command("record", context_settings=CONTEXT)
+    def record_command(
+        args: list[str] = typer.Argument(None, metavar="[TOPIC ...]", help="Topics to record (and name:=value)."),
+        all_topics: bool = typer.Option(False, "-a", "--all", help="Record all topics, also those that appear later."),
+        regex: str | None = typer.Option(None, "-e", "--regex", metavar="REGEX",
+                                         help="Record topics matching the regular expression."),
+        exclude: str | None = typer.Option(None, "-x", "--exclude", metavar="REGEX",
+                                           help="Leave out topics matching the regular expression."),
+        name: str | None = typer.Option(None, "-O", "--output-name", metavar="NAME",
+                                        help="File name (.bag: rosbag v2.0, otherwise MCAP)."),
+        prefix: str | None = typer.Option(None, "-o", "--output-prefix", metavar="PREFIX",
+                                          help="Prepend PREFIX to the date-and-time file name."),
+        bz2_flag: bool = typer.Option(False, "-j", "--bz2", help="Compress: bz2 in .bag files, zstd in MCAP."),
+        lz4_flag: bool = typer.Option(False, "--lz4", help="lz4 compression."),
+        compression: str | None = typer.Option(None, "--compression", metavar="none|lz4|zstd|bz2",
+                                               help="Chunk compression."),
+        split: bool = typer.Option(False, "--split", help="Start a new file at --size or --duration."),
+        size: float | None = typer.Option(None, "--size", metavar="MB", help="File size limit in MB."),
+        duration: float | None = typer.Option(None, "--duration", metavar="SEC", help="File duration in seconds."),
+        max_size: float | None = typer.Option(None, "--max-size", metavar="MB",
+                                              help="Stop when the recording reaches this many MB in all."),
+    ) -> None:
+        """Record topics into a bag until Ctrl-C (like `rosbag record`)."""
+        if compression is not None and compression not in ("none", "lz4", "zstd", "bz2"):
+            fail(f"rostui bag record: unknown compression '{compression}' (none, lz4, zstd or bz2)")
+        raise typer.Exit(run_record(list(args or []), all_topics=all_topics, regex=regex, exclude=exclude,
+                                    name=name, prefix=prefix, bz2_flag=bz2_flag, lz4_flag=lz4_flag,
+                                    compression=compression, split=split, size=size, duration=duration,
+                                    max_size=max_size))
+
+    @bag_app.command("play", context_settings=CONTEXT)
+    def play_command(
+        args: list[str] = typer.Argument(..., metavar="FILE ...", help="Bags to play (and topic:=newtopic)."),
+        rate: float = typer.Option(1.0, "-r", "--rate", help="Multiply the publish rate by this factor."),
+        loop_play: bool = typer.Option(False, "-l", "--loop", help="Loop playback."),
+        pause: bool = typer.Option(False, "--pause", help="Start paused."),
+        start: float = typer.Option(0.0, "-s", "--start", metavar="SEC", help="Start SEC seconds into the bag."),
+        duration: float | None = typer.Option(None, "-u", "--duration", metavar="SEC",
+                                              help="Play only SEC seconds."),
+        delay: float = typer.Option(0.2, "-d", "--delay", metavar="SEC",
+                                    help="Wait SEC seconds after advertising each topic."),
+        clock: bool = typer.Option(False, "--clock", help="Publish the bag time on /clock."),
+        hz: float = typer.Option(100.0, "--hz", help="Rate of /clock messages."),
+        topics: list[str] | None = typer.Option(None, "--topics", metavar="TOPIC",
+                                                help="Play only these topics (repeat the option)."),
+        queue: int = typer.Option(100, "--queue", help="Outgoing queue size of each publisher."),
+        quiet: bool = typer.Option(False, "-q", "--quiet", help="No status line."),
+    ) -> None:
+        """Play bags back with their original timing (like `rosbag play`)."""
+        raise typer.Exit(run_play(list(args), rate=rate, loop_play=loop_play, pause=pause, start=start,
+                                  duration=duration, delay=delay, clock=clock, hz=hz, topics=topics, queue=queue,
+                                  quiet=quiet))
+
+    @bag_app.command("info")
+    def info_command(
+        files: list[str] = typer.Argument(..., metavar="FILE ...", help="Bags to describe."),
+        as_json: bool = typer.Option(False, "--json", help="Print machine-readable JSON instead of text."),
+    ) -> None:
+        """Summarize bags: times, size, counts, types and topics (like `rosbag info`)."""
+        raise typer.Exit(run_info(list(files), as_json))
+
+    @bag_app.command("reindex")
+    def reindex_command(
+        files: list[str] = typer.Argument(..., metavar="FILE ...", help="Bags to rewrite with an index."),
+    ) -> None:
+        """Repair bags whose recording was cut short (the original is kept as NAME.orig.EXT)."""
+        raise typer.Exit(run_reindex(list(files)))
+
+    @bag_app.command("convert")
+    def convert_command(
+        src: str = typer.Argument(..., metavar="IN", help="The bag to read."),
+        dst: str = typer.Argument(..., metavar="OUT", help="The file to write (.bag: rosbag v2.0, else MCAP)."),
+        compression: str = typer.Option("none", "--compression", metavar="none|lz4|zstd|bz2",
+                                        help="Chunk compression of OUT."),
+    ) -> None:
+        """Convert between MCAP and rosbag .bag."""
+        raise typer.Exit(run_convert(src, dst, compression))

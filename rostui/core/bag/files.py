@@ -1,0 +1,149 @@
+"""Opening bags by what they hold (MCAP or rosbag v2.0), writing by name, merging, converting, reindexing."""
+
+from __future__ import annotations
+
+import heapq
+import os
+from collections.abc import Iterable, Iterator
+from typing import Protocol
+
+from rostui.core.bag.mcapfile import MAGIC as MCAP_MAGIC
+from rostui.core.bag.mcapfile import McapBagReader, McapBagWriter
+from rostui.core.bag.model import BagError, BagSummary, Connection
+from rostui.core.bag.rosbag2_0 import MAGIC as BAG_MAGIC
+from rostui.core.bag.rosbag2_0 import BagReader, BagWriter
+
+COMPRESSIONS = ("none", "lz4", "zstd", "bz2")
+
+
+class Reader(Protocol):
+    """What both readers offer."""
+
+    path: str
+    truncated: str
+
+    def messages(self) -> Iterator[tuple[Connection, int, bytes]]: ...
+    def summary(self) -> BagSummary: ...
+    def close(self) -> None: ...
+
+    @property
+    def closed_properly(self) -> bool: ...
+
+
+class Writer(Protocol):
+    """What both writers offer."""
+
+    path: str
+    size: int
+    connections: dict[int, Connection]
+
+    def add_connection(self, conn: Connection) -> None: ...
+    def write(self, conn_id: int, time_ns: int, data: bytes) -> None: ...
+    def flush_if_old(self) -> None: ...
+    def flush(self) -> None: ...
+    def close(self) -> None: ...
+
+
+def is_rosbag_name(path: str) -> bool:
+    """True when the name asks for a rosbag v2.0 file (``.bag``), else MCAP."""
+    return path.endswith(".bag") or path.endswith(".bag.active")
+
+
+def open_reader(path: str) -> Reader:
+    """A reader for ``path``, chosen by its first bytes; BagError for anything else."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(len(MCAP_MAGIC) + len(BAG_MAGIC))
+    except FileNotFoundError:
+        raise BagError(f"{path}: no such file") from None
+    except IsADirectoryError:
+        raise BagError(f"{path} is a directory, not a bag file") from None
+    except OSError as exc:
+        raise BagError(f"cannot open {path}: {exc.strerror}") from None
+    if head.startswith(MCAP_MAGIC):
+        return McapBagReader(path)
+    if head.startswith(b"#ROSBAG"):
+        return BagReader(path)
+    if not head:
+        raise BagError(f"{path} is empty, not a bag file")
+    raise BagError(f"{path} is neither an MCAP file nor a rosbag file (unknown first bytes)")
+
+
+def open_writer(path: str, compression: str = "none", *, max_chunk_age: float = 0.5) -> Writer:
+    """A writer for ``path``: rosbag v2.0 when the name ends in ``.bag``, otherwise MCAP."""
+    if compression not in COMPRESSIONS:
+        raise BagError(f"unknown compression '{compression}' (none, lz4, zstd or bz2)")
+    try:
+        if is_rosbag_name(path):
+            return BagWriter(path, compression=compression, max_chunk_age=max_chunk_age)
+        return McapBagWriter(path, compression=compression, max_chunk_age=max_chunk_age)
+    except OSError as exc:
+        raise BagError(f"cannot create {path}: {exc.strerror}") from None
+
+
+def merged_messages(readers: Iterable[Reader]) -> Iterator[tuple[Connection, int, bytes, int]]:
+    """Messages of several files in time order: ``(connection, time_ns, data, file_index)``."""
+    streams = [((t, i, conn, data) for conn, t, data in r.messages()) for i, r in enumerate(readers)]
+    for t, i, conn, data in heapq.merge(*streams, key=lambda item: (item[0], item[1])):
+        yield conn, t, data, i
+
+
+def copy_messages(reader: Reader, writer: Writer) -> int:
+    """Write every readable message of ``reader`` into ``writer``; returns how many."""
+    ids: dict[int, int] = {}
+    count = 0
+    for conn, t, data in reader.messages():
+        new_id = ids.get(conn.id)
+        if new_id is None:
+            new_id = ids[conn.id] = len(ids)
+            writer.add_connection(Connection(new_id, conn.topic, conn.type, conn.md5sum, conn.definition,
+                                             conn.callerid, conn.latching))
+        writer.write(new_id, t, data)
+        count += 1
+    return count
+
+
+def convert(src: str, dst: str, compression: str = "none") -> int:
+    """Copy a bag into a new file whose format follows its name; returns the message count."""
+    if os.path.abspath(src) == os.path.abspath(dst):
+        raise BagError("convert needs a different output file")
+    reader = open_reader(src)
+    try:
+        writer = open_writer(dst, compression)
+        try:
+            return copy_messages(reader, writer)
+        finally:
+            writer.close()
+    finally:
+        reader.close()
+
+
+def reindex(path: str) -> tuple[int, str]:
+    """Rewrite a file cut short (or any file) in place with a full index.
+
+    The original is kept as ``<name>.orig.<ext>`` like rosbag reindex does.
+    Returns the message count and what was wrong ('' when the file was fine).
+    """
+    reader = open_reader(path)
+    root, ext = os.path.splitext(path)
+    backup = f"{root}.orig{ext}"
+    reader.close()
+    os.replace(path, backup)
+    reader = open_reader(backup)
+    compression = "none"
+    try:
+        summary_kinds = reader.summary().chunk_compression
+        if summary_kinds:
+            compression = max(summary_kinds, key=lambda k: summary_kinds[k])
+            if compression == "" or (compression == "bz2" and not is_rosbag_name(path)):
+                compression = "none"
+            if compression == "zstd" and is_rosbag_name(path):
+                compression = "none"
+        writer = open_writer(path, compression)
+        try:
+            count = copy_messages(reader, writer)
+        finally:
+            writer.close()
+        return count, reader.truncated
+    finally:
+        reader.close()

@@ -1,0 +1,111 @@
+"""``rostui bag info``: rosbag info's fields for MCAP and ``.bag`` files, as text or a JSON-ready dict."""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+from rostui.core.bag.files import open_reader
+from rostui.core.bag.model import BagSummary
+
+
+def human_size(size: float) -> str:
+    """``81.5 KB`` as rosbag info writes sizes."""
+    for unit in ("B", "KB", "MB", "GB"):
+        if size < 1024.0 or unit == "GB":
+            return f"{size:.1f} {unit}"
+        size /= 1024.0
+    return f"{size:.1f} GB"
+
+
+def human_duration(seconds: float) -> str:
+    """``12.3s``, ``1:05s (65s)`` or ``1:01:05s (3665s)`` as rosbag info writes durations."""
+    if seconds < 60:
+        return f"{seconds:.1f}s"
+    whole = int(round(seconds))
+    hours, rest = divmod(whole, 3600)
+    minutes, secs = divmod(rest, 60)
+    clock = f"{hours}:{minutes:02d}:{secs:02d}" if hours else f"{minutes}:{secs:02d}"
+    return f"{clock}s ({whole}s)"
+
+
+def human_time(ns: int) -> str:
+    """``Nov 22 2026 15:11:02.32 (1795360262.32)`` in local time."""
+    hundredths = round(ns / 1e7)
+    whole, frac = divmod(hundredths, 100)
+    return f"{time.strftime('%b %d %Y %H:%M:%S', time.localtime(whole))}.{frac:02d} ({whole}.{frac:02d})"
+
+
+def summarize(path: str) -> BagSummary:
+    """Read a file's summary (BagError for anything that is not a readable bag)."""
+    reader = open_reader(path)
+    try:
+        return reader.summary()
+    finally:
+        reader.close()
+
+
+def _topics(summary: BagSummary) -> list[tuple[str, int, list[str], int]]:
+    """``(topic, messages, types, connections)`` per topic, sorted by name."""
+    rows: dict[str, tuple[int, list[str], int]] = {}
+    for conn in summary.connections:
+        count, types, conns = rows.get(conn.topic, (0, [], 0))
+        if conn.type not in types:
+            types = [*types, conn.type]
+        rows[conn.topic] = (count + summary.counts.get(conn.id, 0), types, conns + 1)
+    return [(t, *rows[t]) for t in sorted(rows)]
+
+
+def info_dict(summary: BagSummary) -> dict[str, Any]:
+    """The ``--json`` form of info."""
+    types = {c.type: c.md5sum for c in summary.connections}
+    return {
+        "path": summary.path,
+        "format": summary.format,
+        "version": summary.version,
+        "closed": summary.closed,
+        "problem": summary.problem or None,
+        "duration": (summary.end_ns - summary.start_ns) / 1e9,
+        "start": summary.start_ns / 1e9,
+        "end": summary.end_ns / 1e9,
+        "size": summary.size,
+        "messages": summary.message_count,
+        "compression": summary.chunk_compression,
+        "types": [{"type": t, "md5sum": types[t]} for t in sorted(types)],
+        "topics": [{"topic": t, "messages": n, "types": ty, "connections": c} for t, n, ty, c in _topics(summary)],
+    }
+
+
+def format_info(summary: BagSummary) -> str:
+    """rosbag info's layout: path, version, duration, start, end, size, messages, compression, types, topics."""
+    lines = [("path", summary.path), ("version", summary.version)]
+    if summary.message_count:
+        lines += [("duration", human_duration((summary.end_ns - summary.start_ns) / 1e9)),
+                  ("start", human_time(summary.start_ns)), ("end", human_time(summary.end_ns))]
+    lines += [("size", human_size(summary.size)), ("messages", str(summary.message_count))]
+    chunks = sum(summary.chunk_compression.values())
+    if chunks:
+        kind = max(summary.chunk_compression, key=lambda k: summary.chunk_compression[k])
+        lines.append(("compression", f"{kind} [{summary.chunk_compression[kind]}/{chunks} chunks]"))
+    else:
+        lines.append(("compression", "none"))
+    types = {c.type: c.md5sum for c in summary.connections}
+    type_width = max((len(t) for t in types), default=0)
+    type_lines = [f"{t:<{type_width}} [{types[t]}]" for t in sorted(types)]
+    topics = _topics(summary)
+    topic_width = max((len(t) for t, *_ in topics), default=0)
+    count_width = max((len(str(n)) for _, n, _, _ in topics), default=0)
+    topic_lines = []
+    for topic, count, tlist, conns in topics:
+        extra = f" ({conns} connections)" if conns > 1 else ""
+        unit = "msg " if count == 1 else "msgs"
+        topic_lines.append(f"{topic:<{topic_width}}   {count:>{count_width}} {unit}    : {', '.join(tlist)}{extra}")
+    out = [f"{k + ':':<13}{v}" for k, v in lines]
+    for key, rows in (("types", type_lines), ("topics", topic_lines)):
+        for i, row in enumerate(rows):
+            out.append(f"{(key + ':') if i == 0 else '':<13}{row}")
+    if not summary.closed:
+        why = f" ({summary.problem})" if summary.problem else ""
+        out.append(f"warning:     the file was not closed (recording interrupted){why}; "
+                   "it reads up to its last complete message; `rostui bag reindex` rewrites it with an index")
+    return "\n".join(out)

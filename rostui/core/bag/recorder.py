@@ -1,0 +1,300 @@
+"""``rostui bag record``: a node ``record_...`` that writes raw messages as received into a bag.
+
+Messages are never decoded: each arrives as an AnyMsg with its publisher's
+connection header, and its bytes go straight to the writer with the
+connection's type, md5sum, definition, callerid and latching.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import os
+import re
+import signal
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from rostui.core.bag.files import Writer, open_writer
+from rostui.core.bag.model import BagError, Connection, connection_key
+
+STATUS_PERIOD = 1.0
+DISCOVERY_PERIOD = 1.0
+FLUSH_PERIOD = 0.2
+
+
+@dataclass
+class RecordOptions:
+    """What to record and where (see ``rostui bag record --help``)."""
+
+    topics: list[str] = field(default_factory=list)
+    all_topics: bool = False
+    regex: str | None = None
+    exclude: str | None = None
+    output_name: str | None = None
+    output_prefix: str | None = None
+    compression: str = "none"
+    split: bool = False
+    size_mb: float | None = None
+    duration_s: float | None = None
+    max_size_mb: float | None = None
+    max_chunk_age: float = 0.5
+
+
+def stamp(now: float | None = None) -> str:
+    """``YYYY-MM-DD-HH-MM-SS`` in local time, as rosbag names its files."""
+    return time.strftime("%Y-%m-%d-%H-%M-%S", time.localtime(now))
+
+
+def base_file_name(opts: RecordOptions, now: float | None = None) -> str:
+    """The file name to record to: ``-O`` as given (``.mcap`` added when it names no format),
+    ``-o PREFIX`` plus the date and time, or the date and time alone."""
+    if opts.output_name:
+        name = opts.output_name
+        return name if name.endswith((".bag", ".mcap")) else name + ".mcap"
+    ext = ".mcap"
+    prefix = opts.output_prefix or ""
+    if prefix.endswith(".bag") or prefix.endswith(".mcap"):
+        prefix, ext = os.path.splitext(prefix)
+    if prefix and not prefix.endswith("/"):
+        prefix += "_"
+    return f"{prefix}{stamp(now)}{ext}"
+
+
+def split_file_name(base: str, index: int) -> str:
+    """``name_<index>.ext`` for the pieces of a split recording, as rosbag names them."""
+    root, ext = os.path.splitext(base)
+    return f"{root}_{index}{ext}"
+
+
+class TopicFilter:
+    """Which topics to record: the given ones, all (-a), or those matching -e; minus those matching -x."""
+
+    def __init__(self, opts: RecordOptions, resolve: Callable[[str], str]) -> None:
+        self.explicit = [resolve(t) for t in opts.topics]
+        self.all = opts.all_topics
+        try:
+            self.regex = re.compile(opts.regex) if opts.regex else None
+            self.exclude = re.compile(opts.exclude) if opts.exclude else None
+        except re.error as exc:
+            raise BagError(f"invalid regular expression: {exc}") from None
+        if not (self.explicit or self.all or self.regex):
+            raise BagError("no topics given: name topics, or use -a (all) or -e REGEX")
+
+    @property
+    def discovers(self) -> bool:
+        """True when topics that appear later must be found by polling the master."""
+        return self.all or self.regex is not None
+
+    def wants(self, topic: str) -> bool:
+        """True when a published topic should be recorded."""
+        if self.exclude is not None and self.exclude.search(topic):
+            return False
+        return self.all or (self.regex is not None and self.regex.fullmatch(topic) is not None)
+
+
+class Recorder:
+    """Records subscribed topics into one file, or a series of files with ``--split``."""
+
+    def __init__(self, node: Any, opts: RecordOptions, *, report: Callable[[str], None] = lambda _l: None) -> None:
+        self.node = node
+        self.opts = opts
+        self.report = report
+        self.filter = TopicFilter(opts, node.resolve)
+        self.base = base_file_name(opts)
+        self.connections: dict[int, tuple[dict[str, str], Connection]] = {}
+        self.by_key: dict[tuple[str, str, str, str, bool], Connection] = {}
+        self.subscribed: set[str] = set()
+        self.files: list[str] = []
+        self.writer: Writer | None = None
+        self.messages = 0
+        self.bytes_before = 0
+        self.error: str | None = None
+        self.stop = asyncio.Event()
+        self._file_started = 0.0
+        self._recent: list[tuple[float, int]] = []
+
+    # -- files -----------------------------------------------------------------------
+    def _open_next(self) -> None:
+        name = split_file_name(self.base, len(self.files)) if self.opts.split else self.base
+        folder = os.path.dirname(name)
+        if folder and not os.path.isdir(folder):
+            raise BagError(f"cannot record to {name}: folder {folder} does not exist")
+        self.writer = open_writer(name, self.opts.compression, max_chunk_age=self.opts.max_chunk_age)
+        self.files.append(name)
+        self._file_started = time.monotonic()
+        self.report(f"Recording to '{name}'.")
+
+    def _close_writer(self) -> None:
+        writer, self.writer = self.writer, None
+        if writer is None:
+            return
+        self.bytes_before += writer.size
+        try:
+            writer.close()
+        except OSError as exc:
+            self._fail(f"cannot finish {writer.path}: {exc.strerror or exc}")
+
+    def _fail(self, message: str) -> None:
+        if self.error is None:
+            self.error = message
+        self.stop.set()
+
+    @property
+    def total_bytes(self) -> int:
+        """Bytes written across all files of this recording."""
+        return self.bytes_before + (self.writer.size if self.writer is not None else 0)
+
+    # -- messages --------------------------------------------------------------------
+    def _connection(self, topic: str, header: dict[str, str]) -> Connection:
+        known = self.connections.get(id(header))
+        if known is not None and known[0] is header:
+            return known[1]
+        key = connection_key(topic, header)
+        conn = self.by_key.get(key)
+        if conn is None:
+            conn = Connection(len(self.by_key), topic, header.get("type", ""), header.get("md5sum", ""),
+                              header.get("message_definition", ""), header.get("callerid", ""), key[4])
+            self.by_key[key] = conn
+        self.connections[id(header)] = (header, conn)
+        return conn
+
+    def on_message(self, raw: Any, topic: str) -> None:
+        """Write one raw message (the subscriber callback: the hot path)."""
+        writer = self.writer
+        if writer is None or self.stop.is_set():
+            return
+        conn = self._connection(topic, raw._connection_header or {})
+        if conn.id not in writer.connections:
+            writer.add_connection(conn)
+        try:
+            writer.write(conn.id, time.time_ns(), raw._buff)
+        except OSError as exc:
+            self._fail(f"recording stopped: cannot write {writer.path}: {exc.strerror or exc}")
+            return
+        self.messages += 1
+        self._after_write(writer)
+
+    def _after_write(self, writer: Writer) -> None:
+        opts = self.opts
+        if opts.max_size_mb is not None and self.total_bytes >= opts.max_size_mb * 1e6:
+            self.report(f"Reached the maximum size of {opts.max_size_mb:g} MB; stopping.")
+            self.stop.set()
+        elif opts.size_mb is not None and writer.size >= opts.size_mb * 1e6:
+            self._limit_reached()
+
+    def _limit_reached(self) -> None:
+        if self.opts.split:
+            self._close_writer()
+            if self.error is None:
+                self._open_next()
+        else:
+            self.stop.set()
+
+    # -- subscriptions -----------------------------------------------------------------
+    async def _subscribe(self, topic: str) -> None:
+        from rostui.core.node import AnyMsg
+
+        if topic in self.subscribed:
+            return
+        self.subscribed.add(topic)
+        self.report(f"Subscribing to {topic}")
+        await self.node.subscribe(topic, AnyMsg, self.on_message, callback_args=topic, queue_size=None)
+
+    async def _discover(self) -> None:
+        while not self.stop.is_set():
+            try:
+                published = await self.node.master_call("getPublishedTopics", "")
+            except Exception:
+                published = []
+            for topic, _type in published:
+                if self.filter.wants(topic):
+                    await self._subscribe(topic)
+            try:
+                await asyncio.wait_for(self.stop.wait(), DISCOVERY_PERIOD)
+            except asyncio.TimeoutError:
+                pass
+
+    async def _housekeeping(self, status: Callable[[str], None] | None) -> None:
+        last_status = 0.0
+        while not self.stop.is_set():
+            try:
+                await asyncio.wait_for(self.stop.wait(), FLUSH_PERIOD)
+                return
+            except asyncio.TimeoutError:
+                pass
+            writer = self.writer
+            if writer is not None:
+                try:
+                    writer.flush_if_old()
+                except OSError as exc:
+                    self._fail(f"recording stopped: cannot write {writer.path}: {exc.strerror or exc}")
+                    return
+                if self.opts.duration_s is not None and time.monotonic() - self._file_started >= self.opts.duration_s:
+                    self._limit_reached()
+            now = time.monotonic()
+            if status is not None and now - last_status >= STATUS_PERIOD:
+                last_status = now
+                status(self.status_line(now))
+
+    def status_line(self, now: float) -> str:
+        """``Recording 'name': N msgs, SIZE, R msg/s`` (rate over the last few seconds)."""
+        self._recent.append((now, self.messages))
+        self._recent = [(t, n) for t, n in self._recent if now - t <= 5.0]
+        t0, n0 = self._recent[0]
+        rate = (self.messages - n0) / (now - t0) if now > t0 else 0.0
+        name = self.files[-1] if self.files else self.base
+        return (f"Recording '{name}': {self.messages} msgs, {_human(self.total_bytes)}, "
+                f"{rate:.1f} msg/s, {len(self.subscribed)} topics")
+
+    async def run(self, status: Callable[[str], None] | None = None) -> int:
+        """Record until ``stop`` is set (Ctrl-C, a size or duration limit, or a write error); finalise the file."""
+        self._open_next()
+        tasks = [asyncio.ensure_future(self._housekeeping(status))]
+        try:
+            for topic in self.filter.explicit:
+                await self._subscribe(topic)
+            if self.filter.discovers:
+                tasks.append(asyncio.ensure_future(self._discover()))
+            await self.stop.wait()
+        finally:
+            for task in tasks:
+                task.cancel()
+            self._close_writer()
+        return self.messages
+
+
+def _human(size: float) -> str:
+    for unit in ("B", "KB", "MB", "GB"):
+        if size < 1024 or unit == "GB":
+            return f"{size:.1f} {unit}" if unit != "B" else f"{int(size)} B"
+        size /= 1024
+    return f"{size:.1f} GB"
+
+
+async def record(opts: RecordOptions, argv: Sequence[str] = (), *, status: Callable[[str], None] | None = None,
+                 report: Callable[[str], None] = print) -> tuple[int, list[str], str | None]:
+    """Run a recording node until Ctrl-C or a limit; returns (messages, files, error or None)."""
+    from rostui.core.node import AsyncNode, MasterUnreachableError
+
+    loop = asyncio.get_running_loop()
+    if hasattr(signal, "SIGXFSZ"):
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # a file-size limit becomes a write error, not death
+    node = AsyncNode("record", anonymous=True, argv=list(argv))
+    try:
+        await node.start()
+    except MasterUnreachableError as exc:
+        raise BagError(str(exc)) from None
+    try:
+        recorder = Recorder(node, opts, report=report)
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            loop.add_signal_handler(sig, recorder.stop.set)
+        node.shutdown_hooks.append(lambda _reason: recorder.stop.set())
+        count = await recorder.run(status)
+        return count, recorder.files, recorder.error
+    finally:
+        try:
+            await asyncio.wait_for(node.shutdown("record finished"), 3.0)
+        except (asyncio.TimeoutError, Exception):
+            pass

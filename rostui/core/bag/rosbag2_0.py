@@ -1,0 +1,395 @@
+"""rosbag v2.0 ``.bag`` files: a chunked writer that survives a kill, and a sequential reader.
+
+The writer closes a chunk (and writes its index records) whenever it holds
+``chunk_bytes`` or is older than ``max_chunk_age`` seconds, so a process killed
+mid-recording leaves a file whose complete chunks all read back. The reader
+walks records in file order, so it reads indexed and unindexed files alike and
+stops cleanly at the first incomplete record.
+"""
+
+from __future__ import annotations
+
+import bz2
+import os
+import struct
+import time
+from collections.abc import Iterator
+from typing import BinaryIO
+
+from rostui.core.bag.model import BagError, BagSummary, Connection
+
+MAGIC = b"#ROSBAG V2.0\n"
+FILE_HEADER_LENGTH = 4096
+OP_MSG_DATA, OP_FILE_HEADER, OP_INDEX_DATA, OP_CHUNK, OP_CHUNK_INFO, OP_CONNECTION = 2, 3, 4, 5, 6, 7
+COMPRESSIONS = ("none", "bz2", "lz4")
+_U32 = struct.Struct("<I")
+_TIME = struct.Struct("<II")
+
+
+def _field(name: str, value: bytes) -> bytes:
+    item = name.encode() + b"=" + value
+    return _U32.pack(len(item)) + item
+
+
+def _header(fields: dict[str, bytes]) -> bytes:
+    body = b"".join(_field(k, v) for k, v in fields.items())
+    return _U32.pack(len(body)) + body
+
+
+def _record(fields: dict[str, bytes], data: bytes) -> bytes:
+    return _header(fields) + _U32.pack(len(data)) + data
+
+
+def _time_bytes(ns: int) -> bytes:
+    return _TIME.pack(ns // 1_000_000_000, ns % 1_000_000_000)
+
+
+def _time_ns(raw: bytes) -> int:
+    sec, nsec = _TIME.unpack(raw)
+    return sec * 1_000_000_000 + nsec
+
+
+def parse_header(buf: bytes | memoryview) -> dict[str, bytes]:
+    """``name=value`` fields of a record header (values stay bytes)."""
+    fields: dict[str, bytes] = {}
+    pos, end = 0, len(buf)
+    while pos + 4 <= end:
+        (length,) = _U32.unpack_from(buf, pos)
+        pos += 4
+        if pos + length > end:
+            raise BagError("corrupt record header (field runs past the header)")
+        item = bytes(buf[pos:pos + length])
+        pos += length
+        name, sep, value = item.partition(b"=")
+        if not sep:
+            raise BagError("corrupt record header (field without '=')")
+        fields[name.decode("latin-1")] = value
+    return fields
+
+
+def _compress(kind: str, data: bytes) -> bytes:
+    if kind == "bz2":
+        return bz2.compress(data)
+    if kind == "lz4":
+        import lz4.frame
+
+        return lz4.frame.compress(data)
+    return data
+
+
+def _decompress(kind: str, data: bytes) -> bytes:
+    if kind == "none":
+        return data
+    if kind == "bz2":
+        return bz2.decompress(data)
+    if kind == "lz4":
+        import lz4.frame
+
+        return lz4.frame.decompress(data)
+    raise BagError(f"unsupported chunk compression '{kind}'")
+
+
+class BagWriter:
+    """Writes a rosbag v2.0 file; ``close()`` writes the index and the final file header."""
+
+    def __init__(self, path: str, *, compression: str = "none", chunk_bytes: int = 768 * 1024,
+                 max_chunk_age: float = 0.5) -> None:
+        if compression not in COMPRESSIONS:
+            raise BagError(f"a .bag file cannot use {compression} compression (none, bz2 or lz4)")
+        self.path = path
+        self.compression = compression
+        self.chunk_bytes = chunk_bytes
+        self.max_chunk_age = max_chunk_age
+        self.fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+        self.connections: dict[int, Connection] = {}
+        self.chunk_infos: list[tuple[int, int, int, dict[int, int]]] = []
+        self.closed = False
+        self.good_end = 0
+        self._chunk: list[bytes] = []
+        self._chunk_size = 0
+        self._chunk_started = 0.0
+        self._chunk_index: dict[int, list[tuple[int, int]]] = {}
+        self._chunk_new_conns: set[int] = set()
+        self._written_conns: set[int] = set()
+        self._write_all([MAGIC, self._file_header(0, 0, 0)])
+        self.good_end = len(MAGIC) + FILE_HEADER_LENGTH
+
+    def _file_header(self, index_pos: int, conn_count: int, chunk_count: int) -> bytes:
+        fields = {"op": bytes([OP_FILE_HEADER]), "index_pos": struct.pack("<Q", index_pos),
+                  "conn_count": _U32.pack(conn_count), "chunk_count": _U32.pack(chunk_count)}
+        header = _header(fields)
+        pad = FILE_HEADER_LENGTH - len(header) - 4
+        return header + _U32.pack(pad) + b" " * pad
+
+    def _write_all(self, parts: list[bytes]) -> None:
+        while parts:
+            written = os.writev(self.fd, parts[:512])
+            while parts and written >= len(parts[0]):
+                written -= len(parts[0])
+                parts = parts[1:]
+            if written and parts:
+                parts[0] = parts[0][written:]
+
+    @property
+    def size(self) -> int:
+        """Bytes written so far, including the chunk being filled."""
+        return self.good_end + self._chunk_size
+
+    def add_connection(self, conn: Connection) -> None:
+        """Declare a connection; its record goes into the next chunk and the index."""
+        self.connections[conn.id] = conn
+
+    def _connection_record(self, conn: Connection) -> bytes:
+        data = _header({k: v.encode() for k, v in conn.header_fields().items()})[4:]
+        return _record({"op": bytes([OP_CONNECTION]), "conn": _U32.pack(conn.id), "topic": conn.topic.encode()},
+                       data)
+
+    def write(self, conn_id: int, time_ns: int, data: bytes) -> None:
+        """Append one message; closes the chunk when it is full or old."""
+        if not self._chunk:
+            self._chunk_started = time.monotonic()
+        if conn_id not in self._written_conns:
+            rec = self._connection_record(self.connections[conn_id])
+            self._chunk.append(rec)
+            self._chunk_size += len(rec)
+            self._written_conns.add(conn_id)
+        self._chunk_index.setdefault(conn_id, []).append((time_ns, self._chunk_size))
+        head = _header({"op": b"\x02", "conn": _U32.pack(conn_id), "time": _time_bytes(time_ns)})
+        self._chunk.append(head + _U32.pack(len(data)))
+        self._chunk.append(data)
+        self._chunk_size += len(head) + 4 + len(data)
+        if self._chunk_size >= self.chunk_bytes:
+            self.flush()
+
+    def flush_if_old(self) -> None:
+        """Close the chunk when it is older than ``max_chunk_age`` (called from a timer)."""
+        if self._chunk and time.monotonic() - self._chunk_started >= self.max_chunk_age:
+            self.flush()
+
+    def flush(self) -> None:
+        """Write the open chunk and its index records to the file."""
+        if not self._chunk:
+            return
+        times = [t for entries in self._chunk_index.values() for t, _ in entries]
+        start, end = min(times), max(times)
+        if self.compression == "none":
+            body = self._chunk
+            stored = self._chunk_size
+        else:
+            packed = _compress(self.compression, b"".join(self._chunk))
+            body = [packed]
+            stored = len(packed)
+        head = _header({"op": bytes([OP_CHUNK]), "compression": self.compression.encode(),
+                        "size": _U32.pack(self._chunk_size)})
+        parts = [head, _U32.pack(stored), *body]
+        counts: dict[int, int] = {}
+        for conn_id, entries in self._chunk_index.items():
+            counts[conn_id] = len(entries)
+            data = b"".join(_time_bytes(t) + _U32.pack(off) for t, off in entries)
+            parts.append(_record({"op": bytes([OP_INDEX_DATA]), "ver": _U32.pack(1), "conn": _U32.pack(conn_id),
+                                  "count": _U32.pack(len(entries))}, data))
+        chunk_pos = self.good_end
+        try:
+            self._write_all(parts)
+        except OSError:
+            self._rollback()
+            raise
+        self.good_end += sum(len(p) for p in parts)
+        self.chunk_infos.append((chunk_pos, start, end, counts))
+        self._chunk, self._chunk_size, self._chunk_index = [], 0, {}
+
+    def _rollback(self) -> None:
+        """Cut a partly written chunk off, so the file ends with complete records."""
+        try:
+            os.ftruncate(self.fd, self.good_end)
+            os.lseek(self.fd, self.good_end, os.SEEK_SET)
+        except OSError:
+            pass
+        self._chunk, self._chunk_size, self._chunk_index = [], 0, {}
+        self._written_conns = {c for info in self.chunk_infos for c in info[3]}
+
+    def close(self) -> None:
+        """Write the last chunk, the connection and chunk-info index, and the final file header.
+
+        When the disk is full the last chunk is dropped so the index still fits;
+        if even the index does not fit, the file is left unindexed but readable.
+        """
+        if self.closed:
+            return
+        self.closed = True
+        try:
+            try:
+                self.flush()
+            except OSError:
+                pass
+            index_pos = self.good_end
+            used = {c for info in self.chunk_infos for c in info[3]}
+            parts = [self._connection_record(self.connections[c]) for c in sorted(used)]
+            for pos, start, end, counts in self.chunk_infos:
+                data = b"".join(_U32.pack(c) + _U32.pack(n) for c, n in counts.items())
+                parts.append(_record({"op": bytes([OP_CHUNK_INFO]), "ver": _U32.pack(1),
+                                      "chunk_pos": struct.pack("<Q", pos), "start_time": _time_bytes(start),
+                                      "end_time": _time_bytes(end), "count": _U32.pack(len(counts))}, data))
+            try:
+                self._write_all(parts)
+                os.pwrite(self.fd, self._file_header(index_pos, len(used), len(self.chunk_infos)), len(MAGIC))
+            except OSError:
+                self._rollback()
+                raise
+        finally:
+            os.close(self.fd)
+
+
+class BagReader:
+    """Reads a rosbag v2.0 file in file order; a file cut short reads up to its last complete chunk."""
+
+    def __init__(self, path: str) -> None:
+        self.path = path
+        try:
+            self.file: BinaryIO = open(path, "rb")
+        except OSError as exc:
+            raise BagError(f"cannot open {path}: {exc.strerror}") from None
+        self.size = os.fstat(self.file.fileno()).st_size
+        magic = self.file.read(len(MAGIC))
+        if magic != MAGIC:
+            self.file.close()
+            if magic.startswith(b"#ROSBAG V"):
+                raise BagError(f"{path}: rosbag format {magic[9:].strip().decode(errors='replace')} is not "
+                               "supported (only 2.0)")
+            raise BagError(f"{path} is not a bag file (no '#ROSBAG V2.0' line)")
+        try:
+            fields, _ = self._read_record()
+        except BagError:
+            self.file.close()
+            raise BagError(f"{path}: the file header is incomplete") from None
+        if fields.get("op") != bytes([OP_FILE_HEADER]):
+            self.file.close()
+            raise BagError(f"{path}: the file header record is missing")
+        self.index_pos = struct.unpack("<Q", fields["index_pos"])[0]
+        self.data_start = self.file.tell()
+        self.connections: dict[int, Connection] = {}
+        self.truncated = ""
+
+    def close(self) -> None:
+        """Close the file."""
+        self.file.close()
+
+    @property
+    def closed_properly(self) -> bool:
+        """True when the writer finished the file (index written)."""
+        return self.index_pos != 0 and self.index_pos < self.size
+
+    def _read_record(self, skip_chunk_data: bool = False) -> tuple[dict[str, bytes], bytes]:
+        head = self.file.read(4)
+        if len(head) < 4:
+            raise EOFError
+        (hlen,) = _U32.unpack(head)
+        raw = self.file.read(hlen)
+        if len(raw) < hlen:
+            raise BagError("a record header is cut short")
+        fields = parse_header(raw)
+        dlen_raw = self.file.read(4)
+        if len(dlen_raw) < 4:
+            raise BagError("a record is cut short")
+        (dlen,) = _U32.unpack(dlen_raw)
+        if not (skip_chunk_data and fields.get("op") == bytes([OP_CHUNK])):
+            data = self.file.read(dlen)
+            if len(data) < dlen:
+                raise BagError("a record's data is cut short")
+            return fields, data
+        if self.file.tell() + dlen > self.size:
+            raise BagError("a record's data is cut short")
+        self.file.seek(dlen, os.SEEK_CUR)
+        return fields, b""
+
+    def _connection(self, fields: dict[str, bytes], data: bytes) -> Connection:
+        conn_id = _U32.unpack(fields["conn"])[0]
+        info = {k: v.decode("utf-8", "replace") for k, v in parse_header(data).items()}
+        conn = Connection(conn_id, fields["topic"].decode(), info.get("type", ""), info.get("md5sum", ""),
+                          info.get("message_definition", ""), info.get("callerid", ""),
+                          info.get("latching", "0") == "1")
+        self.connections.setdefault(conn_id, conn)
+        return conn
+
+    def _records(self, with_chunk_data: bool) -> Iterator[tuple[dict[str, bytes], bytes]]:
+        self.file.seek(self.data_start)
+        while self.file.tell() < self.size:
+            at = self.file.tell()
+            try:
+                fields, data = self._read_record(skip_chunk_data=not with_chunk_data)
+            except EOFError:
+                return
+            except (BagError, struct.error, KeyError) as exc:
+                self.truncated = f"{exc} at byte {at}"
+                return
+            if fields.get("op") == bytes([OP_INDEX_DATA]) and with_chunk_data:
+                continue
+            yield fields, data
+
+    def messages(self) -> Iterator[tuple[Connection, int, bytes]]:
+        """``(connection, time_ns, data)`` in file order, up to the last complete chunk."""
+        for fields, data in self._records(with_chunk_data=True):
+            op = fields.get("op")
+            if op == bytes([OP_CONNECTION]):
+                self._connection(fields, data)
+            elif op == bytes([OP_CHUNK]):
+                try:
+                    plain = _decompress(fields["compression"].decode(), data)
+                except BagError:
+                    raise
+                except Exception as exc:
+                    self.truncated = f"a chunk does not decompress ({exc})"
+                    return
+                yield from self._chunk_messages(plain)
+            elif op == bytes([OP_MSG_DATA]):
+                conn = self.connections.get(_U32.unpack(fields["conn"])[0])
+                if conn is not None:
+                    yield conn, _time_ns(fields["time"]), data
+
+    def _chunk_messages(self, plain: bytes) -> Iterator[tuple[Connection, int, bytes]]:
+        view = memoryview(plain)
+        pos, end = 0, len(plain)
+        while pos + 4 <= end:
+            (hlen,) = _U32.unpack_from(view, pos)
+            fields = parse_header(view[pos + 4:pos + 4 + hlen])
+            pos += 4 + hlen
+            (dlen,) = _U32.unpack_from(view, pos)
+            pos += 4
+            data = plain[pos:pos + dlen]
+            pos += dlen
+            op = fields.get("op")
+            if op == bytes([OP_CONNECTION]):
+                self._connection(fields, data)
+            elif op == bytes([OP_MSG_DATA]):
+                conn = self.connections[_U32.unpack(fields["conn"])[0]]
+                yield conn, _time_ns(fields["time"]), data
+
+    def summary(self) -> BagSummary:
+        """Counts and times from the index records, without decompressing any chunk."""
+        summary = BagSummary(self.path, "rosbag", "2.0", self.size, closed=self.closed_properly)
+        starts: list[int] = []
+        ends: list[int] = []
+        for fields, data in self._records(with_chunk_data=False):
+            op = fields.get("op")
+            if op == bytes([OP_CONNECTION]):
+                self._connection(fields, data)
+            elif op == bytes([OP_CHUNK]):
+                kind = fields.get("compression", b"none").decode()
+                summary.chunk_compression[kind] = summary.chunk_compression.get(kind, 0) + 1
+            elif op == bytes([OP_INDEX_DATA]):
+                conn_id = _U32.unpack(fields["conn"])[0]
+                count = _U32.unpack(fields["count"])[0]
+                summary.counts[conn_id] = summary.counts.get(conn_id, 0) + count
+                stamps = [_time_ns(data[i:i + 8]) for i in range(0, count * 12, 12)]
+                if stamps:
+                    starts.append(min(stamps))
+                    ends.append(max(stamps))
+        if not self.closed_properly:
+            # connection records live inside chunks: read them from the chunks' data
+            for conn, _t, _d in self.messages():
+                pass
+        summary.connections = [self.connections[c] for c in sorted(self.connections)]
+        summary.start_ns = min(starts) if starts else 0
+        summary.end_ns = max(ends) if ends else 0
+        summary.problem = self.truncated
+        return summary

@@ -17,18 +17,19 @@ from __future__ import annotations
 
 import bisect
 from dataclasses import dataclass, field
-from typing import Mapping, Sequence
+from typing import Mapping, NamedTuple, Sequence
 
 __all__ = ["Box", "Segment", "Arrow", "Layout", "LayoutHint", "layered_layout", "count_crossings"]
 
 #: Rows between two boxes of one layer.
 ROW_GAP = 1
+#: Vertices (dummies included) above which fewer ordering sweeps are made, to stay well under a second.
+BIG_GRAPH = 8000
 #: Extra columns of every channel between two layers (lead-in, lead-out and arrow head).
 CHANNEL_MARGIN = 3
 
 
-@dataclass(frozen=True)
-class Box:
+class Box(NamedTuple):
     """A vertex's rectangle: top-left corner ``(x, y)``, ``w`` columns by ``h`` rows."""
 
     id: str
@@ -43,8 +44,7 @@ class Box:
         return self.y + self.h // 2
 
 
-@dataclass(frozen=True)
-class Segment:
+class Segment(NamedTuple):
     """A horizontal or vertical piece of the edge with index ``edge`` (inclusive ends)."""
 
     x0: int
@@ -54,8 +54,7 @@ class Segment:
     edge: int
 
 
-@dataclass(frozen=True)
-class Arrow:
+class Arrow(NamedTuple):
     """An arrow head at ``(x, y)``; ``left`` when it points left (a reversed edge's real target)."""
 
     x: int
@@ -143,6 +142,8 @@ def layered_layout(sizes: Mapping[str, tuple[int, int]], edges: Sequence[tuple[s
     layers: list[list[int]] = [[] for _ in range(layers_count)]
     for v in _initial_order(total, n, succ, pred, rank, ids, hint):
         layers[rank[v]].append(v)
+    if total > BIG_GRAPH:
+        sweeps = min(sweeps, 4)
     layers, crossings = _order_layers(layers, succ, pred, sweeps)
 
     ys = _place_rows(layers, heights, succ, pred)
@@ -360,6 +361,8 @@ def _order_layers(layers: list[list[int]], succ: list[list[int]], pred: list[lis
             keys.sort()
             layers[li] = [k[2] for k in keys]
             number(layers[li])
+        if downward and sweep + 1 < sweeps:
+            continue  # judge each down-and-up pair as one step: counting is the costly part
         cross = _total_crossings(layers, succ, pos)
         if cross < best_cross:
             best_cross = cross

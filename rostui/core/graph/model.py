@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, Callable, Mapping, Sequence
 
 __all__ = ["RosGraph", "fetch_graph", "fetch_graph_async"]
@@ -48,15 +49,28 @@ class RosGraph:
 
     def nodes(self) -> list[str]:
         """Every node holding a registration, sorted."""
+        return list(self._nodes)
+
+    def topics(self) -> list[str]:
+        """Every topic with a publisher or a subscriber, sorted."""
+        return list(self._topics)
+
+    @cached_property
+    def vertex_cache(self) -> dict[str, Any]:
+        """Vertex objects of this graph's views, by id (filled by :func:`rostui.core.graph.view.build_view`)."""
+        return {}
+
+    @cached_property
+    def _nodes(self) -> tuple[str, ...]:
         found: set[str] = set()
         for table in (self.publishers, self.subscribers, self.services):
             for nodes in table.values():
                 found.update(nodes)
-        return sorted(found)
+        return tuple(sorted(found))
 
-    def topics(self) -> list[str]:
-        """Every topic with a publisher or a subscriber, sorted."""
-        return sorted(set(self.publishers) | set(self.subscribers))
+    @cached_property
+    def _topics(self) -> tuple[str, ...]:
+        return tuple(sorted(set(self.publishers) | set(self.subscribers)))
 
     def topic_type(self, topic: str) -> str:
         """The message type of ``topic`` as the master knows it."""

@@ -205,28 +205,40 @@ def _matches(pattern: re.Pattern[str] | None, name: str) -> bool:
 
 
 def build_view(graph: RosGraph, options: GraphOptions) -> ViewGraph:
-    """The vertices and edges ``options`` select from ``graph`` (FilterError for a bad regex)."""
+    """The vertices and edges ``options`` select from ``graph`` (FilterError for a bad regex).
+
+    Runs on every keystroke of a filter, so it avoids work it can: vertices
+    are cached per graph, and they and the edges come out already in id order.
+    """
     include = compile_pattern(options.include, "include")
     exclude = compile_pattern(options.exclude, "exclude")
     topic_views = options.view is not ViewMode.NODES
+    hide_debug = options.hide_debug
+    active_only = options.view is ViewMode.ACTIVE
+    dead_sinks, leaves = options.hide_dead_sinks, options.hide_leaf_topics
 
-    nodes = [n for n in graph.nodes() if not (options.hide_debug and is_debug_node(n))]
+    nodes = [n for n in graph.nodes() if not is_debug_node(n)] if hide_debug else graph.nodes()
     visible_nodes = set(nodes)
-    pubs: dict[str, list[str]] = {}
-    subs: dict[str, list[str]] = {}
+    pubs: dict[str, tuple[str, ...] | list[str]] = {}
+    subs: dict[str, tuple[str, ...] | list[str]] = {}
+    empty: tuple[str, ...] = ()
+    publishers, subscribers = graph.publishers, graph.subscribers
     for topic in graph.topics():
-        if options.hide_debug and is_debug_topic(topic):
+        if hide_debug and topic in DEBUG_TOPICS:
             continue
-        all_pubs, all_subs = graph.publishers.get(topic, ()), graph.subscribers.get(topic, ())
-        if options.view is ViewMode.ACTIVE and not (all_pubs and all_subs):
+        all_pubs, all_subs = publishers.get(topic, empty), subscribers.get(topic, empty)
+        if active_only and not (all_pubs and all_subs):
             continue
-        p = [n for n in all_pubs if n in visible_nodes]
-        s = [n for n in all_subs if n in visible_nodes]
+        if hide_debug:
+            p = [n for n in all_pubs if n in visible_nodes]
+            s = [n for n in all_subs if n in visible_nodes]
+        else:
+            p, s = all_pubs, all_subs
         if not p and not s:
             continue
-        if options.hide_dead_sinks and not s:
+        if dead_sinks and not s:
             continue
-        if options.hide_leaf_topics and len(set(p) | set(s)) < 2:
+        if leaves and len(set(p) | set(s)) < 2:
             continue
         pubs[topic], subs[topic] = p, s
 
@@ -238,30 +250,44 @@ def build_view(graph: RosGraph, options: GraphOptions) -> ViewGraph:
         nodes = [n for n in nodes if not exclude.search(n)]
         topics = [t for t in topics if not exclude.search(t)]
     shown_nodes = set(nodes)
+    cache = graph.vertex_cache
 
-    vertices: dict[str, Vertex] = {node_id(n): Vertex(node_id(n), Kind.NODE, n) for n in nodes}
-    edges: dict[tuple[str, str], list[str]] = {}
+    def vertex(vid: str, kind: Kind, name: str) -> Vertex:
+        found = cache.get(vid)
+        if found is None:
+            found = cache[vid] = Vertex(vid, kind, name)
+        return found
+
+    vertices: dict[str, Vertex] = {}
+    for n in nodes:
+        nid = "n:" + n
+        vertices[nid] = vertex(nid, Kind.NODE, n)
     if topic_views:
+        edge_list: list[tuple[str, str]] = []
         for topic in topics:
-            tid = topic_id(topic)
-            ends = [(node_id(n), tid) for n in pubs[topic] if n in shown_nodes]
-            ends += [(tid, node_id(n)) for n in subs[topic] if n in shown_nodes]
+            tid = "t:" + topic
+            ends = [("n:" + n, tid) for n in pubs[topic] if n in shown_nodes]
+            ends += [(tid, "n:" + n) for n in subs[topic] if n in shown_nodes]
             if not ends and include is not None and not include.search(topic):
                 continue
-            vertices[tid] = Vertex(tid, Kind.TOPIC, topic)
-            for edge in ends:
-                edges.setdefault(edge, []).append(topic)
-    else:
-        for topic in topics:
-            for p in pubs[topic]:
-                for s in subs[topic]:
-                    if p != s and p in shown_nodes and s in shown_nodes:
-                        edges.setdefault((node_id(p), node_id(s)), []).append(topic)
-
+            vertices[tid] = vertex(tid, Kind.TOPIC, topic)
+            edge_list += ends
+        if options.group_namespaces:
+            topic_of = {e: [name_of(e[1] if e[1][0] == "t" else e[0])] for e in edge_list}
+            return _grouped(vertices, topic_of, options.expanded)
+        edge_list.sort()
+        return ViewGraph(vertices, tuple(edge_list), {})
+    edges: dict[tuple[str, str], list[str]] = {}
+    for topic in topics:
+        for p in pubs[topic]:
+            if p not in shown_nodes:
+                continue
+            for s in subs[topic]:
+                if p != s and s in shown_nodes:
+                    edges.setdefault(("n:" + p, "n:" + s), []).append(topic)
     if options.group_namespaces:
         return _grouped(vertices, edges, options.expanded)
-    ordered = {k: vertices[k] for k in sorted(vertices)}
-    return ViewGraph(ordered, tuple(sorted(edges)), {e: tuple(sorted(ts)) for e, ts in edges.items()})
+    return ViewGraph(vertices, tuple(sorted(edges)), {e: tuple(sorted(ts)) for e, ts in edges.items()})
 
 
 def _included(include: re.Pattern[str], nodes: list[str], pubs: dict[str, list[str]], subs: dict[str, list[str]],

@@ -169,7 +169,7 @@ def run_convert(src: str, dst: str, compression: str) -> int:
 def register(app: typer.Typer) -> None:
     """Add ``rostui bag ...``."""
     bag_app = typer.Typer(name="bag", help="Record, play and inspect bags: MCAP by default, rosbag .bag by name.",
-                          no_args_is_help=True, context_settings=CONTEXT)
+                          no_args_is_help=True, context_settings={"help_option_names": ["-h", "--help"]})
     app.add_typer(bag_app, name="bag")
 
     @bag_app.command("record", context_settings=CONTEXT)

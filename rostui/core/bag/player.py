@@ -306,7 +306,12 @@ async def play(opts: PlayOptions, argv: Sequence[str] = (), *,
     readers: list[Reader] = []
     try:
         for path in opts.files:
-            readers.append(open_reader(path))
+            reader = open_reader(path)
+            readers.append(reader)
+            summary = reader.summary()
+            if not summary.message_count:
+                why = f" ({summary.problem})" if summary.problem else ""
+                raise BagError(f"{path} holds no messages{why}")
         node = AsyncNode("play", anonymous=True, argv=list(argv))
         try:
             await node.start()

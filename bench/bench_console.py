@@ -18,6 +18,10 @@ write to the first bytes on the terminal that show its effect:
 
 Once a second it samples the app's resident memory and CPU time; at the end
 it reads the app's own counters from its status line (shown, kept, dropped).
+Before the flood, the same keys are timed with no flood (the console on a
+rosout.log of --max messages, same CPU), so the two columns of the table show
+what the flood adds on the machine as loaded at that moment; the load average
+is printed too.
 
 There is no peer to compare with: rqt_console needs a Qt window.  The target
 (issue 6) is keypress-to-repaint under 100 ms with bounded memory.
@@ -245,13 +249,97 @@ def proc_sample(pid: int) -> tuple[float, float]:
 
 
 # -- the run ------------------------------------------------------------------------------------
+@dataclass
+class KeyTimes:
+    """Key-to-screen times (ms) by key, keys that never showed their effect, and memory/CPU samples."""
+
+    latencies: dict[str, list[float]] = field(default_factory=dict)
+    misses: dict[str, int] = field(default_factory=dict)
+    samples: list[tuple[float, float, float]] = field(default_factory=list)
+
+    def summary(self) -> dict[str, dict[str, float]]:
+        """p50, p95 and max per key."""
+        return {k: {"n": len(v), "p50": statistics.median(v), "p95": percentile(v, 95), "max": max(v)}
+                for k, v in self.latencies.items()}
+
+
+def press_keys(console: Terminal, seconds: float, times: KeyTimes) -> None:
+    """Play the key cycle for ``seconds``, sampling the app's memory and CPU once a second."""
+    assert console.proc is not None
+    start = next_sample = time.monotonic()
+
+    def sample() -> None:
+        nonlocal next_sample
+        while time.monotonic() >= next_sample:
+            times.samples.append((time.monotonic() - start, *proc_sample(console.proc.pid)))
+            next_sample += 1.0
+
+    def measure(name: str, key: bytes, done: Callable[[bytes], bool]) -> None:
+        sample()
+        took = console.press(key, done)
+        if took is None:
+            times.misses[name] = times.misses.get(name, 0) + 1
+        else:
+            times.latencies.setdefault(name, []).append(took * 1000)
+        time.sleep(0.4)
+        sample()
+
+    time.sleep(2.0)
+    last_resume = 0.0
+    while time.monotonic() - start < seconds - 2:
+        measure("1 hide DEBUG (refilter)", b"1", filtered)
+        measure("1 show DEBUG (refilter)", b"1", unfiltered)
+        measure("/ open search", b"/", lambda out: b"search (text)" in out)
+        console.press(b"\x1b", lambda out: True)
+        time.sleep(0.4)
+        measure("Up leave follow", b"\x1b[A", lambda out: b"SCROLL" in out)
+        measure("End follow", b"\x1b[F", lambda out: b"FOLLOW" in out)
+        if time.monotonic() - last_resume > 5.0:  # the "resumed:" notice from the last one is gone
+            measure("p pause", b"p", lambda out: b"PAUSED" in out)
+            measure("p resume", b"p", lambda out: b"resumed:" in out)
+            last_resume = time.monotonic()
+    while time.monotonic() - start < seconds:
+        time.sleep(0.2)
+        sample()
+
+
+def write_log(path: Path, count: int) -> None:
+    """A rosout.log of ``count`` messages with the flood's level mix (the no-flood baseline opens it)."""
+    from rostui.core.log import RosoutLogWriter
+
+    writer = RosoutLogWriter(path, clock=lambda: 1_700_000_000 * 10**9)
+    for n in range(count):
+        writer.write(1_700_000_000 + n // 1000, (n % 1000) * 10**6, LEVEL_MIX[n % len(LEVEL_MIX)], "/console_flood",
+                     "bench_console.py", 90, "flood", ["/rosout"],
+                     f"flood message {n}: motor {n % 4} current {n % 97 / 10:.1f} A")
+    writer.close()
+
+
+def baseline(args: argparse.Namespace, env: dict[str, str], home: str) -> KeyTimes:
+    """The same keys with no flood: the console on a file of --max messages."""
+    path = Path(home) / "baseline_rosout.log"
+    write_log(path, args.max)
+    console = Terminal([sys.executable, "-m", "rostui", "console", "--max", str(args.max), str(path)], env,
+                       pin={APP_CPU})
+    times = KeyTimes()
+    try:
+        console.start()
+        console.wait_for(b"FOLLOW")
+        press_keys(console, args.baseline_seconds, times)
+    finally:
+        console.quit()
+    return times
+
+
 def run(args: argparse.Namespace) -> dict[str, Any]:
-    """Start master, console and flood; press keys during the flood; return the measurements."""
+    """The no-flood baseline, then master, console and flood with the same keys; the measurements."""
     port = free_port()
     home = tempfile.mkdtemp(prefix="bench_console_")
     env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=home, ROS_IP="127.0.0.1",
                TERM="xterm-256color", COLORTERM="truecolor", PYTHONUNBUFFERED="1")
     env.pop("NO_COLOR", None)
+    load_before = os.getloadavg()[0]
+    quiet = baseline(args, env, home) if args.baseline_seconds > 0 else KeyTimes()
     rest = other_cpus()
     pin_rest = lambda: os.sched_setaffinity(0, rest)  # noqa: E731
     if args.master == "roscore":
@@ -262,9 +350,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
                               start_new_session=True, preexec_fn=pin_rest)
     console = Terminal([sys.executable, "-m", "rostui", "console", "--max", str(args.max)], env, pin={APP_CPU})
     flooder: subprocess.Popen | None = None
-    samples: list[tuple[float, float, float]] = []
-    latencies: dict[str, list[float]] = {}
-    misses: dict[str, int] = {}
+    times = KeyTimes()
     try:
         wait_port(port)
         console.start()
@@ -276,46 +362,9 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         assert flooder.stdout is not None
         if flooder.stdout.readline().strip() != "connected":
             raise SystemExit("the flood publisher never connected to rosout")
-        start = time.monotonic()
-        assert console.proc is not None
-        next_sample = start
-
-        def sample() -> None:
-            nonlocal next_sample
-            while time.monotonic() >= next_sample:
-                samples.append((time.monotonic() - start, *proc_sample(console.proc.pid)))
-                next_sample += 1.0
-
-        def measure(name: str, key: bytes, done: Callable[[bytes], bool]) -> None:
-            sample()
-            took = console.press(key, done)
-            if took is None:
-                misses[name] = misses.get(name, 0) + 1
-            else:
-                latencies.setdefault(name, []).append(took * 1000)
-            time.sleep(0.4)
-            sample()
-
-        time.sleep(2.0)
-        last_resume = 0.0
-        while time.monotonic() - start < args.seconds - 2:
-            measure("1 hide DEBUG (refilter)", b"1", filtered)
-            measure("1 show DEBUG (refilter)", b"1", unfiltered)
-            measure("/ open search", b"/", lambda out: b"search (text)" in out)
-            console.press(b"\x1b", lambda out: True)
-            time.sleep(0.4)
-            measure("Up leave follow", b"\x1b[A", lambda out: b"SCROLL" in out)
-            measure("End follow", b"\x1b[F", lambda out: b"FOLLOW" in out)
-            if time.monotonic() - last_resume > 5.0:  # the "resumed:" notice from the last one is gone
-                measure("p pause", b"p", lambda out: b"PAUSED" in out)
-                measure("p resume", b"p", lambda out: b"resumed:" in out)
-                last_resume = time.monotonic()
-        while time.monotonic() - start < args.seconds:
-            time.sleep(0.2)
-            sample()
+        press_keys(console, args.seconds, times)
         flood_out, _ = flooder.communicate(timeout=60)
         time.sleep(1.5)
-        sample()
         final = last_status(console.since(max(0, console.size - 200_000)))
     finally:
         if flooder is not None and flooder.poll() is None:
@@ -329,17 +378,17 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         shutil.rmtree(home, ignore_errors=True)
     sent = int(re.search(r"sent=(\d+)", flood_out)[1])  # type: ignore[index]
     shown, kept, dropped = final or (0, 0, 0)
-    by_second = {round(t): (rss, cpu) for t, rss, cpu in samples}
-    cpu_window = [c for t, _, c in samples]
+    by_second = {round(t): rss for t, rss, _ in times.samples}
+    first, last = times.samples[0], times.samples[-1]
     return {
         "master": args.master, "rate": args.rate, "seconds": args.seconds, "max": args.max,
+        "load_average": [round(load_before, 2), round(os.getloadavg()[0], 2)],
         "sent": sent, "received": kept + dropped, "kept": kept, "dropped": dropped,
-        "latency_ms": {k: {"n": len(v), "p50": statistics.median(v), "p95": percentile(v, 95), "max": max(v)}
-                       for k, v in latencies.items()},
-        "misses": misses,
-        "rss_mb": {t: round(by_second[t][0], 1) for t in sorted(by_second) if t % 5 == 0},
-        "rss_max_mb": max(r for _, r, _ in samples),
-        "cpu_percent": 100 * (cpu_window[-1] - cpu_window[0]) / (samples[-1][0] - samples[0][0]),
+        "latency_ms": times.summary(), "misses": times.misses,
+        "baseline_latency_ms": quiet.summary(), "baseline_misses": quiet.misses,
+        "rss_mb": {t: round(by_second[t], 1) for t in sorted(by_second) if t % 5 == 0},
+        "rss_max_mb": max(r for _, r, _ in times.samples),
+        "cpu_percent": 100 * (last[2] - first[2]) / (last[0] - first[0]),
         "exit_code": code,
     }
 
@@ -352,25 +401,31 @@ def percentile(values: list[float], pct: float) -> float:
 
 def report(result: dict[str, Any]) -> None:
     """Print the measurements as Markdown tables."""
-    print(f"master {result['master']}, {result['rate']:,} msg/s for {result['seconds']} s, --max {result['max']:,}")
+    print(f"master {result['master']}, {result['rate']:,.0f} msg/s for {result['seconds']:g} s, "
+          f"--max {result['max']:,}; load average {result['load_average'][0]} before, "
+          f"{result['load_average'][1]} after")
     print(f"sent {result['sent']:,}, the console received {result['received']:,} "
           f"({100 * result['received'] / max(1, result['sent']):.1f} %), kept {result['kept']:,}, "
           f"dropped {result['dropped']:,}; app CPU {result['cpu_percent']:.0f} % of one core; "
           f"exit status {result['exit_code']}")
     print()
-    print("| key | samples | p50 ms | p95 ms | max ms |")
-    print("| --- | --- | --- | --- | --- |")
+    quiet = result["baseline_latency_ms"]
+    print("| key | samples | no flood p50 ms | no flood p95 ms | flood p50 ms | flood p95 ms | flood max ms |")
+    print("| --- | --- | --- | --- | --- | --- | --- |")
     for name, row in result["latency_ms"].items():
-        print(f"| {name} | {row['n']} | {row['p50']:.0f} | {row['p95']:.0f} | {row['max']:.0f} |")
-    if result["misses"]:
-        print(f"\nno repaint within 5 s: {result['misses']}")
+        base = quiet.get(name)
+        base_text = f"{base['p50']:.0f} | {base['p95']:.0f}" if base else "- | -"
+        print(f"| {name} | {row['n']} | {base_text} | {row['p50']:.0f} | {row['p95']:.0f} | {row['max']:.0f} |")
+    for label, misses in (("flood", result["misses"]), ("no flood", result["baseline_misses"])):
+        if misses:
+            print(f"\nno repaint within 5 s ({label}): {misses}")
     print()
     print("| s | " + " | ".join(str(t) for t in result["rss_mb"]) + " |")
     print("| --- | " + " | ".join("---" for _ in result["rss_mb"]) + " |")
     print("| RSS MB | " + " | ".join(str(v) for v in result["rss_mb"].values()) + " |")
     worst = max((row["p95"] for row in result["latency_ms"].values()), default=float("inf"))
     verdict = "meets" if worst < 100 and not result["misses"] else "misses"
-    print(f"\nworst p95 {worst:.0f} ms: {verdict} the 100 ms target")
+    print(f"\nworst p95 under the flood {worst:.0f} ms: {verdict} the 100 ms target")
 
 
 def main() -> int:
@@ -384,6 +439,8 @@ def main() -> int:
     parser.add_argument("--rate", type=float, default=10_000)
     parser.add_argument("--seconds", type=float, default=30)
     parser.add_argument("--max", type=int, default=100_000)
+    parser.add_argument("--baseline-seconds", type=float, default=20,
+                        help="seconds of the same keys with no flood first (0: skip)")
     parser.add_argument("--json", type=Path)
     args = parser.parse_args()
     result = run(args)

@@ -78,6 +78,11 @@ class McapBagWriter:
         self._schema: dict[tuple[str, str], int] = {}
         self._pending = 0
         self._chunk_started = 0.0
+        self._open_counts: dict[int, int] = {}
+        self._open_times: list[int] = []
+        self.committed_counts: dict[int, int] = {}
+        self.committed_times: list[int] = []
+        self.failed = False
         self.closed = False
 
     @property
@@ -106,9 +111,22 @@ class McapBagWriter:
             self._rollback()
             raise
         self._pending += len(data) + 64
-        if self.out.pos != self.good_end:  # the library closed a chunk
-            self.good_end = self.out.pos
-            self._pending = 0
+        channel = self._channel[conn_id]
+        self._open_counts[channel] = self._open_counts.get(channel, 0) + 1
+        self._open_times.append(time_ns)
+        if self.out.pos != self.good_end:  # the library closed the chunk, this message included
+            self._commit()
+
+    def _commit(self) -> None:
+        """The open chunk reached the file: its messages count."""
+        self.good_end = self.out.pos
+        self._pending = 0
+        for channel, n in self._open_counts.items():
+            self.committed_counts[channel] = self.committed_counts.get(channel, 0) + n
+        if self._open_times:
+            self.committed_times = [min(self._open_times + self.committed_times),
+                                    max(self._open_times + self.committed_times)]
+        self._open_counts, self._open_times = {}, []
 
     def flush_if_old(self) -> None:
         """Close the open chunk when it is older than ``max_chunk_age``."""
@@ -122,12 +140,23 @@ class McapBagWriter:
         except OSError:
             self._rollback()
             raise
-        self.good_end = self.out.pos
-        self._pending = 0
+        self._commit()
 
     def _rollback(self) -> None:
+        """Cut the chunk that did not fit and make the writer forget it, so its summary stays true."""
         self.out.cut(self.good_end)
         self._pending = 0
+        self._open_counts, self._open_times = {}, []
+        self.failed = True
+        builder = getattr(self.writer, "_Writer__chunk_builder", None)
+        stats = getattr(self.writer, "_Writer__statistics", None)
+        if builder is None or stats is None:
+            return
+        builder.reset()
+        stats.channel_message_counts.clear()
+        stats.channel_message_counts.update(self.committed_counts)
+        stats.message_count = sum(self.committed_counts.values())
+        stats.message_start_time, stats.message_end_time = (self.committed_times or [0, 0])[:2]
 
     def close(self) -> None:
         """Write the summary section and footer; on a full disk end the file without a summary instead."""
@@ -136,6 +165,8 @@ class McapBagWriter:
         self.closed = True
         try:
             try:
+                if self.failed:
+                    self.writer.flush()  # nothing is open after a rollback; keeps the stream position true
                 self.writer.finish()
             except OSError:
                 self._rollback()

@@ -277,7 +277,7 @@ class BagReader:
     @property
     def closed_properly(self) -> bool:
         """True when the writer finished the file (index written)."""
-        return self.index_pos != 0 and self.index_pos < self.size
+        return self.index_pos != 0 and self.index_pos <= self.size
 
     def _read_record(self, skip_chunk_data: bool = False) -> tuple[dict[str, bytes], bytes]:
         head = self.file.read(4)

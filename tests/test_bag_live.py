@@ -1,0 +1,272 @@
+"""Bags on a live graph: the book's bag of squares, real rosbag both ways, kills and a full disk."""
+
+from __future__ import annotations
+
+import json
+import resource
+import shutil
+import signal
+import subprocess
+import time
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from rostui.core.bag.files import open_reader
+
+from cli_helpers import rostui
+from conftest import REPO, need_peer, rostui_cmd, stop_process, wait_until
+from live_helpers import DEADLINE, Program, Watcher, start_headless_sim, stop_all
+
+HOME = (5.544444561004639, 5.544444561004639)
+
+
+class Cmd:
+    """A command started in the background with its output in files."""
+
+    def __init__(self, argv: list[str], env: dict[str, str], tmp: Path, label: str, **popen: Any) -> None:
+        self.out = tmp / f"{label}.out"
+        with self.out.open("w") as out:
+            self.proc = subprocess.Popen(argv, env=env, cwd=REPO, stdin=subprocess.DEVNULL, stdout=out,
+                                         stderr=subprocess.STDOUT, **popen)
+
+    @property
+    def output(self) -> str:
+        """What it printed so far."""
+        return self.out.read_text(errors="replace")
+
+    def wait_for(self, text: str, timeout: float = DEADLINE) -> None:
+        """Wait until the output holds ``text``."""
+        def check() -> bool:
+            if text in self.output:
+                return True
+            assert self.proc.poll() is None, f"exited with {self.proc.returncode}:\n{self.output}"
+            return False
+        wait_until(check, repr(text), timeout)
+
+    def stop(self) -> None:
+        """Ctrl-C, then SIGKILL if needed."""
+        stop_process(self.proc)
+
+    close = stop
+
+    def interrupt(self) -> int:
+        """Ctrl-C and wait for the exit status."""
+        self.proc.send_signal(signal.SIGINT)
+        return self.proc.wait(timeout=DEADLINE)
+
+
+def counts(path: Path) -> dict[str, int]:
+    """Messages per topic, by reading every message back."""
+    reader = open_reader(str(path))
+    found: dict[str, int] = {}
+    for conn, _t, _d in reader.messages():
+        found[conn.topic] = found.get(conn.topic, 0) + 1
+    reader.close()
+    return found
+
+
+def moved(watcher: Watcher, since: int, poses: Any) -> bool:
+    """True when the turtle left the point where it stood at message ``since``."""
+    msgs = poses.messages
+    if len(msgs) <= since:
+        return False
+    start = msgs[since]
+    return any(abs(m.x - start.x) + abs(m.y - start.y) > 0.5 for m in msgs[since:])
+
+
+def record_squares(ros_env: dict[str, str], tmp_path: Path, items: list, recorders: list[tuple[str, list[str]]],
+                   seconds_of_velocity: int = 120) -> Watcher:
+    """turtlesim + draw_square recorded by each recorder command until enough velocity messages went by."""
+    sim = start_headless_sim(ros_env, tmp_path)
+    items.append(sim)
+    watcher = Watcher()
+    items.append(watcher)
+    poses = watcher.record("/turtle1/pose", "turtlesim/Pose")
+    poses.wait_for_count(1, "turtlesim's pose")
+    started = [Cmd(argv, ros_env, tmp_path, label) for label, argv in recorders]
+    items.extend(started)
+    for cmd in started:
+        cmd.wait_for("Subscribing to /turtle1/pose")
+    time.sleep(0.5)  # the recorders' subscriptions connect before the first command goes out
+    square = Program(ros_env, tmp_path, "turtlesim", "draw_square")
+    items.append(square)
+    velocities = watcher.record("/turtle1/command_velocity", "turtlesim/Velocity")
+    velocities.wait_for_count(seconds_of_velocity, "draw_square's commands", timeout=60)
+    for cmd in started:
+        assert cmd.interrupt() == 0, cmd.output
+    square.stop()
+    return watcher
+
+
+def test_the_book_bag_of_squares_records_and_replays_into_a_fresh_turtlesim(
+        ros_env: dict[str, str], rostui_core: Any, tmp_path: Path) -> None:
+    items: list = []
+    bag, mcap = tmp_path / "square.bag", tmp_path / "square.mcap"
+    topics = ["/turtle1/command_velocity", "/turtle1/pose"]
+    try:
+        watcher = record_squares(ros_env, tmp_path, items, [
+            ("record_bag", rostui_cmd("bag", "record", "-O", str(bag), *topics)),
+            ("record_mcap", rostui_cmd("run", "rosbag", "record", "-O", str(mcap), *topics)),
+        ])
+        for path in (bag, mcap):
+            info = json.loads(rostui(["bag", "info", "--json", str(path)], ros_env).stdout)
+            assert info["closed"]
+            by_topic = {t["topic"]: t for t in info["topics"]}
+            assert by_topic["/turtle1/command_velocity"]["types"] == ["turtlesim/Velocity"]
+            assert by_topic["/turtle1/pose"]["types"] == ["turtlesim/Pose"]
+            read = counts(path)
+            assert {t: by_topic[t]["messages"] for t in topics} == read
+            assert read["/turtle1/command_velocity"] >= 100
+            assert info["messages"] == sum(read.values())
+        text = rostui(["bag", "info", str(bag)], ros_env).stdout
+        assert "turtlesim/Velocity [9d5c2dcd348ac8f76ce2a4307bd63a13]" in text
+        # a fresh turtlesim, nobody drawing: the bag alone moves the turtle
+        stop_all(items)
+        items.clear()
+        for path in (bag, mcap):
+            sim = start_headless_sim(ros_env, tmp_path, "__name:=fresh_sim")
+            items.append(sim)
+            watcher = Watcher("bag_watcher")
+            items.append(watcher)
+            poses = watcher.record("/turtle1/pose", "turtlesim/Pose")
+            poses.wait_for_count(1, "the fresh turtlesim's pose")
+            here = len(poses.messages)
+            play = Cmd(rostui_cmd("bag", "play", "-r", "2", str(path)), ros_env, tmp_path, "play")
+            items.append(play)
+            assert play.proc.wait(timeout=60) == 0, play.output
+            assert "[RUNNING]  Bag Time:" in play.output and "Duration:" in play.output
+            wait_until(lambda: moved(watcher, here, poses), "the turtle to move", DEADLINE)
+            stop_all(items)
+            items.clear()
+    finally:
+        stop_all(items)
+
+
+def test_rostui_bag_plays_with_real_rosbag_and_real_bags_play_with_rostui(
+        ros_env: dict[str, str], real_roscore: Any, tmp_path: Path) -> None:
+    need_peer(shutil.which("rosbag") is not None, "rosbag (Debian python3-rosbag)")
+    items: list = []
+    ours, theirs = tmp_path / "ours.bag", tmp_path / "theirs.bag"
+    topics = ["/turtle1/command_velocity", "/turtle1/pose"]
+    try:
+        record_squares(ros_env, tmp_path, items, [
+            ("record_ours", rostui_cmd("bag", "record", "-O", str(ours), *topics)),
+            ("record_theirs", ["rosbag", "record", "-O", str(theirs), *topics]),
+        ], seconds_of_velocity=90)
+        wait_until(lambda: theirs.exists(), "rosbag record to finish its file")
+        real_info = subprocess.run(["rosbag", "info", str(ours)], capture_output=True, text=True, env=ros_env,
+                                   timeout=60)
+        assert real_info.returncode == 0 and "turtlesim/Velocity" in real_info.stdout, real_info.stderr
+        for player, path in ((["rosbag", "play"], ours), (rostui_cmd("bag", "play"), theirs)):
+            stop_all(items)
+            items.clear()
+            sim = start_headless_sim(ros_env, tmp_path, "__name:=fresh_sim")
+            items.append(sim)
+            watcher = Watcher("bag_watcher")
+            items.append(watcher)
+            poses = watcher.record("/turtle1/pose", "turtlesim/Pose")
+            poses.wait_for_count(1, "the fresh turtlesim's pose")
+            here = len(poses.messages)
+            play = Cmd([*player, str(path)], ros_env, tmp_path, "play")
+            items.append(play)
+            assert play.proc.wait(timeout=90) == 0, play.output
+            wait_until(lambda: moved(watcher, here, poses), f"{player[0]} play to move the turtle", DEADLINE)
+    finally:
+        stop_all(items)
+
+
+class Counter:
+    """Publishes std_msgs/Int32 0, 1, 2 ... at a steady rate from a watcher node."""
+
+    def __init__(self, watcher: Watcher, topic: str = "/count", size: int = 0) -> None:
+        self.type = "std_msgs/Int32" if not size else "std_msgs/String"
+        self.pub = watcher.publisher(topic, self.type)
+        self.cls = self.pub.msg_class
+        self.size = size
+        self.sent = 0
+
+    def publish(self, n: int = 1) -> None:
+        """Publish ``n`` more messages."""
+        for _ in range(n):
+            if self.size:
+                self.pub.publish(self.cls(data=f"{self.sent:08d}".ljust(self.size, "x")))
+            else:
+                self.pub.publish(self.cls(data=self.sent))
+            self.sent += 1
+
+
+@pytest.mark.parametrize("name", ["killed.bag", "killed.mcap"])
+def test_sigkill_during_record_loses_at_most_the_last_second(ros_env: dict[str, str], rostui_core: Any,
+                                                            tmp_path: Path, name: str) -> None:
+    items: list = []
+    path = tmp_path / name
+    try:
+        watcher = Watcher()
+        items.append(watcher)
+        counter = Counter(watcher)
+        rec = Cmd(rostui_cmd("bag", "record", "-O", str(path), "/count"), ros_env, tmp_path, "record")
+        items.append(rec)
+        rec.wait_for("Subscribing to /count")
+        wait_until(lambda: counter.pub.get_num_connections() > 0, "the recorder to connect")
+        deadline = time.monotonic() + 3.0
+        while time.monotonic() < deadline:  # 100 messages a second for three seconds
+            counter.publish()
+            time.sleep(0.01)
+        sent_before_last_second = counter.sent - 100
+        rec.proc.send_signal(signal.SIGKILL)
+        rec.proc.wait(timeout=DEADLINE)
+        reader = open_reader(str(path))
+        from rostui.core.msg import get_message_class
+
+        Int32 = get_message_class("std_msgs/Int32")
+        values = [Int32.deserialize(d).data for _c, _t, d in reader.messages()]
+        reader.close()
+        assert values == list(range(len(values)))  # a prefix, nothing garbled
+        assert len(values) >= sent_before_last_second
+        info = rostui(["bag", "info", str(path)], ros_env)
+        assert info.returncode == 0 and "not closed" in info.stdout
+        play = rostui(["bag", "play", "-r", "50", str(path)], ros_env, timeout=60)
+        assert play.returncode == 0, play.stderr
+    finally:
+        stop_all(items)
+
+
+FILE_LIMIT = 3_000_000
+
+
+def _small_file_limit() -> None:
+    resource.setrlimit(resource.RLIMIT_FSIZE, (FILE_LIMIT, FILE_LIMIT))
+
+
+@pytest.mark.parametrize("name", ["full.bag", "full.mcap"])
+def test_a_full_disk_stops_recording_with_a_clear_error_and_a_valid_file(ros_env: dict[str, str], rostui_core: Any,
+                                                                        tmp_path: Path, name: str) -> None:
+    items: list = []
+    path = tmp_path / name
+    try:
+        watcher = Watcher()
+        items.append(watcher)
+        counter = Counter(watcher, size=10_000)
+        rec = Cmd(rostui_cmd("bag", "record", "-O", str(path), "/count"), ros_env, tmp_path, "record",
+                  preexec_fn=_small_file_limit)
+        items.append(rec)
+        rec.wait_for("Subscribing to /count")
+        wait_until(lambda: counter.pub.get_num_connections() > 0, "the recorder to connect")
+        deadline = time.monotonic() + DEADLINE
+        while rec.proc.poll() is None and time.monotonic() < deadline:
+            counter.publish()
+            time.sleep(0.005)
+        assert rec.proc.wait(timeout=DEADLINE) == 1
+        lines = [line for line in rec.output.splitlines() if "rostui bag record:" in line]
+        assert len(lines) == 1 and "File too large" in lines[0] and "Traceback" not in rec.output, rec.output
+        info = json.loads(rostui(["bag", "info", "--json", str(path)], ros_env).stdout)
+        assert info["closed"] and info["messages"] > 5
+        assert path.stat().st_size <= FILE_LIMIT
+        if name.endswith(".bag") and shutil.which("rosbag"):
+            real = subprocess.run(["rosbag", "info", str(path)], capture_output=True, text=True, env=ros_env,
+                                  timeout=60)
+            assert real.returncode == 0, real.stderr
+    finally:
+        stop_all(items)

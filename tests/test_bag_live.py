@@ -76,6 +76,12 @@ def moved(watcher: Watcher, since: int, poses: Any) -> bool:
     return any(abs(m.x - start.x) + abs(m.y - start.y) > 0.5 for m in msgs[since:])
 
 
+def recorders_on(watcher: Watcher, topic: str) -> int:
+    """How many ``/record_...`` nodes subscribe to ``topic`` (real rosbag's output is buffered: ask the master)."""
+    _pubs, subs, _srvs = watcher.engine.run(watcher.node.master_call("getSystemState"), timeout=DEADLINE)
+    return sum(1 for name, nodes in subs if name == topic for n in nodes if n.startswith("/record_"))
+
+
 def record_squares(ros_env: dict[str, str], tmp_path: Path, items: list, recorders: list[tuple[str, list[str]]],
                    seconds_of_velocity: int = 120) -> Watcher:
     """turtlesim + draw_square recorded by each recorder command until enough velocity messages went by."""
@@ -87,8 +93,7 @@ def record_squares(ros_env: dict[str, str], tmp_path: Path, items: list, recorde
     poses.wait_for_count(1, "turtlesim's pose")
     started = [Cmd(argv, ros_env, tmp_path, label) for label, argv in recorders]
     items.extend(started)
-    for cmd in started:
-        cmd.wait_for("Subscribing to /turtle1/pose")
+    wait_until(lambda: recorders_on(watcher, "/turtle1/pose") >= len(started), "the recorders to subscribe")
     time.sleep(0.5)  # the recorders' subscriptions connect before the first command goes out
     square = Program(ros_env, tmp_path, "turtlesim", "draw_square")
     items.append(square)

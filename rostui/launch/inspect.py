@@ -17,11 +17,10 @@ from rostui.launch.model import LaunchConfig, NodeSpec
 from rostui.launch.substitution import SubstitutionContext, resolve
 
 
-def load_config(request: LaunchRequest, *, resolve_anon: bool = True, args_only: bool = False) -> tuple[
-        LaunchConfig, XmlLoader]:
+def load_config(request: LaunchRequest, *, args_only: bool = False) -> tuple[LaunchConfig, XmlLoader]:
     """Load every file of ``request`` into one config (the loader is returned for its shared anon names)."""
     config = LaunchConfig()
-    loader = XmlLoader(resolve_anon=resolve_anon, args_only=args_only)
+    loader = XmlLoader(args_only=args_only)
     for filename in request.files:
         loader.load(filename, config, request.args, request.namespace)
     return config, loader
@@ -29,7 +28,7 @@ def load_config(request: LaunchRequest, *, resolve_anon: bool = True, args_only:
 
 def node_list(request: LaunchRequest) -> str:
     """``--nodes``: each node's (and test's) global name on a line."""
-    config, _ = load_config(request, resolve_anon=False)
+    config, _ = load_config(request)
     return "\n".join(n.resolved_name for n in config.all_nodes())
 
 
@@ -60,7 +59,7 @@ def _plain(value: Any) -> Any:
 
 def args_doc(request: LaunchRequest) -> str:
     """``--ros-args``: the top-level args of the file, required ones first, as roslaunch lists them."""
-    config, _ = load_config(request, resolve_anon=False, args_only=True)
+    config, _ = load_config(request, args_only=True)
     docs = config.arg_docs
     if not docs:
         return "No arguments."
@@ -135,7 +134,7 @@ def default_master_uri() -> str:
 
 def node_args_line(request: LaunchRequest, wanted: str, master_uri: str) -> str:
     """``--args NODE``: the environment settings that differ from ours, then the node's command line."""
-    config, loader = load_config(request, resolve_anon=False)
+    config, loader = load_config(request)
     node = find_node(config, wanted, request.files)
     env = node_env(node, master_uri)
     changed = [f'{key}="{value}"' for key, value in env.items() if os.environ.get(key) != value]

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import copy
 import os
+import re
 import shlex
 import subprocess
 import xmlrpc.client
@@ -45,6 +46,19 @@ ATTRS = {
     "env": {"name", "value"}, "group": {"ns", "clear_params"},
     "include": {"file", "ns", "clear_params", "pass_all_args"}, "master": {"auto"},
 }
+
+
+_MISMATCH = re.compile(r"Opening and ending tag mismatch: (\S+) line (\d+) and (\S+)")
+
+
+def _syntax_message(exc: etree.XMLSyntaxError) -> str:
+    """lxml's complaint in expat's words where roslaunch users know them (``mismatched tag``)."""
+    text = (exc.msg or str(exc)).split(", line ")[0]
+    mismatch = _MISMATCH.match(text)
+    if mismatch:
+        opened, line, closer = mismatch.groups()
+        return f"mismatched tag: </{closer}> closes <{opened}> opened on line {line}"
+    return text
 
 
 @dataclass
@@ -120,9 +134,8 @@ class Scope:
 class XmlLoader:
     """Loads launch files into one :class:`LaunchConfig`; ``$(anon)`` names are shared by the whole load."""
 
-    def __init__(self, resolve_anon: bool = True, args_only: bool = False) -> None:
-        """``resolve_anon=False`` leaves ``$(anon x)`` as written (for --nodes/--args); ``args_only`` reads only args."""
-        self.resolve_anon = resolve_anon
+    def __init__(self, args_only: bool = False) -> None:
+        """``args_only`` reads only the top-level ``<arg>`` elements (for --ros-args)."""
         self.args_only = args_only
         self.anons: dict[str, str] = {}
         self.root: Scope | None = None
@@ -148,17 +161,15 @@ class XmlLoader:
         except OSError:
             raise LaunchError(f"launch file {filename} does not exist or cannot be read") from None
         except etree.XMLSyntaxError as exc:
-            line = exc.lineno if exc.lineno else None
-            message = exc.msg.split(", line ")[0] if exc.msg else str(exc)
-            raise LaunchError(f"Invalid roslaunch XML syntax: {message}", filename, line) from None
+            raise LaunchError(f"Invalid roslaunch XML syntax: {_syntax_message(exc)}", filename,
+                              exc.lineno or None) from None
         root = tree.getroot()
         if root.tag != "launch":
             raise LaunchError("Invalid roslaunch XML syntax: no root <launch> tag", filename, root.sourceline)
         return root
 
     def _sub(self, text: str | None, scope: Scope) -> str | None:
-        ctx = SubstitutionContext(args=scope.args, anons=self.anons, filename=scope.filename,
-                                  resolve_anon=self.resolve_anon)
+        ctx = SubstitutionContext(args=scope.args, anons=self.anons, filename=scope.filename)
         return resolve(text, ctx)
 
     def _opt(self, tag: etree._Element, scope: Scope, name: str) -> str | None:
@@ -227,8 +238,6 @@ class XmlLoader:
             try:
                 default_machine = self._element(tag, scope, config, default_machine)
             except LaunchError as exc:
-                raise exc.located(scope.filename, tag.sourceline) from None
-            except ArgNotSetError as exc:
                 raise exc.located(scope.filename, tag.sourceline) from None
         return default_machine
 
@@ -371,7 +380,7 @@ class XmlLoader:
                     self._rosparam_tag(sub, param_scope, config)
                 else:
                     self._env_tag(sub, env_scope)
-            except (LaunchError, ArgNotSetError) as exc:
+            except LaunchError as exc:
                 raise exc.located(scope.filename, sub.sourceline) from None
         for key, value in [*scope.params, *param_scope.params]:
             if is_private(key):
@@ -539,7 +548,7 @@ class XmlLoader:
                 else:
                     self._check_attrs(sub)
                     self._env_tag(sub, child)
-            except (LaunchError, ArgNotSetError) as exc:
+            except LaunchError as exc:
                 raise exc.located(scope.filename, sub.sourceline) from None
         child.filename = filename
         passed = child.include_args or {}

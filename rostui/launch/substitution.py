@@ -12,11 +12,13 @@ from __future__ import annotations
 
 import math
 import os
+import random
+import socket
+import sys
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from rostui.core import packages
-from rostui.core.names import anonymous_name
 from rostui.launch.errors import ArgNotSetError, LaunchError
 from rostui.launch.values import convert_value
 
@@ -30,7 +32,6 @@ class SubstitutionContext:
     args: dict[str, str] = field(default_factory=dict)
     anons: dict[str, str] = field(default_factory=dict)
     filename: str | None = None
-    resolve_anon: bool = True
 
 
 def _spans(text: str) -> list[str]:
@@ -76,9 +77,15 @@ def _find(name: str) -> str:
     return str(path)
 
 
+def launch_anonymous_name(base: str) -> str:
+    """roslaunch's anonymous name: ``base_<host>_<pid>_<random>`` (host with ``-``/``.`` as ``_``)."""
+    host = socket.gethostname().replace("-", "_").replace(".", "_").replace(":", "_")
+    return f"{base}_{host}_{os.getpid()}_{random.randint(0, sys.maxsize)}"
+
+
 def _anon(base: str, ctx: SubstitutionContext) -> str:
     if base not in ctx.anons:
-        ctx.anons[base] = anonymous_name(base)
+        ctx.anons[base] = launch_anonymous_name(base)
     return ctx.anons[base]
 
 
@@ -95,6 +102,19 @@ def _arg(name: str, ctx: SubstitutionContext) -> str:
         raise ArgNotSetError(name) from None
 
 
+def _replace_find(text: str, token: str, package_dir: str) -> str:
+    """Replace ``token`` by the package directory joined with the word right after it (as roslaunch does)."""
+    start = text.find(token)
+    before, after = text[:start], text[start + len(token):]
+    cut = after.find(" ")
+    path, rest = (after, "") if cut < 0 else (after[:cut], after[cut:])
+    if path.startswith("/"):
+        path = path[1:]
+    if not path:
+        return before + package_dir + after
+    return before + os.path.join(package_dir, path) + rest
+
+
 def _replace_one(text: str, span: str, ctx: SubstitutionContext, phase: str) -> str:
     words = span.split()
     if not words or words[0] not in COMMANDS:
@@ -106,7 +126,7 @@ def _replace_one(text: str, span: str, ctx: SubstitutionContext, phase: str) -> 
             return text
         if len(args) != 1:
             raise LaunchError(f"$(find pkg) command only accepts one argument [{span}]")
-        return text.replace(token, _find(args[0]), 1)
+        return _replace_find(text, token, _find(args[0]))
     if command == "env":
         if len(args) != 1:
             raise LaunchError(f"$(env var) command only accepts one argument [{span}]")
@@ -120,8 +140,6 @@ def _replace_one(text: str, span: str, ctx: SubstitutionContext, phase: str) -> 
     elif command == "anon":
         if len(args) != 1:
             raise LaunchError(f"$(anon var) must specify exactly one name [{span}]")
-        if not ctx.resolve_anon:
-            return text
         value = _anon(args[0], ctx)
     elif command == "arg":
         if len(args) != 1:

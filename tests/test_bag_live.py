@@ -275,3 +275,80 @@ def test_a_full_disk_stops_recording_with_a_clear_error_and_a_valid_file(ros_env
             assert real.returncode == 0, real.stderr
     finally:
         stop_all(items)
+
+
+def test_record_all_finds_later_topics_excludes_and_splits(ros_env: dict[str, str], rostui_core: Any,
+                                                           tmp_path: Path) -> None:
+    items: list = []
+    try:
+        watcher = Watcher()
+        items.append(watcher)
+        rec = Cmd(rostui_cmd("bag", "record", "-a", "-x", "/skip.*", "-o", str(tmp_path / "all"), "--split",
+                             "--size", "0.05"), ros_env, tmp_path, "record")
+        items.append(rec)
+        rec.wait_for("Recording to")
+        later = Counter(watcher, "/later", size=1000)
+        skipped = Counter(watcher, "/skipped")
+        rec.wait_for("Subscribing to /later")
+        wait_until(lambda: later.pub.get_num_connections() > 0, "the recorder to connect")
+        for _ in range(150):
+            later.publish()
+            skipped.publish()
+            time.sleep(0.002)
+        time.sleep(0.5)
+        assert rec.interrupt() == 0, rec.output
+        assert "/skipped" not in rec.output
+        files = sorted(tmp_path.glob("all_*.mcap"))
+        assert len(files) >= 2 and all(f.name.endswith(("_0.mcap", "_1.mcap", "_2.mcap", "_3.mcap")) for f in files)
+        total = sum(counts(f).get("/later", 0) for f in files)
+        assert total == 150
+        assert all("/skipped" not in counts(f) for f in files)
+    finally:
+        stop_all(items)
+
+
+def test_play_remaps_filters_latches_and_honours_start_and_duration(ros_env: dict[str, str], rostui_core: Any,
+                                                                    tmp_path: Path) -> None:
+    from rostui.core.bag.files import open_writer
+    from rostui.core.bag.model import Connection
+    from rostui.core.msg import get_message_class
+
+    Int32 = get_message_class("std_msgs/Int32")
+    path = tmp_path / "counts.mcap"
+    writer = open_writer(str(path))
+    writer.add_connection(Connection(0, "/count", "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/c"))
+    writer.add_connection(Connection(1, "/latched", "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/l", True))
+    writer.add_connection(Connection(2, "/other", "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/o"))
+    writer.write(1, 1_000_000_000, Int32(data=-1).serialize())
+    for i in range(100):  # 0 .. 99, 10 ms apart, from t = 1 s
+        writer.write(0, 1_000_000_000 + i * 10_000_000, Int32(data=i).serialize())
+        writer.write(2, 1_000_000_000 + i * 10_000_000, Int32(data=i).serialize())
+    writer.close()
+    items: list = []
+    try:
+        watcher = Watcher()
+        items.append(watcher)
+        renamed = watcher.record("/renamed", "std_msgs/Int32")
+        other = watcher.record("/other", "std_msgs/Int32")
+        play = rostui(["bag", "play", "-d", "1", "-r", "2", "-s", "0.2", "-u", "0.5", "--topics", "/count",
+                       "--topics", "/latched", "/count:=/renamed", str(path)], ros_env, timeout=60)
+        assert play.returncode == 0, play.stderr
+        values = [m.data for m in renamed.wait_for_count(1)]
+        wait_until(lambda: len(renamed.messages) >= 51, "the played window")
+        assert [m.data for m in renamed.messages] == list(range(20, 71))
+        assert other.messages == []
+        assert values[0] == 20
+    finally:
+        stop_all(items)
+    items = []
+    try:  # the latched topic reaches a subscriber that comes late
+        play = Cmd(rostui_cmd("bag", "play", "-d", "0", "-l", "--topics", "/latched", str(path)), ros_env,
+                   tmp_path, "play")
+        items.append(play)
+        time.sleep(1.0)
+        watcher = Watcher("late")
+        items.append(watcher)
+        late = watcher.record("/latched", "std_msgs/Int32")
+        assert late.wait_for_count(1)[0].data == -1
+    finally:
+        stop_all(items)

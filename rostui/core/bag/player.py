@@ -73,7 +73,10 @@ class Player:
         self.bag_end = max(ends)
         self.play_from = self.bag_start + int(opts.start_s * 1e9)
         self.play_until = (self.play_from + int(opts.duration_s * 1e9)) if opts.duration_s is not None else None
-        self.wanted = {node.resolve(t) for t in opts.topics} if opts.topics else None
+        from rostui.core.names import resolve_name
+
+        # --topics names topics as recorded: resolved, but not remapped
+        self.wanted = {resolve_name(t, node.namespace, node.name) for t in opts.topics} if opts.topics else None
         self.publishers: dict[tuple[str, str], Any] = {}
         self.clock_pub: Any = None
         self.paused = opts.start_paused
@@ -224,6 +227,12 @@ class Player:
                 self.stats.lateness.append(actual - target)
             self.stats.published += 1
             self._show()
+            if target < actual - 0.05:
+                await asyncio.sleep(0)  # far behind schedule: still let connections and signals in
+        if wall_zero is not None and self.opts.loop and not self.stop.is_set():
+            end = self.play_until if self.play_until is not None else self.bag_end
+            await self._wait_until(loop, wall_zero + (end - self.play_from) / 1e9 / rate)
+        await asyncio.sleep(0)
 
     async def run(self) -> PlayStats:
         """Advertise, wait ``delay`` for subscribers to connect, then play (again and again with ``loop``)."""

@@ -237,6 +237,8 @@ class ConsoleApp(App[int]):
     # -- filters -------------------------------------------------------------------------------------------
     def apply_filter(self, spec: FilterSpec) -> bool:
         """Show the messages passing ``spec``; a bad regular expression is reported and changes nothing."""
+        if spec == self.spec and not self.regex_error:
+            return True
         try:
             self.model.set_filter(spec)
         except FilterError as exc:

@@ -1,0 +1,174 @@
+"""rostui launch's supervisor: output routing, params before nodes, respawn, required, Ctrl-C, no orphans."""
+
+from __future__ import annotations
+
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Iterator
+
+import psutil
+import pytest
+
+from conftest import REPO, master_port, wait_until
+from launch_helpers import CORPUS, launch_env, run_rostui
+
+RUN = CORPUS / "run"
+
+
+class Launch:
+    """A running ``rostui launch`` whose output is collected in files."""
+
+    def __init__(self, args: list[str], env: dict[str, str], tmp: Path) -> None:
+        self.out_path, self.err_path = tmp / "launch.out", tmp / "launch.err"
+        self.proc = subprocess.Popen([sys.executable, "-m", "rostui", "launch", *args], env=env, cwd=REPO,
+                                     stdout=self.out_path.open("w"), stderr=self.err_path.open("w"),
+                                     stdin=subprocess.DEVNULL)
+
+    @property
+    def out(self) -> str:
+        return self.out_path.read_text()
+
+    @property
+    def err(self) -> str:
+        return self.err_path.read_text()
+
+    def interrupt(self, timeout: float = 60.0) -> int:
+        """Ctrl-C (SIGINT) and wait for the launcher to end."""
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGINT)
+        return self.proc.wait(timeout=timeout)
+
+    def descendants(self) -> list[psutil.Process]:
+        try:
+            return psutil.Process(self.proc.pid).children(recursive=True)
+        except psutil.Error:
+            return []
+
+
+@pytest.fixture
+def env(ros_env: dict[str, str]) -> dict[str, str]:
+    return launch_env(ros_env)
+
+
+@pytest.fixture
+def launches(tmp_path: Path) -> Iterator[list[Launch]]:
+    started: list[Launch] = []
+    yield started
+    for launch in started:
+        if launch.proc.poll() is None:
+            launch.proc.kill()
+            launch.proc.wait()
+
+
+def start(launches: list[Launch], args: list[str], env: dict[str, str], tmp: Path) -> Launch:
+    launch = Launch(args, env, tmp)
+    launches.append(launch)
+    return launch
+
+
+def pids_in(path: Path) -> list[int]:
+    return [int(p) for p in path.read_text().split()] if path.exists() and path.read_text().strip() else []
+
+
+def gone(pids: list[int]) -> bool:
+    return all(not psutil.pid_exists(p) or psutil.Process(p).status() == psutil.STATUS_ZOMBIE for p in pids)
+
+
+def run_dir(env: dict[str, str]) -> Path:
+    dirs = [d for d in (Path(env["ROS_HOME"]) / "log").iterdir() if d.is_dir() and d.name != "latest"]
+    assert len(dirs) == 1, dirs
+    return dirs[0]
+
+
+def test_output_routing_and_clean_stop(env: dict[str, str], launches: list[Launch], tmp_path: Path) -> None:
+    launch = start(launches, [str(RUN / "output.launch")], env, tmp_path)
+    wait_until(lambda: "stdout of shown" in launch.out, "the screen node's stdout on the console")
+    wait_until(lambda: launch.err.count("stderr of") == 3, "every node's stderr on the console")
+    logs = run_dir(env)
+    wait_until(lambda: (logs / "logged-1-stdout.log").exists()
+               and "stdout of logged" in (logs / "logged-1-stdout.log").read_text(), "the log node's stdout file")
+    assert "stdout of nested" in (logs / "deep-nested-3-stdout.log").read_text()
+    assert "stdout of logged" not in launch.out and "stdout of nested" not in launch.out
+    assert not (logs / "shown-2-stdout.log").exists()
+    children = launch.descendants()
+    assert len([c for c in children if c.name() == "sleep"]) == 3
+    assert launch.interrupt() == 0
+    assert gone([c.pid for c in children])
+
+
+def test_screen_option_sends_every_stdout_to_console(env: dict[str, str], launches: list[Launch],
+                                                      tmp_path: Path) -> None:
+    launch = start(launches, ["--screen", str(RUN / "output.launch")], env, tmp_path)
+    wait_until(lambda: all(f"stdout of {n}" in launch.out for n in ("logged", "shown", "nested")), "all stdout")
+    assert not list(run_dir(env).glob("*-stdout.log"))
+    launch.interrupt()
+
+
+def test_params_are_set_before_nodes_start(env: dict[str, str], launches: list[Launch], tmp_path: Path) -> None:
+    launch = start(launches, ["launch_corpus", "params.launch"], env, tmp_path)
+    wait_until(lambda: "uris=" in launch.out, "the reader's report", timeout=60)
+    assert "launch_value=set before start" in launch.out
+    assert "private=42" in launch.out
+    assert "/roslaunch/uris/host_" in launch.out
+    assert "started master (in this process)" in launch.out
+    launch.interrupt()
+
+
+def test_running_master_is_reused(env: dict[str, str], rostui_core: subprocess.Popen, launches: list[Launch],
+                                  tmp_path: Path) -> None:
+    launch = start(launches, ["launch_corpus", "params.launch"], env, tmp_path)
+    wait_until(lambda: "uris=" in launch.out, "the reader's report", timeout=60)
+    assert "started master" not in launch.out
+    assert "launch_value=set before start" in launch.out
+    launch.interrupt()
+    assert rostui_core.poll() is None
+
+
+def test_respawn_restarts_a_dying_node(env: dict[str, str], launches: list[Launch], tmp_path: Path) -> None:
+    count = tmp_path / "count.txt"
+    launch = start(launches, [str(RUN / "respawn.launch"), f"count_file:={count}"], env, tmp_path)
+    wait_until(lambda: count.exists() and len(count.read_text().splitlines()) >= 3, "three starts", timeout=90)
+    assert "exit code 3" in launch.err
+    assert "restarting process" in launch.out
+    launch.interrupt()
+
+
+def test_required_node_ends_the_launch(env: dict[str, str], launches: list[Launch], tmp_path: Path) -> None:
+    pid_file = tmp_path / "bystander.pid"
+    launch = start(launches, [str(RUN / "required.launch"), f"pid_file:={pid_file}"], env, tmp_path)
+    wait_until(lambda: len(pids_in(pid_file)) == 2, "the bystander's pids")
+    bystander = pids_in(pid_file)
+    launch.proc.wait(timeout=60)  # no signal: the required node's exit ends the launch
+    assert "REQUIRED process [boss-2] has died!" in launch.err
+    assert gone(bystander)
+
+
+def test_node_ignoring_sigint_is_killed(env: dict[str, str], launches: list[Launch], tmp_path: Path) -> None:
+    stubborn, polite = tmp_path / "stubborn.pid", tmp_path / "polite.pid"
+    launch = start(launches, ["--sigint-timeout", "1", "--sigterm-timeout", "1", str(RUN / "stubborn.launch"),
+                              f"stubborn_file:={stubborn}", f"sleeper_file:={polite}"], env, tmp_path)
+    wait_until(lambda: len(pids_in(stubborn)) == 2 and len(pids_in(polite)) == 2, "both nodes' pids")
+    assert launch.interrupt() == 0
+    assert "[stubborn-1] did not stop on SIGINT: sent SIGKILL" in launch.err
+    assert gone(pids_in(stubborn) + pids_in(polite))
+    assert launch.descendants() == []
+
+
+def test_load_error_starts_nothing(env: dict[str, str], tmp_path: Path) -> None:
+    result = run_rostui([str(CORPUS / "errors" / "respawn_required.launch")], env)
+    assert result.returncode == 1
+    assert result.stderr.strip().endswith("respawn and required cannot both be set to true")
+    assert result.stdout == ""
+    with socket.socket() as probe:
+        assert probe.connect_ex(("127.0.0.1", master_port(env))) != 0  # no master was started
+
+
+def test_remote_machine_is_refused(env: dict[str, str]) -> None:
+    result = run_rostui([str(RUN / "remote.launch")], env)
+    assert result.returncode == 1
+    assert "remote launch (ssh) is not available in rostui" in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1

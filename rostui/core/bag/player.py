@@ -18,7 +18,8 @@ from typing import Any
 from rostui.core.bag.files import Reader, merged_messages, open_reader
 from rostui.core.bag.model import BagError, Connection
 
-SPIN_BEFORE = 0.0015  # the last moments before a message are waited by spinning, for ~10 us accuracy
+SPIN_BEFORE = 0.002  # the last moments before a message are waited by spinning (loop timers are ms-grained)
+_now = time.perf_counter  # uvloop's loop.time() advances in whole milliseconds: too coarse at 1 kHz
 STATUS_PERIOD = 0.1
 
 
@@ -150,23 +151,20 @@ class Player:
 
     async def _wait_until(self, loop: asyncio.AbstractEventLoop, target: float) -> None:
         while True:
-            remaining = target - loop.time()
+            remaining = target - _now()
             if remaining <= 0 or self.stop.is_set():
                 return
             if remaining > SPIN_BEFORE:
-                try:
-                    period = STATUS_PERIOD if self.clock_pub is None else min(STATUS_PERIOD, 1 / self.opts.clock_hz)
-                    await asyncio.wait_for(self.stop.wait(), min(remaining - SPIN_BEFORE, period))
-                except asyncio.TimeoutError:
-                    pass
+                period = STATUS_PERIOD if self.clock_pub is None else min(STATUS_PERIOD, 1 / self.opts.clock_hz)
+                await asyncio.sleep(min(remaining - SPIN_BEFORE, period))  # stop is checked on each pass
                 if self.clock_pub is not None and not self.paused:
-                    ahead = max(0.0, target - loop.time()) * self.opts.rate
+                    ahead = max(0.0, target - _now()) * self.opts.rate
                     self._publish_clock(max(self._bag_now, self._next_ns - int(ahead * 1e9)))
                 self._show()
                 if self.paused:
                     return
             else:
-                while loop.time() < target:
+                while _now() < target:
                     pass
                 return
 
@@ -201,7 +199,7 @@ class Player:
             if pub is None:
                 continue
             if wall_zero is None:
-                wall_zero = loop.time() - (t - self.play_from) / 1e9 / rate
+                wall_zero = _now() - (t - self.play_from) / 1e9 / rate
             target = wall_zero + (t - self.play_from) / 1e9 / rate
             self._next_ns = t
             stepped = False
@@ -210,7 +208,7 @@ class Player:
                     spent = await self._wait_while_paused()
                     if spent < 0:
                         stepped = True
-                        wall_zero = loop.time() - (t - self.play_from) / 1e9 / rate
+                        wall_zero = _now() - (t - self.play_from) / 1e9 / rate
                         break
                     wall_zero += spent
                     target += spent
@@ -221,7 +219,7 @@ class Player:
                 return
             self._bag_now = t
             self._publish_clock(t)
-            actual = loop.time()
+            actual = _now()
             pub.publish(_raw(data))
             if not stepped:
                 self.stats.lateness.append(actual - target)
@@ -241,10 +239,19 @@ class Player:
             await asyncio.wait_for(self.stop.wait(), self.opts.delay_s)
         except asyncio.TimeoutError:
             pass
-        while not self.stop.is_set():
-            await self.play_once()
-            if not self.opts.loop:
-                break
+        import gc
+
+        was_enabled = gc.isenabled()
+        gc.collect()
+        gc.disable()  # playback makes no reference cycles; a collection pause would delay messages by ms
+        try:
+            while not self.stop.is_set():
+                await self.play_once()
+                if not self.opts.loop:
+                    break
+        finally:
+            if was_enabled:
+                gc.enable()
         self._show(force=True)
         return self.stats
 

@@ -35,7 +35,10 @@ def env(ros_env: dict[str, str]) -> dict[str, str]:
     return launch_env(ros_env)
 
 
-def _both(args: list[str], env: dict[str, str]) -> tuple[subprocess.CompletedProcess[str], subprocess.CompletedProcess[str]]:
+Result = subprocess.CompletedProcess[str]
+
+
+def _both(args: list[str], env: dict[str, str]) -> tuple[Result, Result]:
     return run_rostui(args, env), run_roslaunch(args, env)
 
 

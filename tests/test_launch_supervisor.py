@@ -6,7 +6,6 @@ import signal
 import socket
 import subprocess
 import sys
-import time
 from pathlib import Path
 from typing import Iterator
 
@@ -172,3 +171,48 @@ def test_remote_machine_is_refused(env: dict[str, str]) -> None:
     assert result.returncode == 1
     assert "remote launch (ssh) is not available in rostui" in result.stderr
     assert len(result.stderr.strip().splitlines()) == 1
+
+
+def test_rosparam_delete_and_dump_run_before_params(env: dict[str, str], rostui_core: subprocess.Popen,
+                                                    launches: list[Launch], tmp_path: Path) -> None:
+    from cli_helpers import rostui
+
+    for key, value in (("/stale", "going"), ("/old/a", "1"), ("/old/b", "two")):
+        assert rostui(["param", "set", key, value], env).returncode == 0
+    dump = tmp_path / "dump.yaml"
+    launch = start(launches, [str(RUN / "rosparam_commands.launch"), f"dump_file:={dump}"], env, tmp_path)
+    wait_until(lambda: "uris=" in launch.out, "the reader's report", timeout=60)
+    assert dump.read_text().split() == ["a:", "1", "b:", "two"]
+    assert rostui(["param", "get", "/stale"], env).returncode != 0
+    assert rostui(["param", "get", "/fresh"], env).stdout.strip() == "from the launch"
+    import xmlrpc.client
+
+    blob = xmlrpc.client.ServerProxy(env["ROS_MASTER_URI"]).getParam("/t", "/blob")[2]
+    assert blob.data == (CORPUS / "config" / "blob.bin").read_bytes()
+    launch.interrupt()
+
+
+def test_wait_waits_for_a_master(env: dict[str, str], launches: list[Launch], tmp_path: Path) -> None:
+    launch = start(launches, ["--wait", "launch_corpus", "params.launch"], env, tmp_path)
+    wait_until(lambda: "waiting for a master" in launch.out, "the launcher to wait")
+    assert "process[" not in launch.out
+    core = subprocess.Popen([sys.executable, "-m", "rostui", "core", "-p", str(master_port(env))], env=env,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        wait_until(lambda: "launch_value=set before start" in launch.out, "the nodes to start", timeout=60)
+        assert "started master" not in launch.out
+        launch.interrupt()
+    finally:
+        core.send_signal(signal.SIGINT)
+        core.wait(timeout=30)
+
+
+def test_port_option_sets_the_master_port(env: dict[str, str], launches: list[Launch], tmp_path: Path) -> None:
+    from conftest import free_port
+
+    port = free_port()
+    launch = start(launches, ["-p", str(port), "launch_corpus", "params.launch"], env, tmp_path)
+    wait_until(lambda: "launch_value=" in launch.out, "the reader's report", timeout=60)
+    assert f"started master (in this process) and /rosout at http://127.0.0.1:{port}/" in launch.out
+    assert "launch_value=set before start" in launch.out  # the node was pointed at that master
+    launch.interrupt()

@@ -1,4 +1,5 @@
-"""roslaunch substitution args: ``$(find)``, ``$(arg)``, ``$(anon)``, ``$(env)``, ``$(optenv)``, ``$(eval)``, ``$(dirname)``.
+"""roslaunch substitution args: ``$(find)``, ``$(arg)``, ``$(anon)``, ``$(env)``, ``$(optenv)``,
+``$(eval)`` and ``$(dirname)``.
 
 The text is scanned for ``$(command args)`` spans; ``env``, ``optenv``,
 ``dirname``, ``anon`` and ``arg`` are replaced first, ``find`` afterwards (so

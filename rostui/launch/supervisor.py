@@ -117,8 +117,9 @@ class _LaunchApi:
         return [1, "", os.getpid()]
 
     def list_processes(self, *_: Any) -> list[Any]:
-        running = [[p.plan.label, p.starts] for p in self._supervisor.processes if p.proc and p.proc.returncode is None]
-        dead = [[p.plan.label, p.starts] for p in self._supervisor.processes if p.proc and p.proc.returncode is not None]
+        processes = [p for p in self._supervisor.processes if p.proc is not None]
+        running = [[p.plan.label, p.starts] for p in processes if p.proc and p.proc.returncode is None]
+        dead = [[p.plan.label, p.starts] for p in processes if p.proc and p.proc.returncode is not None]
         return [1, "processes on this launcher", [running, dead]]
 
 
@@ -273,8 +274,8 @@ class Supervisor:
                 self.stopping.set()
                 return
             if not node.respawn:
-                if all(p.proc is not None and p.proc.returncode is not None for p in self.processes) \
-                        and self.embedded is None:
+                if all(p.proc is not None and p.proc.returncode is not None and not p.plan.spec.respawn
+                       for p in self.processes) and self.embedded is None:
                     say("all processes on machine have died, roslaunch will exit")
                     self.stopping.set()
                 return

@@ -153,14 +153,19 @@ def trial(kind: str, rate: int, seconds: float, env: dict[str, str], tmp: Path) 
         pub = subprocess.run([sys.executable, __file__, "--publisher", str(rate), str(seconds)], env=env,
                              capture_output=True, text=True, timeout=seconds * 10 + 60)
         result = json.loads(pub.stdout.strip().splitlines()[-1])
+        active = Path(str(path) + ".active")  # rosbag's name while recording
         last, still = -1, 0
         while still < 3:  # the recorder catches up: the file stops growing for 0.6 s
             time.sleep(0.2)
-            size = path.stat().st_size if path.exists() else 0
+            size = max((p.stat().st_size for p in (path, active) if p.exists()), default=0)
             still = still + 1 if size == last else 0
             last = size
     finally:
         stop(rec)
+    deadline = time.monotonic() + 30
+    while not path.exists() and time.monotonic() < deadline:  # rosbag's child renames after the wrapper exits
+        time.sleep(0.1)
+    time.sleep(0.5)
     recorded = count_in(path)
     path.unlink(missing_ok=True)
     return {"rate": rate, "sent": result["sent"], "recorded": recorded,

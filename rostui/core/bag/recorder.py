@@ -9,8 +9,10 @@ from __future__ import annotations
 
 import asyncio
 import os
+import queue
 import re
 import signal
+import threading
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -95,12 +97,20 @@ class TopicFilter:
 
 
 class Recorder:
-    """Records subscribed topics into one file, or a series of files with ``--split``."""
+    """Records subscribed topics into one file, or a series of files with ``--split``.
 
-    def __init__(self, node: Any, opts: RecordOptions, *, report: Callable[[str], None] = lambda _l: None) -> None:
+    The subscriber callbacks only queue ``(connection, time, bytes)``; a writer
+    thread does the file work (chunks, compression, splitting), so a slow disk
+    write never stalls receiving. Like rosbag's ``--buffsize``, at most
+    ``buffer_bytes`` may wait; past that, messages are dropped with a warning.
+    """
+
+    def __init__(self, node: Any, opts: RecordOptions, *, report: Callable[[str], None] = lambda _l: None,
+                 buffer_bytes: int = 256 * 1024 * 1024) -> None:
         self.node = node
         self.opts = opts
         self.report = report
+        self.buffer_bytes = buffer_bytes
         self.filter = TopicFilter(opts, node.resolve)
         self.base = base_file_name(opts)
         self.connections: dict[int, tuple[dict[str, str], Connection]] = {}
@@ -109,44 +119,18 @@ class Recorder:
         self.files: list[str] = []
         self.writer: Writer | None = None
         self.messages = 0
+        self.dropped = 0
         self.bytes_before = 0
         self.error: str | None = None
         self.stop = asyncio.Event()
+        self._queue: queue.SimpleQueue[Any] = queue.SimpleQueue()
+        self._queued_bytes = 0
+        self._written_bytes = 0
+        self._loop: asyncio.AbstractEventLoop | None = None
         self._file_started = 0.0
         self._recent: list[tuple[float, int]] = []
 
-    # -- files -----------------------------------------------------------------------
-    def _open_next(self) -> None:
-        name = split_file_name(self.base, len(self.files)) if self.opts.split else self.base
-        folder = os.path.dirname(name)
-        if folder and not os.path.isdir(folder):
-            raise BagError(f"cannot record to {name}: folder {folder} does not exist")
-        self.writer = open_writer(name, self.opts.compression, max_chunk_age=self.opts.max_chunk_age)
-        self.files.append(name)
-        self._file_started = time.monotonic()
-        self.report(f"Recording to '{name}'.")
-
-    def _close_writer(self) -> None:
-        writer, self.writer = self.writer, None
-        if writer is None:
-            return
-        self.bytes_before += writer.size
-        try:
-            writer.close()
-        except OSError as exc:
-            self._fail(f"cannot finish {writer.path}: {exc.strerror or exc}")
-
-    def _fail(self, message: str) -> None:
-        if self.error is None:
-            self.error = message
-        self.stop.set()
-
-    @property
-    def total_bytes(self) -> int:
-        """Bytes written across all files of this recording."""
-        return self.bytes_before + (self.writer.size if self.writer is not None else 0)
-
-    # -- messages --------------------------------------------------------------------
+    # -- on the loop thread ---------------------------------------------------------------
     def _connection(self, topic: str, header: dict[str, str]) -> Connection:
         known = self.connections.get(id(header))
         if known is not None and known[0] is header:
@@ -161,38 +145,124 @@ class Recorder:
         return conn
 
     def on_message(self, raw: Any, topic: str) -> None:
-        """Write one raw message (the subscriber callback: the hot path)."""
-        writer = self.writer
-        if writer is None or self.stop.is_set():
+        """Queue one raw message for the writer thread (the subscriber callback: the hot path)."""
+        if self.stop.is_set():
             return
-        conn = self._connection(topic, raw._connection_header or {})
-        if conn.id not in writer.connections:
-            writer.add_connection(conn)
-        try:
-            writer.write(conn.id, time.time_ns(), raw._buff)
-        except OSError as exc:
-            self._fail(f"recording stopped: cannot write {writer.path}: {exc.strerror or exc}")
+        data = raw._buff
+        if self._queued_bytes - self._written_bytes + len(data) > self.buffer_bytes:
+            self.dropped += 1
+            if self.dropped == 1 or self.dropped % 100 == 0:
+                self.report(f"rostui bag record buffer exceeded ({self.dropped} messages dropped so far)")
             return
-        self.messages += 1
-        self._after_write(writer)
+        self._queued_bytes += len(data)
+        self._queue.put((self._connection(topic, raw._connection_header or {}), time.time_ns(), data))
 
-    def _after_write(self, writer: Writer) -> None:
-        opts = self.opts
-        if opts.max_size_mb is not None and self.total_bytes >= opts.max_size_mb * 1e6:
-            self.report(f"Reached the maximum size of {opts.max_size_mb:g} MB; stopping.")
-            self.stop.set()
-        elif opts.size_mb is not None and writer.size >= opts.size_mb * 1e6:
-            self._limit_reached()
+    def _fail(self, message: str) -> None:
+        if self.error is None:
+            self.error = message
+        self.stop.set()
+
+    def _from_writer(self, fn: Callable[..., None], *args: Any) -> None:
+        """Run ``fn`` on the loop thread (reports and errors raised by the writer thread)."""
+        assert self._loop is not None
+        self._loop.call_soon_threadsafe(fn, *args)
+
+    @property
+    def total_bytes(self) -> int:
+        """Bytes written across all files of this recording."""
+        writer = self.writer
+        return self.bytes_before + (writer.size if writer is not None else 0)
+
+    # -- on the writer thread -----------------------------------------------------------------
+    def _open_next(self) -> None:
+        name = split_file_name(self.base, len(self.files)) if self.opts.split else self.base
+        folder = os.path.dirname(name)
+        if folder and not os.path.isdir(folder):
+            raise BagError(f"cannot record to {name}: folder {folder} does not exist")
+        self.writer = open_writer(name, self.opts.compression, max_chunk_age=self.opts.max_chunk_age)
+        self.files.append(name)
+        self._file_started = time.monotonic()
+
+    def _close_writer(self) -> None:
+        writer, self.writer = self.writer, None
+        if writer is None:
+            return
+        self.bytes_before += writer.size
+        try:
+            writer.close()
+        except OSError as exc:
+            self._from_writer(self._fail, f"cannot finish {writer.path}: {exc.strerror or exc}")
 
     def _limit_reached(self) -> None:
         if self.opts.split:
             self._close_writer()
-            if self.error is None:
-                self._open_next()
+            self._open_next()
+            self._from_writer(self.report, f"Recording to '{self.files[-1]}'.")
         else:
-            self.stop.set()
+            self._from_writer(self.stop.set)
 
-    # -- subscriptions -----------------------------------------------------------------
+    def _write(self, conn: Connection, stamp_ns: int, data: bytes) -> bool:
+        writer = self.writer
+        if writer is None:
+            return False
+        if conn.id not in writer.connections:
+            writer.add_connection(conn)
+        try:
+            writer.write(conn.id, stamp_ns, data)
+        except OSError as exc:
+            self._from_writer(self._fail, f"recording stopped: cannot write {writer.path}: {exc.strerror or exc}")
+            return False
+        self.messages += 1
+        self._written_bytes += len(data)
+        opts = self.opts
+        if opts.max_size_mb is not None and self.total_bytes >= opts.max_size_mb * 1e6:
+            self._from_writer(self.report, f"Reached the maximum size of {opts.max_size_mb:g} MB; stopping.")
+            self._from_writer(self.stop.set)
+            return False
+        if opts.size_mb is not None and writer.size >= opts.size_mb * 1e6:
+            self._limit_reached()
+        return True
+
+    def _housekeeping(self) -> bool:
+        writer = self.writer
+        if writer is None:
+            return False
+        try:
+            writer.flush_if_old()
+        except OSError as exc:
+            self._from_writer(self._fail, f"recording stopped: cannot write {writer.path}: {exc.strerror or exc}")
+            return False
+        if self.opts.duration_s is not None and time.monotonic() - self._file_started >= self.opts.duration_s:
+            self._limit_reached()
+        return True
+
+    def _writer_thread(self) -> None:
+        """Write queued messages until the stop marker; keep chunks young; close the file."""
+        get = self._queue.get
+        writing = True
+        last_housekeeping = time.monotonic()
+        try:
+            while True:
+                try:
+                    item = get(timeout=FLUSH_PERIOD)
+                except queue.Empty:
+                    item = ()
+                if item is None:
+                    break
+                if item and writing:
+                    writing = self._write(*item)
+                elif item:
+                    self._written_bytes += len(item[2])
+                now = time.monotonic()
+                if writing and now - last_housekeeping >= FLUSH_PERIOD:
+                    last_housekeeping = now
+                    writing = self._housekeeping()
+        except BagError as exc:
+            self._from_writer(self._fail, str(exc))
+        finally:
+            self._close_writer()
+
+    # -- running ------------------------------------------------------------------------------
     async def _subscribe(self, topic: str) -> None:
         from rostui.core.node import AnyMsg
 
@@ -216,27 +286,13 @@ class Recorder:
             except asyncio.TimeoutError:
                 pass
 
-    async def _housekeeping(self, status: Callable[[str], None] | None) -> None:
-        last_status = 0.0
+    async def _status(self, status: Callable[[str], None]) -> None:
         while not self.stop.is_set():
             try:
-                await asyncio.wait_for(self.stop.wait(), FLUSH_PERIOD)
+                await asyncio.wait_for(self.stop.wait(), STATUS_PERIOD)
                 return
             except asyncio.TimeoutError:
-                pass
-            writer = self.writer
-            if writer is not None:
-                try:
-                    writer.flush_if_old()
-                except OSError as exc:
-                    self._fail(f"recording stopped: cannot write {writer.path}: {exc.strerror or exc}")
-                    return
-                if self.opts.duration_s is not None and time.monotonic() - self._file_started >= self.opts.duration_s:
-                    self._limit_reached()
-            now = time.monotonic()
-            if status is not None and now - last_status >= STATUS_PERIOD:
-                last_status = now
-                status(self.status_line(now))
+                status(self.status_line(time.monotonic()))
 
     def status_line(self, now: float) -> str:
         """``Recording 'name': N msgs, SIZE, R msg/s`` (rate over the last few seconds)."""
@@ -245,13 +301,18 @@ class Recorder:
         t0, n0 = self._recent[0]
         rate = (self.messages - n0) / (now - t0) if now > t0 else 0.0
         name = self.files[-1] if self.files else self.base
+        dropped = f", {self.dropped} dropped" if self.dropped else ""
         return (f"Recording '{name}': {self.messages} msgs, {_human(self.total_bytes)}, "
-                f"{rate:.1f} msg/s, {len(self.subscribed)} topics")
+                f"{rate:.1f} msg/s, {len(self.subscribed)} topics{dropped}")
 
     async def run(self, status: Callable[[str], None] | None = None) -> int:
         """Record until ``stop`` is set (Ctrl-C, a size or duration limit, or a write error); finalise the file."""
+        self._loop = asyncio.get_running_loop()
         self._open_next()
-        tasks = [asyncio.ensure_future(self._housekeeping(status))]
+        self.report(f"Recording to '{self.files[-1]}'.")
+        thread = threading.Thread(target=self._writer_thread, name="rostui-bag-writer", daemon=True)
+        thread.start()
+        tasks = [asyncio.ensure_future(self._status(status))] if status is not None else []
         try:
             for topic in self.filter.explicit:
                 await self._subscribe(topic)
@@ -261,7 +322,9 @@ class Recorder:
         finally:
             for task in tasks:
                 task.cancel()
-            self._close_writer()
+            self._queue.put(None)
+            await asyncio.get_running_loop().run_in_executor(None, thread.join)
+            await asyncio.sleep(0)  # errors the writer thread posted while closing
         return self.messages
 
 

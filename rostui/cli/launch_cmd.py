@@ -30,10 +30,10 @@ def launch_command(
     sigterm_timeout: float = typer.Option(2.0, "--sigterm-timeout", metavar="SECONDS",
                                           help="Seconds a node gets after SIGTERM before SIGKILL."),
 ) -> None:
-    """Start the nodes of launch files: `rostui launch [PKG] FILE [name:=value ...]`.
+    """Start the nodes of launch files: `rostui launch PKG FILE` or `rostui launch FILE`, then `name:=value` args.
 
     FILE is a path, or a file name found below package PKG.  `name:=value`
-    sets the file's args.  A master (with rosout) starts when none answers at
+    sets the file's arg `name`.  A master (with rosout) starts when none answers at
     ROS_MASTER_URI; Ctrl-C stops every node (SIGINT, then SIGTERM, then SIGKILL).
     """
     import sys

@@ -173,11 +173,12 @@ def test_remote_machine_is_refused(env: dict[str, str]) -> None:
     assert len(result.stderr.strip().splitlines()) == 1
 
 
-def test_rosparam_delete_and_dump_run_before_params(env: dict[str, str], rostui_core: subprocess.Popen,
+def test_rosparam_commands_and_clear_params_run_before_params(env: dict[str, str], rostui_core: subprocess.Popen,
                                                     launches: list[Launch], tmp_path: Path) -> None:
     from cli_helpers import rostui
 
-    for key, value in (("/stale", "going"), ("/old/a", "1"), ("/old/b", "two")):
+    for key, value in (("/stale", "going"), ("/old/a", "1"), ("/old/b", "two"), ("/cleared/old", "x"),
+                       ("/reader/old", "y")):
         assert rostui(["param", "set", key, value], env).returncode == 0
     dump = tmp_path / "dump.yaml"
     launch = start(launches, [str(RUN / "rosparam_commands.launch"), f"dump_file:={dump}"], env, tmp_path)
@@ -185,6 +186,9 @@ def test_rosparam_delete_and_dump_run_before_params(env: dict[str, str], rostui_
     assert dump.read_text().split() == ["a:", "1", "b:", "two"]
     assert rostui(["param", "get", "/stale"], env).returncode != 0
     assert rostui(["param", "get", "/fresh"], env).stdout.strip() == "from the launch"
+    for cleared in ("/cleared/old", "/reader/old"):  # clear_params on a group and on a node
+        assert rostui(["param", "get", cleared], env).returncode != 0
+    assert rostui(["param", "get", "/cleared/new"], env).stdout.strip() == "1"
     import xmlrpc.client
 
     blob = xmlrpc.client.ServerProxy(env["ROS_MASTER_URI"]).getParam("/t", "/blob")[2]

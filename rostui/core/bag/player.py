@@ -18,7 +18,8 @@ from typing import Any
 from rostui.core.bag.files import Reader, merged_messages, open_reader
 from rostui.core.bag.model import BagError, Connection
 
-SPIN_BEFORE = 0.002  # the last moments before a message are waited by spinning (loop timers are ms-grained)
+SPIN_BEFORE = 0.003  # the last moments before a message are slept without the loop (its timers are ms-grained)
+SPIN_LAST = 0.0002
 _now = time.perf_counter  # uvloop's loop.time() advances in whole milliseconds: too coarse at 1 kHz
 STATUS_PERIOD = 0.1
 
@@ -164,7 +165,10 @@ class Player:
                 if self.paused:
                     return
             else:
-                while _now() < target:
+                # a short blocking sleep: precise to tens of microseconds, and it yields the CPU
+                # (spinning would make the scheduler preempt us for whole time slices on a busy machine)
+                time.sleep(max(0.0, target - _now() - SPIN_LAST))
+                while _now() < target:  # the last ~0.2 ms: a sleep's wake-up is about that late
                     pass
                 return
 
@@ -193,6 +197,7 @@ class Player:
                 return
             if t < self.play_from:
                 continue
+            await asyncio.sleep(0)  # the loop's turn: sends, connections, signals, keys
             if self.play_until is not None and t > self.play_until:
                 break
             pub = self.publishers.get((conn.topic, conn.md5sum))
@@ -225,8 +230,6 @@ class Player:
                 self.stats.lateness.append(actual - target)
             self.stats.published += 1
             self._show()
-            if target < actual - 0.05:
-                await asyncio.sleep(0)  # far behind schedule: still let connections and signals in
         if wall_zero is not None and self.opts.loop and not self.stop.is_set():
             end = self.play_until if self.play_until is not None else self.bag_end
             await self._wait_until(loop, wall_zero + (end - self.play_from) / 1e9 / rate)

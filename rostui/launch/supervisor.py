@@ -218,7 +218,10 @@ class Supervisor:
         argv = node_argv(node, self.anons) + [f"__log:={run_dir / (label + '.log')}"]
         env = node_env(node, self.master_uri)
         if node.cwd == "node":
-            cwd = str(Path(argv[len(shlex.split(node.launch_prefix or ""))]).resolve().parent)
+            exe = len(shlex.split(node.launch_prefix or ""))
+            if argv[exe] == sys.executable:  # a built-in Python script run by this Python
+                exe += 1
+            cwd = str(Path(argv[exe]).resolve().parent)
         else:
             cwd = str(ros_home())
             Path(cwd).mkdir(parents=True, exist_ok=True)

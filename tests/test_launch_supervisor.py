@@ -109,10 +109,12 @@ def test_screen_option_sends_every_stdout_to_console(env: dict[str, str], launch
 
 
 def test_params_are_set_before_nodes_start(env: dict[str, str], launches: list[Launch], tmp_path: Path) -> None:
-    launch = start(launches, ["launch_corpus", "params.launch"], env, tmp_path)
+    launch = start(launches, ["-v", "launch_corpus", "params.launch"], env, tmp_path)
     wait_until(lambda: "uris=" in launch.out, "the reader's report", timeout=60)
     assert "launch_value=set before start" in launch.out
     assert "private=42" in launch.out
+    out = launch.out
+    assert out.index("set parameter [/reader/private_value]") < out.index("process[reader-1]: started")
     assert "/roslaunch/uris/host_" in launch.out
     assert "started master (in this process)" in launch.out
     launch.interrupt()

@@ -39,7 +39,7 @@ from typing import Any
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 MB = 1_000_000
-LADDER = [25, 50, 100, 150, 200, 300, 400, 600, 800]
+LADDER = [int(x) for x in os.environ.get("BENCH_BAG_LADDER", "50,100,200,300,400,500,600,700,800,1000").split(",")]
 TOPIC = "/bench"
 
 

@@ -12,6 +12,7 @@ import os
 import queue
 import re
 import signal
+import sys
 import threading
 import time
 from collections.abc import Callable, Sequence
@@ -344,6 +345,9 @@ async def record(opts: RecordOptions, argv: Sequence[str] = (), *, status: Calla
     loop = asyncio.get_running_loop()
     if hasattr(signal, "SIGXFSZ"):
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # a file-size limit becomes a write error, not death
+    # the writer thread waits for the GIL after each write; the default 5 ms switch interval would
+    # stall it behind the receiving loop (a convoy), capping 1 MB messages at a few hundred per second
+    sys.setswitchinterval(0.0005)
     node = AsyncNode("record", anonymous=True, argv=list(argv))
     try:
         await node.start()

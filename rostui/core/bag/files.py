@@ -7,9 +7,11 @@ import os
 from collections.abc import Iterable, Iterator
 from typing import Protocol
 
+from rostui.core.bag.mcapfile import COMPRESSIONS as MCAP_COMPRESSIONS
 from rostui.core.bag.mcapfile import MAGIC as MCAP_MAGIC
 from rostui.core.bag.mcapfile import McapBagReader, McapBagWriter
 from rostui.core.bag.model import BagError, BagSummary, Connection
+from rostui.core.bag.rosbag2_0 import COMPRESSIONS as BAG_COMPRESSIONS
 from rostui.core.bag.rosbag2_0 import MAGIC as BAG_MAGIC
 from rostui.core.bag.rosbag2_0 import BagReader, BagWriter
 
@@ -130,16 +132,14 @@ def reindex(path: str) -> tuple[int, str]:
     reader.close()
     os.replace(path, backup)
     reader = open_reader(backup)
-    compression = "none"
     try:
-        summary_kinds = reader.summary().chunk_compression
-        if summary_kinds:
-            compression = max(summary_kinds, key=lambda k: summary_kinds[k])
-            if compression == "" or (compression == "bz2" and not is_rosbag_name(path)):
-                compression = "none"
-            if compression == "zstd" and is_rosbag_name(path):
-                compression = "none"
-        writer = open_writer(path, compression)
+        kinds = reader.summary().chunk_compression
+        rosbag = isinstance(reader, BagReader)  # the format stays what it was, whatever the name says
+        compression = max(kinds, key=lambda k: kinds[k]) if kinds else "none"
+        if compression not in (BAG_COMPRESSIONS if rosbag else MCAP_COMPRESSIONS):
+            compression = "none"
+        writer: Writer = (BagWriter(path, compression=compression) if rosbag
+                          else McapBagWriter(path, compression=compression))
         try:
             count = copy_messages(reader, writer)
         finally:

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from rostui.core.bag.files import Reader, merged_messages, open_reader
-from rostui.core.bag.model import BagError, Connection
+from rostui.core.bag.model import BagError, BagSummary, Connection
 
 SPIN_BEFORE = 0.003  # the last moments before a message are slept without the loop (its timers are ms-grained)
 SPIN_LAST = 0.0002
@@ -59,14 +59,14 @@ class Player:
     """Publishes the messages of one or more bags in time order."""
 
     def __init__(self, node: Any, opts: PlayOptions, readers: list[Reader], *,
-                 status: Callable[[str], None] | None = None) -> None:
+                 status: Callable[[str], None] | None = None, summaries: list[BagSummary] | None = None) -> None:
         if opts.rate <= 0:
             raise BagError("the rate must be greater than 0")
         self.node = node
         self.opts = opts
         self.readers = readers
         self.status = status
-        self.summaries = [r.summary() for r in readers]
+        self.summaries = summaries if summaries is not None else [r.summary() for r in readers]
         starts = [s.start_ns for s in self.summaries if s.message_count]
         ends = [s.end_ns for s in self.summaries if s.message_count]
         if not starts:
@@ -323,11 +323,13 @@ async def play(opts: PlayOptions, argv: Sequence[str] = (), *,
     if not opts.files:
         raise BagError("no bag file given")
     readers: list[Reader] = []
+    summaries: list[BagSummary] = []
     try:
         for path in opts.files:
             reader = open_reader(path)
             readers.append(reader)
             summary = reader.summary()
+            summaries.append(summary)
             if not summary.message_count:
                 why = f" ({summary.problem})" if summary.problem else ""
                 raise BagError(f"{path} holds no messages{why}")
@@ -337,7 +339,7 @@ async def play(opts: PlayOptions, argv: Sequence[str] = (), *,
         except MasterUnreachableError as exc:
             raise BagError(str(exc)) from None
         loop = asyncio.get_running_loop()
-        player = Player(node, opts, readers, status=status)
+        player = Player(node, opts, readers, status=status, summaries=summaries)
         keys = KeyReader(player)
         try:
             for sig in (signal.SIGINT, signal.SIGTERM):

@@ -164,3 +164,17 @@ def test_real_rosbag_info_reads_a_rostui_bag(tmp_path: Path, ros_env: dict[str, 
     theirs_topics = [line.split(":", 1)[-1].strip() for line in theirs.stdout.splitlines() if "msg" in line
                      and "/" in line]
     assert ours_topics == theirs_topics
+
+
+@pytest.mark.parametrize("args,message", [
+    (["-O", "x.bag", "--compression", "zstd", "/x"], "a .bag file cannot use zstd compression (none, bz2 or lz4)"),
+    (["-O", "x.mcap", "--compression", "bz2", "/x"], "MCAP files use lz4 or zstd compression, not bz2"),
+    (["-O", "x.mcap", "--compression", "rar", "/x"], "unknown compression 'rar' (none, lz4, zstd or bz2)"),
+    (["-O", "a.bag", "-o", "b", "/x"], "use -O NAME or -o PREFIX, not both"),
+])
+def test_record_refuses_bad_options_in_one_line(tmp_path: Path, ros_env: dict[str, str], args: list[str],
+                                                message: str) -> None:
+    result = rostui(["bag", "record", *args], ros_env)
+    assert result.returncode == 1
+    assert result.stderr.count("\n") == 1 and message in result.stderr, result.stderr
+    assert not (tmp_path / "x.bag").exists()

@@ -352,3 +352,30 @@ def test_play_remaps_filters_latches_and_honours_start_and_duration(ros_env: dic
         assert late.wait_for_count(1)[0].data == -1
     finally:
         stop_all(items)
+
+
+def test_play_clock_publishes_bag_time(ros_env: dict[str, str], rostui_core: Any, tmp_path: Path) -> None:
+    from rostui.core.bag.files import open_writer
+    from rostui.core.bag.model import Connection
+    from rostui.core.msg import get_message_class
+
+    Int32 = get_message_class("std_msgs/Int32")
+    path = tmp_path / "clock.bag"
+    writer = open_writer(str(path))
+    writer.add_connection(Connection(0, "/count", "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/c"))
+    for i in range(50):  # 0.5 s of bag time from t = 1000 s
+        writer.write(0, 1000_000_000_000 + i * 10_000_000, Int32(data=i).serialize())
+    writer.close()
+    items: list = []
+    try:
+        watcher = Watcher()
+        items.append(watcher)
+        clock = watcher.record("/clock", "rosgraph_msgs/Clock")
+        play = rostui(["bag", "play", "--clock", "-d", "1", str(path)], ros_env, timeout=60)
+        assert play.returncode == 0, play.stderr
+        stamps = [m.clock.to_sec() if hasattr(m.clock, "to_sec") else m.clock.secs + m.clock.nsecs / 1e9
+                  for m in clock.wait_for_count(10)]
+        assert all(1000.0 <= s <= 1000.5 for s in stamps), stamps
+        assert stamps == sorted(stamps)
+    finally:
+        stop_all(items)

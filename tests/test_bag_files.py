@@ -178,3 +178,48 @@ def test_record_refuses_bad_options_in_one_line(tmp_path: Path, ros_env: dict[st
     assert result.returncode == 1
     assert result.stderr.count("\n") == 1 and message in result.stderr, result.stderr
     assert not (tmp_path / "x.bag").exists()
+
+
+ROSBAG_READ = """
+import sys, rosbag
+bag = rosbag.Bag(sys.argv[1])
+for topic, msg, t in bag.read_messages():
+    print(topic, getattr(msg, "x", getattr(msg, "linear", None)), t.to_nsec())
+"""
+
+ROSBAG_WRITE = """
+import sys, rosbag, rospy
+from std_msgs.msg import Int32
+with rosbag.Bag(sys.argv[1], "w", compression=sys.argv[2]) as bag:
+    for i in range(300):
+        bag.write("/count", Int32(data=i), rospy.Time(1000, i * 1000))
+"""
+
+
+def _system_rosbag() -> bool:
+    probe = subprocess.run(["/usr/bin/python3", "-c", "import rosbag, roslz4"], capture_output=True)
+    return probe.returncode == 0
+
+
+@pytest.mark.parametrize("compression", ["none", "bz2", "lz4"])
+def test_compressed_bags_read_both_ways_with_the_rosbag_python_api(tmp_path: Path, compression: str) -> None:
+    need_peer(_system_rosbag(), "rosbag Python API (Debian python3-rosbag)")
+    write_poses(tmp_path / "ours.bag", count=100, compression=compression)
+    theirs = subprocess.run(["/usr/bin/python3", "-c", ROSBAG_READ, str(tmp_path / "ours.bag")],
+                            capture_output=True, text=True, timeout=60)
+    assert theirs.returncode == 0, theirs.stderr
+    rows = theirs.stdout.splitlines()
+    assert rows[:3] == [f"/turtle1/pose {float(i)} {T0 + i * 10_000_000}" for i in range(3)]
+    assert len(rows) == 101
+    written = subprocess.run(["/usr/bin/python3", "-c", ROSBAG_WRITE, str(tmp_path / "theirs.bag"), compression],
+                             capture_output=True, text=True, timeout=60)
+    assert written.returncode == 0, written.stderr
+    from rostui.core.msg import get_message_class
+
+    Int32 = get_message_class("std_msgs/Int32")
+    reader = open_reader(str(tmp_path / "theirs.bag"))
+    got = [(c.topic, Int32.deserialize(d).data, t) for c, t, d in reader.messages()]
+    summary = reader.summary()
+    reader.close()
+    assert got == [("/count", i, 1000 * 10**9 + i * 1000) for i in range(300)]
+    assert summary.closed and summary.message_count == 300

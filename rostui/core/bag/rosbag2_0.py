@@ -73,7 +73,9 @@ def _compress(kind: str, data: bytes) -> bytes:
     if kind == "lz4":
         import lz4.frame
 
-        return lz4.frame.compress(data)
+        # roslz4 (rosbag's reader) takes no content-size field: frames as it writes them itself
+        return lz4.frame.compress(data, block_size=lz4.frame.BLOCKSIZE_MAX1MB, content_checksum=True,
+                                  store_size=False)
     return data
 
 

@@ -379,3 +379,27 @@ def test_play_clock_publishes_bag_time(ros_env: dict[str, str], rostui_core: Any
         assert stamps == sorted(stamps)
     finally:
         stop_all(items)
+
+
+def test_record_stops_by_itself_at_max_size(ros_env: dict[str, str], rostui_core: Any, tmp_path: Path) -> None:
+    items: list = []
+    path = tmp_path / "capped.bag"
+    try:
+        watcher = Watcher()
+        items.append(watcher)
+        counter = Counter(watcher, size=10_000)
+        rec = Cmd(rostui_cmd("bag", "record", "-O", str(path), "--max-size", "0.5", "/count"), ros_env, tmp_path,
+                  "record")
+        items.append(rec)
+        rec.wait_for("Subscribing to /count")
+        wait_until(lambda: counter.pub.get_num_connections() > 0, "the recorder to connect")
+        deadline = time.monotonic() + DEADLINE
+        while rec.proc.poll() is None and time.monotonic() < deadline:
+            counter.publish()
+            time.sleep(0.002)
+        assert rec.proc.wait(timeout=DEADLINE) == 0, rec.output
+        assert "Reached the maximum size of 0.5 MB" in rec.output
+        recorded = counts(path)["/count"]
+        assert 40 <= recorded <= 60  # 0.5 MB of 10 KB messages
+    finally:
+        stop_all(items)

@@ -16,7 +16,7 @@
     absolute value are reported. rostui's own scheduled-vs-actual publish
     lateness (measured inside its player) is printed too.
 
-    .venv/bin/python bench/bench_bag.py [--seconds 4] [--only record|play] [--json out.json]
+    .venv/bin/python bench/bench_bag.py [--seconds 4] [--only record|play] [--dir /dev/shm] [--json out.json]
 """
 
 from __future__ import annotations
@@ -282,9 +282,10 @@ def main() -> int:
     parser.add_argument("--seconds", type=float, default=4.0, help="Seconds of publishing per recording trial.")
     parser.add_argument("--only", choices=["record", "play"], help="Run one part.")
     parser.add_argument("--json", help="Write the results to this file.")
+    parser.add_argument("--dir", help="Record into this folder (e.g. /dev/shm: no disk, the recorders' own limits).")
     args = parser.parse_args()
     have_rosbag = shutil.which("rosbag") is not None
-    tmp = Path(tempfile.mkdtemp(prefix="bench_bag_"))
+    tmp = Path(tempfile.mkdtemp(prefix="bench_bag_", dir=args.dir))
     port = free_port()
     env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=str(tmp / "ros_home"),
                ROS_IP="127.0.0.1", PYTHONPATH=str(REPO))

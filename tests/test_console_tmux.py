@@ -8,22 +8,18 @@ Keys go in with `tmux send-keys`; q must bring the shell back with exit 0.
 
 from __future__ import annotations
 
-import os
 import shlex
-import shutil
 import subprocess
 import sys
-import time
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import Any, Iterator
 
 import pytest
 
-from conftest import REPO, need_peer, stop_process
+from conftest import REPO, stop_process, wait_until
 from console_helpers import write_sample_log
+from tmux_helpers import Pane, shell_pane
 
-DEADLINE = 30.0
 EXIT_MARK = "CONSOLE_EXIT="
 
 TALKER = r'''
@@ -40,59 +36,11 @@ while not ros.is_shutdown():
 '''
 
 
-def wait_until(predicate: Callable[[], bool], what: str, timeout: float = DEADLINE) -> None:
-    """Poll ``predicate`` until it holds; fail with ``what`` when it never does."""
-    deadline = time.monotonic() + timeout
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.1)
-
-
-@dataclass
-class Pane:
-    """One tmux session with a plain shell, on a private tmux server."""
-
-    socket: str
-    session: str
-
-    def tmux(self, *args: str) -> str:
-        """Run a tmux command against this server; return its stdout."""
-        result = subprocess.run(["tmux", "-u", "-L", self.socket, *args], capture_output=True, text=True,
-                                timeout=DEADLINE)
-        assert result.returncode == 0, f"tmux {' '.join(args)}: {result.stderr}"
-        return result.stdout
-
-    def screen(self) -> str:
-        """The visible screen text."""
-        return self.tmux("capture-pane", "-p", "-t", self.session)
-
-    def type(self, line: str) -> None:
-        """Type a command line and Enter."""
-        self.tmux("send-keys", "-t", self.session, "-l", line)
-        self.tmux("send-keys", "-t", self.session, "Enter")
-
-    def keys(self, *keys: str) -> None:
-        """Send key names (``Up``, ``Enter``, ``q``) or literal characters."""
-        self.tmux("send-keys", "-t", self.session, *keys)
-
-    def shows(self, text: str) -> Callable[[], bool]:
-        """A predicate: ``text`` is on screen."""
-        return lambda: text in self.screen()
-
-
 @pytest.fixture
-def pane(tmp_path: Path) -> Iterator[Pane]:
+def pane() -> Iterator[Pane]:
     """A detached 120x30 tmux session running /bin/sh with a plain prompt."""
-    need_peer(shutil.which("tmux") is not None, "tmux")
-    pane = Pane(socket=f"rostui-console-{os.getpid()}-{tmp_path.name}", session="console")
-    subprocess.run(["tmux", "-u", "-L", pane.socket, "-f", "/dev/null", "new-session", "-d", "-s", pane.session,
-                    "-x", "120", "-y", "30", "env PS1='$ ' /bin/sh"], check=True, timeout=DEADLINE)
-    try:
-        pane.tmux("set-option", "-t", pane.session, "status", "off")
+    with shell_pane("console", 120, 30) as pane:
         yield pane
-    finally:
-        subprocess.run(["tmux", "-L", pane.socket, "kill-server"], capture_output=True, timeout=DEADLINE)
 
 
 def console_line(env: dict[str, str], *args: str, cwd: Path = REPO) -> str:
@@ -107,7 +55,7 @@ def console_line(env: dict[str, str], *args: str, cwd: Path = REPO) -> str:
 def quit_and_check(pane: Pane, marker: str) -> None:
     """q leaves the app: exit status 0, the screen is the shell's again."""
     pane.keys("q")
-    wait_until(pane.shows(f"{EXIT_MARK}0"), "the shell to report exit status 0 after q")
+    wait_until(lambda: pane.shows(f"{EXIT_MARK}0"), "the shell to report exit status 0 after q")
     screen = pane.screen()
     assert marker not in screen, "the app's screen was left behind"
     assert screen.rstrip().endswith("$")
@@ -121,8 +69,8 @@ def test_live_console_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, s
                               stderr=subprocess.DEVNULL)
     try:
         pane.type(console_line(ros_env, "--min-level", "info"))
-        wait_until(pane.shows("/tmux_talker"), "the talker's messages on screen")
-        wait_until(pane.shows("tmux warning"), "a warning on screen")
+        wait_until(lambda: pane.shows("/tmux_talker"), "the talker's messages on screen")
+        wait_until(lambda: pane.shows("tmux warning"), "a warning on screen")
         screen = pane.screen()
         assert "FOLLOW" in screen and f"master {ros_env['ROS_MASTER_URI']}" in screen
         assert "1 DEBUG" in screen and "3 WARN" in screen
@@ -132,9 +80,9 @@ def test_live_console_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, s
         wait_until(lambda: "text warning" in pane.screen() and "tmux hello" not in pane.screen(),
                    "only warnings after the search")
         pane.keys("Escape")
-        wait_until(pane.shows("tmux hello"), "every message again after Escape")
+        wait_until(lambda: pane.shows("tmux hello"), "every message again after Escape")
         pane.keys("p")
-        wait_until(pane.shows("PAUSED"), "the paused mode")
+        wait_until(lambda: pane.shows("PAUSED"), "the paused mode")
         wait_until(lambda: " new" in pane.screen() and " 0 new" not in pane.screen(), "new messages counted")
         pane.keys("p")
         wait_until(lambda: "PAUSED" not in pane.screen(), "resumed")
@@ -150,15 +98,15 @@ def test_log_file_in_tmux(pane: Pane, ros_env: dict[str, str], tmp_path: Path) -
     """`rostui console rosout.log` shows the file's messages and its name; Enter opens the details."""
     write_sample_log(tmp_path / "rosout.log")
     pane.type(console_line(ros_env, "rosout.log", cwd=tmp_path))
-    wait_until(pane.shows("20 is divisible by 20."), "the newest message of the file")
+    wait_until(lambda: pane.shows("20 is divisible by 20."), "the newest message of the file")
     assert "37 shown / 37 kept │ file rosout.log" in pane.screen()
     pane.keys("Enter")
-    wait_until(pane.shows("(file:function:line)"), "the detail pane")
+    wait_until(lambda: pane.shows("(file:function:line)"), "the detail pane")
     quit_and_check(pane, "divisible by 20")
 
 
 def test_unreadable_file_is_one_line_and_exit_1(pane: Pane, ros_env: dict[str, str], tmp_path: Path) -> None:
     """A missing file: one error line in the terminal, exit status 1, no screen opened."""
     pane.type(console_line(ros_env, "missing.log", cwd=tmp_path))
-    wait_until(pane.shows(f"{EXIT_MARK}1"), "exit status 1")
+    wait_until(lambda: pane.shows(f"{EXIT_MARK}1"), "exit status 1")
     assert "\nERROR: missing.log: cannot read: No such file or directory\nCONSOLE_EXIT=1\n" in pane.screen()

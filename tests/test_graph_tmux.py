@@ -9,73 +9,26 @@ shell prompt with exit status 0.
 
 from __future__ import annotations
 
-import os
 import shlex
-import shutil
-import subprocess
 import sys
-import time
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import Any, Iterator
 
 import pytest
 
-from conftest import need_peer
+from conftest import wait_until
 from graph_helpers import book_system, stop_programs
 from live_helpers import Program
+from tmux_helpers import Pane, shell_pane
 
-DEADLINE = 30.0
 EXIT_MARK = "GRAPH_EXIT="
 
 
-def wait_until(predicate: Callable[[], bool], what: str, timeout: float = DEADLINE) -> None:
-    """Poll ``predicate`` until it holds; fail with ``what`` when it never does."""
-    deadline = time.monotonic() + timeout
-    while not predicate():
-        if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.1)
-
-
-class Pane:
-    """One tmux session with a plain shell on a private tmux server."""
-
-    def __init__(self, socket: str) -> None:
-        self.socket = socket
-
-    def tmux(self, *args: str) -> str:
-        """Run a tmux command against this server; return its stdout."""
-        result = subprocess.run(["tmux", "-u", "-L", self.socket, *args], capture_output=True, text=True,
-                                timeout=DEADLINE)
-        assert result.returncode == 0, f"tmux {' '.join(args)}: {result.stderr}"
-        return result.stdout
-
-    def screen(self) -> str:
-        """The visible screen text."""
-        return self.tmux("capture-pane", "-p", "-t", "graph")
-
-    def type(self, line: str) -> None:
-        """Type a command line and Enter."""
-        self.tmux("send-keys", "-t", "graph", "-l", line)
-        self.tmux("send-keys", "-t", "graph", "Enter")
-
-    def keys(self, *keys: str) -> None:
-        """Send key names (``Tab``, ``Enter``, ``q``)."""
-        self.tmux("send-keys", "-t", "graph", *keys)
-
-
 @pytest.fixture
-def pane(tmp_path: Path) -> Iterator[Pane]:
+def pane() -> Iterator[Pane]:
     """A detached 100x30 tmux session running /bin/sh with a plain prompt."""
-    need_peer(shutil.which("tmux") is not None, "tmux")
-    pane = Pane(f"rostui-graph-{os.getpid()}-{tmp_path.name}")
-    subprocess.run(["tmux", "-u", "-L", pane.socket, "-f", "/dev/null", "new-session", "-d", "-s", "graph",
-                    "-x", "100", "-y", "30", "env PS1='$ ' /bin/sh"], check=True, timeout=DEADLINE)
-    try:
-        pane.tmux("set-option", "-t", "graph", "status", "off")
+    with shell_pane("graph", 100, 30) as pane:
         yield pane
-    finally:
-        subprocess.run(["tmux", "-L", pane.socket, "kill-server"], capture_output=True, timeout=DEADLINE)
 
 
 def test_graph_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str], tmp_path: Path) -> None:
@@ -96,7 +49,7 @@ def test_graph_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str], tm
         wait_until(lambda: "/turtle1/pose" not in pane.screen(), "the nodes-only view")
         assert "│ /teleop_turtle │──▶│ /turtlesim │" in pane.screen()
         pane.keys("/")
-        pane.tmux("send-keys", "-t", "graph", "-l", "turtlesim")
+        pane.keys("-l", "turtlesim")
         pane.keys("Enter")
         wait_until(lambda: "Pid:" in pane.screen(), "turtlesim's node info with its pid")
         assert "Node /turtlesim" in pane.screen()

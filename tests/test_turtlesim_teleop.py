@@ -8,10 +8,10 @@ as it found it.
 
 from __future__ import annotations
 
-import os
 import shlex
 import shutil
 import subprocess
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Iterator
 
@@ -21,48 +21,45 @@ from rostui.turtlesim.teleop import BANNER, KeyDecoder, key_to_command
 
 from conftest import REPO, rostui_cmd
 from live_helpers import DEADLINE, Program, Watcher, start_headless_sim, stop_all, wait_until
+from tmux_helpers import Pane
 
 pytestmark = pytest.mark.skipif(shutil.which("tmux") is None, reason="tmux is not installed")
 
 
-class Pane:
-    """A command running in a detached tmux session on a private tmux server."""
+@dataclass
+class TeleopPane(Pane):
+    """A command in a detached tmux pane; around it, the pane's shell records the terminal mode and exit status."""
 
-    def __init__(self, env: dict[str, str], tmp: Path, command: list[str]) -> None:
-        self.env = env
-        self.socket = f"rostui-test-{os.getpid()}-{id(self)}"
-        self.tmp = tmp
-        self.before = tmp / "stty.before"
-        self.after = tmp / "stty.after"
-        self.status = tmp / "status"
+    records: Path
+
+    @classmethod
+    def run(cls, env: dict[str, str], tmp: Path, command: list[str]) -> TeleopPane:
+        """``command`` in a 100x30 pane with ``env``, started in the repository; the records go to ``tmp``."""
+        before, after, status = tmp / "stty.before", tmp / "stty.after", tmp / "status"
         # The shell traps Ctrl-C (instead of dying of it) so that it can record what follows.
-        script = (f"trap true INT; stty -g > {self.before}; {shlex.join(command)}; echo $? > {self.status}; "
-                  f"stty -g > {self.after}; sleep 600")
-        self.tmux("new-session", "-d", "-s", "teleop", "-x", "100", "-y", "30", "sh", "-c", script)
+        script = (f"trap true INT; stty -g > {before}; {shlex.join(command)}; echo $? > {status}; "
+                  f"stty -g > {after}; sleep 600")
+        return cls.start("teleop", 100, 30, ["sh", "-c", script], env=env, cwd=REPO, records=tmp)
 
-    def tmux(self, *args: str) -> str:
-        """Run a tmux command on this pane's server; its stdout."""
-        result = subprocess.run(["tmux", "-L", self.socket, *args], env=self.env, cwd=REPO,
-                                capture_output=True, text=True, timeout=DEADLINE)
-        assert result.returncode == 0, f"tmux {' '.join(args)} failed: {result.stderr}"
-        return result.stdout
+    @property
+    def before(self) -> Path:
+        """The file with ``stty -g`` of the terminal before the command ran."""
+        return self.records / "stty.before"
 
-    def screen(self) -> str:
-        """The visible text of the pane."""
-        return self.tmux("capture-pane", "-p", "-t", "teleop")
+    @property
+    def after(self) -> Path:
+        """The file with ``stty -g`` of the terminal after the command ended."""
+        return self.records / "stty.after"
 
-    def keys(self, *keys: str) -> None:
-        """Type keys (tmux key names such as Up, Left, q)."""
-        self.tmux("send-keys", "-t", "teleop", *keys)
+    @property
+    def status(self) -> Path:
+        """The file with the command's exit status."""
+        return self.records / "status"
 
     def terminal_mode(self) -> str:
         """``stty -a`` of the pane's terminal, read from outside."""
-        tty = self.tmux("display-message", "-p", "-t", "teleop", "#{pane_tty}").strip()
+        tty = self.tmux("display-message", "-p", "-t", self.session, "#{pane_tty}").strip()
         return subprocess.run(["stty", "-a", "-F", tty], capture_output=True, text=True, check=True).stdout
-
-    def wait_for_text(self, text: str) -> None:
-        """Wait until ``text`` shows on the screen."""
-        wait_until(lambda: text in self.screen(), f"{text!r} on the tmux screen")
 
     def exit_status(self) -> int:
         """Wait for the command to end; its exit status."""
@@ -70,10 +67,6 @@ class Pane:
         wait_until(lambda: self.after.exists() and self.after.read_text().endswith("\n"),
                    "the terminal mode after exit")
         return int(self.status.read_text())
-
-    def close(self) -> None:
-        """Kill the private tmux server."""
-        subprocess.run(["tmux", "-L", self.socket, "kill-server"], env=self.env, capture_output=True)
 
 
 @pytest.fixture
@@ -86,9 +79,9 @@ def watcher(rostui_core: Any) -> Iterator[Watcher]:
         w.close()
 
 
-def start_teleop(env: dict[str, str], tmp: Path, *args: str) -> Pane:
+def start_teleop(env: dict[str, str], tmp: Path, *args: str) -> TeleopPane:
     """`rostui run turtlesim turtle_teleop_key ARGS` in a tmux pane, banner shown."""
-    pane = Pane(env, tmp, rostui_cmd("run", "turtlesim", "turtle_teleop_key", *args))
+    pane = TeleopPane.run(env, tmp, rostui_cmd("run", "turtlesim", "turtle_teleop_key", *args))
     try:
         pane.wait_for_text(BANNER[-1])
     except AssertionError:
@@ -218,7 +211,7 @@ def test_ctrl_c_restores_the_terminal(watcher: Watcher, ros_env: dict[str, str],
 
 
 def test_bad_scale_is_one_line_and_exit_1(watcher: Watcher, ros_env: dict[str, str], tmp_path: Path) -> None:
-    pane = Pane(ros_env, tmp_path, rostui_cmd("run", "turtlesim", "turtle_teleop_key", "_scale_linear:=fast"))
+    pane = TeleopPane.run(ros_env, tmp_path, rostui_cmd("run", "turtlesim", "turtle_teleop_key", "_scale_linear:=fast"))
     try:
         assert pane.exit_status() == 1
         assert "parameter ~scale_linear must be a number, got 'fast'" in pane.screen()
@@ -239,7 +232,7 @@ def test_stdin_not_a_terminal_is_one_line_and_exit_1(ros_env: dict[str, str]) ->
 def test_rostui_teleop_topic_publishes_only_twist_there(watcher: Watcher, ros_env: dict[str, str],
                                                         tmp_path: Path) -> None:
     twists = watcher.record("/foo/cmd_vel", "geometry_msgs/Twist")
-    pane = Pane(ros_env, tmp_path, rostui_cmd("teleop", "/foo/cmd_vel"))
+    pane = TeleopPane.run(ros_env, tmp_path, rostui_cmd("teleop", "/foo/cmd_vel"))
     try:
         pane.wait_for_text(BANNER[-1])
         twists.wait_connected()

@@ -31,40 +31,15 @@ import pytest
 
 from cli_helpers import rostui
 from conftest import REPO, free_port, master_port, need_peer, stop_process, wait_for_port, wait_until
+from tmux_helpers import Pane, shell_pane
 
 DEADLINE = 30.0
 POSE = re.compile(r"turtle1 x (-?\d+\.\d+) y (-?\d+\.\d+) \S (-?\d+\.\d+)")
 EXIT_MARK = "TURTLESIM_EXIT="
 
 
-
-
-@dataclass
-class Pane:
-    """One tmux session with a plain shell, on a private tmux server."""
-
-    socket: str
-    session: str
-
-    def tmux(self, *args: str) -> str:
-        """Run a tmux command against this server; return its stdout."""
-        result = subprocess.run(["tmux", "-u", "-L", self.socket, *args], capture_output=True, text=True,
-                                timeout=DEADLINE)
-        assert result.returncode == 0, f"tmux {' '.join(args)}: {result.stderr}"
-        return result.stdout
-
-    def screen(self) -> str:
-        """The visible screen text."""
-        return self.tmux("capture-pane", "-p", "-t", self.session)
-
-    def type(self, line: str) -> None:
-        """Type a command line and Enter."""
-        self.tmux("send-keys", "-t", self.session, "-l", line)
-        self.tmux("send-keys", "-t", self.session, "Enter")
-
-    def keys(self, *keys: str) -> None:
-        """Send key names (``Up``, ``Left``, ``q``)."""
-        self.tmux("send-keys", "-t", self.session, *keys)
+class TurtlePane(Pane):
+    """A tmux pane that can read turtle1's pose off the app's status line."""
 
     def pose(self) -> tuple[float, float, float] | None:
         """turtle1's pose as the status line shows it, if it is on screen."""
@@ -73,17 +48,10 @@ class Pane:
 
 
 @pytest.fixture
-def pane(tmp_path: Path) -> Iterator[Pane]:
+def pane() -> Iterator[TurtlePane]:
     """A detached 80x24 tmux session running /bin/sh with a plain prompt."""
-    need_peer(shutil.which("tmux") is not None, "tmux")
-    pane = Pane(socket=f"rostui-test-{os.getpid()}-{tmp_path.name}", session="turtles")
-    subprocess.run(["tmux", "-u", "-L", pane.socket, "-f", "/dev/null", "new-session", "-d", "-s", pane.session,
-                    "-x", "80", "-y", "24", "env PS1='$ ' /bin/sh"], check=True, timeout=DEADLINE)
-    try:
-        pane.tmux("set-option", "-t", pane.session, "status", "off")
+    with shell_pane("turtles", 80, 24, TurtlePane) as pane:
         yield pane
-    finally:
-        subprocess.run(["tmux", "-L", pane.socket, "kill-server"], capture_output=True, timeout=DEADLINE)
 
 
 def turtlesim_command(env: dict[str, str], term: str) -> str:
@@ -94,7 +62,7 @@ def turtlesim_command(env: dict[str, str], term: str) -> str:
     return f"env -u COLORTERM {assignments} {shlex.quote(sys.executable)} -m rostui turtlesim"
 
 
-def drive_and_quit(pane: Pane, env: dict[str, str]) -> None:
+def drive_and_quit(pane: TurtlePane, env: dict[str, str]) -> None:
     """The user's session: wait for the app, drive turtle1, compare screen and topic, quit."""
     wait_until(lambda: pane.pose() == (5.54, 5.54, 0.0), "the status line with turtle1 at the centre")
     wait_until(lambda: "(@)" in pane.screen(), "turtle1 drawn")
@@ -129,7 +97,7 @@ def drive_and_quit(pane: Pane, env: dict[str, str]) -> None:
 
 
 @pytest.mark.parametrize("term", ["screen-256color", "xterm"])
-def test_turtlesim_in_tmux(pane: Pane, ros_env: dict[str, str], term: str) -> None:
+def test_turtlesim_in_tmux(pane: TurtlePane, ros_env: dict[str, str], term: str) -> None:
     """One command on a fresh ROS_HOME: embedded master, arrow keys drive, screen and topic agree, q quits."""
     port = master_port(ros_env)
     pane.type(f"{turtlesim_command(ros_env, term)}; echo {EXIT_MARK}$?")
@@ -239,7 +207,7 @@ def sshd(tmp_path: Path) -> Iterator[SshServer]:
         log.close()
 
 
-def test_turtlesim_over_ssh(pane: Pane, sshd: SshServer, ros_env: dict[str, str]) -> None:
+def test_turtlesim_over_ssh(pane: TurtlePane, sshd: SshServer, ros_env: dict[str, str]) -> None:
     """`ssh -t` to this machine and run `rostui turtlesim` there: same keys, same screen, same pose."""
     remote = f"cd {shlex.quote(str(REPO))} && {turtlesim_command(ros_env, 'xterm-256color')}"
     ssh = [

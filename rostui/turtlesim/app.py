@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import asyncio
 import random
-import signal
 import sys
 import time
 from dataclasses import dataclass
@@ -24,6 +23,7 @@ from textual.app import App, ComposeResult
 from textual.binding import Binding
 from textual.widgets import Static
 
+from rostui.apps.widgets.lifecycle import quit_on_signals
 from rostui.core import names
 from rostui.core.log import Level, LogRecord
 from rostui.core.master.embedded import EmbeddedMaster, MasterUnavailableError, ensure_master
@@ -138,12 +138,7 @@ class TurtlesimApp(App[int]):
         self.run_worker(self._start_ros(), name="start-ros", exclusive=True, exit_on_error=False)
         self.set_interval(1.0 / STATUS_RATE, self.refresh_status)
         self.refresh_status()
-        loop = asyncio.get_running_loop()
-        for sig in (signal.SIGTERM, signal.SIGHUP):
-            try:
-                loop.add_signal_handler(sig, lambda: self.call_later(self.action_quit))
-            except (NotImplementedError, RuntimeError, ValueError):
-                pass
+        quit_on_signals(self)
 
     @property
     def view(self) -> TurtleView:

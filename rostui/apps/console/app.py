@@ -10,9 +10,7 @@ message.  Filters apply to the model; the table draws only visible rows.
 
 from __future__ import annotations
 
-import asyncio
 import gc
-import signal
 import sys
 import time
 from dataclasses import replace
@@ -30,6 +28,7 @@ from rostui.apps.console.filters import FilterError, FilterSpec, HighlightRule, 
 from rostui.apps.console.model import ConsoleModel, ConsoleOptions
 from rostui.apps.console.source import LiveSource, SourceState
 from rostui.apps.console.table import LogTable
+from rostui.apps.widgets.lifecycle import quit_on_signals
 from rostui.core.log.levels import Level
 from rostui.core.log.rosout_read import RosoutEntry, RosoutLog, entries_text
 from rostui.core.network import master_uri_from_env
@@ -159,12 +158,7 @@ class ConsoleApp(App[int]):
         self.refresh_bars()
         if self.freeze_gc:
             self.call_after_refresh(gc.freeze)
-        loop = asyncio.get_running_loop()
-        for sig in (signal.SIGTERM, signal.SIGHUP):
-            try:
-                loop.add_signal_handler(sig, lambda: self.call_later(self.action_quit))
-            except (NotImplementedError, RuntimeError, ValueError):
-                pass
+        quit_on_signals(self)
 
     # -- messages in ---------------------------------------------------------------------------------
     def ingest(self, entries: Iterable[RosoutEntry]) -> int:

@@ -20,7 +20,6 @@ only looked at.
 from __future__ import annotations
 
 import asyncio
-import signal
 import sys
 from pathlib import Path
 
@@ -31,6 +30,7 @@ from textual.widgets import DataTable, Footer, OptionList
 from textual.worker import Worker
 
 from rostui.apps.loggers.panels import LevelList, LoggerTable, NodeList, Notice
+from rostui.apps.widgets.lifecycle import quit_on_signals
 from rostui.core.tools.loggers import (
     DEFAULT_TIMEOUT, LoggerLevel, LoggerLevels, LoggerNode, LoggerToolError, MasterGoneError, NodeGoneError,
     preferred_logger,
@@ -109,12 +109,7 @@ class LoggersApp(App[int]):
         self.notice("master").say(f"master {self.master_label()}")
         self.query_one(NodeList).focus()
         self.run_worker(self._start(), name="start", exit_on_error=False)
-        loop = asyncio.get_running_loop()
-        for sig in (signal.SIGTERM, signal.SIGHUP):
-            try:
-                loop.add_signal_handler(sig, lambda: self.call_later(self.action_quit))
-            except (NotImplementedError, RuntimeError, ValueError):
-                pass
+        quit_on_signals(self)
 
     async def _start(self) -> None:
         await self.client.start()

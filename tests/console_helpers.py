@@ -9,9 +9,7 @@ fixed, so screens drawn from it are the same on every run (with TZ=UTC).
 
 from __future__ import annotations
 
-import asyncio
 from pathlib import Path
-from typing import Callable
 
 from rostui.core.log import RosoutLogWriter
 
@@ -57,12 +55,3 @@ def write_sample_log(path: Path, count: int = 20) -> Path:
     writer.close()
     return path
 
-
-async def until(predicate: Callable[[], bool], what: str, timeout: float = DEADLINE) -> None:
-    """Poll ``predicate`` on the running loop until it holds; fail with ``what`` if it never does."""
-    loop = asyncio.get_running_loop()
-    deadline = loop.time() + timeout
-    while not predicate():
-        if loop.time() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        await asyncio.sleep(0.02)

@@ -18,7 +18,8 @@ from rostui.apps.graph.app import GraphApp
 from rostui.core.graph.model import RosGraph
 from rostui.core.xmlrpc import call_sync, ros_result
 
-from live_helpers import DEADLINE, Program, start_headless_sim, wait_until
+from conftest import until
+from live_helpers import Program, start_headless_sim, wait_until
 
 #: (publisher, topic, subscriber or None) of the book's turtlesim graph.
 BOOK_EDGES = (
@@ -69,15 +70,6 @@ def stop_programs(programs: list[Program]) -> None:
     for program in reversed(programs):
         program.stop()
 
-
-async def until(predicate: Callable[[], bool], what: str, timeout: float = DEADLINE) -> None:
-    """Poll ``predicate`` on the running loop until it holds; fail with ``what`` if it never does."""
-    loop = asyncio.get_running_loop()
-    deadline = loop.time() + timeout
-    while not predicate():
-        if loop.time() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        await asyncio.sleep(0.02)
 
 
 def shown_names(app: GraphApp) -> set[str]:

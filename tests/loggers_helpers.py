@@ -10,6 +10,8 @@ from textual.pilot import Pilot
 from rostui.apps.loggers.app import LoggersApp
 from rostui.apps.loggers.panels import LevelList, LoggerTable, NodeList
 
+from conftest import until as poll_until
+
 DEADLINE = 30.0
 """Seconds a test waits for something the user would see (generous: CI machines are slow)."""
 
@@ -26,13 +28,12 @@ def quick_app(**kwargs: float) -> LoggersApp:
 async def until(predicate: Callable[[], bool], what: str, timeout: float = DEADLINE,
                 app: LoggersApp | None = None) -> None:
     """Poll ``predicate`` on the running loop until it holds; fail with ``what`` (and ``app``'s notices)."""
-    loop = asyncio.get_running_loop()
-    deadline = loop.time() + timeout
-    while not predicate():
-        if loop.time() > deadline:
-            shown = "" if app is None else f"; the app shows {notices(app)}"
-            raise AssertionError(f"timed out waiting for {what}{shown}")
-        await asyncio.sleep(0.02)
+    try:
+        await poll_until(predicate, what, timeout)
+    except AssertionError as error:
+        if app is None:
+            raise
+        raise AssertionError(f"{error}; the app shows {notices(app)}") from None
 
 
 def run_app(app: LoggersApp, scenario: Scenario, size: tuple[int, int] = (100, 30)) -> None:

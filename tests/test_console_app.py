@@ -23,7 +23,8 @@ from rostui.core.log import Level
 from rostui.core.log.rosout_read import RosoutEntry, read_rosout_log
 from rostui.core.node.node import AsyncNode
 
-from console_helpers import DEADLINE, until, write_sample_log
+from conftest import until
+from console_helpers import DEADLINE, write_sample_log
 
 Scenario = Callable[[Pilot, ConsoleApp], Awaitable[None]]
 

@@ -20,8 +20,10 @@ from rostui.apps.console.app import ConsoleApp
 from rostui.apps.console.model import ConsoleOptions
 from rostui.core.node.node import AsyncNode
 
-from conftest import SYSTEM_PYTHON, have_rospy, master_port, need_peer, rostui_cmd, stop_process, wait_for_port
-from console_helpers import DEADLINE, until
+from conftest import (
+    SYSTEM_PYTHON, have_rospy, master_port, need_peer, rostui_cmd, stop_process, until, wait_for_port,
+)
+from console_helpers import DEADLINE
 
 ROSPY_LOGGER = r'''
 import rospy

@@ -19,10 +19,9 @@ from rostui.apps.graph.app import GraphApp
 from rostui.core.graph.live import Mark
 from rostui.core.graph.view import GraphOptions, ViewMode, book_setup
 
-from conftest import master_port, rostui_cmd, stop_process, wait_for_port
+from conftest import master_port, rostui_cmd, stop_process, until, wait_for_port
 from graph_helpers import (
     banner, book_system, details, has_edges, run_graph, screen_text, settled, shown_names, status, stop_programs,
-    until,
 )
 from live_helpers import Program, wait_until
 

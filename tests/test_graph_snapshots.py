@@ -20,7 +20,8 @@ from textual.pilot import Pilot
 from rostui.apps.graph.app import GraphApp
 from rostui.core.graph.view import GraphOptions, ViewMode, book_setup
 
-from graph_helpers import book_system, settled, stop_programs, until
+from conftest import until
+from graph_helpers import book_system, settled, stop_programs
 from live_helpers import Program
 from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
 

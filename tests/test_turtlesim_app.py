@@ -24,20 +24,11 @@ from rostui.turtlesim.render import TurtleView, terminal_color
 from rostui.turtlesim.world import DEFAULT_PEN, UPDATE_PERIOD
 
 from cli_helpers import rostui
-from conftest import REPO, master_port
+from conftest import REPO, master_port, until
 
 DEADLINE = 30.0
 Scenario = Callable[[Pilot, TurtlesimApp], Awaitable[None]]
 
-
-async def until(predicate: Callable[[], bool], what: str, timeout: float = DEADLINE) -> None:
-    """Poll ``predicate`` on the running loop until it holds; fail with ``what`` if it never does."""
-    loop = asyncio.get_running_loop()
-    deadline = loop.time() + timeout
-    while not predicate():
-        if loop.time() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
-        await asyncio.sleep(0.02)
 
 
 def run_app(app: TurtlesimApp, scenario: Scenario, size: tuple[int, int] = (80, 24)) -> None:

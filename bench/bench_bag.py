@@ -26,7 +26,6 @@ import asyncio
 import json
 import os
 import shutil
-import socket
 import statistics
 import struct
 import subprocess
@@ -36,30 +35,12 @@ import time
 from pathlib import Path
 from typing import Any
 
-REPO = Path(__file__).resolve().parent.parent
+from _common import REPO, free_port, ros_env, wait_port
+
 sys.path.insert(0, str(REPO))
 MB = 1_000_000
 LADDER = [int(x) for x in os.environ.get("BENCH_BAG_LADDER", "50,100,200,300,400,500,600,700,800,1000").split(",")]
 TOPIC = "/bench"
-
-
-def free_port() -> int:
-    """A TCP port nothing listens on now."""
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def wait_port(port: int, timeout: float = 30.0) -> None:
-    """Block until 127.0.0.1:port accepts connections."""
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        try:
-            with socket.create_connection(("127.0.0.1", port), timeout=0.5):
-                return
-        except OSError:
-            time.sleep(0.05)
-    raise TimeoutError(f"nothing listens on {port}")
 
 
 def stop(proc: subprocess.Popen, timeout: float = 20.0) -> None:
@@ -287,8 +268,7 @@ def main() -> int:
     have_rosbag = shutil.which("rosbag") is not None
     tmp = Path(tempfile.mkdtemp(prefix="bench_bag_", dir=args.dir))
     port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=str(tmp / "ros_home"),
-               ROS_IP="127.0.0.1", PYTHONPATH=str(REPO))
+    env = ros_env(port, str(tmp / "ros_home"), PYTHONPATH=str(REPO))
     os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
     core = subprocess.Popen([sys.executable, "-m", "rostui", "core", "-p", str(port)], env=env, cwd=REPO,
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

@@ -34,56 +34,26 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-import fcntl
 import json
 import os
-import pty
 import re
 import shutil
 import signal
-import socket
 import statistics
-import struct
 import subprocess
 import sys
 import tempfile
-import termios
 import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
 
-REPO = Path(__file__).resolve().parent.parent
-APP_CPU = 0
+from _common import APP_CPU, REPO, PtyApp, free_port, other_cpus, ros_env, wait_port
+
 COLS, ROWS = 120, 40
 LEVEL_MIX = [1] * 60 + [2] * 30 + [4] * 8 + [8] * 2
 STATUS = re.compile(rb"([\d,]+) shown / ([\d,]+) kept(?:[^\n]*?([\d,]+) dropped)?")
-
-
-def free_port() -> int:
-    """A TCP port nothing listens on now."""
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def wait_port(port: int, timeout: float = 30.0) -> None:
-    """Block until 127.0.0.1:port accepts connections."""
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        try:
-            with socket.create_connection(("127.0.0.1", port), timeout=0.5):
-                return
-        except OSError:
-            time.sleep(0.05)
-    raise SystemExit(f"nothing listened on port {port} within {timeout:g}s")
-
-
-def other_cpus() -> set[int]:
-    """The CPUs for everything but the app (all of them if there is only one)."""
-    cpus = os.sched_getaffinity(0)
-    return (cpus - {APP_CPU}) or cpus
 
 
 # -- flood mode (a separate process) -----------------------------------------------------------
@@ -127,45 +97,16 @@ async def flood(rate: float, seconds: float) -> None:
 
 # -- the pseudo-terminal -----------------------------------------------------------------------
 @dataclass
-class Terminal:
-    """`rostui console` on the slave side of a pty; every byte it writes is kept with its arrival time."""
+class Terminal(PtyApp):
+    """`rostui console` on a pty; every byte it writes is kept."""
 
-    argv: list[str]
-    env: dict[str, str]
-    pin: set[int] | None = None
     data: bytearray = field(default_factory=bytearray)
-    proc: subprocess.Popen | None = None
-    _fd: int = -1
     _lock: threading.Lock = field(default_factory=threading.Lock)
-    _reader: threading.Thread | None = None
 
-    def start(self) -> None:
-        """Open the pty, size it, start the process on it and a thread reading everything it writes."""
-        master, slave = pty.openpty()
-        fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", ROWS, COLS, 0, 0))
-        pin = self.pin
-
-        def setup() -> None:
-            if pin:
-                os.sched_setaffinity(0, pin)
-
-        self.proc = subprocess.Popen(self.argv, env=self.env, cwd=REPO, stdin=slave, stdout=slave, stderr=slave,
-                                     start_new_session=True, preexec_fn=setup, close_fds=True)
-        os.close(slave)
-        self._fd = master
-        self._reader = threading.Thread(target=self._drain, daemon=True)
-        self._reader.start()
-
-    def _drain(self) -> None:
-        while True:
-            try:
-                chunk = os.read(self._fd, 65536)
-            except OSError:
-                return
-            if not chunk:
-                return
-            with self._lock:
-                self.data += chunk
+    def received(self, chunk: bytes) -> None:
+        """Keep ``chunk`` after the bytes before it."""
+        with self._lock:
+            self.data += chunk
 
     @property
     def size(self) -> int:
@@ -182,7 +123,7 @@ class Terminal:
         """Write ``key``; seconds until the output written after it satisfies ``done`` (None: timed out)."""
         offset = self.size
         start = time.perf_counter()
-        os.write(self._fd, key)
+        self.write(key)
         while time.perf_counter() - start < timeout:
             if done(self.since(offset)):
                 return time.perf_counter() - start
@@ -197,21 +138,6 @@ class Terminal:
                 tail = self.since(max(0, self.size - 2000)).decode(errors="replace")
                 raise SystemExit(f"the console never showed {marker!r}; last output:\n{tail}")
             time.sleep(0.05)
-
-    def quit(self) -> int:
-        """Press q; wait for the exit status (kill after 15 s)."""
-        assert self.proc is not None
-        if self.proc.poll() is None:
-            os.write(self._fd, b"q")
-            try:
-                self.proc.wait(timeout=15)
-            except subprocess.TimeoutExpired:
-                os.killpg(self.proc.pid, signal.SIGKILL)
-                self.proc.wait()
-        if self._reader is not None:
-            self._reader.join(timeout=5)
-        os.close(self._fd)
-        return self.proc.returncode
 
 
 def last_status(output: bytes) -> tuple[int, int, int] | None:
@@ -320,7 +246,7 @@ def baseline(args: argparse.Namespace, env: dict[str, str], home: str) -> KeyTim
     path = Path(home) / "baseline_rosout.log"
     write_log(path, args.max)
     console = Terminal([sys.executable, "-m", "rostui", "console", "--max", str(args.max), str(path)], env,
-                       pin={APP_CPU})
+                       COLS, ROWS, pin={APP_CPU})
     times = KeyTimes()
     try:
         console.start()
@@ -335,8 +261,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     """The no-flood baseline, then master, console and flood with the same keys; the measurements."""
     port = free_port()
     home = tempfile.mkdtemp(prefix="bench_console_")
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=home, ROS_IP="127.0.0.1",
-               TERM="xterm-256color", COLORTERM="truecolor", PYTHONUNBUFFERED="1")
+    env = ros_env(port, home, TERM="xterm-256color", COLORTERM="truecolor", PYTHONUNBUFFERED="1")
     env.pop("NO_COLOR", None)
     load_before = os.getloadavg()[0]
     quiet = baseline(args, env, home) if args.baseline_seconds > 0 else KeyTimes()
@@ -348,7 +273,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         master_argv = [sys.executable, "-m", "rostui", "core", "-p", str(port)]
     master = subprocess.Popen(master_argv, env=env, cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                               start_new_session=True, preexec_fn=pin_rest)
-    console = Terminal([sys.executable, "-m", "rostui", "console", "--max", str(args.max)], env, pin={APP_CPU})
+    console = Terminal([sys.executable, "-m", "rostui", "console", "--max", str(args.max)], env, COLS, ROWS,
+                       pin={APP_CPU})
     flooder: subprocess.Popen | None = None
     times = KeyTimes()
     try:

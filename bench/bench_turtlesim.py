@@ -21,100 +21,33 @@ There is no peer: ROS turtlesim needs a Qt window, which a terminal does not hav
 from __future__ import annotations
 
 import argparse
-import fcntl
 import json
 import os
-import pty
-import socket
-import struct
 import subprocess
 import sys
 import tempfile
-import termios
-import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-REPO = Path(__file__).resolve().parent.parent
-APP_CPU = 0
+from _common import APP_CPU, REPO, PtyApp, free_port, other_cpus, ros_env, wait_port
+
 TURTLES = 10
 LINEAR, ANGULAR = 1.5, 1.5  # circles of 1 m radius
 SPAWN_GRID = (2.3, 5.5, 8.7)
 
 
-def free_port() -> int:
-    """A TCP port nothing listens on now."""
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def wait_port(port: int, timeout: float = 30.0) -> None:
-    """Block until 127.0.0.1:port accepts connections."""
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        try:
-            with socket.create_connection(("127.0.0.1", port), timeout=0.5):
-                return
-        except OSError:
-            time.sleep(0.05)
-    raise SystemExit(f"nothing listened on port {port} within {timeout:g}s")
-
-
-def other_cpus() -> set[int]:
-    """The CPUs this script and the master may use: all but the app's, if there are others."""
-    cpus = os.sched_getaffinity(0)
-    rest = cpus - {APP_CPU}
-    return rest or cpus
-
-
 # -- the pseudo-terminal -----------------------------------------------------------------------
 @dataclass
-class Terminal:
-    """A process on the slave side of a pty of a fixed size; every byte it writes is counted."""
+class Terminal(PtyApp):
+    """A process on a pty of a fixed size; every byte it writes is counted."""
 
-    argv: list[str]
-    env: dict[str, str]
-    cols: int
-    rows: int
-    pin: set[int] | None = None
     chunks: list[tuple[float, int]] = field(default_factory=list)
-    proc: subprocess.Popen | None = None
-    _fd: int = -1
-    _reader: threading.Thread | None = None
 
-    def start(self) -> None:
-        """Open the pty, size it and start the process with it as stdin, stdout and stderr."""
-        master, slave = pty.openpty()
-        fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", self.rows, self.cols, 0, 0))
-        pin = self.pin
-
-        def setup() -> None:
-            if pin:
-                os.sched_setaffinity(0, pin)
-
-        self.proc = subprocess.Popen(self.argv, env=self.env, cwd=REPO, stdin=slave, stdout=slave, stderr=slave,
-                                     start_new_session=True, preexec_fn=setup, close_fds=True)
-        os.close(slave)
-        self._fd = master
-        self._reader = threading.Thread(target=self._drain, daemon=True)
-        self._reader.start()
-
-    def _drain(self) -> None:
-        while True:
-            try:
-                data = os.read(self._fd, 65536)
-            except OSError:
-                return
-            if not data:
-                return
-            self.chunks.append((time.monotonic(), len(data)))
-
-    def write(self, data: bytes) -> None:
-        """Type ``data`` into the terminal."""
-        os.write(self._fd, data)
+    def received(self, chunk: bytes) -> None:
+        """Count ``chunk`` with the time it arrived."""
+        self.chunks.append((time.monotonic(), len(chunk)))
 
     def bytes_between(self, start: float, end: float) -> int:
         """Bytes the process wrote in [start, end)."""
@@ -123,21 +56,6 @@ class Terminal:
     def per_second(self, start: float, end: float) -> list[int]:
         """Bytes written in each whole second of [start, end)."""
         return [self.bytes_between(start + i, start + i + 1) for i in range(int(end - start))]
-
-    def quit(self) -> int:
-        """Press q; wait for the exit status (kill after 15 s)."""
-        assert self.proc is not None
-        if self.proc.poll() is None:
-            self.write(b"q")
-            try:
-                self.proc.wait(timeout=15)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
-        if self._reader is not None:
-            self._reader.join(timeout=5)
-        os.close(self._fd)
-        return self.proc.returncode
 
 
 # -- the child for (a): the app sampling its own counters ---------------------------------------
@@ -237,8 +155,7 @@ class Driver:
 
 def base_env(port: int, home: str) -> dict[str, str]:
     """The environment every process of the bench shares."""
-    env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=home, ROS_IP="127.0.0.1",
-               TERM="xterm-256color", COLORTERM="truecolor", LANG="C.UTF-8")
+    env = ros_env(port, home, TERM="xterm-256color", COLORTERM="truecolor", LANG="C.UTF-8")
     env.pop("NO_COLOR", None)
     return env
 

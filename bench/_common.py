@@ -1,0 +1,123 @@
+"""What the benchmark scripts share: free ports, a private ROS environment, CPU pinning, an app on a pty.
+
+The scripts import it as ``_common`` (Python puts a script's own folder on
+``sys.path``).
+"""
+
+from __future__ import annotations
+
+import fcntl
+import os
+import pty
+import signal
+import socket
+import struct
+import subprocess
+import termios
+import threading
+import time
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+APP_CPU = 0
+"""The CPU the measured app is pinned to; everything else runs on the others."""
+
+
+def free_port() -> int:
+    """A TCP port nothing listens on now."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def wait_port(port: int, timeout: float = 30.0) -> None:
+    """Block until 127.0.0.1:port accepts connections; exit with one line if nothing does in time."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            with socket.create_connection(("127.0.0.1", port), timeout=0.5):
+                return
+        except OSError:
+            time.sleep(0.05)
+    raise SystemExit(f"nothing listened on port {port} within {timeout:g}s")
+
+
+def other_cpus() -> set[int]:
+    """The CPUs for everything but the app: all but APP_CPU, or all of them if there is only one."""
+    cpus = os.sched_getaffinity(0)
+    return (cpus - {APP_CPU}) or cpus
+
+
+def ros_env(port: int, home: str, **extra: str) -> dict[str, str]:
+    """This process's environment with a master on 127.0.0.1:``port``, ROS_HOME ``home`` and ``extra``."""
+    return dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=home, ROS_IP="127.0.0.1", **extra)
+
+
+@dataclass
+class PtyApp(ABC):
+    """A process on the slave side of a ``cols`` x ``rows`` pty, optionally pinned to ``pin``.
+
+    A thread reads everything the process writes and hands each chunk to
+    :meth:`received`, which subclasses define to keep what they measure.
+    """
+
+    argv: list[str]
+    env: dict[str, str]
+    cols: int
+    rows: int
+    pin: set[int] | None = None
+    proc: subprocess.Popen | None = None
+    _fd: int = -1
+    _reader: threading.Thread | None = None
+
+    def start(self) -> None:
+        """Open the pty, size it, start the process on it (its own session) and the reading thread."""
+        master, slave = pty.openpty()
+        fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", self.rows, self.cols, 0, 0))
+        pin = self.pin
+
+        def setup() -> None:
+            if pin:
+                os.sched_setaffinity(0, pin)
+
+        self.proc = subprocess.Popen(self.argv, env=self.env, cwd=REPO, stdin=slave, stdout=slave, stderr=slave,
+                                     start_new_session=True, preexec_fn=setup, close_fds=True)
+        os.close(slave)
+        self._fd = master
+        self._reader = threading.Thread(target=self._drain, daemon=True)
+        self._reader.start()
+
+    def _drain(self) -> None:
+        while True:
+            try:
+                chunk = os.read(self._fd, 65536)
+            except OSError:
+                return
+            if not chunk:
+                return
+            self.received(chunk)
+
+    @abstractmethod
+    def received(self, chunk: bytes) -> None:
+        """Keep what matters of ``chunk``, just read from the terminal (called on the reading thread)."""
+
+    def write(self, data: bytes) -> None:
+        """Type ``data`` into the terminal."""
+        os.write(self._fd, data)
+
+    def quit(self) -> int:
+        """Press q; wait for the exit status (kill the process's session after 15 s)."""
+        assert self.proc is not None
+        if self.proc.poll() is None:
+            self.write(b"q")
+            try:
+                self.proc.wait(timeout=15)
+            except subprocess.TimeoutExpired:
+                os.killpg(self.proc.pid, signal.SIGKILL)
+                self.proc.wait()
+        if self._reader is not None:
+            self._reader.join(timeout=5)
+        os.close(self._fd)
+        return self.proc.returncode

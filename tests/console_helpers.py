@@ -9,9 +9,12 @@ fixed, so screens drawn from it are the same on every run (with TZ=UTC).
 
 from __future__ import annotations
 
+import asyncio
 from pathlib import Path
 
+from rostui.apps.console.app import ConsoleApp
 from rostui.core.log import RosoutLogWriter
+from rostui.core.node.node import AsyncNode
 
 DEADLINE = 30.0
 
@@ -55,3 +58,12 @@ def write_sample_log(path: Path, count: int = 20) -> Path:
     writer.close()
     return path
 
+
+async def log_until_seen(app: ConsoleApp, node: AsyncNode, text: str) -> None:
+    """Log ``text`` at INFO until the app shows it (rosout connects to a new node asynchronously)."""
+    loop = asyncio.get_running_loop()
+    deadline = loop.time() + DEADLINE
+    while not any(e.message == text for _, e in app.model.shown()):
+        assert loop.time() < deadline, f"{text!r} never arrived"
+        node.log.info(text)
+        await asyncio.sleep(0.2)

@@ -24,7 +24,7 @@ from rostui.core.log.rosout_read import RosoutEntry, read_rosout_log
 from rostui.core.node.node import AsyncNode
 
 from conftest import until
-from console_helpers import DEADLINE, write_sample_log
+from console_helpers import log_until_seen, write_sample_log
 
 Scenario = Callable[[Pilot, ConsoleApp], Awaitable[None]]
 
@@ -445,16 +445,6 @@ async def connected(app: ConsoleApp) -> None:
     """Wait until the app listens to /rosout_agg."""
     await until(lambda: app.source_state is not None and app.source_state.status == "connected",
                 "the console to subscribe to /rosout_agg")
-
-
-async def log_until_seen(app: ConsoleApp, node: AsyncNode, text: str) -> None:
-    """Log ``text`` at INFO until the app shows it (rosout connects to a new node asynchronously)."""
-    loop = asyncio.get_running_loop()
-    deadline = loop.time() + DEADLINE
-    while not any(e.message == text for _, e in app.model.shown()):
-        assert loop.time() < deadline, f"{text!r} never arrived"
-        node.log.info(text)
-        await asyncio.sleep(0.2)
 
 
 def test_live_messages_arrive_with_their_fields(rostui_core: Any) -> None:

@@ -23,7 +23,7 @@ from rostui.core.node.node import AsyncNode
 from conftest import (
     SYSTEM_PYTHON, have_rospy, master_port, need_peer, rostui_cmd, stop_process, until, wait_for_port,
 )
-from console_helpers import DEADLINE
+from console_helpers import DEADLINE, log_until_seen
 
 ROSPY_LOGGER = r'''
 import rospy
@@ -99,30 +99,25 @@ def test_master_going_away_and_coming_back(kind: str, ros_env: dict[str, str]) -
         need_peer(shutil.which("roscore") is not None, "roscore (Debian ros-core)")
     masters = [start_master(kind, ros_env)]
 
-    async def log_until_seen(app: ConsoleApp, text: str) -> None:
+    async def talker_seen(app: ConsoleApp, text: str) -> None:
         node = AsyncNode("comeback_talker")
         node.log.console = None
         await node.start()
         try:
-            loop = asyncio.get_running_loop()
-            deadline = loop.time() + DEADLINE
-            while not any(e.message == text for _, e in app.model.shown()):
-                assert loop.time() < deadline, f"{text!r} never arrived"
-                node.log.info(text)
-                await asyncio.sleep(0.2)
+            await log_until_seen(app, node, text)
         finally:
             await node.shutdown()
 
     async def scenario(pilot: Pilot, app: ConsoleApp) -> None:
         await until(lambda: status(app).endswith(f"master {app.master_uri}"), "the console to connect")
-        await log_until_seen(app, "before the restart")
+        await talker_seen(app, "before the restart")
         await asyncio.get_running_loop().run_in_executor(None, stop_process, masters[0])
         await until(lambda: "gone: waiting for it to come back" in status(app), "the 'master gone' message")
         assert any(n.title == "master" and "gone" in n.message for n in app._notifications)
         assert app.is_running
         masters.append(await asyncio.get_running_loop().run_in_executor(None, start_master, kind, ros_env))
         await until(lambda: status(app).endswith(f"master {app.master_uri}"), "the console to reconnect")
-        await log_until_seen(app, "after the restart")
+        await talker_seen(app, "after the restart")
         assert app.source is not None and app.source.subscriptions >= 2
         assert [e.message for _, e in app.model.shown()].count("before the restart") >= 1
 

@@ -133,6 +133,15 @@ def rostui_cmd(*args: str) -> list[str]:
     return [sys.executable, "-m", "rostui", *args]
 
 
+def start_rostui_core(env: dict[str, str]) -> subprocess.Popen:
+    """A `rostui core` on the ros_env port, listening when this returns (output discarded; stop_process ends it)."""
+    port = master_port(env)
+    proc = subprocess.Popen(rostui_cmd("core", "-p", str(port)), env=env, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL)
+    wait_for_port(port, proc=proc)
+    return proc
+
+
 @pytest.fixture
 def rostui_core(ros_env: dict[str, str]) -> Iterator[subprocess.Popen]:
     """A `rostui core` master (with rosout) on the ros_env port."""

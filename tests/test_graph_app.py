@@ -19,7 +19,7 @@ from rostui.apps.graph.app import GraphApp
 from rostui.core.graph.live import Mark
 from rostui.core.graph.view import GraphOptions, ViewMode, book_setup
 
-from conftest import master_port, rostui_cmd, stop_process, until, wait_for_port
+from conftest import master_port, start_rostui_core, stop_process, until
 from graph_helpers import (
     banner, book_system, details, has_edges, run_graph, screen_text, settled, shown_names, status, stop_programs,
 )
@@ -313,13 +313,7 @@ def test_master_going_away_and_coming_back(ros_env: dict[str, str], tmp_path: Pa
     """The master stops: a red line says so and the last graph stays; it restarts: the graph comes back."""
     port = master_port(ros_env)
 
-    def start_core() -> subprocess.Popen:
-        proc = subprocess.Popen(rostui_cmd("core", "-p", str(port)), env=ros_env, stdout=subprocess.DEVNULL,
-                                stderr=subprocess.DEVNULL)
-        wait_for_port(port, proc=proc)
-        return proc
-
-    core = start_core()
+    core = start_rostui_core(ros_env)
     programs = book_system(ros_env, tmp_path)
     restarted: list[subprocess.Popen] = []
 
@@ -330,7 +324,7 @@ def test_master_going_away_and_coming_back(ros_env: dict[str, str], tmp_path: Pa
         assert f"master unreachable at http://127.0.0.1:{port}" in banner(app)
         assert "retrying" in banner(app) and "✖ master" in status(app)
         assert shown_names(app) == {"/teleop_turtle", "/turtlesim"}, "the last graph stays on screen"
-        restarted.append(start_core())
+        restarted.append(start_rostui_core(ros_env))
         await until(lambda: app.master_ok is True, "the app to reach the restarted master")
         await until(lambda: banner(app) == "" and "master is back" in status(app), "the all-clear")
         sub = Program(ros_env, tmp_path, "agitr", "subpose", label="subpose")

@@ -25,7 +25,7 @@ from rostui.core.log import Level
 from rostui.core.node import AsyncNode
 from rostui.core.tools.loggers import LEVEL_NAMES
 
-from conftest import master_port, rostui_cmd, stop_process, wait_for_port
+from conftest import start_rostui_core, stop_process
 from live_helpers import Program
 from loggers_helpers import (
     listed_nodes, marked_level, notice, quick_app, run_app, select_logger, select_node, shown_levels, until,
@@ -244,14 +244,6 @@ def test_node_that_never_answers_times_out_in_place(hung_node: str) -> None:
 
 def test_master_away_at_start_then_back_then_gone_then_back(ros_env: dict[str, str]) -> None:
     """No master: a red master line and no nodes; the master starts: nodes appear; it stops and restarts: same."""
-    port = master_port(ros_env)
-
-    def start_core() -> subprocess.Popen:
-        proc = subprocess.Popen(rostui_cmd("core", "-p", str(port)), env=ros_env, stdout=subprocess.DEVNULL,
-                                stderr=subprocess.DEVNULL)
-        wait_for_port(port, proc=proc)
-        return proc
-
     cores: list[subprocess.Popen] = []
 
     async def scenario(pilot: Pilot, app: LoggersApp) -> None:
@@ -259,14 +251,14 @@ def test_master_away_at_start_then_back_then_gone_then_back(ros_env: dict[str, s
         await until(lambda: notice(app, "master")[1] == "error", "the master line to turn red")
         assert notice(app, "master")[0] == f"master at {uri} is not answering; retrying every 0.3 s"
         assert notice(app, "nodes") == ("no master", "error") and listed_nodes(app) == []
-        cores.append(await asyncio.to_thread(start_core))
+        cores.append(await asyncio.to_thread(start_rostui_core, ros_env))
         await until(lambda: notice(app, "master") == (f"master {uri} is answering again", "ok"), "the master back")
         await select_node(pilot, app, "/rosout")
         await asyncio.to_thread(stop_process, cores[-1])
         await until(lambda: notice(app, "master")[1] == "error", "the master line red again")
         await until(lambda: notice(app, "loggers")[1] == "error", "the loggers panel to say the master is gone")
         assert listed_nodes(app) == [] and app.node == ""
-        cores.append(await asyncio.to_thread(start_core))
+        cores.append(await asyncio.to_thread(start_rostui_core, ros_env))
         await until(lambda: notice(app, "master")[1] == "ok", "the master back again")
         await select_node(pilot, app, "/rosout")
         await pilot.press("d")

@@ -502,25 +502,19 @@ class Subscription:
                     msg._connection_header = header
                     dispatch(msg)
             return on_raw
-        deserialize = self.msg_class.deserialize
-        topic = self.topic
+        on_frame = self._frame_handler()
 
-        def on_frames(frames: list[bytes], _header: dict[str, str]) -> None:
+        def on_frames(frames: list[bytes], header: dict[str, str]) -> None:
             if keep is not None and len(frames) > keep:
                 frames = frames[-keep:]
             for data in frames:
-                try:
-                    msg = deserialize(data)
-                except Exception as exc:
-                    log.warning("dropping undecodable message on %s: %s", topic, exc)
-                    continue
-                dispatch(msg)
+                on_frame(data, header)
         return on_frames
 
     def _frame_handler(self) -> Callable[[bytes, dict[str, str]], None]:
-        """The callback for a read that holds exactly one frame (no queue trimming can apply)."""
-        frames_handler = self._frames_handler()
+        """Decode one frame and dispatch it (also the callback for a read that holds exactly one frame)."""
         if self.raw:
+            frames_handler = self._frames_handler()
             return lambda payload, header: frames_handler([payload], header)
         deserialize = self.msg_class.deserialize
         dispatch = self._dispatch

@@ -601,6 +601,12 @@ class BwStats:
         self.times.append(t)
         self.sizes.append(size)
 
+    def bytes_per_second(self, now: float) -> float | None:
+        """The window's bytes divided by the time since its first message (None with fewer than two)."""
+        if len(self.times) < 2 or now <= self.times[0]:
+            return None
+        return sum(self.sizes) / (now - self.times[0])
+
     def report(self, now: float) -> str | None:
         """The two report lines, or None with fewer than two messages."""
         if len(self.times) < 2:

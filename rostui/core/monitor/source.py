@@ -1,0 +1,325 @@
+"""MonitorSource: the master's topics, and subscriptions to exactly the topics the monitor shows.
+
+One anonymous node ``/rostui_monitor_<pid>_<ms>`` runs on the caller's
+event loop.  Every ``period`` seconds it asks the master for
+``getSystemState`` and ``getTopicTypes``; whenever the wanted set changes
+(the app says which topics are on screen or expanded) it subscribes to the
+new ones with md5 ``*`` (no decoding: arrivals and sizes are all the table
+needs) and unsubscribes from those no longer wanted.  Messages are decoded
+only for a tree or a field plot.  When the master stops answering, the node
+is dropped and the source waits for a master to answer again.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from collections import deque
+from dataclasses import dataclass, field
+from typing import Any, Callable, Iterable
+
+from rostui.core.monitor.rows import Liveness, TopicRow
+from rostui.core.monitor.stats import TopicStats
+from rostui.core.monitor.tree import PathError, value_at
+
+__all__ = ["MonitorSource", "SourceState", "TopicInfo", "FieldPlot", "NODE_NAME"]
+
+#: The monitor's node name (made anonymous).
+NODE_NAME = "rostui_monitor"
+#: Seconds a master call may take before the master counts as gone.
+CALL_TIMEOUT = 3.0
+#: Values kept per plotted field.
+PLOT_POINTS = 600
+
+
+@dataclass(frozen=True)
+class TopicInfo:
+    """What the master says about one topic."""
+
+    name: str
+    type: str
+    publishers: tuple[str, ...]
+    subscribers: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class SourceState:
+    """``waiting`` (no master yet), ``connected`` or ``lost``, with a one-line detail."""
+
+    status: str
+    master_uri: str
+    detail: str = ""
+
+    def text(self) -> str:
+        """One line for the status bar."""
+        if self.status == "connected":
+            return f"● master {self.master_uri}"
+        if self.status == "lost":
+            return f"✖ master {self.master_uri} gone: waiting for it to come back"
+        return f"… waiting for master {self.master_uri}" + (f" ({self.detail})" if self.detail else "")
+
+
+@dataclass
+class FieldPlot:
+    """The values of one numeric field of a topic over time."""
+
+    topic: str
+    path: str
+    values: deque = field(default_factory=lambda: deque(maxlen=PLOT_POINTS))
+    error: str = ""
+
+    def add(self, msg: Any) -> None:
+        """Append the field's value in ``msg`` (or remember why there is none)."""
+        try:
+            self.values.append(value_at(msg, self.path))
+            self.error = ""
+        except PathError as exc:
+            self.error = str(exc)
+
+
+class _Watch:
+    """One subscription: its handle, statistics and the newest raw message."""
+
+    __slots__ = ("handle", "stats", "latest")
+
+    def __init__(self) -> None:
+        self.handle: Any = None
+        self.stats = TopicStats()
+        self.latest: Any = None
+
+
+class MonitorSource:
+    """The master at ``master_uri`` as the monitor sees it; call :meth:`run` as a task, :meth:`stop` to end."""
+
+    def __init__(self, master_uri: str, *, period: float = 1.0,
+                 on_state: Callable[[SourceState], None] | None = None,
+                 on_topics: Callable[[], None] | None = None) -> None:
+        self.master_uri = master_uri
+        self.period = period
+        self.on_state = on_state or (lambda _s: None)
+        self.on_topics = on_topics or (lambda: None)
+        self.state = SourceState("waiting", master_uri)
+        self.topics: dict[str, TopicInfo] = {}
+        self.node: Any = None
+        self.polls = 0
+        self.plot: FieldPlot | None = None
+        self.publishers: dict[str, Any] = {}
+        self._wanted: frozenset[str] = frozenset()
+        self._watches: dict[str, _Watch] = {}
+        self._wake = asyncio.Event()
+        self._stopped = False
+        self._lock = asyncio.Lock()
+
+    # -- what the app asks for -------------------------------------------------------
+    @property
+    def subscribed(self) -> frozenset[str]:
+        """Topics subscribed right now."""
+        return frozenset(self._watches)
+
+    def want(self, topics: Iterable[str]) -> None:
+        """Subscribe to exactly ``topics`` (those with publishers), soon; unsubscribe from the rest."""
+        wanted = frozenset(topics)
+        if wanted != self._wanted:
+            self._wanted = wanted
+            self._wake.set()
+
+    def stats(self, topic: str) -> TopicStats | None:
+        """The statistics of a subscribed topic."""
+        watch = self._watches.get(topic)
+        return watch.stats if watch is not None else None
+
+    def latest(self, topic: str) -> Any:
+        """The newest message of a subscribed topic, decoded (None before one came)."""
+        from rostui.core.tools.topic import decode
+
+        watch = self._watches.get(topic)
+        if watch is None or watch.latest is None:
+            return None
+        return decode(watch.latest)
+
+    def plot_field(self, topic: str, path: str) -> FieldPlot:
+        """Record ``path`` of every message of ``topic`` from now on (one field at a time)."""
+        self.plot = FieldPlot(topic, path)
+        watch = self._watches.get(topic)
+        if watch is not None and watch.latest is not None:
+            from rostui.core.tools.topic import decode
+
+            self.plot.add(decode(watch.latest))
+        return self.plot
+
+    def sample(self, now: float | None = None) -> None:
+        """Compute every subscribed topic's rate and bandwidth (once a second: the sparklines' step)."""
+        now = time.time() if now is None else now
+        for watch in self._watches.values():
+            watch.stats.sample(now)
+
+    def rows(self, now: float | None = None) -> list[TopicRow]:
+        """Every topic the master knows (and every subscribed one) as a table row, in name order."""
+        now = time.time() if now is None else now
+        me = self.node.name if self.node is not None else None
+        rows = []
+        names = set(self.topics) | set(self._watches)
+        for name in sorted(names):
+            info = self.topics.get(name) or TopicInfo(name, "unknown type", (), ())
+            subs = tuple(s for s in info.subscribers if s != me)
+            pubs = info.publishers
+            watch = self._watches.get(name)
+            if watch is None:
+                rows.append(TopicRow(name, info.type, pubs, subs,
+                                     liveness=Liveness.OFF if pubs else Liveness.NO_PUBLISHERS))
+                continue
+            st = watch.stats
+            rows.append(TopicRow(name, info.type, pubs, subs, st.rate, st.bandwidth, st.age(now),
+                                 self._liveness(watch, pubs, now)))
+        return rows
+
+    def _liveness(self, watch: _Watch, publishers: tuple[str, ...], now: float) -> Liveness:
+        st = watch.stats
+        connected = watch.handle.get_num_connections() if watch.handle is not None else 0
+        if st.messages == 0:
+            return Liveness.WAITING if publishers else Liveness.NO_PUBLISHERS
+        if connected == 0 or st.stale_at(now):
+            return Liveness.STALE
+        return Liveness.LIVE
+
+    def history(self, topic: str) -> tuple[list[float], list[float]]:
+        """The last :data:`~rostui.core.monitor.stats.HISTORY` rate and bandwidth samples of ``topic`` (empty when not subscribed)."""
+        watch = self._watches.get(topic)
+        if watch is None:
+            return [], []
+        return list(watch.stats.rate_history), list(watch.stats.bw_history)
+
+    # -- publishing ------------------------------------------------------------------
+    async def publish(self, topic: str, cls: Any, msg: Any, *, latch: bool) -> None:
+        """Publish ``msg`` on ``topic`` from the monitor's node (advertising it first, kept until the end)."""
+        if self.node is None:
+            raise RuntimeError(f"no master at {self.master_uri}")
+        pub = self.publishers.get(topic)
+        if pub is not None and (pub.msg_class._md5sum != cls._md5sum or pub.impl.latch != latch):
+            await pub.unregister()
+            pub = None
+        if pub is None:
+            pub = await self.node.advertise(topic, cls, queue_size=100, latch=latch)
+            self.publishers[topic] = pub
+        pub.publish(msg)
+
+    # -- the loop --------------------------------------------------------------------
+    async def run(self) -> None:
+        """Connect, poll the master, keep the subscriptions as wanted; reconnect after a master loss."""
+        had_master = False
+        while not self._stopped:
+            try:
+                await self._connect()
+                await self._poll()
+            except Exception as exc:  # any failure to reach the master is said on screen, then retried
+                await self._drop_node()
+                self._set_state("lost" if had_master else "waiting", "" if had_master else _reason(exc))
+                await self._sleep(self.period)
+                continue
+            had_master = True
+            self._set_state("connected")
+            next_poll = time.monotonic() + self.period
+            try:
+                while not self._stopped:
+                    await self._apply_wanted()
+                    await self._sleep(max(0.0, next_poll - time.monotonic()))
+                    if time.monotonic() >= next_poll:
+                        await self._poll()
+                        next_poll = time.monotonic() + self.period
+            except Exception:
+                pass
+            await self._drop_node()
+            if not self._stopped:
+                self._set_state("lost")
+
+    async def _sleep(self, seconds: float) -> None:
+        try:
+            await asyncio.wait_for(self._wake.wait(), seconds)
+        except asyncio.TimeoutError:
+            pass
+        self._wake.clear()
+
+    async def _connect(self) -> None:
+        from rostui.core.node import AsyncNode
+
+        node = AsyncNode(NODE_NAME, anonymous=True, argv=[], master_uri=self.master_uri)
+        node.log.console = None  # library warnings must not write over the screen
+        self.node = node
+        await asyncio.wait_for(node.start(publish_rosout=False), CALL_TIMEOUT)
+
+    async def _poll(self) -> None:
+        node = self.node
+        pubs, subs, _ = await asyncio.wait_for(node.master_call("getSystemState"), CALL_TIMEOUT)
+        types = dict(await asyncio.wait_for(node.master_call("getTopicTypes"), CALL_TIMEOUT))
+        publishers = {t: tuple(n) for t, n in pubs}
+        subscribers = {t: tuple(n) for t, n in subs}
+        self.topics = {name: TopicInfo(name, types.get(name, "unknown type"), publishers.get(name, ()),
+                                       subscribers.get(name, ()))
+                       for name in set(publishers) | set(subscribers)}
+        self.polls += 1
+        self.on_topics()
+
+    async def _apply_wanted(self) -> None:
+        """Subscribe to wanted topics that have publishers; unsubscribe from the unwanted ones."""
+        from rostui.core.node import AnyMsg
+
+        async with self._lock:
+            me = self.node.name
+            for name in [t for t in self._watches if t not in self._wanted]:
+                watch = self._watches.pop(name)
+                await watch.handle.unregister()
+            for name in sorted(self._wanted):
+                info = self.topics.get(name)
+                if name in self._watches or info is None or not [p for p in info.publishers if p != me]:
+                    continue
+                watch = _Watch()
+                self._watches[name] = watch
+                watch.handle = await self.node.subscribe(name, AnyMsg, self._receiver(name, watch))
+
+    def _receiver(self, topic: str, watch: _Watch) -> Callable[[Any], None]:
+        add = watch.stats.add
+        clock = time.time
+
+        def on_message(raw: Any) -> None:
+            add(clock(), len(raw._buff))
+            watch.latest = raw
+            plot = self.plot
+            if plot is not None and plot.topic == topic:
+                from rostui.core.tools.topic import decode
+
+                try:
+                    plot.add(decode(raw))
+                except Exception as exc:  # an undecodable message is a note on the plot, not a crash
+                    plot.error = f"cannot decode: {_reason(exc)}"
+
+        return on_message
+
+    async def _drop_node(self) -> None:
+        node, self.node = self.node, None
+        self._watches.clear()
+        self.publishers.clear()
+        if node is not None:
+            try:
+                await asyncio.wait_for(node.shutdown("rostui monitor done"), CALL_TIMEOUT)
+            except Exception:  # the master is gone; closing our own sockets is all that matters
+                pass
+
+    def _set_state(self, status: str, detail: str = "") -> None:
+        state = SourceState(status, self.master_uri, detail)
+        if state != self.state:
+            self.state = state
+            self.on_state(state)
+
+    async def stop(self) -> None:
+        """Unsubscribe, unadvertise and shut the node down."""
+        self._stopped = True
+        self._wake.set()
+        await self._drop_node()
+
+
+def _reason(exc: BaseException) -> str:
+    text = str(exc)
+    if "Unable to communicate" in text or isinstance(exc, (OSError, asyncio.TimeoutError)):
+        return "no answer"
+    return text.splitlines()[0] if text else type(exc).__name__
+

@@ -1,0 +1,99 @@
+"""Rate, bandwidth and age of one topic's messages, with a short history for sparklines.
+
+The rate is :class:`rostui.core.tools.topic.HzStats` over the arrivals of
+the last :data:`RATE_WINDOW_SECONDS` (rostopic hz's own computation, so the
+monitor agrees with ``rostui topic hz``); the bandwidth is
+:class:`~rostui.core.tools.topic.BwStats` (rostopic bw's).  Recording a
+message is one clock read and two deque appends; statistics are computed
+once per :meth:`TopicStats.sample`.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import deque
+from dataclasses import dataclass
+
+from rostui.core.tools.topic import BwStats, HzStats
+
+__all__ = ["TopicStats", "Sample", "RATE_WINDOW_SECONDS", "HISTORY", "STALE_MIN_SECONDS", "STALE_PERIODS"]
+
+#: Seconds of arrivals the rate is computed over (at least the last two arrivals are always kept).
+RATE_WINDOW_SECONDS = 10.0
+#: Arrivals kept at most for the rate (a 1 kHz topic keeps 5 s).
+RATE_WINDOW_MESSAGES = 5000
+#: Messages the bandwidth is averaged over (rostopic bw's default window).
+BW_WINDOW_MESSAGES = 100
+#: Samples (one per :meth:`TopicStats.sample`) kept for the sparklines.
+HISTORY = 60
+#: A topic is stale after this many of its usual periods without a message...
+STALE_PERIODS = 5.0
+#: ...and never sooner than this many seconds.
+STALE_MIN_SECONDS = 2.0
+
+
+@dataclass(frozen=True)
+class Sample:
+    """A topic's figures at one moment: rate (Hz), bandwidth (bytes/s), last message age (s)."""
+
+    rate: float | None
+    bandwidth: float | None
+    age: float | None
+    messages: int
+
+
+class TopicStats:
+    """Arrival times and sizes of one topic's messages since it was subscribed."""
+
+    __slots__ = ("hz", "bw", "messages", "last_arrival", "rate", "bandwidth", "rate_history", "bw_history")
+
+    def __init__(self) -> None:
+        self.hz = HzStats(RATE_WINDOW_MESSAGES)
+        self.bw = BwStats(BW_WINDOW_MESSAGES)
+        self.messages = 0
+        self.last_arrival: float | None = None
+        self.rate: float | None = None
+        self.bandwidth: float | None = None
+        self.rate_history: deque[float] = deque(maxlen=HISTORY)
+        self.bw_history: deque[float] = deque(maxlen=HISTORY)
+
+    def add(self, t: float, size: int) -> None:
+        """Record a message of ``size`` bytes arriving at wall time ``t``."""
+        self.hz.add(t)
+        self.bw.add(t, size)
+        self.messages += 1
+        self.last_arrival = t
+
+    def sample(self, now: float | None = None) -> Sample:
+        """Compute rate and bandwidth now, append them to the history, and return them."""
+        now = time.time() if now is None else now
+        times = self.hz.times
+        while len(times) > 2 and times[1] < now - RATE_WINDOW_SECONDS:
+            times.popleft()
+        figures = self.hz.stats()
+        if figures is not None:
+            self.rate = figures[0]
+        if self.stale_at(now):
+            self.rate = None
+        self.bandwidth = self.bw.bytes_per_second(now) if self.rate is not None else None
+        self.rate_history.append(self.rate or 0.0)
+        self.bw_history.append(self.bandwidth or 0.0)
+        return Sample(self.rate, self.bandwidth, self.age(now), self.messages)
+
+    def age(self, now: float | None = None) -> float | None:
+        """Seconds since the last message (None before the first)."""
+        if self.last_arrival is None:
+            return None
+        now = time.time() if now is None else now
+        return max(0.0, now - self.last_arrival)
+
+    def stale_limit(self) -> float:
+        """Seconds without a message after which this topic counts as stale."""
+        if self.rate:
+            return max(STALE_MIN_SECONDS, STALE_PERIODS / self.rate)
+        return STALE_MIN_SECONDS
+
+    def stale_at(self, now: float) -> bool:
+        """True when messages came but none for longer than :meth:`stale_limit`."""
+        age = self.age(now)
+        return age is not None and age > self.stale_limit()

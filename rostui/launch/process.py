@@ -1,4 +1,4 @@
-"""One node process under the supervisor: start, output routing, exit, and stopping its whole tree."""
+"""One node process under the supervisor: start, output routing, state, exit, and stopping its whole tree."""
 
 from __future__ import annotations
 
@@ -7,12 +7,38 @@ import os
 import signal
 import time
 from dataclasses import dataclass, field
+from enum import Enum
 from pathlib import Path
 from typing import IO
 
 import psutil
 
 from rostui.launch.model import NodeSpec
+from rostui.launch.output import OutputBuffer, pump
+
+
+class NodeState(Enum):
+    """Where a node of the launch stands."""
+
+    STARTING = "starting"
+    """Not started yet (the launch is still setting up, or earlier nodes are starting)."""
+    RUNNING = "running"
+    RESPAWNING = "respawning"
+    """Died; it starts again when its respawn delay is over."""
+    DIED = "died"
+    """Ended with a non-zero exit code (or a signal) and is not restarted."""
+    FINISHED = "finished"
+    """Ended with exit code 0 and is not restarted."""
+    STOPPING = "stopping"
+    STOPPED = "stopped"
+    """Stopped on request (from the monitor, or by the launch's shutdown)."""
+    FAILED = "failed"
+    """Could not be started (its program or launch-prefix cannot run)."""
+
+    @property
+    def ended(self) -> bool:
+        """True for a node that ended by itself and will not come back on its own."""
+        return self in (NodeState.DIED, NodeState.FINISHED, NodeState.FAILED)
 
 
 @dataclass
@@ -25,6 +51,8 @@ class ProcessPlan:
     env: dict[str, str]
     cwd: str
     stdout_log: Path | None
+    capture: bool = False
+    """True: stdout and stderr come through pipes into the process's :class:`OutputBuffer`."""
 
 
 @dataclass
@@ -36,7 +64,38 @@ class ManagedProcess:
     started_at: float = 0.0
     starts: int = 0
     known_tree: set[int] = field(default_factory=set)
+    state: NodeState = NodeState.STARTING
+    exit_code: int | None = None
+    respawn_at: float | None = None
+    """When (time.monotonic) a respawning node starts again."""
+    problem: str = ""
+    """Why the node could not be started (state FAILED)."""
+    output: OutputBuffer = field(default_factory=OutputBuffer)
+    """Its captured lines (with ``plan.capture``) and the launcher's notes about it."""
+    lock: asyncio.Lock = field(default_factory=asyncio.Lock)
+    """Held while the process is started or stopped, so a respawn and a request never overlap."""
     _log: IO[bytes] | None = None
+    _pumps: list[asyncio.Task[None]] = field(default_factory=list)
+
+    @property
+    def label(self) -> str:
+        """The process name of roslaunch (``ns-name-N``)."""
+        return self.plan.label
+
+    @property
+    def name(self) -> str:
+        """The node's global name."""
+        return self.plan.spec.resolved_name
+
+    @property
+    def restarts(self) -> int:
+        """How many times the node was started again after its first start."""
+        return max(0, self.starts - 1)
+
+    @property
+    def running(self) -> bool:
+        """True while its process has not exited."""
+        return self.proc is not None and self.proc.returncode is None
 
     @property
     def pid(self) -> int | None:
@@ -49,13 +108,30 @@ class ManagedProcess:
         if plan.stdout_log is not None and self._log is None:
             plan.stdout_log.parent.mkdir(parents=True, exist_ok=True)
             self._log = open(plan.stdout_log, "ab")  # noqa: SIM115 (kept open across respawns)
-        stdout = self._log if self._log is not None else None
+        if plan.capture:
+            stdout: int | IO[bytes] | None = asyncio.subprocess.PIPE
+            stderr: int | None = asyncio.subprocess.PIPE
+        else:
+            stdout, stderr = self._log, None
         self.proc = await asyncio.create_subprocess_exec(
             *plan.argv, env=plan.env, cwd=plan.cwd, stdin=asyncio.subprocess.DEVNULL, stdout=stdout,
-            stderr=None, start_new_session=True)
+            stderr=stderr, start_new_session=True)
         self.started_at = time.monotonic()
         self.starts += 1
         self.known_tree = {self.proc.pid}
+        self.state = NodeState.RUNNING
+        self.exit_code = None
+        self.respawn_at = None
+        if plan.capture:
+            assert self.proc.stdout is not None and self.proc.stderr is not None
+            loop = asyncio.get_running_loop()
+            self._pumps = [task for task in self._pumps if not task.done()]
+            self._pumps.append(loop.create_task(pump(self.proc.stdout, self.output, "stdout", self._log)))
+            self._pumps.append(loop.create_task(pump(self.proc.stderr, self.output, "stderr")))
+
+    def note(self, text: str) -> None:
+        """Add a line of the launcher's own (started, died, restarting...) to the node's output."""
+        self.output.append("launch", text)
 
     def remember_tree(self) -> None:
         """Record the pids of the node's descendants (so they can be reaped even after the leader exits)."""
@@ -132,6 +208,14 @@ class ManagedProcess:
             except psutil.Error:
                 continue
         psutil.wait_procs(leftovers, timeout=3)
+
+    async def drain(self, timeout: float = 2.0) -> None:
+        """Wait (up to ``timeout`` s) until the pipes' last lines are read (with ``plan.capture``)."""
+        pending = [task for task in self._pumps if not task.done()]
+        if pending:
+            _, late = await asyncio.wait(pending, timeout=timeout)
+            for task in late:
+                task.cancel()
 
     def close_log(self) -> None:
         """Close the stdout log file."""

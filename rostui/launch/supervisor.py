@@ -6,6 +6,13 @@ a running master is reused.  Order, as roslaunch: ``<rosparam command="delete|du
 then ``clear_params``, then every param, then ``/roslaunch/uris/host_<host>__<port>``,
 then the nodes.  Node stdout goes to ``$ROS_HOME/log/<run_id>/<name>-N-stdout.log``
 unless ``output="screen"`` or ``--screen``; stderr always goes to the console.
+
+With ``capture`` (``rostui launch --tui``) both streams of every node come
+through pipes into the node's output ring instead (stdout still also into its
+log file), the launcher's own lines go to :attr:`Supervisor.launch_output`,
+and the monitor drives the launch through :meth:`Supervisor.start_node`,
+:meth:`Supervisor.stop_node`, :meth:`Supervisor.restart_node` and
+:meth:`Supervisor.request_stop`.
 """
 
 from __future__ import annotations
@@ -22,7 +29,7 @@ import uuid
 import xmlrpc.client
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 from urllib.parse import urlsplit, urlunsplit
 
 import yaml
@@ -36,7 +43,8 @@ from rostui.launch.errors import LaunchError
 from rostui.launch.files import LaunchRequest
 from rostui.launch.inspect import load_config, node_argv, node_env
 from rostui.launch.model import LaunchConfig, NodeSpec
-from rostui.launch.process import ManagedProcess, ProcessPlan
+from rostui.launch.output import OutputBuffer
+from rostui.launch.process import ManagedProcess, NodeState, ProcessPlan
 
 CALLER = "/roslaunch"
 #: A respawned node that dies within this many seconds of starting is restarted with a growing delay.
@@ -55,6 +63,16 @@ class SupervisorOptions:
     port: int | None = None
     sigint_timeout: float = 15.0
     sigterm_timeout: float = 2.0
+    capture: bool = False
+    """Nodes' stdout and stderr into their output rings (the monitor owns the terminal)."""
+    handle_signals: bool = True
+    """Ctrl-C, SIGTERM and SIGHUP stop the launch (off when the monitor handles them)."""
+    stay_when_all_ended: bool = False
+    """Keep the launch (and the master) up when every node has ended, so nodes can be started again."""
+
+
+#: Receives each line of the launcher's own output and whether it is an error (stderr).
+Reporter = Callable[[str, bool], None]
 
 
 def say(message: str) -> None:
@@ -124,10 +142,16 @@ class _LaunchApi:
 
 
 class Supervisor:
-    """Starts a loaded launch and keeps it running until Ctrl-C, a required node's death or all nodes ending."""
+    """Starts a loaded launch and keeps it running until Ctrl-C, a required node's death or all nodes ending.
 
-    def __init__(self, config: LaunchConfig, anons: dict[str, str], options: SupervisorOptions) -> None:
-        """Keep the config, the launch's anon names and the options."""
+    ``reporter`` receives the launcher's own lines (default: stdout, errors on
+    stderr).  Every node of the file has a :class:`ManagedProcess` in
+    :attr:`processes` once the master answers, in file order.
+    """
+
+    def __init__(self, config: LaunchConfig, anons: dict[str, str], options: SupervisorOptions,
+                 reporter: Reporter | None = None) -> None:
+        """Keep the config, the launch's anon names, the options and where the launcher's lines go."""
         self.config = config
         self.anons = anons
         self.options = options
@@ -136,8 +160,35 @@ class Supervisor:
         self.embedded: EmbeddedMaster | None = None
         self.server: XmlRpcServer | None = None
         self.stopping = asyncio.Event()
+        self.finished = asyncio.Event()
+        """Set once :meth:`run` has stopped every node and the master."""
         self.exit_code = 0
         self.run_id = ""
+        self.end_reason = ""
+        """Why the launch ended by itself (a required node died, every node ended), for the monitor."""
+        self.launch_output = OutputBuffer()
+        """The launcher's own lines (what ``rostui launch`` prints)."""
+        self._reporter = reporter
+        self._watchers: dict[int, asyncio.Task[None]] = {}
+        self._failures: dict[int, str] = {}
+
+    # -- the launcher's own lines ------------------------------------------------------------------------------
+
+    def say(self, message: str) -> None:
+        """A line of the launcher's output."""
+        self.launch_output.append("launch", message)
+        if self._reporter is not None:
+            self._reporter(message, False)
+        else:
+            say(message)
+
+    def complain(self, message: str) -> None:
+        """A line of the launcher's error output."""
+        self.launch_output.append("error", message)
+        if self._reporter is not None:
+            self._reporter(message, True)
+        else:
+            complain(message)
 
     # -- set-up ------------------------------------------------------------------------------------------------
 
@@ -146,7 +197,7 @@ class Supervisor:
             announced = False
             while not await master_answers(self.master_uri, timeout=1.0):
                 if not announced:
-                    say(f"roslaunch: waiting for a master at {self.master_uri}")
+                    self.say(f"roslaunch: waiting for a master at {self.master_uri}")
                     announced = True
                 try:
                     await asyncio.wait_for(self.stopping.wait(), 0.5)
@@ -159,7 +210,7 @@ class Supervisor:
         except MasterUnavailableError as exc:
             raise LaunchError(str(exc)) from None
         if self.embedded is not None:
-            say(f"started master (in this process) and /rosout at {self.embedded.uri}")
+            self.say(f"started master (in this process) and /rosout at {self.embedded.uri}")
 
     async def _call(self, method: str, *args: Any) -> Any:
         client = XmlRpcClient(self.master_uri, timeout=10.0)
@@ -181,11 +232,11 @@ class Supervisor:
             if command.command == "delete":
                 reply = await self._call("deleteParam", command.param)
                 if reply[0] != 1:
-                    complain(f"WARNING: rosparam delete {command.param}: {reply[1]}")
+                    self.complain(f"WARNING: rosparam delete {command.param}: {reply[1]}")
             else:
                 reply = await self._call("getParam", command.param)
                 if reply[0] != 1:
-                    complain(f"WARNING: rosparam dump {command.param}: {reply[1]}")
+                    self.complain(f"WARNING: rosparam dump {command.param}: {reply[1]}")
                     continue
                 target = Path(command.file or "rosparam_dump.yaml")
                 target.write_text(yaml.safe_dump(reply[2], default_flow_style=False), encoding="utf-8")
@@ -202,7 +253,7 @@ class Supervisor:
             if reply[0] != 1:
                 raise LaunchError(f"cannot set parameter [{key}]: {reply[1]}")
             if self.options.verbose:
-                say(f"set parameter [{key}]")
+                self.say(f"set parameter [{key}]")
 
     async def _advertise(self) -> None:
         host = urlsplit(self.master_uri).hostname or "localhost"
@@ -217,6 +268,8 @@ class Supervisor:
         label = log_label(node, counter)
         argv = node_argv(node, self.anons) + [f"__log:={run_dir / (label + '.log')}"]
         env = node_env(node, self.master_uri)
+        if self.options.capture:
+            env.setdefault("PYTHONUNBUFFERED", "1")  # a Python node's prints reach the monitor as they happen
         if node.cwd == "node":
             exe = len(shlex.split(node.launch_prefix or ""))
             if argv[exe] == sys.executable:  # a built-in Python script run by this Python
@@ -227,33 +280,58 @@ class Supervisor:
             Path(cwd).mkdir(parents=True, exist_ok=True)
         to_screen = self.options.screen or node.output == "screen"
         stdout_log = None if to_screen else run_dir / f"{label}-stdout.log"
-        return ProcessPlan(node, label, argv, env, cwd, stdout_log)
+        return ProcessPlan(node, label, argv, env, cwd, stdout_log, capture=self.options.capture)
 
-    async def _start_nodes(self, run_dir: Path) -> None:
-        counter = 0
-        for node in self.config.nodes:
-            if self.stopping.is_set():
-                return
-            counter += 1
-            name = node.resolved_name
+    def _prepare_nodes(self, run_dir: Path) -> None:
+        """One process entry per node, in file order (a node that cannot run is marked FAILED, not dropped)."""
+        for counter, node in enumerate(self.config.nodes, start=1):
             problem = prefix_problem(node)
-            if problem:
-                complain(f"ERROR: cannot launch node [{name}]: {problem}; the other nodes keep running")
-                continue
+            message = f"ERROR: cannot launch node [{node.resolved_name}]: {problem}; the other nodes keep running"
             try:
                 plan = self._plan(node, counter, run_dir)
             except LaunchError as exc:
-                complain(f"ERROR: {exc.message}")
-                continue
+                plan = ProcessPlan(node, log_label(node, counter), [], {}, "", None, self.options.capture)
+                problem, message = problem or exc.message, f"ERROR: {exc.message}"
             process = ManagedProcess(plan)
-            try:
-                await process.start()
-            except OSError as exc:
-                complain(f"ERROR: cannot launch node [{name}]: {plan.argv[0]}: {exc.strerror or exc}")
-                continue
+            if problem:
+                process.state = NodeState.FAILED
+                process.problem = problem
+                self._failures[id(process)] = message
             self.processes.append(process)
-            say(f"process[{plan.label}]: started with pid [{process.pid}]")
-            asyncio.get_running_loop().create_task(self._watch(process))
+
+    async def _start_nodes(self) -> None:
+        for process in self.processes:
+            if self.stopping.is_set():
+                return
+            if process.state is NodeState.FAILED:
+                message = self._failures[id(process)]
+                self.complain(message)
+                process.note(message)
+                continue
+            async with process.lock:
+                await self._spawn(process, "started")
+
+    async def _spawn(self, process: ManagedProcess, verb: str) -> bool:
+        """Start ``process`` (the caller holds its lock) and watch it; False when it cannot be executed."""
+        plan = process.plan
+        process.reap_orphans()
+        try:
+            await process.start()
+        except OSError as exc:
+            message = f"ERROR: cannot launch node [{process.name}]: {plan.argv[0]}: {exc.strerror or exc}"
+            self.complain(message)
+            process.state = NodeState.FAILED
+            process.problem = f"{plan.argv[0]}: {exc.strerror or exc}"
+            process.note(message)
+            return False
+        message = f"process[{plan.label}]: {verb} with pid [{process.pid}]"
+        self.say(message)
+        process.note(message)
+        self._watchers[id(process)] = asyncio.get_running_loop().create_task(self._watch(process))
+        return True
+
+    def _all_ended(self) -> bool:
+        return all(p.state.ended and not p.plan.spec.respawn for p in self.processes)
 
     async def _watch(self, process: ManagedProcess) -> None:
         backoff = 0.0
@@ -264,101 +342,216 @@ class Supervisor:
                 return
             plan = process.plan
             ran_for = time.monotonic() - process.started_at
+            process.exit_code = code
+            process.state = NodeState.FINISHED if code == 0 else NodeState.DIED
             where = f", log file: {plan.stdout_log}" if plan.stdout_log else ""
             if code == 0:
-                say(f"[{plan.label}] process has finished cleanly{where}")
+                message = f"[{plan.label}] process has finished cleanly{where}"
+                self.say(message)
             else:
-                complain(f"[{plan.label}] process has died [pid {process.pid}, exit code {code}, "
-                         f"cmd {' '.join(plan.argv)}]{where}")
+                message = (f"[{plan.label}] process has died [pid {process.pid}, exit code {code}, "
+                           f"cmd {' '.join(plan.argv)}]{where}")
+                self.complain(message)
+            process.note(message)
             node = plan.spec
             if node.required:
-                complain(f"REQUIRED process [{plan.label}] has died! Initiating shutdown!")
+                self.complain(f"REQUIRED process [{plan.label}] has died! Initiating shutdown!")
+                self.end_reason = f"required node {process.name} has died (exit code {code}): the launch was shut down"
                 self.exit_code = 1 if code != 0 else 0
                 self.stopping.set()
                 return
             if not node.respawn:
-                if all(p.proc is not None and p.proc.returncode is not None and not p.plan.spec.respawn
-                       for p in self.processes) and self.embedded is None:
-                    say("all processes on machine have died, roslaunch will exit")
+                if self._all_ended() and self.embedded is None and not self.options.stay_when_all_ended:
+                    self.say("all processes on machine have died, roslaunch will exit")
+                    self.end_reason = "every node has ended: the launch is over"
                     self.stopping.set()
                 return
             backoff = min(MAX_BACKOFF, max(1.0, backoff * 2)) if ran_for < QUICK_DEATH else 0.0
             delay = node.respawn_delay + backoff
+            process.state = NodeState.RESPAWNING
+            process.respawn_at = time.monotonic() + delay
             if delay > 0:
-                say(f"[{plan.label}] restarting process in {delay:g} s")
+                message = f"[{plan.label}] restarting process in {delay:g} s"
+                self.say(message)
+                process.note(message)
                 try:
                     await asyncio.wait_for(self.stopping.wait(), delay)
                     return
                 except asyncio.TimeoutError:
                     pass
             else:
-                say(f"[{plan.label}] restarting process")
-            process.reap_orphans()
-            try:
-                await process.start()
-            except OSError as exc:
-                complain(f"ERROR: cannot restart [{plan.label}]: {exc.strerror or exc}")
-                return
-            say(f"process[{plan.label}]: restarted with pid [{process.pid}]")
+                self.say(f"[{plan.label}] restarting process")
+            async with process.lock:
+                if self.stopping.is_set():
+                    return
+                process.reap_orphans()
+                try:
+                    await process.start()
+                except OSError as exc:
+                    self.complain(f"ERROR: cannot restart [{plan.label}]: {exc.strerror or exc}")
+                    process.state = NodeState.FAILED
+                    process.problem = str(exc.strerror or exc)
+                    return
+            message = f"process[{plan.label}]: restarted with pid [{process.pid}]"
+            self.say(message)
+            process.note(message)
+
+    # -- control of one node (the monitor's start, stop and restart) ------------------------------------------
+
+    def process_named(self, name: str) -> ManagedProcess:
+        """The process of the node whose global name (or roslaunch label) is ``name``; LaunchError if none."""
+        for process in self.processes:
+            if name in (process.name, process.label):
+                return process
+        raise LaunchError(f"no node [{name}] in this launch")
+
+    async def _unwatch(self, process: ManagedProcess) -> None:
+        watcher = self._watchers.pop(id(process), None)
+        if watcher is not None and not watcher.done():
+            watcher.cancel()
+            await asyncio.gather(watcher, return_exceptions=True)
+
+    def _check_open(self, process: ManagedProcess) -> None:
+        if self.stopping.is_set():
+            raise LaunchError("the launch is shutting down")
+        if process.state is NodeState.FAILED and not process.plan.argv:
+            raise LaunchError(f"node [{process.name}] cannot be started: {process.problem}")
+
+    async def _stop_locked(self, process: ManagedProcess, why: str) -> None:
+        await self._unwatch(process)
+        if process.running:
+            process.state = NodeState.STOPPING
+            how = await process.stop(self.options.sigint_timeout, self.options.sigterm_timeout)
+            assert process.proc is not None
+            process.exit_code = process.proc.returncode
+            message = f"[{process.label}] {why} (ended on {how})" if how != "exited" else f"[{process.label}] {why}"
+            self.say(message)
+            process.note(message)
+        process.state = NodeState.STOPPED
+        process.respawn_at = None
+
+    async def stop_node(self, name: str) -> None:
+        """Stop one node as Ctrl-C would (SIGINT, SIGTERM, SIGKILL after the timeouts); it is not respawned.
+
+        A stopped node stays stopped until :meth:`start_node` or :meth:`restart_node`;
+        stopping a ``required`` node this way does not end the launch.
+        """
+        process = self.process_named(name)
+        async with process.lock:
+            if self.stopping.is_set():
+                raise LaunchError("the launch is shutting down")
+            await self._stop_locked(process, "stopped on request")
+
+    async def start_node(self, name: str) -> bool:
+        """Start a node that is not running (stopped, ended, respawning: now); False when it cannot be executed."""
+        process = self.process_named(name)
+        async with process.lock:
+            self._check_open(process)
+            if process.running:
+                return True
+            await self._unwatch(process)
+            return await self._spawn(process, "started on request")
+
+    async def restart_node(self, name: str) -> bool:
+        """Stop a node (when it runs) and start it again with a new process; False when it cannot be executed."""
+        process = self.process_named(name)
+        async with process.lock:
+            self._check_open(process)
+            await self._stop_locked(process, "stopped for a restart")
+            return await self._spawn(process, "restarted on request")
+
+    def request_stop(self) -> None:
+        """Begin the shutdown (as Ctrl-C does); :attr:`finished` is set when every node is stopped."""
+        if not self.stopping.is_set():
+            self.say("shutting down processing monitor...")
+        self.stopping.set()
 
     # -- run and stop ------------------------------------------------------------------------------------------
 
     async def run(self) -> int:
         """Set everything up, start the nodes and wait until the launch ends; returns the exit status."""
         loop = asyncio.get_running_loop()
-        for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
-            loop.add_signal_handler(signum, self._on_signal)
+        if self.options.handle_signals:
+            for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+                loop.add_signal_handler(signum, self.request_stop)
         try:
             await self._master()
             self.run_id = await self._run_id()
             run_dir = run_log_dir(self.run_id)
-            say(f"logging to {run_dir}")
+            self.say(f"logging to {run_dir}")
             await self._rosparam_commands()
             await self._set_params()
             await self._advertise()
-            await self._start_nodes(run_dir)
-            if not self.processes and self.embedded is None and not self.stopping.is_set():
-                say("no nodes to run, roslaunch will exit")
+            self._prepare_nodes(run_dir)
+            await self._start_nodes()
+            started = [p for p in self.processes if p.starts]
+            if not started and self.embedded is None and not self.stopping.is_set() \
+                    and not self.options.stay_when_all_ended:
+                self.say("no nodes to run, roslaunch will exit")
+                self.end_reason = "no node could run: the launch is over"
                 self.stopping.set()
             await self.stopping.wait()
         except (XmlRpcError, OSError) as exc:
-            complain(f"ERROR: cannot talk to the master at {self.master_uri}: {exc}")
+            self.complain(f"ERROR: cannot talk to the master at {self.master_uri}: {exc}")
+            self.end_reason = f"cannot talk to the master at {self.master_uri}: {exc}"
             self.exit_code = 1
         finally:
             await self.shutdown()
         return self.exit_code
 
-    def _on_signal(self) -> None:
-        if not self.stopping.is_set():
-            say("shutting down processing monitor...")
-        self.stopping.set()
+    async def _stop_for_shutdown(self, process: ManagedProcess) -> str:
+        async with process.lock:
+            was_running = process.running
+            if was_running:
+                process.state = NodeState.STOPPING
+            how = await process.stop(self.options.sigint_timeout, self.options.sigterm_timeout)
+            if was_running:
+                process.state = NodeState.STOPPED
+                process.note(f"[{process.label}] stopped by the launch's shutdown")
+            if process.state is NodeState.RESPAWNING:
+                process.state = NodeState.STOPPED
+                process.respawn_at = None
+            return how
 
     async def shutdown(self) -> None:
         """Stop every node (SIGINT, SIGTERM, SIGKILL after the timeouts), then the API server and the master."""
         self.stopping.set()
-        stops = [p.stop(self.options.sigint_timeout, self.options.sigterm_timeout) for p in self.processes]
-        results = await asyncio.gather(*stops, return_exceptions=True)
-        for process, how in zip(self.processes, results):
-            if how in ("SIGTERM", "SIGKILL"):
-                complain(f"[{process.plan.label}] did not stop on SIGINT: sent {how}")
-            process.close_log()
-        if self.server is not None:
-            await self.server.close()
-        if self.embedded is not None:
-            await self.embedded.stop()
-        say("done")
+        try:
+            stops = [self._stop_for_shutdown(p) for p in self.processes]
+            results = await asyncio.gather(*stops, return_exceptions=True)
+            for process, how in zip(self.processes, results):
+                if how in ("SIGTERM", "SIGKILL"):
+                    self.complain(f"[{process.plan.label}] did not stop on SIGINT: sent {how}")
+                await process.drain()
+                process.close_log()
+            for watcher in self._watchers.values():
+                watcher.cancel()
+            if self.server is not None:
+                await self.server.close()
+            if self.embedded is not None:
+                await self.embedded.stop()
+            self.say("done")
+        finally:
+            self.finished.set()
 
 
-def run_launch(request: LaunchRequest, options: SupervisorOptions) -> int:
-    """Load the files (any error: nothing starts), check machines, then supervise; returns the exit status."""
+def load_supervisor(request: LaunchRequest, options: SupervisorOptions,
+                    reporter: Reporter | None = None) -> Supervisor:
+    """Load the files (any error raises LaunchError: nothing starts), check machines and executables."""
     config, loader = load_config(request)
+    supervisor = Supervisor(config, loader.anons, options, reporter)
     for warning in config.warnings:
-        complain(f"WARNING: {warning}")
+        supervisor.complain(f"WARNING: {warning}")
     check_machines(config)
     for node in config.nodes:
         node_argv(node, loader.anons)  # every executable must exist before anything starts
     if options.verbose:
         for node in config.nodes:
-            say(f"node {node.resolved_name}: {node.package}/{node.type}")
-    supervisor = Supervisor(config, loader.anons, options)
+            supervisor.say(f"node {node.resolved_name}: {node.package}/{node.type}")
+    return supervisor
+
+
+def run_launch(request: LaunchRequest, options: SupervisorOptions) -> int:
+    """Load the files (any error: nothing starts), check machines, then supervise; returns the exit status."""
+    supervisor = load_supervisor(request, options)
     return asyncio.run(supervisor.run())

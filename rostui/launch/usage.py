@@ -1,0 +1,65 @@
+"""CPU and memory of a node's processes, measured with psutil between two samples."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Iterable
+
+import psutil
+
+
+@dataclass(frozen=True)
+class Usage:
+    """What a node's processes use: CPU in percent of one core since the last sample, resident memory in bytes."""
+
+    cpu_percent: float
+    rss_bytes: int
+
+
+class UsageSampler:
+    """Measures groups of pids; keeps one psutil handle per pid so CPU is the share since the previous sample.
+
+    The first sample of a pid reads 0 % CPU (there is nothing to compare with yet).
+    """
+
+    def __init__(self) -> None:
+        """No pid seen yet."""
+        self._handles: dict[int, psutil.Process] = {}
+
+    def measure(self, pids: Iterable[int]) -> Usage | None:
+        """The summed usage of ``pids`` (None when none of them is alive)."""
+        cpu = 0.0
+        rss = 0
+        alive = False
+        for pid in pids:
+            handle = self._handle(pid)
+            if handle is None:
+                continue
+            try:
+                with handle.oneshot():
+                    cpu += handle.cpu_percent(None)
+                    rss += handle.memory_info().rss
+            except psutil.Error:
+                self._handles.pop(pid, None)
+                continue
+            alive = True
+        return Usage(cpu, rss) if alive else None
+
+    def forget_dead(self) -> None:
+        """Drop the handles of processes that have ended."""
+        for pid, handle in list(self._handles.items()):
+            if not handle.is_running():
+                del self._handles[pid]
+
+    def _handle(self, pid: int) -> psutil.Process | None:
+        handle = self._handles.get(pid)
+        if handle is not None and handle.is_running():
+            return handle
+        try:
+            handle = psutil.Process(pid)
+            handle.cpu_percent(None)
+        except psutil.Error:
+            self._handles.pop(pid, None)
+            return None
+        self._handles[pid] = handle
+        return handle

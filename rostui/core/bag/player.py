@@ -11,16 +11,14 @@ import asyncio
 import signal
 import sys
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 from rostui.core.bag.files import Reader, merged_messages, open_reader
 from rostui.core.bag.model import BagError, BagSummary, Connection
+from rostui.core.bag.transport import MessageItem, StreamSource, Transport
 
-SPIN_BEFORE = 0.003  # the last moments before a message are slept without the loop (its timers are ms-grained)
-SPIN_LAST = 0.0002
-_now = time.perf_counter  # uvloop's loop.time() advances in whole milliseconds: too coarse at 1 kHz
 STATUS_PERIOD = 0.1
 
 
@@ -56,7 +54,7 @@ def status_text(state: str, bag_time_ns: int, elapsed_s: float, total_s: float) 
 
 
 class Player:
-    """Publishes the messages of one or more bags in time order."""
+    """Publishes the messages of one or more bags in time order, through one :class:`Transport`."""
 
     def __init__(self, node: Any, opts: PlayOptions, readers: list[Reader], *,
                  status: Callable[[str], None] | None = None, summaries: list[BagSummary] | None = None) -> None:
@@ -73,22 +71,30 @@ class Player:
             starts = ends = [0]
         self.bag_start = min(starts)
         self.bag_end = max(ends)
-        self.play_from = self.bag_start + int(opts.start_s * 1e9)
-        self.play_until = (self.play_from + int(opts.duration_s * 1e9)) if opts.duration_s is not None else None
+        play_from = self.bag_start + int(opts.start_s * 1e9)
+        play_until = (play_from + int(opts.duration_s * 1e9)) if opts.duration_s is not None else None
         from rostui.core.names import resolve_name
 
         # --topics names topics as recorded: resolved, but not remapped
         self.wanted = {resolve_name(t, node.namespace, node.name) for t in opts.topics} if opts.topics else None
         self.publishers: dict[tuple[str, str], Any] = {}
         self.clock_pub: Any = None
-        self.paused = opts.start_paused
-        self.step = asyncio.Event()
-        self.resume = asyncio.Event()
         self.stop = asyncio.Event()
         self.stats = PlayStats()
         self._last_status = 0.0
-        self._bag_now = self.play_from
-        self._next_ns = self.play_from
+        tick = STATUS_PERIOD if not opts.clock else min(STATUS_PERIOD, 1 / opts.clock_hz)
+        self.transport = Transport(StreamSource(self._stream), self._publish, start_ns=self.bag_start,
+                                   end_ns=self.bag_end, rate=opts.rate, loop=opts.loop, paused=opts.start_paused,
+                                   play_from=play_from, play_until=play_until, accepts=self._accepts,
+                                   on_tick=self._on_tick, tick_period=tick)
+
+    def _stream(self) -> Iterator[MessageItem]:
+        return ((conn, t, data) for conn, t, data, _i in merged_messages(self.readers))
+
+    @property
+    def paused(self) -> bool:
+        """True while paused."""
+        return self.transport.paused
 
     def _topics(self) -> dict[str, list[Connection]]:
         by_topic: dict[str, list[Connection]] = {}
@@ -121,23 +127,33 @@ class Player:
             self.clock_pub = await self.node.advertise("/clock", get_message_class("rosgraph_msgs/Clock"),
                                                        queue_size=1)
 
+    def _accepts(self, conn: Connection) -> bool:
+        return (conn.topic, conn.md5sum) in self.publishers
+
+    def _publish(self, conn: Connection, t: int, data: bytes) -> None:
+        self._publish_clock(t)
+        self.publishers[(conn.topic, conn.md5sum)].publish(_raw(data))
+        self._show()
+
     def _publish_clock(self, bag_ns: int) -> None:
         if self.clock_pub is not None:
             msg = self.clock_pub.msg_class()
             msg.clock.secs, msg.clock.nsecs = divmod(bag_ns, 1_000_000_000)
             self.clock_pub.publish(msg)
 
+    def _on_tick(self, bag_ns: int) -> None:
+        if self.clock_pub is not None and not self.transport.paused:
+            self._publish_clock(bag_ns)
+        self._show()
+
     def toggle_pause(self) -> None:
         """Space: pause or resume."""
-        self.paused = not self.paused
-        if not self.paused:
-            self.resume.set()
+        self.transport.toggle_pause()
         self._show(force=True)
 
     def step_once(self) -> None:
         """``s`` while paused: publish the next message."""
-        if self.paused:
-            self.step.set()
+        self.transport.step()
 
     def _show(self, force: bool = False) -> None:
         if self.status is None:
@@ -146,94 +162,9 @@ class Player:
         if not force and now - self._last_status < STATUS_PERIOD:
             return
         self._last_status = now
-        state = "PAUSED " if self.paused else "RUNNING"
-        self.status(status_text(state, self._bag_now, (self._bag_now - self.bag_start) / 1e9,
-                                (self.bag_end - self.bag_start) / 1e9))
-
-    async def _wait_until(self, loop: asyncio.AbstractEventLoop, target: float) -> None:
-        while True:
-            remaining = target - _now()
-            if remaining <= 0 or self.stop.is_set():
-                return
-            if remaining > SPIN_BEFORE:
-                period = STATUS_PERIOD if self.clock_pub is None else min(STATUS_PERIOD, 1 / self.opts.clock_hz)
-                await asyncio.sleep(min(remaining - SPIN_BEFORE, period))  # stop is checked on each pass
-                if self.clock_pub is not None and not self.paused:
-                    ahead = max(0.0, target - _now()) * self.opts.rate
-                    self._publish_clock(max(self._bag_now, self._next_ns - int(ahead * 1e9)))
-                self._show()
-                if self.paused:
-                    return
-            else:
-                # a short blocking sleep: precise to tens of microseconds, and it yields the CPU
-                # (spinning would make the scheduler preempt us for whole time slices on a busy machine)
-                time.sleep(max(0.0, target - _now() - SPIN_LAST))
-                while _now() < target:  # the last ~0.2 ms: a sleep's wake-up is about that late
-                    pass
-                return
-
-    async def _wait_while_paused(self) -> float:
-        """Block while paused (a step lets one message through); returns the seconds spent paused."""
-        began = time.monotonic()
-        while self.paused and not self.stop.is_set():
-            self.resume.clear()
-            waiters = [asyncio.ensure_future(e.wait()) for e in (self.resume, self.step, self.stop)]
-            await asyncio.wait(waiters, timeout=STATUS_PERIOD, return_when=asyncio.FIRST_COMPLETED)
-            for w in waiters:
-                w.cancel()
-            self._show()
-            if self.step.is_set():
-                self.step.clear()
-                return -1.0
-        return time.monotonic() - began
-
-    async def play_once(self) -> None:
-        """Publish every message once, in time order, with the original spacing divided by the rate."""
-        loop = asyncio.get_running_loop()
-        rate = self.opts.rate
-        wall_zero: float | None = None
-        for conn, t, data, _i in merged_messages(self.readers):
-            if self.stop.is_set():
-                return
-            if t < self.play_from:
-                continue
-            await asyncio.sleep(0)  # the loop's turn: sends, connections, signals, keys
-            if self.play_until is not None and t > self.play_until:
-                break
-            pub = self.publishers.get((conn.topic, conn.md5sum))
-            if pub is None:
-                continue
-            if wall_zero is None:
-                wall_zero = _now() - (t - self.play_from) / 1e9 / rate
-            target = wall_zero + (t - self.play_from) / 1e9 / rate
-            self._next_ns = t
-            stepped = False
-            while True:
-                if self.paused:
-                    spent = await self._wait_while_paused()
-                    if spent < 0:
-                        stepped = True
-                        wall_zero = _now() - (t - self.play_from) / 1e9 / rate
-                        break
-                    wall_zero += spent
-                    target += spent
-                await self._wait_until(loop, target)
-                if not self.paused or self.stop.is_set():
-                    break
-            if self.stop.is_set():
-                return
-            self._bag_now = t
-            self._publish_clock(t)
-            actual = _now()
-            pub.publish(_raw(data))
-            if not stepped:
-                self.stats.lateness.append(actual - target)
-            self.stats.published += 1
-            self._show()
-        if wall_zero is not None and self.opts.loop and not self.stop.is_set():
-            end = self.play_until if self.play_until is not None else self.bag_end
-            await self._wait_until(loop, wall_zero + (end - self.play_from) / 1e9 / rate)
-        await asyncio.sleep(0)
+        state = "PAUSED " if self.transport.paused else "RUNNING"
+        shown = self.transport.last_ns if self.transport.last_ns is not None else self.transport.play_from
+        self.status(status_text(state, shown, (shown - self.bag_start) / 1e9, (self.bag_end - self.bag_start) / 1e9))
 
     async def run(self) -> PlayStats:
         """Advertise, wait ``delay`` for subscribers to connect, then play (again and again with ``loop``)."""
@@ -242,19 +173,23 @@ class Player:
             await asyncio.wait_for(self.stop.wait(), self.opts.delay_s)
         except asyncio.TimeoutError:
             pass
+        if self.stop.is_set():
+            return self.stats
         import gc
 
         was_enabled = gc.isenabled()
         gc.collect()
         gc.disable()  # playback makes no reference cycles; a collection pause would delay messages by ms
+        stopper = asyncio.ensure_future(self.stop.wait())
+        stopper.add_done_callback(lambda _f: self.transport.stop())
         try:
-            while not self.stop.is_set():
-                await self.play_once()
-                if not self.opts.loop:
-                    break
+            await self.transport.run()
         finally:
+            stopper.cancel()
             if was_enabled:
                 gc.enable()
+        self.stats.published = self.transport.published
+        self.stats.lateness = self.transport.lateness
         self._show(force=True)
         return self.stats
 

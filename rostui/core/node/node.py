@@ -20,6 +20,7 @@ from rostui.core.log import Console, LoggerTree, NodeLog, package_logger
 from rostui.core.memory import tune_allocator
 from rostui.core.network import Addressing, master_uri_from_env, resolve_addressing
 from rostui.core.node.anymsg import AnyMsg
+from rostui.core.node.busypoll import BusyPoll, busy_poll_for
 from rostui.core.node.logging_link import NodeLogging
 from rostui.core.node.params import ParamCache
 from rostui.core.node.services import ServiceException, ServiceProxy, ServiceServer
@@ -112,11 +113,13 @@ class AsyncNode:
 
     ``argv`` is the node's command line without the program name; ROS
     arguments in it (``a:=b``, ``__name:=``, ``__ns:=``, ``_param:=``, ...) are
-    applied, the rest are left in ``self.argv``.
+    applied, the rest are left in ``self.argv``.  With ``busy_poll`` the loop
+    spins briefly between densely arriving messages instead of sleeping
+    (:mod:`rostui.core.node.busypoll`); the sync API turns it on.
     """
 
     def __init__(self, name: str, *, argv: Sequence[str] | None = None, anonymous: bool = False,
-                 master_uri: str | None = None, package: str | None = None) -> None:
+                 master_uri: str | None = None, package: str | None = None, busy_poll: bool = False) -> None:
         args = names.parse_argv(list(argv or []))
         self.args = args
         self.argv = list(args.args)
@@ -135,6 +138,8 @@ class AsyncNode:
         self.tcpros_port = 0
         self.loop: asyncio.AbstractEventLoop = None  # type: ignore[assignment]
         self.loop_thread_id = -1
+        self.busy_poll: BusyPoll | None = None
+        self._wants_busy_poll = busy_poll
         self.shutdown_reason: str | None = None
         self.shutdown_hooks: list[Callable[[str], Any]] = []
         self._master: XmlRpcClient | None = None
@@ -156,6 +161,7 @@ class AsyncNode:
         self.logging.attach()
         self.loop = asyncio.get_running_loop()
         self.loop_thread_id = threading.get_ident()
+        self.busy_poll = busy_poll_for(self.loop) if self._wants_busy_poll else None
         self._done = asyncio.Event()
         self._master = XmlRpcClient(self.master_uri)
         bind, host = self.addressing.bind_host, self.addressing.advertise_host

@@ -92,7 +92,8 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     engine = Engine()
     argv = list(sys.argv if argv is None else argv)
     package = package_of(argv[0]) if argv and argv[0] and os.path.exists(argv[0]) else None
-    node = _node.AsyncNode(name, argv=argv[1:], anonymous=anonymous, master_uri=master_uri, package=package)
+    node = _node.AsyncNode(name, argv=argv[1:], anonymous=anonymous, master_uri=master_uri, package=package,
+                           busy_poll=True)
     if log_level is not None:
         node.log.set_level(Level(int(log_level)))
     engine.run(node.start(announce=False))

@@ -454,7 +454,8 @@ class Subscription:
                 done.set_result(reason or "connection closed")
 
         proto = SubscriberConnection(self._request_header(), self._check_header,
-                                     self._frames_handler(), on_lost, self._frame_handler())
+                                     self._frames_handler(), on_lost, self._frame_handler(),
+                                     busy_poll=self.node.busy_poll)
         try:
             await self.node.loop.create_connection(lambda: proto, host, port)
         except OSError as exc:

@@ -14,6 +14,7 @@ import logging
 import socket
 from typing import Any, Callable, Protocol
 
+from rostui.core.node.busypoll import BusyPoll
 from rostui.core.tcpros import (
     MAX_HEADER,
     FrameReader,
@@ -77,6 +78,8 @@ class StallWatch:
 class ConnectionRouter(Protocol):
     """What an InboundConnection needs from its node to route a new peer."""
 
+    busy_poll: BusyPoll | None
+
     def route_inbound(self, header: dict[str, str], conn: "InboundConnection") -> "InboundHandler | str":
         """Return a handler for the connection, or an error string to refuse it."""
 
@@ -106,6 +109,7 @@ class InboundConnection(asyncio.Protocol):
         self.reader = FrameReader(MAX_HEADER)
         self.handler: InboundHandler | None = None
         self.peer: Any = None
+        self.busy_poll = router.busy_poll
         self._watch: StallWatch | None = None
 
     def connection_made(self, transport: asyncio.BaseTransport) -> None:
@@ -117,6 +121,8 @@ class InboundConnection(asyncio.Protocol):
 
     def data_received(self, data: bytes) -> None:
         """Read the header, route, then pass frames to the handler."""
+        if self.busy_poll is not None:
+            self.busy_poll.traffic()
         handler = self.handler
         if handler is not None:
             # One whole frame with nothing buffered: the stall watch is idle (see SubscriberConnection).
@@ -200,7 +206,8 @@ class SubscriberConnection(asyncio.Protocol):
     or None; ``on_frames`` receives message payloads with the publisher header; ``on_lost`` is called
     once when the connection ends.  ``on_frame``, when given, takes the common
     case of a read holding exactly one frame (``on_frame(payload, header)``)
-    and must behave like ``on_frames([payload], header)``.
+    and must behave like ``on_frames([payload], header)``.  ``busy_poll``, when
+    given, hears of every read (see :mod:`rostui.core.node.busypoll`).
     """
 
     def __init__(
@@ -210,12 +217,14 @@ class SubscriberConnection(asyncio.Protocol):
         on_frames: Callable[[list[bytes], dict[str, str]], None],
         on_lost: Callable[[str | None], None],
         on_frame: Callable[[bytes, dict[str, str]], None] | None = None,
+        busy_poll: BusyPoll | None = None,
     ) -> None:
         self.request_header = request_header
         self.on_header = on_header
         self.on_frames = on_frames
         self.on_frame = on_frame if on_frame is not None else (lambda payload, header: on_frames([payload], header))
         self.on_lost = on_lost
+        self.busy_poll = busy_poll
         self.reader = FrameReader(MAX_HEADER)
         self.header: dict[str, str] | None = None
         self.transport: asyncio.Transport | None = None
@@ -234,6 +243,8 @@ class SubscriberConnection(asyncio.Protocol):
 
     def data_received(self, data: bytes) -> None:
         """Parse the publisher header, then message frames."""
+        if self.busy_poll is not None:
+            self.busy_poll.traffic()
         self.bytes_received += len(data)
         header = self.header
         if header is not None:

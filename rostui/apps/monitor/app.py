@@ -1,0 +1,396 @@
+"""MonitorApp: every topic live in one table, expanded topics as message trees, sparklines, publishing.
+
+A :class:`~rostui.core.monitor.source.MonitorSource` runs on Textual's loop:
+it polls the master and subscribes only to the topics whose rows are on
+screen (plus the expanded and plotted ones).  A timer repaints the table,
+the trees and the charts a few times a second; a second timer samples rates
+and bandwidths once a second (the sparklines' step).  Keys act at once:
+sorting, filtering, expanding and publishing repaint in the same handler.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+from typing import ClassVar, Sequence
+
+from textual import on
+from textual.app import App, ComposeResult
+from textual.binding import Binding, BindingType
+from textual.containers import Horizontal
+from textual.markup import escape
+from textual.widgets import DataTable, Input, Static
+
+from rostui.apps.monitor.detail import Charts, MessageTree
+from rostui.apps.monitor.editor import PublishEditor
+from rostui.apps.monitor.table import TopicTable
+from rostui.apps.widgets.lifecycle import quit_on_signals
+from rostui.core.monitor.publish import (
+    PublishError, Repeater, check_topic, message_from_text, message_template, parse_rate,
+)
+from rostui.core.monitor.rows import Column, Liveness, TopicRow, filter_rows, sort_rows
+from rostui.core.monitor.source import MonitorSource, SourceState
+from rostui.core.monitor.tree import PathError, message_tree, value_at
+from rostui.core.network import master_uri_from_env
+
+__all__ = ["MonitorApp", "run_app", "KEYS"]
+
+#: Key help at the bottom.
+KEYS = "/ filter  s sort  S reverse  Enter expand  Tab tree  f plot field  p publish  q quit"
+#: Seconds between repaints of the table, trees and charts.
+REFRESH = 0.25
+#: Seconds between rate/bandwidth samples (one sparkline step).
+SAMPLE = 1.0
+
+
+class FilterInput(Input):
+    """The filter line; Escape clears it and goes back to the table."""
+
+    BINDINGS: ClassVar[list[BindingType]] = [Binding("escape", "cancel", "clear filter", show=False)]
+
+    def action_cancel(self) -> None:
+        """Clear the filter and close the line."""
+        app = self.app
+        assert isinstance(app, MonitorApp)
+        app.close_filter(clear=True)
+
+
+class MonitorApp(App[int]):
+    """The topics of the master at ``master_uri`` (ROS_MASTER_URI by default); ``topics`` start expanded.
+
+    The master is polled every ``period`` seconds.
+    """
+
+    CSS_PATH = Path(__file__).with_name("app.tcss")
+    TITLE = "rostui monitor"
+    ENABLE_COMMAND_PALETTE = False
+
+    BINDINGS: ClassVar[list[BindingType]] = [
+        Binding("q", "quit", "quit"),
+        Binding("slash", "open_filter", "filter"),
+        Binding("s", "sort_next", "sort"),
+        Binding("S", "sort_reverse", "reverse sort"),
+        Binding("f", "plot", "plot field"),
+        Binding("p", "publish", "publish"),
+        Binding("x", "collapse", "collapse topic", show=False),
+    ]
+
+    def __init__(self, topics: Sequence[str] = (), *, master_uri: str | None = None, period: float = 1.0,
+                 refresh: float = REFRESH) -> None:
+        super().__init__()
+        self.master_uri = master_uri_from_env(master_uri)
+        self.source = MonitorSource(self.master_uri, period=period, on_state=self._on_state)
+        self.refresh_period = refresh
+        self.expanded: list[str] = list(dict.fromkeys(topics))
+        self.sort_column = Column.TOPIC
+        self.sort_reverse = False
+        self.filter_text = ""
+        self.notice = ""
+        self.rows: list[TopicRow] = []
+        self.shown: list[TopicRow] = []
+        self.repeaters: dict[str, Repeater] = {}
+        self.repaints = 0
+        self._shut = False
+
+    # -- composition -------------------------------------------------------------------
+    def compose(self) -> ComposeResult:
+        """Status, problem line, the table, the expanded view (trees | charts), filter line, keys."""
+        yield Static(id="status")
+        yield Static(id="banner")
+        yield TopicTable(id="topics")
+        with Horizontal(id="detail"):
+            yield MessageTree(id="tree")
+            yield Charts(id="charts")
+        yield FilterInput(placeholder="filter topics by name or type", id="filter")
+        yield Static(KEYS, id="keys")
+
+    def on_mount(self) -> None:
+        """Start the source and the timers; the table has the focus."""
+        quit_on_signals(self)
+        self.query_one("#filter").display = False
+        self.query_one("#banner").display = False
+        self.table.focus()
+        self.tree.set_topics(self.expanded)
+        self.run_worker(self.source.run(), group="source", exit_on_error=False)
+        self.set_interval(self.refresh_period, self.repaint)
+        self.set_interval(SAMPLE, self.sample)
+        self.repaint()
+
+    @property
+    def table(self) -> TopicTable:
+        """The topic table."""
+        return self.query_one("#topics", TopicTable)
+
+    @property
+    def tree(self) -> MessageTree:
+        """The message trees of the expanded topics."""
+        return self.query_one("#tree", MessageTree)
+
+    # -- the live picture ----------------------------------------------------------------
+    def _on_state(self, state: SourceState) -> None:
+        if not self._shut:
+            self.repaint()
+
+    def sample(self) -> None:
+        """Take this second's rates and bandwidths."""
+        self.source.sample()
+
+    def repaint(self) -> None:
+        """Rows filtered and sorted into the table, subscriptions to what is shown, trees, charts, status."""
+        if self._shut:
+            return
+        now = time.time()
+        self.rows = self.source.rows(now)
+        self.shown = sort_rows(filter_rows(self.rows, self.filter_text), self.sort_column, self.sort_reverse)
+        table = self.table
+        table.show(self.shown)
+        self.source.want(self.wanted_topics())
+        self.paint_detail()
+        self.update_status()
+        self.repaints += 1
+
+    def wanted_topics(self) -> set[str]:
+        """What the monitor subscribes to: the rows on screen, the expanded topics and the plotted one."""
+        wanted = set(self.table.visible_topics()) | set(self.expanded)
+        if self.source.plot is not None:
+            wanted.add(self.source.plot.topic)
+        return wanted
+
+    def row_of(self, topic: str) -> TopicRow | None:
+        """The latest row of ``topic``."""
+        return next((r for r in self.rows if r.name == topic), None)
+
+    def topic_type(self, topic: str) -> str | None:
+        """The type the master knows for ``topic``."""
+        info = self.source.topics.get(topic)
+        return info.type if info is not None else None
+
+    def paint_detail(self) -> None:
+        """The message trees of the expanded topics and the charts of the topic in focus."""
+        detail = self.query_one("#detail")
+        detail.display = bool(self.expanded)
+        if not self.expanded:
+            return
+        tree = self.tree
+        for topic in self.expanded:
+            row = self.row_of(topic)
+            heading = f"{topic} [{row.type}]" if row is not None else f"{topic} (not published)"
+            msg = None
+            note = ""
+            try:
+                msg = self.source.latest(topic)
+            except Exception as exc:  # a message we cannot decode is a note on its branch
+                note = f"cannot decode: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}"
+            if msg is None and not note:
+                note = "(waiting for a message)" if row is None or row.liveness is not Liveness.NO_PUBLISHERS \
+                    else "(no publishers)"
+            elif row is not None and row.liveness is Liveness.STALE:
+                note = "✖ stale: no messages lately"
+            tree.show_message(topic, heading, message_tree(msg) if msg is not None else None, note)
+        focus = self.focus_topic()
+        rates, bandwidths = self.source.history(focus) if focus else ([], [])
+        self.query_one("#charts", Charts).show(focus, rates, bandwidths, self.source.plot)
+
+    def focus_topic(self) -> str | None:
+        """The topic the charts are about: the tree's under its cursor when the tree has focus, else the table's."""
+        if self.focused is self.tree:
+            where = self.tree.cursor_topic_and_path()
+            if where is not None:
+                return where[0]
+        return self.table.current_topic or (self.expanded[0] if self.expanded else None)
+
+    def update_status(self) -> None:
+        """The status line and the red problem line."""
+        parts = [f"{len(self.rows)} topics", f"{len(self.shown)} shown", f"{len(self.source.subscribed)} subscribed",
+                 f"sort {self.sort_column.value} {'↑' if self.sort_reverse else '↓'}"]
+        if self.filter_text:
+            parts.append(f"filter {self.filter_text!r}")
+        running = [f"{r.topic} {r.rate:g} Hz" for r in self.repeaters.values() if r.running]
+        if running:
+            parts.append("publishing " + ", ".join(running))
+        parts.append(self.source.state.text())
+        if self.notice:
+            parts.append(self.notice)
+        self.query_one("#status", Static).update(escape(" │ ".join(parts)))
+        problem = ""
+        if self.source.state.status != "connected":
+            problem = self.source.state.text().lstrip("…✖ ")
+            if self.source.state.status == "waiting":
+                problem += "; start one with `rostui core` (retrying)"
+        elif self.rows and not self.shown:
+            problem = f"no topic matches {self.filter_text!r}"
+        banner = self.query_one("#banner", Static)
+        banner.update(escape(problem))
+        banner.display = bool(problem)
+
+    def say(self, text: str) -> None:
+        """A notice in the status line (until the next one)."""
+        self.notice = text
+        self.update_status()
+
+    # -- keys ------------------------------------------------------------------------
+    def action_sort_next(self) -> None:
+        """s: sort by the next column."""
+        self.sort_column = self.sort_column.next()
+        self.repaint()
+
+    def action_sort_reverse(self) -> None:
+        """S: reverse the order."""
+        self.sort_reverse = not self.sort_reverse
+        self.repaint()
+
+    def action_open_filter(self) -> None:
+        """/: type a filter (name or type contains it); the table follows each keystroke."""
+        line = self.query_one("#filter", FilterInput)
+        line.value = self.filter_text
+        line.display = True
+        line.focus()
+
+    @on(Input.Changed, "#filter")
+    def _filter_typed(self, event: Input.Changed) -> None:
+        self.filter_text = event.value
+        self.repaint()
+
+    @on(Input.Submitted, "#filter")
+    def _filter_done(self) -> None:
+        self.close_filter(clear=False)
+
+    def close_filter(self, *, clear: bool) -> None:
+        """Hide the filter line (``clear``: and drop the filter)."""
+        line = self.query_one("#filter", FilterInput)
+        if clear:
+            self.filter_text = ""
+            line.value = ""
+        line.display = False
+        self.table.focus()
+        self.repaint()
+
+    @on(DataTable.RowSelected, "#topics")
+    def _row_chosen(self, event: DataTable.RowSelected) -> None:
+        topic = str(event.row_key.value)
+        self.toggle_expanded(topic)
+
+    def toggle_expanded(self, topic: str) -> None:
+        """Enter: show ``topic``'s newest message as a tree below the table (again: hide it)."""
+        if topic in self.expanded:
+            self.expanded.remove(topic)
+        else:
+            self.expanded.append(topic)
+        self.tree.set_topics(self.expanded)
+        self.repaint()
+
+    def action_collapse(self) -> None:
+        """x: hide the tree of the topic in focus."""
+        topic = self.focus_topic()
+        if topic in self.expanded:
+            self.toggle_expanded(topic)
+
+    def action_plot(self) -> None:
+        """f: plot the number under the tree's cursor over time (in the charts)."""
+        where = self.tree.cursor_topic_and_path() if self.focused is self.tree else None
+        if where is None or not where[1]:
+            self.say("f plots a number: Tab to the tree, pick a numeric field")
+            return
+        topic, path = where
+        msg = self.source.latest(topic)
+        try:
+            if msg is not None:
+                value_at(msg, path)
+        except PathError as exc:
+            self.say(str(exc))
+            return
+        self.source.plot_field(topic, path)
+        self.say(f"plotting {topic}/{path}")
+        self.repaint()
+
+    def action_publish(self) -> None:
+        """p: open the publish editor for the topic in focus."""
+        topic = self.focus_topic() or ""
+        self.push_screen(PublishEditor(topic, self.topic_type(topic) or "" if topic else ""))
+
+    # -- publishing (called by the editor) -------------------------------------------------
+    def _message(self, editor: PublishEditor) -> tuple[str, object, object]:
+        topic = check_topic(editor.topic)
+        if editor.msg_class is None or getattr(editor.msg_class, "_type", None) != editor.type_name:
+            cls, _ = message_template(editor.type_name)
+            editor.msg_class = cls
+        cls = editor.msg_class
+        known = self.topic_type(topic)
+        if known and known != "*" and known != cls._type:  # type: ignore[attr-defined]
+            raise PublishError(f"{topic} is published as {known}, not {cls._type}")  # type: ignore[attr-defined]
+        return topic, cls, message_from_text(cls, editor.yaml_text)
+
+    def send_once(self, editor: PublishEditor) -> None:
+        """Publish the editor's message once, latched (as ``rostopic pub -1`` does)."""
+        try:
+            topic, cls, msg = self._message(editor)
+        except PublishError as exc:
+            editor.say(str(exc), error=True)
+            return
+
+        async def send() -> None:
+            try:
+                await self.source.publish(topic, cls, msg, latch=True)
+            except Exception as exc:  # no master, or the master refused: said in the editor
+                editor.say(f"not sent: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}", error=True)
+                return
+            editor.say(f"sent 1 message on {topic}")
+            self.say(f"sent 1 message on {topic}")
+
+        self.run_worker(send(), group="publish", exit_on_error=False)
+
+    def toggle_repeat(self, editor: PublishEditor) -> None:
+        """Publish the editor's message at its rate, or stop the topic's repeating publisher."""
+        try:
+            topic = check_topic(editor.topic)
+        except PublishError as exc:
+            editor.say(str(exc), error=True)
+            return
+        running = self.repeaters.get(topic)
+        if running is not None and running.running:
+            running.stop()
+            editor.say(f"stopped publishing {topic} ({running.sent} sent)")
+            self.say(f"stopped publishing {topic}")
+            return
+        try:
+            rate = parse_rate(editor.rate_text)
+            if rate is None:
+                raise PublishError("type a rate in Hz to publish repeatedly (ctrl+s sends once)")
+            topic, cls, msg = self._message(editor)
+        except PublishError as exc:
+            editor.say(str(exc), error=True)
+            return
+        repeater = Repeater(topic, rate, lambda: self.source.publish(topic, cls, msg, latch=False))
+        repeater.start()
+        self.repeaters[topic] = repeater
+        editor.say(f"publishing {topic} at {rate:g} Hz (ctrl+r stops)")
+        self.update_status()
+
+    # -- the end ----------------------------------------------------------------------
+    async def action_quit(self) -> None:
+        """q: stop publishing, unsubscribe, leave."""
+        await self._close()
+        self.exit(0)
+
+    async def on_unmount(self) -> None:
+        """However the app ends, the node leaves the master."""
+        await self._close()
+
+    async def _close(self) -> None:
+        if not self._shut:
+            self._shut = True
+            for repeater in self.repeaters.values():
+                repeater.stop()
+            await self.source.stop()
+
+
+def run_app(topics: Sequence[str], *, period: float = 1.0) -> int:
+    """Run :class:`MonitorApp` in this terminal; returns the exit status (1 without a TTY)."""
+    if not (sys.stdin.isatty() and sys.stdout.isatty()):
+        print("ERROR: rostui monitor draws in a terminal: stdin and stdout must be a TTY "
+              "(use `rostui topic hz/bw/echo` without one)", file=sys.stderr)
+        return 1
+    app = MonitorApp(topics, period=period)
+    app.run()
+    return app.return_code or 0

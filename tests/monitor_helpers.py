@@ -1,0 +1,67 @@
+"""Helpers for the monitor tests: steady publishers as real processes, and the master's view of subscriptions.
+
+Publishers are the real `rostui topic pub -r RATE` command (one process per
+topic), so messages reach the monitor over TCPROS as from any other node.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import xmlrpc.client
+from pathlib import Path
+from typing import Iterator, Sequence
+
+from conftest import rostui_cmd, stop_process
+
+__all__ = ["Publisher", "start_publishers", "stop_all", "subscribers_on_master", "master_subscriptions"]
+
+
+class Publisher:
+    """`rostui topic pub -r RATE TOPIC TYPE YAML` running as a process (output to a file)."""
+
+    def __init__(self, env: dict[str, str], tmp_path: Path, topic: str, type_name: str, yaml_text: str,
+                 rate: float) -> None:
+        self.topic = topic
+        log = tmp_path / f"pub{topic.replace('/', '_')}.log"
+        self._out = log.open("w")
+        self.proc = subprocess.Popen(rostui_cmd("topic", "pub", "-r", f"{rate:g}", topic, type_name, yaml_text),
+                                     env=env, stdout=self._out, stderr=subprocess.STDOUT)
+
+    def stop(self) -> None:
+        """SIGINT the publisher (it unregisters) and wait for it."""
+        stop_process(self.proc)
+        self._out.close()
+
+    def kill(self) -> None:
+        """SIGKILL the publisher: it dies without unregistering from the master."""
+        self.proc.kill()
+        self.proc.wait()
+        self._out.close()
+
+
+def start_publishers(env: dict[str, str], tmp_path: Path, specs: Sequence[tuple[str, str, str, float]]) \
+        -> list[Publisher]:
+    """One publisher process per ``(topic, type, yaml, rate)``."""
+    return [Publisher(env, tmp_path, *spec) for spec in specs]
+
+
+def stop_all(publishers: Iterator[Publisher] | Sequence[Publisher]) -> None:
+    """Stop every publisher still running."""
+    for pub in publishers:
+        if pub.proc.poll() is None:
+            pub.stop()
+
+
+def master_subscriptions(env: dict[str, str], node_prefix: str = "/rostui_monitor") -> set[str]:
+    """Topics the master lists a subscriber ``node_prefix...`` for (getSystemState, as any ROS tool sees it)."""
+    master = xmlrpc.client.ServerProxy(env["ROS_MASTER_URI"])
+    code, _, (_, subs, _) = master.getSystemState("/monitor_test")
+    assert code == 1
+    return {topic for topic, nodes in subs if any(n.startswith(node_prefix) for n in nodes)}
+
+
+def subscribers_on_master(env: dict[str, str]) -> dict[str, list[str]]:
+    """Every topic's subscriber nodes as the master lists them."""
+    master = xmlrpc.client.ServerProxy(env["ROS_MASTER_URI"])
+    _, _, (_, subs, _) = master.getSystemState("/monitor_test")
+    return {topic: list(nodes) for topic, nodes in subs}

@@ -53,6 +53,31 @@ def status_text(state: str, bag_time_ns: int, elapsed_s: float, total_s: float) 
             "               ")
 
 
+async def advertise_connections(node: Any, conns: Sequence[Connection], queue_size: int = 100
+                                ) -> dict[tuple[str, str], Any]:
+    """Advertise each connection's topic with its recorded type, md5sum and definition (latched when any
+    connection of the topic was); returns the publishers by ``(topic, md5sum)``.
+
+    A topic recorded with two types is published with the first.
+    """
+    from rostui.core.node import AnyMsg
+    from rostui.core.node.topics import TopicType
+
+    latched = {c.topic for c in conns if c.latching}
+    publishers: dict[tuple[str, str], Any] = {}
+    for conn in conns:
+        key = (conn.topic, conn.md5sum)
+        if key in publishers:
+            continue
+        ttype = TopicType(conn.type, conn.md5sum, conn.definition)
+        try:
+            publishers[key] = await node.advertise(conn.topic, AnyMsg, queue_size=queue_size,
+                                                   latch=conn.topic in latched, topic_type=ttype)
+        except ValueError:
+            continue
+    return publishers
+
+
 class Player:
     """Publishes the messages of one or more bags in time order, through one :class:`Transport`."""
 
@@ -106,21 +131,8 @@ class Player:
 
     async def advertise(self) -> None:
         """Advertise every topic to play with its recorded type; latched when recorded latched."""
-        from rostui.core.node import AnyMsg
-        from rostui.core.node.topics import TopicType
-
-        for topic, conns in self._topics().items():
-            latch = any(c.latching for c in conns)
-            for conn in conns:
-                key = (conn.topic, conn.md5sum)
-                if key in self.publishers:
-                    continue
-                ttype = TopicType(conn.type, conn.md5sum, conn.definition)
-                try:
-                    self.publishers[key] = await self.node.advertise(topic, AnyMsg, queue_size=self.opts.queue_size,
-                                                                     latch=latch, topic_type=ttype)
-                except ValueError:  # the same topic recorded with two types: play the first
-                    continue
+        conns = [c for conns in self._topics().values() for c in conns]
+        self.publishers = await advertise_connections(self.node, conns, self.opts.queue_size)
         if self.opts.clock:
             from rostui.core.msg import get_message_class
 

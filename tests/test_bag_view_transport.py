@@ -1,0 +1,197 @@
+"""The bag transport and index without a ROS graph: what gets published, in what order, after each control.
+
+No test measures wall time: the transport plays a bag of 100 messages 10 ms
+apart at a high rate, and the tests check which messages were published.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import os
+from pathlib import Path
+from typing import Awaitable, Callable
+
+import pytest
+
+from rostui.core.bag.files import merged_messages, open_reader, open_writer
+from rostui.core.bag.index import BagIndex, IndexSource, load_index, message_yaml
+from rostui.core.bag.model import BagError, Connection
+from rostui.core.bag.transport import StreamSource, Transport
+from rostui.core.msg import get_message_class
+
+from conftest import until
+
+Int32 = get_message_class("std_msgs/Int32")
+T0 = 1_700_000_000_000_000_000
+STEP_NS = 10_000_000
+
+
+def write_counts(path: Path, count: int = 100) -> None:
+    """``/count`` 0..count-1 and ``/odd`` (the odd ones), 10 ms apart."""
+    writer = open_writer(str(path))
+    writer.add_connection(Connection(0, "/count", "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/c"))
+    writer.add_connection(Connection(1, "/odd", "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/o"))
+    for i in range(count):
+        writer.write(0, T0 + i * STEP_NS, Int32(data=i).serialize())
+        if i % 2:
+            writer.write(1, T0 + i * STEP_NS, Int32(data=i).serialize())
+    writer.close()
+
+
+@pytest.fixture
+def index(tmp_path: Path) -> BagIndex:
+    """The counts bag, indexed."""
+    write_counts(tmp_path / "counts.mcap")
+    return load_index([str(tmp_path / "counts.mcap")])
+
+
+class Sink:
+    """Collects what the transport publishes: ``(topic, value)``."""
+
+    def __init__(self) -> None:
+        self.got: list[tuple[str, int]] = []
+
+    def __call__(self, conn: Connection, _t: int, data: bytes) -> None:
+        self.got.append((conn.topic, Int32().deserialize(data).data))
+
+    def values(self, topic: str = "/count") -> list[int]:
+        """Values published on ``topic``."""
+        return [v for t, v in self.got if t == topic]
+
+
+def drive(transport: Transport, scenario: Callable[[], Awaitable[None]]) -> None:
+    """Run the transport and ``scenario`` side by side; stop the transport when the scenario ends."""
+    async def main() -> None:
+        runner = asyncio.ensure_future(transport.run())
+        try:
+            await scenario()
+        finally:
+            transport.stop()
+            await asyncio.wait_for(runner, 30)
+
+    asyncio.run(main())
+
+
+def viewer(index: BagIndex, sink: Sink, **kw: object) -> Transport:
+    """A transport as the app makes one: paused, held at the end."""
+    return Transport(IndexSource(index), sink, start_ns=index.start_ns, end_ns=index.end_ns, paused=True,
+                     hold_at_end=True, **kw)  # type: ignore[arg-type]
+
+
+def test_index_counts_density_and_message_under_cursor(index: BagIndex) -> None:
+    assert len(index) == 150 and index.topics == ["/count", "/odd"]
+    assert index.tracks["/odd"].count == 50
+    assert sum(index.density("/count", 10)) == 100
+    assert index.density("/count", 10) == [10] * 10
+    at = index.message_at("/count", T0 + 42 * STEP_NS + 5)
+    assert at is not None and message_yaml(index.conns[at], index.datas[at]) == "data: 42"
+    at = index.message_at("/odd", T0)  # before the first: the first
+    assert at is not None and message_yaml(index.conns[at], index.datas[at]) == "data: 1"
+
+
+def test_seek_to_half_then_play_publishes_the_second_half_only(index: BagIndex) -> None:
+    sink = Sink()
+    transport = viewer(index, sink, rate=20.0)
+
+    async def scenario() -> None:
+        transport.seek_fraction(0.5)
+        transport.resume()
+        await until(lambda: transport.paused and transport.at_end, "the end of the bag")
+
+    drive(transport, scenario)
+    assert sink.values() == list(range(50, 100))
+    assert sink.values("/odd") == list(range(51, 100, 2))
+
+
+def test_each_step_publishes_exactly_one_message(index: BagIndex) -> None:
+    sink = Sink()
+    transport = viewer(index, sink)
+
+    async def scenario() -> None:
+        await asyncio.sleep(0.2)
+        assert sink.got == []
+        for n in range(1, 6):
+            assert transport.step()
+            await until(lambda: len(sink.got) >= n, f"step {n}")
+            await asyncio.sleep(0.05)
+            assert len(sink.got) == n
+        transport.set_topic_enabled("/count", False)
+        transport.step()
+        await until(lambda: len(sink.got) >= 6, "a step with /count off")
+
+    drive(transport, scenario)
+    assert sink.got == [("/count", 0), ("/count", 1), ("/odd", 1), ("/count", 2), ("/count", 3), ("/odd", 3)]
+
+
+def test_pause_resume_rate_and_topics(index: BagIndex) -> None:
+    sink = Sink()
+    transport = viewer(index, sink, rate=0.5)
+
+    async def scenario() -> None:
+        transport.resume()
+        await until(lambda: len(sink.values()) >= 3, "the first messages")
+        transport.pause()
+        frozen = len(sink.got)
+        await asyncio.sleep(0.2)
+        assert len(sink.got) == frozen and transport.paused
+        transport.set_topic_enabled("/odd", False)
+        transport.set_rate(25.0)
+        transport.resume()
+        await until(lambda: transport.paused and transport.at_end, "the end")
+
+    drive(transport, scenario)
+    assert sink.values() == list(range(100))
+    assert all(v < 10 for v in sink.values("/odd"))
+
+
+def test_loop_plays_again_and_end_holds(index: BagIndex) -> None:
+    sink = Sink()
+    transport = viewer(index, sink, rate=50.0, loop=True)
+
+    async def scenario() -> None:
+        transport.resume()
+        await until(lambda: len(sink.values()) >= 150, "a second pass")
+        transport.set_loop(False)
+        await until(lambda: transport.paused and transport.at_end, "the end with loop off")
+
+    drive(transport, scenario)
+    counts = sink.values()
+    assert counts[:100] == list(range(100)) and counts[100:150] == list(range(50))
+    assert counts[-1] == 99
+
+
+def test_stream_source_seeks_back_by_reading_again(tmp_path: Path) -> None:
+    write_counts(tmp_path / "c.bag")
+    reader = open_reader(str(tmp_path / "c.bag"))
+    source = StreamSource(lambda: ((c, t, d) for c, t, d, _i in merged_messages([reader])))
+    source.seek(T0 + 90 * STEP_NS)
+    item = source.peek()
+    assert item is not None and Int32().deserialize(item[2]).data == 90
+    source.seek(T0 + 10 * STEP_NS)
+    item = source.peek()
+    assert item is not None and item[1] == T0 + 10 * STEP_NS
+    reader.close()
+
+
+def test_a_truncated_file_indexes_what_is_readable_with_a_notice(tmp_path: Path) -> None:
+    path = tmp_path / "cut.bag"
+    writer = open_writer(str(path))
+    writer.add_connection(Connection(0, "/count", "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/c"))
+    for i in range(300):
+        writer.write(0, T0 + i * STEP_NS, Int32(data=i).serialize())
+        if i % 100 == 99:
+            writer.flush()
+    size = writer.size
+    os.close(writer.fd) if hasattr(writer, "fd") else writer.out.close()  # killed: no close()
+    with open(path, "r+b") as f:
+        f.truncate(size - 2500)  # the last chunk loses its end
+    index = load_index([str(path)])
+    assert 200 <= len(index) < 300
+    assert len(index.notices) == 1 and "cut.bag" in index.notices[0] and "readable" in index.notices[0]
+
+
+def test_garbage_is_a_bag_error(tmp_path: Path) -> None:
+    path = tmp_path / "junk.mcap"
+    path.write_bytes(os.urandom(4000))
+    with pytest.raises(BagError, match="junk.mcap"):
+        load_index([str(path)])

@@ -29,12 +29,16 @@ def launch_command(
                                          help="Seconds a node gets after SIGINT before SIGTERM."),
     sigterm_timeout: float = typer.Option(2.0, "--sigterm-timeout", metavar="SECONDS",
                                           help="Seconds a node gets after SIGTERM before SIGKILL."),
+    tui: bool = typer.Option(False, "--tui", help="Run the launch inside a live monitor of its nodes "
+                                                  "(state, pid, CPU, memory, restarts, output; start/stop/restart)."),
 ) -> None:
     """Start the nodes of launch files: `rostui launch PKG FILE` or `rostui launch FILE`, then `name:=value` args.
 
     FILE is a path, or a file name found below package PKG.  `name:=value`
     sets the file's arg `name`.  A master (with rosout) starts when none answers at
     ROS_MASTER_URI; Ctrl-C stops every node (SIGINT, then SIGTERM, then SIGKILL).
+
+    --tui shows the nodes live (keys: s start, k stop, r restart, l launcher's output, f follow, q quit).
     """
     import sys
 
@@ -51,6 +55,14 @@ def launch_command(
     if len(modes) > 1:
         print("rostui launch: only one of --nodes, --args, --ros-args may be given", file=sys.stderr)
         raise typer.Exit(2)
+    if tui and (modes or dump_params or files):
+        print("rostui launch: --tui runs a launch; it cannot be combined with --nodes, --args, --dump-params, "
+              "--files or --ros-args", file=sys.stderr)
+        raise typer.Exit(2)
+    if tui and not (sys.stdin.isatty() and sys.stdout.isatty()):
+        print("rostui launch: --tui draws in a terminal: stdin and stdout must be a TTY "
+              "(run without --tui to launch without the monitor)", file=sys.stderr)
+        raise typer.Exit(1)
     try:
         request = resolve_request(words)
         if node_args is not None:
@@ -64,6 +76,16 @@ def launch_command(
             print("\n".join(inspect.file_list(request)))
         elif ros_args:
             print(inspect.args_doc(request))
+        elif tui:
+            from rostui.launch.supervisor import SupervisorOptions, keep_quiet, load_supervisor
+
+            options = SupervisorOptions(screen=screen, verbose=verbose, wait=wait, port=port,
+                                        sigint_timeout=sigint_timeout, sigterm_timeout=sigterm_timeout,
+                                        capture=True, handle_signals=False, stay_when_all_ended=True)
+            supervisor = load_supervisor(request, options, reporter=keep_quiet)
+            from rostui.apps.launchmon.app import run_app
+
+            raise typer.Exit(run_app(supervisor, " ".join(w for w in words if ":=" not in w)))
         else:
             from rostui.launch.supervisor import SupervisorOptions, run_launch
 

@@ -75,6 +75,10 @@ class SupervisorOptions:
 Reporter = Callable[[str, bool], None]
 
 
+def keep_quiet(_message: str, _error: bool) -> None:
+    """A reporter that prints nothing: the lines stay only in :attr:`Supervisor.launch_output` (for the monitor)."""
+
+
 def say(message: str) -> None:
     """A line of the launcher's own output."""
     print(message, flush=True)
@@ -533,6 +537,13 @@ class Supervisor:
             self.say("done")
         finally:
             self.finished.set()
+
+
+    def kill_leftovers(self) -> None:
+        """SIGKILL every process of every node still alive (the last resort when the event loop is gone)."""
+        for process in self.processes:
+            process.reap_orphans()
+            process.close_log()
 
 
 def load_supervisor(request: LaunchRequest, options: SupervisorOptions,

@@ -145,18 +145,21 @@ class Recorder:
         self.connections[id(header)] = (header, conn)
         return conn
 
-    def on_message(self, raw: Any, topic: str) -> None:
-        """Queue one raw message for the writer thread (the subscriber callback: the hot path)."""
+    def on_frame(self, data: Any, header: dict[str, str], topic: str) -> None:
+        """Queue one raw message for the writer thread (the hot path: no decoding, no copy)."""
         if self.stop.is_set():
             return
-        data = raw._buff
         if self._queued_bytes - self._written_bytes + len(data) > self.buffer_bytes:
             self.dropped += 1
             if self.dropped == 1 or self.dropped % 100 == 0:
                 self.report(f"rostui bag record buffer exceeded ({self.dropped} messages dropped so far)")
             return
         self._queued_bytes += len(data)
-        self._queue.put((self._connection(topic, raw._connection_header or {}), time.time_ns(), data))
+        self._queue.put((self._connection(topic, header), time.time_ns(), data))
+
+    def on_message(self, raw: Any, topic: str) -> None:
+        """Queue a message of a publisher in this process (delivered as an AnyMsg)."""
+        self.on_frame(raw._buff, raw._connection_header or {}, topic)
 
     def _fail(self, message: str) -> None:
         if self.error is None:
@@ -265,13 +268,13 @@ class Recorder:
 
     # -- running ------------------------------------------------------------------------------
     async def _subscribe(self, topic: str) -> None:
-        from rostui.core.node import AnyMsg
+        from rostui.core.bag.receive import subscribe_raw
 
         if topic in self.subscribed:
             return
         self.subscribed.add(topic)
         self.report(f"Subscribing to {topic}")
-        await self.node.subscribe(topic, AnyMsg, self.on_message, callback_args=topic, queue_size=None)
+        await subscribe_raw(self.node, topic, self.on_frame, self.on_message)
 
     async def _discover(self) -> None:
         while not self.stop.is_set():

@@ -1,0 +1,241 @@
+"""The recorder's receive path: raw TCPROS frames read straight into their own buffers.
+
+A normal subscription reads each chunk of the socket into a new ``bytes``,
+appends it to a reassembly buffer and copies the finished frame out again:
+three copies of every byte in Python before the message reaches the file. For
+1 MB messages those copies (of memory not in any cache) cost more than the
+kernel's own receive copy. :class:`RawFrameConnection` is an
+``asyncio.BufferedProtocol``: small frames are read into a staging buffer and
+sliced out once, and a large frame (``BIG_FRAME`` bytes or more) gets a buffer
+of its exact size that the kernel fills directly, which is then handed to the
+recorder as it is.
+
+:class:`RawSubscription` is a subscription whose publisher connections use it;
+:func:`subscribe_raw` registers one with the master the way
+``AsyncNode.subscribe`` does, so publisher updates, reconnects and shutdown
+work as for any other subscription.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from collections.abc import Callable
+from typing import Any
+
+from rostui.core.node import AnyMsg, AsyncNode, Subscriber
+from rostui.core.node.topics import Subscription
+from rostui.core.node.transport import StallWatch
+from rostui.core.tcpros import LEN, MAX_HEADER, decode_header, encode_header, max_frame_from_env
+
+log = logging.getLogger("rostui.bag")
+
+BIG_FRAME = 64 * 1024
+"""Frames of this many bytes or more are read into a buffer of their own."""
+STAGING_BYTES = 256 * 1024
+"""The staging buffer for small frames (it always has room for one whole small frame)."""
+
+#: ``(payload, publisher connection header)``; the payload is ``bytes`` or, for big frames, a ``bytearray``.
+FrameSink = Callable[[Any, dict[str, str]], None]
+
+
+class RawFrameConnection(asyncio.BufferedProtocol):
+    """A subscription's connection to one publisher that delivers raw frames with as few copies as possible.
+
+    ``on_header`` checks the publisher's header (an error string drops the
+    connection), ``on_frame(payload, header)`` takes each message, and
+    ``on_lost(reason)`` is called once when the connection ends.
+    """
+
+    def __init__(self, request_header: dict[str, str], on_header: Callable[[dict[str, str]], str | None],
+                 on_frame: FrameSink, on_lost: Callable[[str | None], None]) -> None:
+        self.request_header = request_header
+        self.on_header = on_header
+        self.on_frame = on_frame
+        self.on_lost = on_lost
+        self.header: dict[str, str] | None = None
+        self.transport: asyncio.Transport | None = None
+        self.error: str | None = None
+        self.bytes_received = 0
+        self.messages_received = 0
+        self.max_frame = MAX_HEADER
+        self._stage = bytearray(STAGING_BYTES)
+        self._stage_view = memoryview(self._stage)
+        self._start = 0  # first byte of the stage not yet parsed
+        self._end = 0  # end of the bytes received into the stage
+        self._big: bytearray | None = None
+        self._big_view: memoryview | None = None
+        self._big_filled = 0
+        self._watch: StallWatch | None = None
+
+    # -- asyncio ----------------------------------------------------------------------------
+    def connection_made(self, transport: asyncio.BaseTransport) -> None:
+        """Send our subscriber header."""
+        self.transport = transport  # type: ignore[assignment]
+        self._watch = StallWatch(self.drop)
+        self._watch.progress(1)
+        self.transport.write(encode_header(self.request_header))
+
+    def get_buffer(self, sizehint: int) -> memoryview:
+        """Where the next read goes: the rest of the big frame being filled, or the stage's free space."""
+        if self._big_view is not None:
+            return self._big_view[self._big_filled:]
+        if len(self._stage) - self._end < BIG_FRAME + 4:
+            self._compact()
+        return self._stage_view[self._end:]
+
+    def buffer_updated(self, nbytes: int) -> None:
+        """``nbytes`` arrived in the buffer :meth:`get_buffer` returned."""
+        self.bytes_received += nbytes
+        try:
+            if self._big is not None:
+                self._big_filled += nbytes
+                if self._big_filled == len(self._big):
+                    payload, self._big, self._big_view = self._big, None, None
+                    self._frame(payload)
+            else:
+                self._end += nbytes
+                self._parse_stage()
+        except Exception as exc:  # a bad header or length, or the sink failing: this connection only
+            self.drop(str(exc))
+            return
+        if self._watch is not None:
+            self._watch.progress(self._big_filled if self._big is not None else self._end - self._start)
+
+    def eof_received(self) -> bool | None:
+        """The publisher closed its side: close ours."""
+        return None
+
+    def connection_lost(self, exc: Exception | None) -> None:
+        """Report the end of the connection once."""
+        if self._watch is not None:
+            self._watch.cancel()
+        self.on_lost(self.error or (str(exc) if exc else None))
+
+    # -- frames -----------------------------------------------------------------------------
+    def _compact(self) -> None:
+        """Move the unparsed tail of the stage to its front."""
+        start, end = self._start, self._end
+        if start:
+            self._stage[: end - start] = self._stage_view[start:end]
+            self._start, self._end = 0, end - start
+
+    def _parse_stage(self) -> None:
+        """Take every complete frame out of the stage; move a big frame's start to its own buffer."""
+        view, start, end = self._stage_view, self._start, self._end
+        unpack_from = LEN.unpack_from
+        while end - start >= 4:
+            (size,) = unpack_from(view, start)
+            if size > self.max_frame:
+                raise ValueError(f"frame length {size} exceeds the cap of {self.max_frame} bytes")
+            stop = start + 4 + size
+            if stop <= end:
+                payload = bytes(view[start + 4:stop])
+                start = stop
+                self._start = start
+                self._frame(payload)
+                if self.transport is None or self.transport.is_closing():
+                    return
+                continue
+            if size >= BIG_FRAME:
+                big = bytearray(size)
+                have = end - start - 4
+                big[:have] = view[start + 4:end]
+                self._big, self._big_view, self._big_filled = big, memoryview(big), have
+                start = end
+            break
+        if start == end:
+            start = end = 0
+        self._start, self._end = start, end
+
+    def _frame(self, payload: Any) -> None:
+        """The publisher's header first, then messages."""
+        header = self.header
+        if header is not None:
+            self.messages_received += 1
+            self.on_frame(payload, header)
+            return
+        header = decode_header(payload)
+        problem = header.get("error") or self.on_header(header)
+        if problem:
+            raise ValueError(problem)
+        self.header = header
+        self.max_frame = max_frame_from_env()
+
+    # -- closing ----------------------------------------------------------------------------
+    def drop(self, reason: str) -> None:
+        """Close the connection, remembering why."""
+        self.error = reason
+        log.warning("dropping connection to publisher: %s", reason)
+        if self.transport is not None:
+            self.transport.close()
+
+    def close(self) -> None:
+        """Close the connection without error."""
+        if self.transport is not None:
+            self.transport.close()
+
+
+class RawSubscription(Subscription):
+    """A raw (``*``) subscription whose publisher connections hand frames to ``sink`` without decoding.
+
+    Publishers in the same process still deliver through the subscription's
+    callbacks (as AnyMsg), so register one with :meth:`add_callback` too.
+    """
+
+    def __init__(self, node: AsyncNode, topic: str, sink: Callable[[Any, dict[str, str], str], None]) -> None:
+        super().__init__(node, topic, AnyMsg, queue_size=None, tcp_nodelay=False)
+        self.sink = sink
+
+    async def _connect_once(self, uri: str) -> str | None:
+        """One connection attempt through a RawFrameConnection; an error string to retry, None to stop."""
+        try:
+            host, port = await self.node.request_topic(uri, self.topic)
+        except Exception as exc:  # publisher gone or refusing: retry while listed
+            return str(exc)
+        done: asyncio.Future[str | None] = self.node.loop.create_future()
+        sink, topic = self.sink, self.topic
+
+        def on_frame(payload: Any, header: dict[str, str]) -> None:
+            self.messages_received += 1
+            sink(payload, header, topic)
+
+        def on_lost(reason: str | None) -> None:
+            if self.connections.get(uri) is proto:
+                self.connections[uri] = None
+            if not done.done():
+                done.set_result(reason or "connection closed")
+
+        proto = RawFrameConnection(self._request_header(), self._check_header, on_frame, on_lost)
+        try:
+            await self.node.loop.create_connection(lambda: proto, host, port)
+        except OSError as exc:
+            return str(exc)
+        if uri not in self.connections or self.closed:
+            proto.close()
+            return None
+        self.connections[uri] = proto  # type: ignore[assignment]
+        reason = await done
+        if proto.error and "md5" in proto.error.lower():
+            return None
+        return reason
+
+
+async def subscribe_raw(node: AsyncNode, topic: str, sink: Callable[[Any, dict[str, str], str], None],
+                        local_callback: Callable[[AnyMsg, str], None]) -> Subscriber:
+    """Subscribe to ``topic`` with md5 ``*``: remote frames go to ``sink(payload, header, topic)``,
+    messages of same-process publishers to ``local_callback(msg, topic)``."""
+    name = node.resolve(topic)
+    if name in node.subscriptions:
+        raise ValueError(f"topic [{name}] is already subscribed in this node")
+    sub = RawSubscription(node, name, sink)
+    sub.add_callback(local_callback, name)
+    sub.handles += 1
+    node.subscriptions[name] = sub
+    try:
+        uris = await node.master_call("registerSubscriber", name, AnyMsg._type, node.uri)
+    except Exception:
+        node.subscriptions.pop(name, None)
+        raise
+    sub.update_publishers(list(uris))
+    return Subscriber(node, sub, local_callback, name)

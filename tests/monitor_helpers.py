@@ -7,13 +7,14 @@ topic), so messages reach the monitor over TCPROS as from any other node.
 from __future__ import annotations
 
 import subprocess
+import sys
 import xmlrpc.client
 from pathlib import Path
 from typing import Iterator, Sequence
 
 from conftest import rostui_cmd, stop_process
 
-__all__ = ["Publisher", "start_publishers", "stop_all", "subscribers_on_master", "master_subscriptions"]
+__all__ = ["Publisher", "ManyTopics", "start_publishers", "stop_all", "subscribers_on_master", "master_subscriptions"]
 
 
 class Publisher:
@@ -65,3 +66,53 @@ def subscribers_on_master(env: dict[str, str]) -> dict[str, list[str]]:
     master = xmlrpc.client.ServerProxy(env["ROS_MASTER_URI"])
     _, _, (_, subs, _) = master.getSystemState("/monitor_test")
     return {topic: list(nodes) for topic, nodes in subs}
+
+
+class ManyTopics:
+    """One process publishing std_msgs/String on ``PREFIX/t000`` ... at ``rate`` Hz each (this module as a script)."""
+
+    def __init__(self, env: dict[str, str], tmp_path: Path, prefix: str, count: int, rate: float) -> None:
+        self.names = [f"{prefix}/t{i:03d}" for i in range(count)]
+        self._out = (tmp_path / f"many{prefix.replace('/', '_')}.log").open("w")
+        self.proc = subprocess.Popen([sys.executable, str(Path(__file__)), prefix, str(count), f"{rate:g}"], env=env,
+                                     stdout=self._out, stderr=subprocess.STDOUT)
+
+    def stop(self) -> None:
+        """SIGINT the process (it unregisters) and wait for it."""
+        stop_process(self.proc)
+        self._out.close()
+
+
+async def _publish_many(prefix: str, count: int, rate: float) -> None:
+    import asyncio
+    import signal
+
+    from rostui.core.msg import get_message_class
+    from rostui.core.node import AsyncNode
+
+    stop = asyncio.Event()
+    loop = asyncio.get_running_loop()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(sig, stop.set)
+    node = await AsyncNode("many_topics", anonymous=True, argv=[]).start()
+    string = get_message_class("std_msgs/String")
+    pubs = [await node.advertise(f"{prefix}/t{i:03d}", string, queue_size=10) for i in range(count)]
+    msgs = [string(data=f"t{i:03d}") for i in range(count)]
+    print("advertised", flush=True)
+    period = 1.0 / rate
+    due = loop.time()
+    while not stop.is_set():
+        for pub, msg in zip(pubs, msgs):
+            pub.publish(msg)
+        due += period
+        try:
+            await asyncio.wait_for(stop.wait(), max(0.0, due - loop.time()))
+        except asyncio.TimeoutError:
+            pass
+    await node.shutdown("done")
+
+
+if __name__ == "__main__":
+    import asyncio
+
+    asyncio.run(_publish_many(sys.argv[1], int(sys.argv[2]), float(sys.argv[3])))

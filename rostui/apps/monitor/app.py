@@ -13,7 +13,7 @@ from __future__ import annotations
 import sys
 import time
 from pathlib import Path
-from typing import ClassVar, Sequence
+from typing import Callable, ClassVar, Sequence
 
 from textual import on
 from textual.app import App, ComposeResult
@@ -59,7 +59,9 @@ class FilterInput(Input):
 class MonitorApp(App[int]):
     """The topics of the master at ``master_uri`` (ROS_MASTER_URI by default); ``topics`` start expanded.
 
-    The master is polled every ``period`` seconds.
+    The master is polled every ``period`` seconds; the screen is repainted
+    every ``refresh`` seconds and rates are sampled every ``sample_every``
+    seconds, on ``clock`` (wall time; tests step their own).
     """
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
@@ -77,11 +79,14 @@ class MonitorApp(App[int]):
     ]
 
     def __init__(self, topics: Sequence[str] = (), *, master_uri: str | None = None, period: float = 1.0,
-                 refresh: float = REFRESH) -> None:
+                 refresh: float = REFRESH, sample_every: float = SAMPLE,
+                 clock: Callable[[], float] = time.time) -> None:
         super().__init__()
         self.master_uri = master_uri_from_env(master_uri)
-        self.source = MonitorSource(self.master_uri, period=period, on_state=self._on_state)
+        self.clock = clock
+        self.source = MonitorSource(self.master_uri, period=period, on_state=self._on_state, clock=clock)
         self.refresh_period = refresh
+        self.sample_period = sample_every
         self.expanded: list[str] = list(dict.fromkeys(topics))
         self.sort_column = Column.TOPIC
         self.sort_reverse = False
@@ -114,7 +119,7 @@ class MonitorApp(App[int]):
         self.tree.set_topics(self.expanded)
         self.run_worker(self.source.run(), group="source", exit_on_error=False)
         self.set_interval(self.refresh_period, self.repaint)
-        self.set_interval(SAMPLE, self.sample)
+        self.set_interval(self.sample_period, self.sample)
         self.repaint()
 
     @property
@@ -140,8 +145,7 @@ class MonitorApp(App[int]):
         """Rows filtered and sorted into the table, subscriptions to what is shown, trees, charts, status."""
         if self._shut:
             return
-        now = time.time()
-        self.rows = self.source.rows(now)
+        self.rows = self.source.rows(self.clock())
         self.shown = sort_rows(filter_rows(self.rows, self.filter_text), self.sort_column, self.sort_reverse)
         table = self.table
         table.show(self.shown)

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from typing import Sequence
+from typing import ClassVar, Sequence
 
+from textual.binding import Binding, BindingType
 from textual.widgets import DataTable
 
 from rostui.core.monitor.rows import COLUMNS, TopicRow
@@ -13,6 +14,11 @@ __all__ = ["TopicTable"]
 
 class TopicTable(DataTable):
     """One row per topic (row key = topic name); :meth:`show` repaints only the cells that changed."""
+
+    BINDINGS: ClassVar[list[BindingType]] = [
+        Binding("home", "scroll_top", "first topic", show=False),
+        Binding("end", "scroll_bottom", "last topic", show=False),
+    ]
 
     DEFAULT_CSS = """
     TopicTable {

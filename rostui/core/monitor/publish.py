@@ -43,9 +43,10 @@ def message_from_text(cls: Any, text: str) -> Any:
         document = yaml.safe_load(text)
     except yaml.YAMLError as exc:
         raise PublishError(f"YAML error: {yaml_error(exc, 'message')}") from None
-    args = [] if document is None else [document]
+    if document is None:
+        return cls()
     try:
-        return build_message(cls, args, Time.now())
+        return build_message(cls, [document], Time.now())
     except TopicToolError as exc:
         raise PublishError(str(exc)) from None
 

@@ -53,7 +53,7 @@ class SourceState:
     def text(self) -> str:
         """One line for the status bar."""
         if self.status == "connected":
-            return f"● master {self.master_uri}"
+            return "● master"
         if self.status == "lost":
             return f"✖ master {self.master_uri} gone: waiting for it to come back"
         return f"… waiting for master {self.master_uri}" + (f" ({self.detail})" if self.detail else "")
@@ -89,13 +89,19 @@ class _Watch:
 
 
 class MonitorSource:
-    """The master at ``master_uri`` as the monitor sees it; call :meth:`run` as a task, :meth:`stop` to end."""
+    """The master at ``master_uri`` as the monitor sees it; call :meth:`run` as a task, :meth:`stop` to end.
+
+    ``clock`` (wall time in seconds) stamps arrivals and is "now" for ages
+    and rates; tests pass one they step themselves.
+    """
 
     def __init__(self, master_uri: str, *, period: float = 1.0,
                  on_state: Callable[[SourceState], None] | None = None,
-                 on_topics: Callable[[], None] | None = None) -> None:
+                 on_topics: Callable[[], None] | None = None,
+                 clock: Callable[[], float] = time.time) -> None:
         self.master_uri = master_uri
         self.period = period
+        self.clock = clock
         self.on_state = on_state or (lambda _s: None)
         self.on_topics = on_topics or (lambda: None)
         self.state = SourceState("waiting", master_uri)
@@ -149,13 +155,13 @@ class MonitorSource:
 
     def sample(self, now: float | None = None) -> None:
         """Compute every subscribed topic's rate and bandwidth (once a second: the sparklines' step)."""
-        now = time.time() if now is None else now
+        now = self.clock() if now is None else now
         for watch in self._watches.values():
             watch.stats.sample(now)
 
     def rows(self, now: float | None = None) -> list[TopicRow]:
         """Every topic the master knows (and every subscribed one) as a table row, in name order."""
-        now = time.time() if now is None else now
+        now = self.clock() if now is None else now
         me = self.node.name if self.node is not None else None
         rows = []
         names = set(self.topics) | set(self._watches)
@@ -169,8 +175,11 @@ class MonitorSource:
                                      liveness=Liveness.OFF if pubs else Liveness.NO_PUBLISHERS))
                 continue
             st = watch.stats
-            rows.append(TopicRow(name, info.type, pubs, subs, st.rate, st.bandwidth, st.age(now),
-                                 self._liveness(watch, pubs, now)))
+            liveness = self._liveness(watch, pubs, now)
+            if liveness is Liveness.STALE:  # the figures of messages that stopped coming are not a rate
+                rows.append(TopicRow(name, info.type, pubs, subs, None, None, st.age(now), liveness))
+            else:
+                rows.append(TopicRow(name, info.type, pubs, subs, st.rate, st.bandwidth, st.age(now), liveness))
         return rows
 
     def _liveness(self, watch: _Watch, publishers: tuple[str, ...], now: float) -> Liveness:
@@ -278,7 +287,7 @@ class MonitorSource:
 
     def _receiver(self, topic: str, watch: _Watch) -> Callable[[Any], None]:
         add = watch.stats.add
-        clock = time.time
+        clock = self.clock
 
         def on_message(raw: Any) -> None:
             add(clock(), len(raw._buff))

@@ -68,7 +68,7 @@ class TopicStats:
         """Compute rate and bandwidth now, append them to the history, and return them."""
         now = time.time() if now is None else now
         times = self.hz.times
-        while len(times) > 2 and times[1] < now - RATE_WINDOW_SECONDS:
+        while len(times) > 2 and times[0] < now - RATE_WINDOW_SECONDS:
             times.popleft()
         figures = self.hz.stats()
         if figures is not None:

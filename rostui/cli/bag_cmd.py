@@ -7,6 +7,7 @@ import time
 
 import typer
 
+from rostui.cli import bag_view_cmd
 from rostui.cli.common import fail
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "allow_interspersed_args": True}
@@ -249,3 +250,5 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Convert between MCAP and rosbag .bag."""
         raise typer.Exit(run_convert(src, dst, compression))
+
+    bag_view_cmd.register(bag_app)

@@ -1,0 +1,421 @@
+"""BagViewApp: a bag as a video player (rqt_bag in the terminal).
+
+The bag is read into a :class:`~rostui.core.bag.index.BagIndex` in a worker
+thread; a :class:`~rostui.core.bag.transport.Transport` (the same scheduler as
+``rostui bag play``) runs on Textual's loop and publishes through a node
+``/bag_view_...`` that advertises every topic with its recorded type. Without
+a master (or with ``publish=False``) the app still browses the bag. The
+screen is refreshed ten times a second from the transport's state: the
+timeline's cursor, the status line and the inspector (the selected topic's
+message under the cursor, decoded as ``rostopic echo`` prints it).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import os
+from bisect import bisect_left
+import sys
+import time
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any, ClassVar
+
+from textual import work
+from textual.app import App, ComposeResult
+from textual.binding import Binding, BindingType
+from textual.containers import VerticalScroll
+from textual.widgets import Input, Static
+
+from rostui.apps.bagview.bars import PLAY_KEYS, header_text, play_status, wall_text
+from rostui.apps.bagview.timeline import TimelineView
+from rostui.apps.widgets.lifecycle import quit_on_signals
+from rostui.core.bag.index import BagIndex, IndexSource, load_index, message_yaml
+from rostui.core.bag.model import BagError, Connection
+from rostui.core.bag.transport import Transport
+
+__all__ = ["BagViewApp", "RATES", "parse_goto", "run_app"]
+
+#: Screen refreshes per second.
+REFRESH_RATE = 10.0
+
+#: The rates ``+`` and ``-`` step through.
+RATES = (0.1, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0)
+
+#: Seconds the node may take to shut down when the app quits.
+SHUTDOWN_TIMEOUT = 3.0
+
+
+def parse_goto(text: str, start_ns: int, end_ns: int) -> int:
+    """A bag time from what the user typed: ``50%``, seconds from the start (``12.5``) or a bag stamp."""
+    text = text.strip()
+    try:
+        if text.endswith("%"):
+            fraction = float(text[:-1]) / 100.0
+            if not 0.0 <= fraction <= 1.0:
+                raise ValueError
+            return start_ns + round((end_ns - start_ns) * fraction)
+        seconds = float(text)
+    except ValueError:
+        raise ValueError(f"'{text}' is neither a percentage (50%), seconds from the start (12.5) "
+                         "nor a bag time") from None
+    if seconds * 1e9 >= start_ns > 0:
+        return int(seconds * 1e9)
+    return start_ns + int(seconds * 1e9)
+
+
+class GotoPrompt(Input):
+    """Where to go: a percentage, seconds from the start or a bag time; Escape closes it."""
+
+    BINDINGS: ClassVar[list[BindingType]] = [Binding("escape", "close", "close", show=False)]
+
+    def action_close(self) -> None:
+        """Close without moving."""
+        self.display = False
+        self.app.query_one(TimelineView).focus()
+
+
+class BagViewApp(App[int]):
+    """Play, pause, step, seek and inspect a bag; publish it on a live graph.
+
+    ``index`` skips reading the files (tests pass one in). ``clock`` is the
+    transport's wall clock (tests freeze it for snapshots).
+    """
+
+    CSS_PATH = Path(__file__).with_name("app.tcss")
+    TITLE = "rostui bag view"
+    ENABLE_COMMAND_PALETTE = False
+
+    BINDINGS: ClassVar[list[BindingType]] = [
+        Binding("q", "quit", "quit"),
+        Binding("space,p", "toggle_play", "play/pause"),
+        Binding("s", "step", "step"),
+        Binding("left", "seek_by(-1)", "-1 s", show=False),
+        Binding("right", "seek_by(1)", "+1 s", show=False),
+        Binding("pageup,shift+left", "seek_fraction_by(-0.1)", "-10%", show=False),
+        Binding("pagedown,shift+right", "seek_fraction_by(0.1)", "+10%", show=False),
+        Binding("home", "seek_fraction(0)", "start", show=False),
+        Binding("end", "seek_fraction(1)", "end", show=False),
+        *[Binding(str(d), f"seek_fraction({d / 10})", f"{d * 10}%", show=False) for d in range(10)],
+        Binding("g,percent_sign", "goto", "go to"),
+        Binding("plus,equals_sign,right_square_bracket", "rate(1)", "faster"),
+        Binding("minus,left_square_bracket", "rate(-1)", "slower"),
+        Binding("l", "toggle_loop", "loop"),
+        Binding("up", "select(-1)", "previous topic", show=False),
+        Binding("down", "select(1)", "next topic", show=False),
+        Binding("t,enter", "toggle_topic", "publish on/off"),
+        Binding("a", "all_topics", "all topics on"),
+        Binding("i", "toggle_inspector", "inspector"),
+    ]
+
+    def __init__(self, paths: Sequence[str], *, rate: float = 1.0, loop: bool = False, publish: bool = True,
+                 topics: Sequence[str] = (), start_playing: bool = False, master_uri: str | None = None,
+                 queue_size: int = 100, index: BagIndex | None = None,
+                 clock: Callable[[], float] = time.perf_counter) -> None:
+        super().__init__()
+        self.paths = list(paths)
+        self.names = [os.path.basename(p) for p in self.paths]
+        self.rate = rate
+        self.loop_play = loop
+        self.publish_wanted = publish
+        self.only_topics = set(topics)
+        self.start_playing = start_playing
+        self.master_uri = master_uri
+        self.queue_size = queue_size
+        self.clock = clock
+        self.index: BagIndex | None = None
+        self._given_index = index
+        self.transport: Transport | None = None
+        self.node: Any = None
+        self.publishers: dict[tuple[str, str], Any] = {}
+        self.link = "" if publish else "browsing only (not publishing)"
+        self.selected = 0
+        self.error = ""
+        self._run_task: asyncio.Task[int] | None = None
+        self._inspected: tuple[str | None, int | None] = (None, None)
+        self.header = Static(header_text(self.names, None), id="header")
+        self.timeline = TimelineView(id="timeline")
+        self.inspector = VerticalScroll(id="inspector")
+        self.inspector_title = Static(id="inspector-title")
+        self.inspector_text = Static(id="inspector-text")
+        self.prompt = GotoPrompt(placeholder="go to: 50%  ·  12.5 (seconds from the start)  ·  a bag time",
+                                 id="prompt")
+        self.status = Static(id="status")
+
+    # -- composition ---------------------------------------------------------------------------------
+    def compose(self) -> ComposeResult:
+        """Header, timeline, inspector, prompt, status line and key help."""
+        yield self.header
+        yield self.timeline
+        with self.inspector:
+            yield self.inspector_title
+            yield self.inspector_text
+        yield self.prompt
+        yield self.status
+        yield Static(PLAY_KEYS, id="keys")
+
+    def on_mount(self) -> None:
+        """Read the bag (in a thread), then start the transport and, when publishing, the node."""
+        self.prompt.display = False
+        self.timeline.focus()
+        quit_on_signals(self)
+        if self._given_index is not None:
+            self._bag_ready(self._given_index)
+        else:
+            self._read_bag()
+        self.set_interval(1.0 / REFRESH_RATE, self.refresh_view)
+
+    @work(thread=True, exit_on_error=False)
+    def _read_bag(self) -> None:
+        try:
+            index = load_index(self.paths)
+        except BagError as exc:
+            self.error = str(exc)
+            self.call_from_thread(self.exit, None, 1)
+            return
+        self.call_from_thread(self._bag_ready, index)
+
+    def _bag_ready(self, index: BagIndex) -> None:
+        self.index = index
+        self.transport = Transport(IndexSource(index), self._publish, start_ns=index.start_ns, end_ns=index.end_ns,
+                                   rate=self.rate, loop=self.loop_play, paused=not self.start_playing,
+                                   hold_at_end=True, accepts=self._accepts, clock=self.clock)
+        for topic in index.topics:
+            if self.only_topics and topic not in self.only_topics:
+                self.transport.set_topic_enabled(topic, False)
+        self.header.update(header_text(self.names, index))
+        self.timeline.set_index(index)
+        for notice in index.notices:
+            self.notify(notice, title="file cut short", severity="warning", timeout=8)
+        self._run_task = asyncio.ensure_future(self.transport.run())
+        if self.publish_wanted:
+            self.link = "connecting to the master…"
+            self.run_worker(self._connect(index), name="node", exit_on_error=False)
+        self.refresh_view()
+
+    async def _connect(self, index: BagIndex) -> None:
+        from rostui.core.bag.player import advertise_connections
+        from rostui.core.node import AsyncNode
+
+        node = AsyncNode("bag_view", anonymous=True, master_uri=self.master_uri)
+        node.log.console = None  # library warnings must not write over the screen
+        try:
+            await node.start(publish_rosout=False)
+            await asyncio.wait_for(node.master_call("getPid"), 5.0)
+            conns = _first_connections(index)
+            self.publishers = await advertise_connections(node, conns, self.queue_size)
+        except Exception:  # no master, or it refused us: browse without publishing
+            try:
+                await asyncio.wait_for(node.shutdown("rostui bag view: no master"), SHUTDOWN_TIMEOUT)
+            except Exception:
+                pass
+            self.link = f"no master at {node.master_uri}: not publishing"
+            return
+        self.node = node
+        self.link = f"publishing as {node.name}"
+
+    # -- publishing ------------------------------------------------------------------------------------
+    def _accepts(self, conn: Connection) -> bool:
+        return self.node is None or (conn.topic, conn.md5sum) in self.publishers
+
+    def _publish(self, conn: Connection, _t: int, data: bytes) -> None:
+        pub = self.publishers.get((conn.topic, conn.md5sum))
+        if pub is not None:
+            from rostui.core.node import AnyMsg
+
+            pub.publish(AnyMsg(data))
+
+    # -- the screen ------------------------------------------------------------------------------------
+    def refresh_view(self) -> None:
+        """Timer: cursor, status line and inspector from the transport's state."""
+        transport, index = self.transport, self.index
+        if transport is None or index is None:
+            self.status.update(" reading " + ", ".join(self.names) + "…")
+            return
+        bag_ns = transport.bag_ns()
+        self.timeline.show(bag_ns, self.selected, transport.disabled)
+        self.status.update(play_status(paused=transport.paused, at_end=transport.at_end, rate=transport.rate,
+                                       loop=transport.loop, bag_ns=bag_ns, start_ns=index.start_ns,
+                                       end_ns=index.end_ns, published=transport.published if self.node else 0,
+                                       link=self.link))
+        if self.inspector.display:
+            self._inspect(bag_ns)
+
+    def _inspect(self, bag_ns: int) -> None:
+        assert self.index is not None
+        topic = self.timeline.selected_topic
+        position = self.index.message_at(topic, bag_ns) if topic is not None else None
+        if (topic, position) == self._inspected:
+            return
+        self._inspected = (topic, position)
+        if topic is None or position is None:
+            self.inspector_title.update("no message")
+            self.inspector_text.update("")
+            return
+        conn, t, data = self.index.item(position)
+        track = self.index.tracks[topic]
+        number = bisect_left(track.positions, position) + 1
+        self.inspector_title.update(_escape(f"{topic}  {conn.type}  #{number} of {track.count}  bag {t / 1e9:.6f}  "
+                                            f"{wall_text(t)}  {len(data)} B"))
+        try:
+            self.inspector_text.update(_escape(message_yaml(conn, data)))
+        except BagError as exc:
+            self.inspector_text.update(f"[b]{_escape(str(exc))}[/b]")
+
+    # -- actions -----------------------------------------------------------------------------------------
+    def action_toggle_play(self) -> None:
+        """Play or pause."""
+        if self.transport is not None:
+            self.transport.toggle_pause()
+            self.refresh_view()
+
+    def action_step(self) -> None:
+        """Publish the next message (pauses first when playing)."""
+        if self.transport is None:
+            return
+        if not self.transport.paused:
+            self.transport.pause()
+        else:
+            self.transport.step()
+        self.refresh_view()
+
+    def action_seek_by(self, seconds: float) -> None:
+        """Move the cursor by ``seconds``."""
+        if self.transport is not None:
+            self.transport.seek_by(seconds)
+            self.refresh_view()
+
+    def action_seek_fraction(self, fraction: float) -> None:
+        """Move the cursor to ``fraction`` of the bag."""
+        if self.transport is not None:
+            self.transport.seek_fraction(fraction)
+            self.refresh_view()
+
+    def action_seek_fraction_by(self, delta: float) -> None:
+        """Move the cursor by ``delta`` of the bag."""
+        if self.transport is not None:
+            self.transport.seek_fraction(self.transport.fraction() + delta)
+            self.refresh_view()
+
+    def on_timeline_view_seek(self, message: TimelineView.Seek) -> None:
+        """A click in the strips."""
+        self.action_seek_fraction(message.fraction)
+
+    def on_timeline_view_selected(self, message: TimelineView.Selected) -> None:
+        """A click on a topic's name."""
+        self.selected = message.row
+        self.refresh_view()
+
+    def action_goto(self) -> None:
+        """Open the go-to prompt."""
+        self.prompt.value = ""
+        self.prompt.display = True
+        self.prompt.focus()
+
+    def on_input_submitted(self, event: Input.Submitted) -> None:
+        """Go where the prompt says."""
+        self.prompt.display = False
+        self.timeline.focus()
+        if self.transport is None or self.index is None:
+            return
+        try:
+            target = parse_goto(event.value, self.index.start_ns, self.index.end_ns)
+        except ValueError as exc:
+            self.notify(str(exc), title="go to", severity="error")
+            return
+        self.transport.seek(target)
+        self.refresh_view()
+
+    def action_rate(self, direction: int) -> None:
+        """One step up or down the rate ladder."""
+        if self.transport is None:
+            return
+        rate = self.transport.rate
+        faster = [r for r in RATES if r > rate * 1.0001]
+        slower = [r for r in RATES if r < rate / 1.0001]
+        if direction > 0 and faster:
+            self.transport.set_rate(faster[0])
+        elif direction < 0 and slower:
+            self.transport.set_rate(slower[-1])
+        self.refresh_view()
+
+    def action_toggle_loop(self) -> None:
+        """Loop on or off."""
+        if self.transport is not None:
+            self.transport.set_loop(not self.transport.loop)
+            self.refresh_view()
+
+    def action_select(self, delta: int) -> None:
+        """Select the previous or next topic."""
+        if self.index is not None and self.index.tracks:
+            self.selected = max(0, min(len(self.index.tracks) - 1, self.selected + delta))
+            self.refresh_view()
+
+    def action_toggle_topic(self) -> None:
+        """Publish the selected topic, or skip it."""
+        topic = self.timeline.selected_topic
+        if self.transport is not None and topic is not None:
+            self.transport.set_topic_enabled(topic, topic in self.transport.disabled)
+            self.refresh_view()
+
+    def action_all_topics(self) -> None:
+        """Publish every topic."""
+        if self.transport is not None:
+            for topic in list(self.transport.disabled):
+                self.transport.set_topic_enabled(topic, True)
+            self.refresh_view()
+
+    def action_toggle_inspector(self) -> None:
+        """Show or hide the inspector."""
+        self.inspector.display = not self.inspector.display
+        self._inspected = (None, None)
+        self.refresh_view()
+
+    async def action_quit(self) -> None:
+        """Stop playing, shut the node down, leave."""
+        await self.shutdown()
+        self.exit(0)
+
+    async def shutdown(self) -> None:
+        """Stop the transport and the node (idempotent)."""
+        if self.transport is not None:
+            self.transport.stop()
+        if self._run_task is not None:
+            try:
+                await asyncio.wait_for(self._run_task, SHUTDOWN_TIMEOUT)
+            except Exception:
+                pass
+            self._run_task = None
+        node, self.node = self.node, None
+        if node is not None:
+            try:
+                await asyncio.wait_for(node.shutdown("rostui bag view closed"), SHUTDOWN_TIMEOUT)
+            except Exception:
+                pass
+
+
+def _first_connections(index: BagIndex) -> list[Connection]:
+    """One connection per (topic, md5sum) in the order they first appear."""
+    seen: dict[tuple[str, str], Connection] = {}
+    for conn in index.conns:
+        seen.setdefault((conn.topic, conn.md5sum), conn)
+    return list(seen.values())
+
+
+def _escape(text: str) -> str:
+    from rich.markup import escape
+
+    return escape(text)
+
+
+def run_app(paths: Sequence[str], **options: Any) -> int:
+    """Run :class:`BagViewApp` in this terminal; returns the exit status (1 without a terminal or a bag)."""
+    if not (sys.stdin.isatty() and sys.stdout.isatty()):
+        print("rostui bag view: draws in a terminal: stdin and stdout must be a TTY (use `rostui bag play` "
+              "without one)", file=sys.stderr)
+        return 1
+    app = BagViewApp(paths, **options)
+    app.run()
+    if app.error:
+        print(f"rostui bag view: {app.error}", file=sys.stderr)
+    return app.return_code or 0

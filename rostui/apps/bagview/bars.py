@@ -1,0 +1,61 @@
+"""Texts of the bag view's one-line bars: the file header, the transport status and key help."""
+
+from __future__ import annotations
+
+import time
+
+from rich.text import Text
+
+from rostui.core.bag.index import BagIndex
+
+#: Key help in play mode.
+PLAY_KEYS = ("space play/pause  s step  ←/→ ±1s  PgUp/PgDn ±10%  Home/End  0-9 10%s  g go to  "
+             "+/- rate  l loop  ↑/↓ topic  t publish on/off  a all on  i inspector  q quit")
+
+#: Key help in record mode.
+RECORD_KEYS = "r start/stop  n split (new file)  q stop and quit"
+
+
+def human_size(size: float) -> str:
+    """``123 B``, ``4.5 KB``, ``6.7 MB``."""
+    for unit in ("B", "KB", "MB", "GB"):
+        if size < 1024 or unit == "GB":
+            return f"{int(size)} B" if unit == "B" else f"{size:.1f} {unit}"
+        size /= 1024
+    return f"{size:.1f} GB"
+
+
+def wall_text(t_ns: int) -> str:
+    """The bag time as a local date and time with milliseconds: ``2023-11-14 22:13:20.250``."""
+    secs, ns = divmod(t_ns, 1_000_000_000)
+    return time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(secs)) + f".{ns // 1_000_000:03d}"
+
+
+def header_text(names: list[str], index: BagIndex | None) -> Text:
+    """``square.bag · 12.3 KB · 1234 msgs · 2 topics · 9.000 s`` and a warning for files cut short."""
+    text = Text(" · ".join(names), style="bold")
+    if index is None:
+        text.append(" · reading…")
+        return text
+    span = (index.end_ns - index.start_ns) / 1e9
+    text.append(f" · {human_size(index.size)} · {len(index)} msgs · {len(index.tracks)} topics · {span:.3f} s")
+    for notice in index.notices:
+        text.append(f"  ⚠ {notice}", style="bold yellow")
+    return text
+
+
+def play_status(*, paused: bool, at_end: bool, rate: float, loop: bool, bag_ns: int, start_ns: int, end_ns: int,
+                published: int, link: str) -> Text:
+    """``▶ PLAYING ×1 loop │ bag 1700000001.230000 │ 2023-11-14 22:13:21.230 │ +1.230 / 2.000 s 61% │ …``."""
+    state = "■ END" if paused and at_end else "❚❚ PAUSED" if paused else "▶ PLAYING"
+    text = Text(f" {state} ", style="bold reverse")
+    text.append(f" ×{rate:g}")
+    if loop:
+        text.append(" loop", style="bold")
+    span = max(end_ns - start_ns, 0)
+    pct = 100.0 * (bag_ns - start_ns) / span if span else 0.0
+    text.append(f" │ bag {bag_ns / 1e9:.6f} │ {wall_text(bag_ns)} │ +{(bag_ns - start_ns) / 1e9:.3f} / "
+                f"{span / 1e9:.3f} s {pct:3.0f}% │ published {published}")
+    if link:
+        text.append(f" │ {link}")
+    return text

@@ -1,0 +1,165 @@
+"""BagRecordApp: ``rostui bag view --record``: record with live per-topic counts, sizes and rates.
+
+Recording starts at once (as ``rostui bag record`` does); ``r`` stops and
+starts again (into the next file), ``n`` splits into the next file without
+losing a message, ``q`` finishes the file and leaves. Files are named like
+``rosbag record --split``: ``NAME_0.mcap``, ``NAME_1.mcap``, ...
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Any, ClassVar
+
+from rich.table import Table
+from rich.text import Text
+from textual.app import App, ComposeResult
+from textual.binding import Binding, BindingType
+from textual.containers import VerticalScroll
+from textual.widgets import Static
+
+from rostui.apps.bagview.bars import RECORD_KEYS, human_size
+from rostui.apps.bagview.recording import RecordSession
+from rostui.apps.widgets.lifecycle import quit_on_signals
+from rostui.core.bag.model import BagError
+from rostui.core.bag.recorder import RecordOptions
+
+__all__ = ["BagRecordApp", "run_record_app"]
+
+#: Screen refreshes (and rate samples) per second.
+REFRESH_RATE = 4.0
+
+
+def topics_table(session: RecordSession) -> Table:
+    """One row per topic: messages in this file and in all, size, rate and bandwidth."""
+    table = Table(expand=True, box=None, header_style="bold", pad_edge=False)
+    table.add_column("topic", ratio=3, no_wrap=True, overflow="ellipsis")
+    for name in ("msgs (file)", "msgs (all)", "size (all)", "rate", "bandwidth"):
+        table.add_column(name, justify="right", ratio=1, no_wrap=True)
+    subscribed = session.subscribed
+    for topic in sorted(set(session.meters) | subscribed):
+        meter = session.meters.get(topic)
+        if meter is None:
+            table.add_row(topic, "0", "0", "0 B", "-", "-")
+            continue
+        rate, bandwidth = meter.rates()
+        style = "" if topic in subscribed or not session.recording else "dim"
+        table.add_row(topic, str(meter.file_count), str(meter.count), human_size(meter.size), f"{rate:.1f} Hz",
+                      f"{human_size(bandwidth)}/s", style=style)
+    return table
+
+
+def record_status(session: RecordSession, problem: str) -> Text:
+    """``● REC 'name_0.mcap' │ 123 msgs │ 1.2 MB │ 3 topics │ 1 file`` (or STOPPED), then a problem."""
+    text = Text(" ● REC " if session.recording else " ■ STOPPED ", style="bold reverse")
+    if session.file:
+        text.append(f" '{session.file}'")
+    nfiles = len(session.files)
+    text.append(f" │ {session.messages} msgs │ {human_size(session.total_bytes)} │ {len(session.subscribed)} topics"
+                f" │ {nfiles} file{'s' if nfiles != 1 else ''}")
+    if session.dropped:
+        text.append(f" │ {session.dropped} dropped", style="bold")
+    if problem:
+        text.append(f" │ {problem}", style="bold red")
+    return text
+
+
+class BagRecordApp(App[int]):
+    """Record topics with a live table of what arrives; start, stop and split from the keyboard."""
+
+    CSS_PATH = Path(__file__).with_name("app.tcss")
+    TITLE = "rostui bag view --record"
+    ENABLE_COMMAND_PALETTE = False
+
+    BINDINGS: ClassVar[list[BindingType]] = [
+        Binding("q", "quit", "quit"),
+        Binding("r", "toggle_record", "start/stop"),
+        Binding("n", "split", "split"),
+    ]
+
+    def __init__(self, opts: RecordOptions, *, master_uri: str | None = None, start: bool = True) -> None:
+        super().__init__()
+        self.session = RecordSession(opts, master_uri=master_uri, report=self._report)
+        self.start_at_once = start
+        self.problem = ""
+        self.log_lines: list[str] = []
+        self.header = Static(id="header")
+        self.table = Static(id="record-table-text")
+        self.status = Static(id="status")
+
+    def compose(self) -> ComposeResult:
+        """Header, topics table, status line and key help."""
+        yield self.header
+        with VerticalScroll(id="record-table"):
+            yield self.table
+        yield self.status
+        yield Static(RECORD_KEYS, id="keys")
+
+    def on_mount(self) -> None:
+        """Start recording and the refresh timer."""
+        quit_on_signals(self)
+        self.set_interval(1.0 / REFRESH_RATE, self.refresh_view)
+        if self.start_at_once:
+            self.run_worker(self._start(), name="start", exclusive=True, exit_on_error=False)
+        self.refresh_view()
+
+    def _report(self, line: str) -> None:
+        self.log_lines.append(line)
+
+    async def _start(self) -> None:
+        try:
+            await self.session.start()
+            self.problem = ""
+        except BagError as exc:
+            self.problem = str(exc)
+        self.refresh_view()
+
+    def refresh_view(self) -> None:
+        """Timer: sample the rates and redraw."""
+        self.session.sample()
+        problem = self.problem or (self.session.errors[-1] if self.session.errors else "")
+        what = (", ".join(self.session.opts.topics) if self.session.opts.topics else "")
+        if self.session.opts.all_topics:
+            what = "all topics" + (f" and {what}" if what else "")
+        self.header.update(Text(f"recording {what} → {self.session.base} as NAME_<n>: next "
+                                f"{self.session.next_name()}"))
+        self.table.update(topics_table(self.session))
+        self.status.update(record_status(self.session, problem))
+
+    async def action_toggle_record(self) -> None:
+        """Stop, or start again into the next file."""
+        if self.session.recording:
+            await self.session.stop()
+        else:
+            await self._start()
+        self.refresh_view()
+
+    async def action_split(self) -> None:
+        """Go on in the next file."""
+        try:
+            await self.session.split()
+        except BagError as exc:
+            self.problem = str(exc)
+        self.refresh_view()
+
+    async def action_quit(self) -> None:
+        """Finish the file and leave."""
+        await self.session.close()
+        self.exit(0)
+
+
+def run_record_app(opts: RecordOptions, **options: Any) -> int:
+    """Run :class:`BagRecordApp` in this terminal; then print what was recorded."""
+    if not (sys.stdin.isatty() and sys.stdout.isatty()):
+        print("rostui bag view: draws in a terminal: stdin and stdout must be a TTY (use `rostui bag record` "
+              "without one)", file=sys.stderr)
+        return 1
+    app = BagRecordApp(opts, **options)
+    app.run()
+    session = app.session
+    if session.files:
+        print(f"Recorded {session.messages} messages to {', '.join(session.files)}", flush=True)
+    for problem in session.errors:
+        print(f"rostui bag view: {problem}", file=sys.stderr)
+    return 1 if session.errors else (app.return_code or 0)

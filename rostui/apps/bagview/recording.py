@@ -1,0 +1,265 @@
+"""Recording from the bag view: start, stop and split without leaving the app, with per-topic meters.
+
+Each file is written by its own :class:`~rostui.core.bag.recorder.Recorder` on
+its own node ``/record_...`` (what ``rostui bag record`` runs). A split starts
+the next recorder on a new node, waits until it is connected to the same
+publishers as the current one, and then, in one step on the loop, closes the
+gate of the old one and opens the new one's: every message lands in exactly
+one of the two files. Files are named like ``rosbag record --split``:
+``NAME_0.mcap``, ``NAME_1.mcap``, ...
+"""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from collections import deque
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+from rostui.core.bag.model import BagError
+from rostui.core.bag.recorder import Recorder, RecordOptions, base_file_name, split_file_name
+
+#: Seconds of history behind a topic's rate and bandwidth.
+RATE_WINDOW = 3.0
+
+#: Seconds a split waits for the next recorder to reach the current one's publishers.
+HANDOVER_TIMEOUT = 3.0
+
+#: Seconds a recorder's node may take to shut down.
+NODE_TIMEOUT = 3.0
+
+
+@dataclass
+class TopicMeter:
+    """Messages and bytes of one topic: in all, in the current file, and their recent rate."""
+
+    topic: str
+    count: int = 0
+    size: int = 0
+    file_count: int = 0
+    file_size: int = 0
+    samples: deque[tuple[float, int, int]] = field(default_factory=deque)
+
+    def add(self, nbytes: int) -> None:
+        """One message of ``nbytes``."""
+        self.count += 1
+        self.size += nbytes
+        self.file_count += 1
+        self.file_size += nbytes
+
+    def sample(self, now: float) -> None:
+        """Remember the totals at ``now`` (call a few times a second)."""
+        self.samples.append((now, self.count, self.size))
+        while self.samples and now - self.samples[0][0] > RATE_WINDOW:
+            self.samples.popleft()
+
+    def rates(self) -> tuple[float, float]:
+        """Messages per second and bytes per second over the last few seconds."""
+        if len(self.samples) < 2:
+            return 0.0, 0.0
+        (t0, n0, b0), (t1, n1, b1) = self.samples[0], self.samples[-1]
+        if t1 <= t0:
+            return 0.0, 0.0
+        return (n1 - n0) / (t1 - t0), (b1 - b0) / (t1 - t0)
+
+
+class MeteredRecorder(Recorder):
+    """A Recorder that counts each topic's messages, and takes messages only while its gate is open."""
+
+    def __init__(self, node: Any, opts: RecordOptions, meters: dict[str, TopicMeter], *, gate_open: bool,
+                 report: Callable[[str], None]) -> None:
+        super().__init__(node, opts, report=report)
+        self.meters = meters
+        self.gate_open = gate_open
+
+    def on_frame(self, data: Any, header: dict[str, str], topic: str) -> None:
+        """Count and queue the message when the gate is open (the subscriber callback)."""
+        if not self.gate_open or self.stop.is_set():
+            return
+        meter = self.meters.get(topic)
+        if meter is None:
+            meter = self.meters[topic] = TopicMeter(topic)
+        meter.add(len(data))
+        super().on_frame(data, header, topic)
+
+
+@dataclass
+class _Running:
+    node: Any
+    recorder: MeteredRecorder
+    task: asyncio.Task[int]
+
+
+class RecordSession:
+    """Start, stop and split recordings of ``opts``'s topics; ``report`` gets rosbag-style progress lines."""
+
+    def __init__(self, opts: RecordOptions, *, master_uri: str | None = None,
+                 report: Callable[[str], None] = lambda _line: None) -> None:
+        self.opts = opts
+        self.master_uri = master_uri
+        self.report = report
+        self.base = base_file_name(opts)
+        self.meters: dict[str, TopicMeter] = {}
+        self.files: list[str] = []
+        self.errors: list[str] = []
+        self.finished_messages = 0
+        self.finished_bytes = 0
+        self.current: _Running | None = None
+        self._closing: set[asyncio.Task[None]] = set()
+        self._busy = asyncio.Lock()
+
+    # -- state --------------------------------------------------------------------------------------
+    @property
+    def recording(self) -> bool:
+        """True while a file is being written."""
+        running = self.current
+        return running is not None and not running.recorder.stop.is_set() and not running.task.done()
+
+    @property
+    def messages(self) -> int:
+        """Messages written into all files so far."""
+        return self.finished_messages + (self.current.recorder.messages if self.current else 0)
+
+    @property
+    def total_bytes(self) -> int:
+        """Bytes in all files so far."""
+        return self.finished_bytes + (self.current.recorder.total_bytes if self.current else 0)
+
+    @property
+    def dropped(self) -> int:
+        """Messages dropped because the disk could not keep up."""
+        return self.current.recorder.dropped if self.current else 0
+
+    @property
+    def file(self) -> str:
+        """The file being written (or the last one)."""
+        return self.files[-1] if self.files else ""
+
+    @property
+    def subscribed(self) -> set[str]:
+        """Topics the current recorder subscribes to."""
+        return set(self.current.recorder.subscribed) if self.current else set()
+
+    def next_name(self) -> str:
+        """The name of the next file: ``NAME_<n>`` like ``rosbag record --split``."""
+        return split_file_name(self.base, len(self.files))
+
+    def sample(self) -> None:
+        """Take a rate sample of every topic (the app's timer)."""
+        now = time.monotonic()
+        for meter in self.meters.values():
+            meter.sample(now)
+        if self.current is not None and self.current.task.done():
+            self._collect_error(self.current)
+
+    # -- control ------------------------------------------------------------------------------------
+    async def _launch(self, gate_open: bool) -> _Running:
+        from rostui.core.node import AsyncNode, MasterUnreachableError
+
+        name = self.next_name()
+        opts = replace(self.opts, output_name=name, output_prefix=None, split=False, size_mb=None,
+                       duration_s=None)
+        node = AsyncNode("record", anonymous=True, master_uri=self.master_uri)
+        node.log.console = None  # library warnings must not write over the screen
+        try:
+            await node.start(publish_rosout=False)
+            await asyncio.wait_for(node.master_call("getPid"), NODE_TIMEOUT)
+            recorder = MeteredRecorder(node, opts, self.meters, gate_open=gate_open, report=self.report)
+        except MasterUnreachableError as exc:
+            await _shutdown(node)
+            raise BagError(str(exc)) from None
+        except (OSError, asyncio.TimeoutError):
+            await _shutdown(node)
+            raise BagError(f"no master answers at {node.master_uri}") from None
+        except BagError:
+            await _shutdown(node)
+            raise
+        self.files.append(name)
+        task = asyncio.ensure_future(recorder.run())
+        return _Running(node, recorder, task)
+
+    async def start(self) -> None:
+        """Start recording into the next file (BagError when there is no master)."""
+        async with self._busy:
+            if self.recording:
+                return
+            for meter in self.meters.values():
+                meter.file_count = meter.file_size = 0
+            self.current = await self._launch(gate_open=True)
+
+    async def stop(self) -> None:
+        """Finish the current file (index and statistics) and wait until it is closed."""
+        async with self._busy:
+            running, self.current = self.current, None
+            if running is not None:
+                await self._finish(running)
+
+    async def split(self) -> None:
+        """Close the current file and go on in the next one, losing no message and doubling none."""
+        async with self._busy:
+            old = self.current
+            if old is None or old.recorder.stop.is_set():
+                return
+            new = await self._launch(gate_open=False)
+            await self._wait_connected(old, new)
+            old.recorder.stop.set()  # these two lines run in one step of the loop: the handover
+            new.recorder.gate_open = True
+            self.current = new
+            for meter in self.meters.values():
+                meter.file_count = meter.file_size = 0
+            task = asyncio.ensure_future(self._finish(old))
+            self._closing.add(task)
+            task.add_done_callback(self._closing.discard)
+
+    async def close(self) -> None:
+        """Stop recording and wait for every file to be closed."""
+        await self.stop()
+        if self._closing:
+            await asyncio.gather(*self._closing, return_exceptions=True)
+
+    # -- helpers ------------------------------------------------------------------------------------
+    async def _wait_connected(self, old: _Running, new: _Running) -> None:
+        """Until the new node has as many publishers on each topic as the old one (or a timeout)."""
+        deadline = time.monotonic() + HANDOVER_TIMEOUT
+        while time.monotonic() < deadline:
+            if old.recorder.subscribed <= new.recorder.subscribed and all(
+                    _connections(new.node, topic) >= _connections(old.node, topic)
+                    for topic in old.recorder.subscribed):
+                return
+            await asyncio.sleep(0.01)
+
+    async def _finish(self, running: _Running) -> None:
+        running.recorder.stop.set()
+        try:
+            await running.task
+        except Exception:
+            pass
+        self._collect_error(running)
+        self.finished_messages += running.recorder.messages
+        self.finished_bytes += running.recorder.total_bytes
+        await _shutdown(running.node)
+
+    def _collect_error(self, running: _Running) -> None:
+        task = running.task
+        problem = running.recorder.error
+        if task.done() and not task.cancelled() and task.exception() is not None:
+            problem = str(task.exception())
+        if problem and problem not in self.errors:
+            self.errors.append(problem)
+
+
+def _connections(node: Any, topic: str) -> int:
+    """Publishers connected to ``node``'s subscription of ``topic``."""
+    from rostui.core.node.node import Subscriber
+
+    sub = node.subscriptions.get(topic)
+    return 0 if sub is None else Subscriber(node, sub, None, None).get_num_connections()
+
+
+async def _shutdown(node: Any) -> None:
+    try:
+        await asyncio.wait_for(node.shutdown("rostui bag view: recording finished"), NODE_TIMEOUT)
+    except Exception:  # the master may be gone; closing our own sockets is all that matters
+        pass

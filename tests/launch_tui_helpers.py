@@ -30,7 +30,7 @@ BUILTIN_SHARE = REPO / "rostui" / "share"
 SCRIPTS = {
     "chatty": '#!/bin/sh\n# Prints "line 1".."line N" ($1) on stdout and one line on stderr, then waits.\n'
               'i=1\nwhile [ "$i" -le "$1" ]; do echo "line $i of $1"; i=$((i + 1)); done\n'
-              'echo "a warning from chatty" >&2\nexec sleep 1000\n',
+              'sleep 0.3\necho "a warning from chatty" >&2\nexec sleep 1000\n',
     "quiet": '#!/bin/sh\n# Says it is up, then waits to be stopped.\necho "quiet is up"\nexec sleep 1000\n',
     "dies": '#!/bin/sh\n# Complains and exits at once with status $1.\necho "giving up with $1" >&2\nexit "$1"\n',
     "stubborn": "#!/bin/sh\n# Ignores SIGINT; its child sleeps too (both must be gone after the shutdown).\n"

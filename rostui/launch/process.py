@@ -129,9 +129,9 @@ class ManagedProcess:
             self._pumps.append(loop.create_task(pump(self.proc.stdout, self.output, "stdout", self._log)))
             self._pumps.append(loop.create_task(pump(self.proc.stderr, self.output, "stderr")))
 
-    def note(self, text: str) -> None:
+    def note(self, text: str, error: bool = False) -> None:
         """Add a line of the launcher's own (started, died, restarting...) to the node's output."""
-        self.output.append("launch", text)
+        self.output.append("error" if error else "launch", text)
 
     def remember_tree(self) -> None:
         """Record the pids of the node's descendants (so they can be reaped even after the leader exits)."""
@@ -209,13 +209,18 @@ class ManagedProcess:
                 continue
         psutil.wait_procs(leftovers, timeout=3)
 
-    async def drain(self, timeout: float = 2.0) -> None:
-        """Wait (up to ``timeout`` s) until the pipes' last lines are read (with ``plan.capture``)."""
+    async def drain(self, timeout: float = 2.0, *, give_up: bool = True) -> None:
+        """Wait (up to ``timeout`` s) until the pipes' last lines are read (with ``plan.capture``).
+
+        With ``give_up`` the pipes still open after ``timeout`` (held by a
+        child the node left behind) stop being read.
+        """
         pending = [task for task in self._pumps if not task.done()]
         if pending:
             _, late = await asyncio.wait(pending, timeout=timeout)
-            for task in late:
-                task.cancel()
+            if give_up:
+                for task in late:
+                    task.cancel()
 
     def close_log(self) -> None:
         """Close the stdout log file."""

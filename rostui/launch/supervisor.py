@@ -310,7 +310,7 @@ class Supervisor:
             if process.state is NodeState.FAILED:
                 message = self._failures[id(process)]
                 self.complain(message)
-                process.note(message)
+                process.note(message, error=True)
                 continue
             async with process.lock:
                 await self._spawn(process, "started")
@@ -326,7 +326,7 @@ class Supervisor:
             self.complain(message)
             process.state = NodeState.FAILED
             process.problem = f"{plan.argv[0]}: {exc.strerror or exc}"
-            process.note(message)
+            process.note(message, error=True)
             return False
         message = f"process[{plan.label}]: {verb} with pid [{process.pid}]"
         self.say(message)
@@ -342,6 +342,7 @@ class Supervisor:
         while True:
             assert process.proc is not None
             code = await process.proc.wait()
+            await process.drain(0.5, give_up=False)  # its last lines come before the news of its death
             if self.stopping.is_set():
                 return
             plan = process.plan
@@ -356,7 +357,7 @@ class Supervisor:
                 message = (f"[{plan.label}] process has died [pid {process.pid}, exit code {code}, "
                            f"cmd {' '.join(plan.argv)}]{where}")
                 self.complain(message)
-            process.note(message)
+            process.note(message, error=code != 0)
             node = plan.spec
             if node.required:
                 self.complain(f"REQUIRED process [{plan.label}] has died! Initiating shutdown!")

@@ -106,8 +106,8 @@ class LaunchMonitorApp(App[int]):
         yield Static(id="status")
         yield Static(id="banner")
         table: DataTable[Text] = DataTable(id="nodes", cursor_type="row", zebra_stripes=False)
-        for key, heading in COLUMNS:
-            table.add_column(heading, key=key)
+        for key, heading, width in COLUMNS:
+            table.add_column(heading, key=key, width=width)
         yield table
         yield Static(id="log-title")
         yield RichLog(id="log", max_lines=DEFAULT_MAX_LINES, markup=False, highlight=False, wrap=False)
@@ -188,9 +188,9 @@ class LaunchMonitorApp(App[int]):
         if old is None:
             table.add_row(*cells, key=row.key)
         else:
-            for (key, _), cell, before, now in zip(COLUMNS, cells, old.cells(), row.cells()):
+            for (key, _, width), cell, before, now in zip(COLUMNS, cells, old.cells(), row.cells()):
                 if before != now or old.kind != row.kind:
-                    table.update_cell(row.key, key, cell)
+                    table.update_cell(row.key, key, cell, update_width=width is None)
         self.rows[row.key] = row
 
     def update_status(self) -> None:
@@ -204,7 +204,7 @@ class LaunchMonitorApp(App[int]):
             parts.append(f"master {supervisor.master_uri}")
         counts: dict[str, int] = {}
         for process in processes:
-            word = "died" if process.state is NodeState.FAILED else process.state.value
+            word = "cannot start" if process.state is NodeState.FAILED else process.state.value
             counts[word] = counts.get(word, 0) + 1
         if processes:
             parts.append(" · ".join(f"{n} {word}" for word, n in counts.items()))

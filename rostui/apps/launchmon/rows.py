@@ -9,9 +9,9 @@ from dataclasses import dataclass
 from rostui.launch.process import ManagedProcess, NodeState
 from rostui.launch.usage import Usage, UsageSampler
 
-#: The table's columns: key and heading.
-COLUMNS = (("node", "Node"), ("state", "State"), ("pid", "Pid"), ("cpu", "CPU %"), ("mem", "Memory"),
-           ("restarts", "Restarts"), ("flags", "Flags"))
+#: The table's columns: key, heading and fixed width (None: as wide as the widest cell now).
+COLUMNS = (("node", "Node", None), ("state", "State", None), ("pid", "Pid", 7), ("cpu", "CPU %", 6),
+           ("mem", "Memory", 9), ("restarts", "Restarts", 8), ("flags", "Flags", None))
 
 
 @dataclass(frozen=True)

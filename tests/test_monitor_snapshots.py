@@ -1,0 +1,151 @@
+"""SVG snapshots of `rostui monitor` (stored in snapshots/test_monitor_snapshots/).
+
+The app runs for real against a `rostui core` master; a node in the test
+publishes over TCPROS.  Only time is the test's: the app and its source
+read a clock the test steps 0.1 s per message, and repaints and rate
+samples happen when the test asks, so rates, bandwidths, ages and
+sparklines come out the same on every machine.  Regenerate with
+``pytest tests/test_monitor_snapshots.py --snapshot-update`` and look at the
+SVGs before committing them.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Iterator
+
+import pytest
+from textual.pilot import Pilot
+
+from rostui.apps.monitor.app import MonitorApp
+from rostui.core.msg import get_message_class
+from rostui.core.rostime import Time
+
+from conftest import until
+from live_helpers import Watcher
+from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
+
+DEADLINE = 30.0
+TOPICS = ("/diagnostics/log", "/turtle1/cmd_vel")
+
+
+@pytest.fixture(autouse=True)
+def truecolor(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The same colour system on every machine."""
+    monkeypatch.setenv("COLORTERM", "truecolor")
+    monkeypatch.setenv("TERM", "xterm-256color")
+    monkeypatch.delenv("NO_COLOR", raising=False)
+
+
+class SteppedClock:
+    """Wall time that moves only when the test says."""
+
+    def __init__(self) -> None:
+        self.now = 1_700_000_000.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+class Talkers:
+    """A node in the test publishing a Log and a Twist, one message per call to :meth:`step`."""
+
+    def __init__(self) -> None:
+        self.watcher = Watcher("snapshot_talker")
+        self.log = self.watcher.publisher("/diagnostics/log", "rosgraph_msgs/Log")
+        self.twist = self.watcher.publisher("/turtle1/cmd_vel", "geometry_msgs/Twist")
+        log_class = get_message_class("rosgraph_msgs/Log")
+        self.log_msg = log_class(level=2, name="/battery_monitor", msg="battery at 87%", file="battery.py",
+                                 function="check", line=42, topics=[f"/battery/cell{i}" for i in range(12)])
+        self.log_msg.header.stamp = Time(1_700_000_000, 500_000_000)
+        self.twist_msg = get_message_class("geometry_msgs/Twist")()
+        self.twist_msg.linear.x = 2.0
+        self.twist_msg.angular.z = 1.8
+
+    def step(self) -> None:
+        """Publish one message on each topic."""
+        self.log.publish(self.log_msg)
+        self.twist.publish(self.twist_msg)
+
+    def close(self) -> None:
+        """Leave the master."""
+        self.watcher.close()
+
+
+@pytest.fixture
+def talkers(rostui_core: Any, ros_env: dict[str, str]) -> Iterator[Talkers]:
+    """The publishing node."""
+    talkers = Talkers()
+    yield talkers
+    talkers.close()
+
+
+def stepped_app(clock: SteppedClock, topics: tuple[str, ...] = ()) -> MonitorApp:
+    """The app with repaints and samples only on request."""
+    return MonitorApp(topics, period=0.2, refresh=3600, sample_every=3600, clock=clock)
+
+
+async def feed(pilot: Pilot, talkers: Talkers, clock: SteppedClock, messages: int = 31) -> None:
+    """Once subscribed, publish ``messages`` per topic 0.1 s apart (on the clock), sampling every second."""
+    app = pilot.app
+    assert isinstance(app, MonitorApp)
+
+    def connected() -> bool:
+        app.repaint()
+        stats = [app.source._watches.get(t) for t in TOPICS]
+        return all(w is not None and w.handle.get_num_connections() > 0 for w in stats)
+    await until(connected, "the monitor connected to both topics", DEADLINE)
+    start = clock.now
+    for k in range(messages):
+        clock.now = start + k * 0.1
+        talkers.step()
+        await until(lambda: all(app.source.stats(t).messages == k + 1 for t in TOPICS), f"message {k + 1}", DEADLINE)
+        if k and k % 10 == 0:
+            app.source.sample()
+    clock.now += 0.05
+    app.repaint()
+    await pilot.pause()
+
+
+def test_table(snap_compare, talkers: Talkers) -> None:
+    """The table: two live topics at 10 Hz with bandwidth and age, rosout's topics without publishers' messages."""
+    clock = SteppedClock()
+
+    async def run_before(pilot: Pilot) -> None:
+        await feed(pilot, talkers, clock)
+
+    assert snap_compare(stepped_app(clock), run_before=run_before, terminal_size=(100, 12))
+
+
+def test_expanded_log_tree(snap_compare, talkers: Talkers) -> None:
+    """`rostui monitor /diagnostics/log`: the message tree (level 2 as INFO, 12 topics cut to 8) and the charts.
+
+    Tab moves into the tree and Enter opens the topics array.
+    """
+    clock = SteppedClock()
+
+    async def run_before(pilot: Pilot) -> None:
+        await feed(pilot, talkers, clock)
+        app = pilot.app
+        assert isinstance(app, MonitorApp)
+        await pilot.press("tab")
+        topics = app.tree.topic_node("/diagnostics/log").children[-1]
+        app.tree.move_cursor(topics)
+        await pilot.press("enter")
+        await pilot.pause()
+
+    assert snap_compare(stepped_app(clock, ("/diagnostics/log",)), run_before=run_before, terminal_size=(110, 40))
+
+
+def test_publish_editor(snap_compare, talkers: Talkers) -> None:
+    """p on /turtle1/cmd_vel: the editor with the Twist template rostopic pub's completion gives."""
+    clock = SteppedClock()
+
+    async def run_before(pilot: Pilot) -> None:
+        await feed(pilot, talkers, clock, messages=2)
+        app = pilot.app
+        assert isinstance(app, MonitorApp)
+        assert app.table.select_topic("/turtle1/cmd_vel")
+        await pilot.press("p")
+        await pilot.pause()
+
+    assert snap_compare(stepped_app(clock), run_before=run_before, terminal_size=(100, 24))

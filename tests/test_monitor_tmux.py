@@ -1,0 +1,74 @@
+"""`rostui monitor` end to end in a real terminal: a tmux pane runs the real command against live publishers.
+
+Two `rostui topic pub -r` processes publish on a `rostui core` master; the
+test types `rostui monitor /log` into a shell in a detached 110x40 tmux
+pane, reads the table and the expanded message tree off the screen, filters
+with /, opens the publish editor with p, and quits with q back to the shell
+prompt with exit status 0.
+"""
+
+from __future__ import annotations
+
+import shlex
+import sys
+from pathlib import Path
+from typing import Any, Iterator
+
+import pytest
+
+from conftest import wait_until
+from monitor_helpers import start_publishers, stop_all
+from tmux_helpers import Pane, shell_pane
+
+EXIT_MARK = "MONITOR_EXIT="
+
+
+@pytest.fixture
+def pane() -> Iterator[Pane]:
+    """A detached 110x40 tmux session running /bin/sh with a plain prompt."""
+    with shell_pane("monitor", 110, 40) as pane:
+        yield pane
+
+
+def line_of(screen: str, text: str) -> str:
+    """The first screen line holding ``text``."""
+    return next((line for line in screen.splitlines() if text in line), "")
+
+
+def test_monitor_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str], tmp_path: Path) -> None:
+    """`rostui monitor /log`: live rows, the Log tree with INFO, / filter, p editor with a template, q quits."""
+    pubs = start_publishers(ros_env, tmp_path, [
+        ("/log", "rosgraph_msgs/Log", "{level: 2, msg: tmux hello}", 5),
+        ("/cmd_vel", "geometry_msgs/Twist", "{linear: {x: 0.5}}", 10),
+    ])
+    try:
+        values = {key: ros_env[key] for key in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")}
+        values["TERM"] = "xterm-256color"
+        assignments = " ".join(f"{k}={shlex.quote(v)}" for k, v in values.items())
+        pane.type(f"env -u COLUMNS -u LINES {assignments} {shlex.quote(sys.executable)} -m rostui monitor /log "
+                  f"--period 0.5; echo {EXIT_MARK}$?")
+        pane.wait_until(lambda: "● live" in line_of(pane.screen(), "/cmd_vel") and
+                        "● live" in line_of(pane.screen(), "/log "), "both topics live")
+        pane.wait_until(lambda: "level: 2 (INFO)" in pane.screen() and "msg: 'tmux hello'" in pane.screen(),
+                        "the expanded Log tree")
+        screen = pane.screen()
+        assert "geometry_msgs/Twist" in line_of(screen, "/cmd_vel") and "● master" in screen
+        assert "/log [rosgraph_msgs/Log]" in screen
+        pane.keys("/")
+        pane.keys("-l", "cmd")
+        pane.keys("Enter")
+        pane.wait_until(lambda: "1 shown" in pane.screen(), "the filter keeping one row")
+        pane.keys("p")
+        pane.wait_until(lambda: "template for geometry_msgs/Twist" in pane.screen(), "the publish editor")
+        screen = pane.screen()
+        assert "linear:" in screen and "  x: 0.0" in screen, screen
+        assert "/cmd_vel" in line_of(screen, "│ topic "), screen
+        pane.keys("Escape")
+        pane.wait_until(lambda: "template for" not in pane.screen(), "the editor closed")
+        pane.keys("q")
+        pane.wait_until(lambda: f"{EXIT_MARK}0" in pane.screen(), "the shell to report exit status 0 after q")
+        screen = pane.screen()
+        assert "/cmd_vel" not in screen, "the app's screen was left behind"
+        assert screen.rstrip().endswith("$")
+    finally:
+        stop_all(pubs)

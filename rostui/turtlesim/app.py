@@ -26,6 +26,7 @@ from textual.widgets import Static
 from rostui.apps.widgets.lifecycle import quit_on_signals
 from rostui.core import names
 from rostui.core.log import Level, LogRecord
+from rostui.core.log.console import format_line
 from rostui.core.master.embedded import EmbeddedMaster, MasterUnavailableError, ensure_master
 from rostui.core.msg import get_message_class, get_service_class
 from rostui.core.network import master_uri_from_env
@@ -123,6 +124,8 @@ class TurtlesimApp(App[int]):
         self._teleop_argv = [f"{key}:={args.specials[key]}" for key in _SHARED_SPECIALS if key in args.specials]
         self._publishers: dict[str, tuple[Publisher, Publisher]] = {}
         self._stopping = False
+        self.farewell = ""
+        """The node's shutdown line, printed once the app has left the screen (empty unless asked to shut down)."""
         self._selected = ""
         self._notice: tuple[float, str] = (0.0, "")
         self.sim.log.add_sink(self._on_log)
@@ -176,7 +179,11 @@ class TurtlesimApp(App[int]):
         self.select(next(iter(self.sim.world.turtles), ""))
         reason = await self.sim.wait_stopped()
         if not self._stopping:  # `rostui node kill /turtlesim`, a same-name node, or the master asked
-            await self._fail(f"turtlesim node shut down: {reason}")
+            await self._stop_ros()
+            # A node asked to shut down ends normally (as roscpp's turtlesim does), saying why as the node logged it.
+            self.farewell = format_line(Level.WARN, f"Shutdown request received. Reason given for shutdown: [{reason}]",
+                                        self.sim.name)
+            self.exit(0)
 
     async def _fail(self, message: str) -> None:
         await self._stop_ros()
@@ -336,4 +343,6 @@ def run_app(argv: Sequence[str], *, teleop: bool = True) -> int:
         print(f"ERROR: {exc}", file=sys.stderr)
         return 1
     app.run()
+    if app.farewell:
+        print(app.farewell, file=sys.stderr, flush=True)
     return app.return_code or 0

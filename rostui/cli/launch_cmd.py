@@ -40,6 +40,7 @@ def launch_command(
 
     --tui shows the nodes live (keys: s start, k stop, r restart, l launcher's output, f follow, q quit).
     """
+    import os
     import sys
 
     from rostui.launch import inspect
@@ -85,7 +86,8 @@ def launch_command(
             supervisor = load_supervisor(request, options, reporter=keep_quiet)
             from rostui.apps.launchmon.app import run_app
 
-            raise typer.Exit(run_app(supervisor, " ".join(w for w in words if ":=" not in w)))
+            title = " ".join(os.path.basename(w) for w in words if ":=" not in w)
+            raise typer.Exit(run_app(supervisor, title))
         else:
             from rostui.launch.supervisor import SupervisorOptions, run_launch
 

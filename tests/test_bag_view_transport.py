@@ -17,26 +17,9 @@ from rostui.core.bag.files import merged_messages, open_reader, open_writer
 from rostui.core.bag.index import BagIndex, IndexSource, load_index, message_yaml
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.transport import StreamSource, Transport
-from rostui.core.msg import get_message_class
 
+from bag_view_helpers import STEP_NS, T0, Int32, write_counts
 from conftest import until
-
-Int32 = get_message_class("std_msgs/Int32")
-T0 = 1_700_000_000_000_000_000
-STEP_NS = 10_000_000
-
-
-def write_counts(path: Path, count: int = 100) -> None:
-    """``/count`` 0..count-1 and ``/odd`` (the odd ones), 10 ms apart."""
-    writer = open_writer(str(path))
-    writer.add_connection(Connection(0, "/count", "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/c"))
-    writer.add_connection(Connection(1, "/odd", "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/o"))
-    for i in range(count):
-        writer.write(0, T0 + i * STEP_NS, Int32(data=i).serialize())
-        if i % 2:
-            writer.write(1, T0 + i * STEP_NS, Int32(data=i).serialize())
-    writer.close()
-
 
 @pytest.fixture
 def index(tmp_path: Path) -> BagIndex:

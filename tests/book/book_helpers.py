@@ -22,6 +22,7 @@ import uuid
 from pathlib import Path
 from typing import Callable, Iterator
 
+import psutil
 import pytest
 
 from cli_helpers import rostui
@@ -184,16 +185,39 @@ class Desk:
         return terminal
 
     def close(self) -> None:
-        """Ctrl-C every terminal's program, give them a moment to unregister, then kill the tmux server."""
-        for terminal in reversed(self.terminals):
-            try:
-                terminal.keys("C-c")
-            except AssertionError:
-                pass
-        deadline = time.monotonic() + 10
-        while time.monotonic() < deadline and not all(self._idle(t) for t in self.terminals):
-            time.sleep(0.2)
+        """End every terminal's program as a reader would (Ctrl-C, then q for the apps), then kill the tmux server.
+
+        Anything the terminals started that still runs afterwards is killed, so no test leaves a process behind.
+        """
+        started = self._programs()
+        for key in ("C-c", "q"):
+            for terminal in reversed(self.terminals):
+                if not self._idle(terminal):
+                    terminal.keys(key)
+            deadline = time.monotonic() + 10
+            while time.monotonic() < deadline and not all(self._idle(t) for t in self.terminals):
+                time.sleep(0.2)
         subprocess.run(["tmux", "-L", self.socket, "kill-server"], capture_output=True, timeout=30)
+        _, alive = psutil.wait_procs(started, timeout=10)
+        for process in alive:
+            try:
+                process.kill()
+            except psutil.Error:
+                pass
+
+    def _programs(self) -> list[psutil.Process]:
+        """Every process running below the terminals' shells."""
+        try:
+            pids = self.tmux("list-panes", "-s", "-t", self.session, "-F", "#{pane_pid}").split()
+        except AssertionError:
+            return []
+        found: list[psutil.Process] = []
+        for pid in pids:
+            try:
+                found += psutil.Process(int(pid)).children(recursive=True)
+            except psutil.Error:
+                pass
+        return found
 
     def _idle(self, terminal: Terminal) -> bool:
         """True when the terminal's shell has no program running in the foreground."""

@@ -133,3 +133,17 @@ def test_without_a_terminal_is_one_line_and_exit_1(tui_env: dict[str, str], tmp_
         "rostui launch: --tui draws in a terminal: stdin and stdout must be a TTY "
         "(run without --tui to launch without the monitor)"]
     assert result.stdout == ""
+
+
+def test_closing_the_terminal_stops_the_launch(pane: Pane, tui_env: dict[str, str], tmp_path: Path) -> None:
+    """The terminal goes away (SIGHUP) while a node ignores SIGINT: every node is stopped, the launcher exits."""
+    launch = write_launch(tmp_path / "hangup.launch", """
+  <node pkg="tuitest" type="stubborn" name="mule"/>
+  <node pkg="tuitest" type="quiet" name="calm"/>""")
+    pane.type(launch_line(tui_env, "--tui", "--sigint-timeout", "1", "--sigterm-timeout", "1", str(launch)))
+    pane.wait_until(lambda: row(pane, "/mule")[0] == "running" and row(pane, "/calm")[0] == "running",
+                    "both nodes running on screen")
+    wait_until(lambda: len(launcher_tree(launch)) >= 4, "the launcher, the mule, its child and calm")
+    pids = launcher_tree(launch)
+    pane.close()
+    wait_until(lambda: not still_alive(pids), "the launcher and every node to be gone", timeout=60)

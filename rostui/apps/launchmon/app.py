@@ -13,6 +13,7 @@ node has stopped.
 from __future__ import annotations
 
 import asyncio
+import os
 import signal
 import sys
 from pathlib import Path
@@ -21,6 +22,7 @@ from typing import Callable, ClassVar
 from rich.text import Text
 from textual.app import App, ComposeResult
 from textual.binding import Binding, BindingType
+from textual.timer import Timer
 from textual.widgets import DataTable, RichLog, Static
 
 from rostui.apps.launchmon.rows import COLUMNS, NodeRow, measure, node_row
@@ -99,6 +101,9 @@ class LaunchMonitorApp(App[int]):
         self._ticks = 0
         self._usage: dict[str, Usage | None] = {}
         self._run_task: asyncio.Task[None] | None = None
+        self._refresh_timer: Timer | None = None
+        self.terminal_gone = False
+        """True after SIGHUP: the terminal is gone, nothing more is drawn."""
 
     # -- composition -----------------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -114,17 +119,18 @@ class LaunchMonitorApp(App[int]):
         yield Static(KEYS, id="keys")
 
     def on_mount(self) -> None:
-        """Start the launch and the refresh timer; Ctrl-C from outside (SIGINT), SIGTERM and SIGHUP quit."""
+        """Start the launch and the refresh timer; Ctrl-C from outside (SIGINT) and SIGTERM quit, SIGHUP too."""
         quit_on_signals(self)
+        loop = asyncio.get_running_loop()
         try:
-            asyncio.get_running_loop().add_signal_handler(signal.SIGINT,
-                                                          lambda: self.call_later(self.action_quit))
+            loop.add_signal_handler(signal.SIGINT, lambda: self.call_later(self.action_quit))
+            loop.add_signal_handler(signal.SIGHUP, self._terminal_gone)
         except (NotImplementedError, RuntimeError, ValueError):
             pass
         self.query_one("#banner", Static).display = False
         self.table.focus()
-        self._run_task = asyncio.get_running_loop().create_task(self._run_launch())
-        self.set_interval(self.period, self.refresh_view)
+        self._run_task = loop.create_task(self._run_launch())
+        self._refresh_timer = self.set_interval(self.period, self.refresh_view)
         self._update_log_title()
         self.refresh_view()
 
@@ -145,12 +151,23 @@ class LaunchMonitorApp(App[int]):
         return self.query_one("#log", RichLog)
 
     # -- the launch ----------------------------------------------------------------------------------
+    def _terminal_gone(self) -> None:
+        """SIGHUP: stop drawing (a write to a vanished terminal can block Textual's output thread for good),
+        shut the launch down, then leave at once."""
+        self.terminal_gone = True
+        if self._refresh_timer is not None:
+            self._refresh_timer.stop()
+        self.supervisor.request_stop()
+
     async def _run_launch(self) -> None:
         try:
             await self.supervisor.run()
         except LaunchError as exc:
             self.launch_error = str(exc)
             self.supervisor.exit_code = 1
+        if self.terminal_gone:
+            os._exit(self.supervisor.exit_code)  # every node is stopped; nothing is left to restore on screen
+        if self.launch_error:
             self.exit(1, return_code=1)
             return
         if self.quitting:

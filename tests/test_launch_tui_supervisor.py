@@ -1,0 +1,87 @@
+"""The supervisor's side of `rostui launch --tui`, without Textual: captured output, states, one-node control.
+
+The monitor drives the launch only through the supervisor's public methods
+(start_node, stop_node, restart_node, request_stop) and reads node states and
+output rings; these tests do the same on a plain event loop.
+"""
+
+from __future__ import annotations
+
+import asyncio
+from pathlib import Path
+
+import pytest
+
+from rostui.launch.errors import LaunchError
+from rostui.launch.files import LaunchRequest
+from rostui.launch.output import OutputBuffer
+from rostui.launch.process import NodeState
+from rostui.launch.supervisor import Supervisor, SupervisorOptions, keep_quiet, load_supervisor
+
+from conftest import until
+from launch_tui_helpers import on_loop, still_alive, tui_env, write_launch  # noqa: F401  (tui_env is a fixture)
+
+
+def captured(launch: Path) -> Supervisor:
+    """A supervisor for ``launch`` with the monitor's options."""
+    options = SupervisorOptions(capture=True, handle_signals=False, stay_when_all_ended=True, sigint_timeout=5)
+    return load_supervisor(LaunchRequest([str(launch)]), options, reporter=keep_quiet)
+
+
+def lines(buffer: OutputBuffer) -> list[str]:
+    """The texts of every kept line."""
+    return [line.text for line in buffer.since(0)]
+
+
+def test_output_buffer_keeps_the_newest_lines() -> None:
+    """A full ring drops its oldest lines, counts them, and ``since`` skips what was already read."""
+    buffer = OutputBuffer(max_lines=3)
+    for n in range(5):
+        buffer.append("stdout", f"l{n}")
+    assert lines(buffer) == ["l2", "l3", "l4"]
+    assert buffer.dropped == 2
+    assert [line.text for line in buffer.since(4)] == ["l4"]
+    assert [line.text for line in buffer.since(0)] == ["l2", "l3", "l4"]
+
+
+@on_loop
+async def test_start_stop_restart_without_textual(tui_env: dict[str, str], tmp_path: Path) -> None:
+    """stop_node stops (no respawn), start_node starts, restart_node gives a new pid; output is captured."""
+    launch = write_launch(tmp_path / "plain.launch", """
+  <node pkg="tuitest" type="chatty" name="talker" args="2"/>
+  <node pkg="tuitest" type="quiet" name="keeper" respawn="true"/>""")
+    supervisor = captured(launch)
+    run = asyncio.get_running_loop().create_task(supervisor.run())
+    try:
+        await until(lambda: len(supervisor.processes) == 2
+                    and all(p.state is NodeState.RUNNING for p in supervisor.processes), "both nodes running")
+        talker = supervisor.process_named("/talker")
+        await until(lambda: "a warning from chatty" in lines(talker.output), "the talker's captured stderr")
+        assert [(line.stream, line.text) for line in talker.output.since(0)][1:] == [
+            ("stdout", "line 1 of 2"), ("stdout", "line 2 of 2"), ("stderr", "a warning from chatty")]
+        assert talker.plan.stdout_log is not None
+        assert talker.plan.stdout_log.read_text() == "line 1 of 2\nline 2 of 2\n"  # stdout is still logged
+
+        keeper = supervisor.process_named("keeper-2")  # by roslaunch's label too
+        first = keeper.pid
+        await supervisor.stop_node("/keeper")
+        assert keeper.state is NodeState.STOPPED and not keeper.running and not still_alive({first or 0})
+        await asyncio.sleep(1.5)
+        assert keeper.state is NodeState.STOPPED  # respawn does not bring a stopped node back
+        assert await supervisor.start_node("/keeper")
+        second = keeper.pid
+        assert keeper.state is NodeState.RUNNING and second != first
+        assert await supervisor.restart_node("/keeper")
+        assert keeper.pid not in (first, second) and keeper.restarts == 2
+        assert not still_alive({second or 0})
+        with pytest.raises(LaunchError, match=r"no node \[/nobody\] in this launch"):
+            await supervisor.stop_node("/nobody")
+        pids = {p.pid for process in supervisor.processes for p in process.alive_tree()}
+    finally:
+        supervisor.request_stop()
+        assert await run == 0
+    assert supervisor.finished.is_set()
+    assert all(p.state is NodeState.STOPPED for p in supervisor.processes)
+    assert not still_alive(pids)
+    with pytest.raises(LaunchError, match="shutting down"):
+        await supervisor.start_node("/talker")

@@ -128,7 +128,7 @@ class BagViewApp(App[int]):
         self.transport: Transport | None = None
         self.node: Any = None
         self.publishers: dict[tuple[str, str], Any] = {}
-        self.link = "" if publish else "browsing only (not publishing)"
+        self.link = "" if publish else "browsing only"
         self.selected = 0
         self.error = ""
         self._run_task: asyncio.Task[int] | None = None
@@ -236,7 +236,7 @@ class BagViewApp(App[int]):
         self.timeline.show(bag_ns, self.selected, transport.disabled)
         self.status.update(play_status(paused=transport.paused, at_end=transport.at_end, rate=transport.rate,
                                        loop=transport.loop, bag_ns=bag_ns, start_ns=index.start_ns,
-                                       end_ns=index.end_ns, published=transport.published if self.node else 0,
+                                       end_ns=index.end_ns, published=transport.published if self.node else -1,
                                        link=self.link))
         if self.inspector.display:
             self._inspect(bag_ns)
@@ -375,6 +375,10 @@ class BagViewApp(App[int]):
         """Stop playing, shut the node down, leave."""
         await self.shutdown()
         self.exit(0)
+
+    async def on_unmount(self) -> None:
+        """However the app ends: stop the transport and the node."""
+        await self.shutdown()
 
     async def shutdown(self) -> None:
         """Stop the transport and the node (idempotent)."""

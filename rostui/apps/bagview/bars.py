@@ -9,8 +9,8 @@ from rich.text import Text
 from rostui.core.bag.index import BagIndex
 
 #: Key help in play mode.
-PLAY_KEYS = ("space play/pause  s step  ←/→ ±1s  PgUp/PgDn ±10%  Home/End  0-9 10%s  g go to  "
-             "+/- rate  l loop  ↑/↓ topic  t publish on/off  a all on  i inspector  q quit")
+PLAY_KEYS = ("space play  s step  ←→ ±1s  PgUp/Dn ±10%  Home/End  0-9 %  g go to  +- rate  l loop  "
+             "↑↓t topics  i inspect  q quit")
 
 #: Key help in record mode.
 RECORD_KEYS = "r start/stop  n split (new file)  q stop and quit"
@@ -46,7 +46,8 @@ def header_text(names: list[str], index: BagIndex | None) -> Text:
 
 def play_status(*, paused: bool, at_end: bool, rate: float, loop: bool, bag_ns: int, start_ns: int, end_ns: int,
                 published: int, link: str) -> Text:
-    """``▶ PLAYING ×1 loop │ bag 1700000001.230000 │ 2023-11-14 22:13:21.230 │ +1.230 / 2.000 s 61% │ …``."""
+    """``▶ PLAYING ×1 loop │ bag 1700000001.230000 │ 2023-11-14 22:13:21.230 │ +1.230 / 2.000 s 61% │ …``;
+    ``published`` below 0 leaves the count out (nothing is published)."""
     state = "■ END" if paused and at_end else "❚❚ PAUSED" if paused else "▶ PLAYING"
     text = Text(f" {state} ", style="bold reverse")
     text.append(f" ×{rate:g}")
@@ -55,7 +56,9 @@ def play_status(*, paused: bool, at_end: bool, rate: float, loop: bool, bag_ns: 
     span = max(end_ns - start_ns, 0)
     pct = 100.0 * (bag_ns - start_ns) / span if span else 0.0
     text.append(f" │ bag {bag_ns / 1e9:.6f} │ {wall_text(bag_ns)} │ +{(bag_ns - start_ns) / 1e9:.3f} / "
-                f"{span / 1e9:.3f} s {pct:3.0f}% │ published {published}")
+                f"{span / 1e9:.3f} s {pct:3.0f}%")
+    if published >= 0:
+        text.append(f" │ published {published}")
     if link:
         text.append(f" │ {link}")
     return text

@@ -8,6 +8,7 @@ losing a message, ``q`` finishes the file and leaves. Files are named like
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 from typing import Any, ClassVar
@@ -122,8 +123,8 @@ class BagRecordApp(App[int]):
         what = (", ".join(self.session.opts.topics) if self.session.opts.topics else "")
         if self.session.opts.all_topics:
             what = "all topics" + (f" and {what}" if what else "")
-        self.header.update(Text(f"recording {what} → {self.session.base} as NAME_<n>: next "
-                                f"{self.session.next_name()}"))
+        root, ext = os.path.splitext(self.session.base)
+        self.header.update(Text(f"recording {what} into {root}_<n>{ext} · next file {self.session.next_name()}"))
         self.table.update(topics_table(self.session))
         self.status.update(record_status(self.session, problem))
 
@@ -147,6 +148,10 @@ class BagRecordApp(App[int]):
         """Finish the file and leave."""
         await self.session.close()
         self.exit(0)
+
+    async def on_unmount(self) -> None:
+        """However the app ends: finish the file."""
+        await self.session.close()
 
 
 def run_record_app(opts: RecordOptions, **options: Any) -> int:

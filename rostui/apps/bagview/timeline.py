@@ -152,7 +152,7 @@ class TimelineView(Widget, can_focus=True):
         cells = [" "] * width
         for x in range(0, width, TICK_SPACING):
             label = "┊" + seconds_label(span_s * x / width)
-            if x + len(label) <= width:
+            if x + len(label) <= width and not x - 1 <= column <= x + len(label):  # labels give way to ▼
                 cells[x:x + len(label)] = list(label)
         cells[column] = "▼"
         line.append("".join(cells), style=self.get_component_rich_style("timeline--ruler"))

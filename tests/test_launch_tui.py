@@ -194,3 +194,23 @@ async def test_shutdown_escalates_for_a_node_ignoring_sigint(tui_env: dict[str, 
         assert not still_alive(pids)
         assert mule and "did not stop on SIGINT: sent SIGTERM" in "\n".join(
             line.text for line in app.supervisor.launch_output.since(0))
+
+
+@on_loop
+async def test_scrolling_back_stops_following(tui_env: dict[str, str], tmp_path: Path) -> None:
+    """In the log pane, Page Up stops following (the title says so); End follows the newest line again."""
+    launch = write_launch(tmp_path / "long.launch", '<node pkg="tuitest" type="chatty" name="long" args="300"/>')
+    app = monitor(launch)
+    async with app.run_test(size=(100, 24)) as pilot:
+        await until(lambda: "a warning from chatty" in log_text(app), "all of the node's output")
+        await pilot.pause(0.2)
+        log = app.log_view
+        assert app.following and log.scroll_y == log.max_scroll_y > 0
+        await pilot.press("tab", "pageup")
+        await until(lambda: not app.following, "following stopped by Page Up")
+        assert "paused" in str(app.query_one("#log-title").render())
+        await until(lambda: log.scroll_y < log.max_scroll_y, "the pane scrolled back")
+        await pilot.press("end")
+        await until(lambda: app.following and log.scroll_y == log.max_scroll_y, "following again after End")
+        assert "following" in str(app.query_one("#log-title").render())
+        await quit_and_check_gone(pilot, pids_of_launch(app))

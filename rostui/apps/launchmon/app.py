@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Callable, ClassVar
 
 from rich.text import Text
+from textual import events
 from textual.app import App, ComposeResult
 from textual.binding import Binding, BindingType
 from textual.timer import Timer
@@ -52,6 +53,42 @@ STATE_STYLES = {
 }
 #: Colour of each kind of output line in the log pane.
 STREAM_STYLES = {"stdout": "", "stderr": "red", "launch": "italic cyan", "error": "bold red"}
+
+
+class OutputLog(RichLog):
+    """The log pane: scrolling back (keys or mouse wheel) stops following until f or End."""
+
+    def _stop_following(self) -> None:
+        app = self.app
+        if isinstance(app, LaunchMonitorApp) and app.following:
+            app.set_following(False)
+
+    def action_scroll_up(self) -> None:
+        """Up: one line back."""
+        self._stop_following()
+        super().action_scroll_up()
+
+    def action_page_up(self) -> None:
+        """Page Up: one page back."""
+        self._stop_following()
+        super().action_page_up()
+
+    def action_scroll_home(self) -> None:
+        """Home: the first kept line."""
+        self._stop_following()
+        super().action_scroll_home()
+
+    def action_scroll_end(self) -> None:
+        """End: the newest line, and follow again."""
+        app = self.app
+        if isinstance(app, LaunchMonitorApp):
+            app.set_following(True)
+        else:
+            super().action_scroll_end()
+
+    def _on_mouse_scroll_up(self, event: events.MouseScrollUp) -> None:
+        self._stop_following()
+        super()._on_mouse_scroll_up(event)
 
 
 class LaunchMonitorApp(App[int]):
@@ -115,7 +152,7 @@ class LaunchMonitorApp(App[int]):
             table.add_column(heading, key=key, width=width)
         yield table
         yield Static(id="log-title")
-        yield RichLog(id="log", max_lines=DEFAULT_MAX_LINES, markup=False, highlight=False, wrap=False)
+        yield OutputLog(id="log", max_lines=DEFAULT_MAX_LINES, markup=False, highlight=False, wrap=False)
         yield Static(KEYS, id="keys")
 
     def on_mount(self) -> None:
@@ -146,9 +183,9 @@ class LaunchMonitorApp(App[int]):
         return self.query_one("#nodes", DataTable)
 
     @property
-    def log_view(self) -> RichLog:
+    def log_view(self) -> OutputLog:
         """The log pane."""
-        return self.query_one("#log", RichLog)
+        return self.query_one("#log", OutputLog)
 
     # -- the launch ----------------------------------------------------------------------------------
     def _terminal_gone(self) -> None:
@@ -324,18 +361,20 @@ class LaunchMonitorApp(App[int]):
         else:
             self.show_output(None)
 
-    def action_toggle_follow(self) -> None:
-        """f: follow new output (scroll to the end on each line) or stay where the view is."""
-        self.following = not self.following
-        if self.following:
+    def set_following(self, following: bool) -> None:
+        """Follow new output (scroll to the end on each line), or keep the log pane where it is."""
+        self.following = following
+        if following:
             self.log_view.scroll_end(animate=False)
         self._update_log_title()
 
+    def action_toggle_follow(self) -> None:
+        """f: follow new output, or stop following."""
+        self.set_following(not self.following)
+
     def action_follow(self) -> None:
         """End: follow new output from the end."""
-        self.following = True
-        self.log_view.scroll_end(animate=False)
-        self._update_log_title()
+        self.set_following(True)
 
     def action_switch_focus(self) -> None:
         """Tab: move the keyboard between the node table and the log pane."""

@@ -148,7 +148,7 @@ def test_keys_move_the_cursor_change_rate_loop_topics_and_inspector(counts_bag: 
         await loaded(app)
         t = app.transport
         assert t is not None and t.paused
-        assert "browsing only" in status(app)
+        assert "browsing only" in str(app.header.render())
         await pilot.press("end")
         assert t.bag_ns() == t.end_ns
         await pilot.press("home", "right")

@@ -131,6 +131,7 @@ class BagViewApp(App[int]):
         self.link = "" if publish else "browsing only"
         self.selected = 0
         self.error = ""
+        self._header_shown = ""
         self._run_task: asyncio.Task[int] | None = None
         self._inspected: tuple[str | None, int | None] = (None, None)
         self.header = Static(header_text(self.names, None), id="header")
@@ -183,7 +184,6 @@ class BagViewApp(App[int]):
         for topic in index.topics:
             if self.only_topics and topic not in self.only_topics:
                 self.transport.set_topic_enabled(topic, False)
-        self.header.update(header_text(self.names, index))
         self.timeline.set_index(index)
         for notice in index.notices:
             self.notify(notice, title="file cut short", severity="warning", timeout=8)
@@ -236,8 +236,11 @@ class BagViewApp(App[int]):
         self.timeline.show(bag_ns, self.selected, transport.disabled)
         self.status.update(play_status(paused=transport.paused, at_end=transport.at_end, rate=transport.rate,
                                        loop=transport.loop, bag_ns=bag_ns, start_ns=index.start_ns,
-                                       end_ns=index.end_ns, published=transport.published if self.node else -1,
-                                       link=self.link))
+                                       end_ns=index.end_ns, published=transport.published if self.node else -1))
+        header = header_text(self.names, index, self.link)
+        if header.plain != self._header_shown:
+            self._header_shown = header.plain
+            self.header.update(header)
         if self.inspector.display:
             self._inspect(bag_ns)
 

@@ -31,22 +31,24 @@ def wall_text(t_ns: int) -> str:
     return time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(secs)) + f".{ns // 1_000_000:03d}"
 
 
-def header_text(names: list[str], index: BagIndex | None) -> Text:
-    """``square.bag · 12.3 KB · 1234 msgs · 2 topics · 9.000 s`` and a warning for files cut short."""
+def header_text(names: list[str], index: BagIndex | None, link: str = "") -> Text:
+    """``square.bag · 12.3 KB · 1234 msgs · 2 topics · 9.000 s │ LINK`` and a warning for files cut short."""
     text = Text(" · ".join(names), style="bold")
     if index is None:
         text.append(" · reading…")
         return text
     span = (index.end_ns - index.start_ns) / 1e9
     text.append(f" · {human_size(index.size)} · {len(index)} msgs · {len(index.tracks)} topics · {span:.3f} s")
+    if link:
+        text.append(f" │ {link}")
     for notice in index.notices:
         text.append(f"  ⚠ {notice}", style="bold yellow")
     return text
 
 
 def play_status(*, paused: bool, at_end: bool, rate: float, loop: bool, bag_ns: int, start_ns: int, end_ns: int,
-                published: int, link: str) -> Text:
-    """``▶ PLAYING ×1 loop │ bag 1700000001.230000 │ 2023-11-14 22:13:21.230 │ +1.230 / 2.000 s 61% │ …``;
+                published: int) -> Text:
+    """``▶ PLAYING ×1 loop │ bag 1700000001.230000 │ 2023-11-14 22:13:21.230 │ +1.230 / 2.000 s 61% │ published 7``;
     ``published`` below 0 leaves the count out (nothing is published)."""
     state = "■ END" if paused and at_end else "❚❚ PAUSED" if paused else "▶ PLAYING"
     text = Text(f" {state} ", style="bold reverse")
@@ -59,6 +61,4 @@ def play_status(*, paused: bool, at_end: bool, rate: float, loop: bool, bag_ns: 
                 f"{span / 1e9:.3f} s {pct:3.0f}%")
     if published >= 0:
         text.append(f" │ published {published}")
-    if link:
-        text.append(f" │ {link}")
     return text

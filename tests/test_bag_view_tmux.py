@@ -1,0 +1,111 @@
+"""`rostui bag view` end to end in a real terminal (tmux), started through the real command line.
+
+A shell runs in a detached 120x30 tmux pane; the test types `rostui bag view`
+there with the test's ROS environment, against `rostui core`, with a
+subscriber process counting what the app publishes, and reads the screen
+with `tmux capture-pane`. q must bring the shell back with exit status 0.
+"""
+
+from __future__ import annotations
+
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any, Iterator
+
+import pytest
+
+from bag_view_helpers import Counter, write_counts
+from conftest import REPO, stop_process, wait_until
+from tmux_helpers import Pane, shell_pane
+
+EXIT_MARK = "VIEW_EXIT="
+
+
+@pytest.fixture
+def pane() -> Iterator[Pane]:
+    """A detached 120x30 tmux session running /bin/sh with a plain prompt."""
+    with shell_pane("bagview", 120, 30) as pane:
+        yield pane
+
+
+def view_line(env: dict[str, str], *args: str, cwd: Path) -> str:
+    """The shell line that runs `rostui bag view ARGS` in ``cwd`` with the test's ROS environment, then its status."""
+    values = {key: env[key] for key in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")}
+    values["TERM"] = "xterm-256color"
+    values["TZ"] = "UTC"
+    assignments = " ".join(f"{k}={shlex.quote(v)}" for k, v in values.items())
+    command = shlex.join([sys.executable, "-m", "rostui", "bag", "view", *args])
+    return f"cd {shlex.quote(str(cwd))} && env -u COLUMNS -u LINES {assignments} {command}; echo {EXIT_MARK}$?"
+
+
+def test_bag_view_seeks_plays_and_quits_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str],
+                                                tmp_path: Path) -> None:
+    """The timeline and inspector show; 5 then space publishes the second half; q gives the shell back."""
+    write_counts(tmp_path / "counts.bag")
+    counter = Counter(ros_env, tmp_path, "/count", "/odd")
+    try:
+        pane.type(view_line(ros_env, "counts.bag", cwd=tmp_path))
+        pane.wait_until(lambda: pane.shows("counts.bag · ", "150 msgs", "/count", "/odd", "PAUSED"),
+                        "the header, the timeline and the paused state")
+        pane.wait_until(lambda: pane.shows("publishing as /bag_view_"), "the app's node")
+        wait_until(counter.connected, "the counter to connect to the app")
+        pane.keys("5")
+        pane.wait_until(lambda: pane.shows(" 50%", "data: 49"), "the cursor at 50% and /count 49 inspected")
+        pane.keys("Space")
+        pane.wait_until(lambda: pane.shows("■ END", "published 75", "data: 99"), "the end of the bag")
+        wait_until(lambda: len(counter.received()) >= 75, "the second half at the counter")
+        assert counter.values("/count") == list(range(50, 100))
+        assert counter.values("/odd") == list(range(51, 100, 2))
+        pane.keys("q")
+        pane.wait_until(lambda: pane.shows(f"{EXIT_MARK}0"), "exit status 0 after q")
+        screen = pane.screen()
+        assert "150 msgs" not in screen, "the app's screen was left behind"
+        assert screen.rstrip().endswith("$")
+    finally:
+        counter.close()
+
+
+def test_bag_view_of_a_garbage_file_is_one_line_in_tmux(pane: Pane, ros_env: dict[str, str],
+                                                        tmp_path: Path) -> None:
+    """Random bytes: one error line, exit status 1, no screen opened."""
+    (tmp_path / "junk.mcap").write_bytes(bytes(range(256)) * 8)
+    pane.type(view_line(ros_env, "junk.mcap", cwd=tmp_path))
+    pane.wait_until(lambda: pane.shows(f"{EXIT_MARK}1"), "exit status 1")
+    assert ("\nrostui bag view: junk.mcap is neither an MCAP file nor a rosbag file (unknown first bytes)\n"
+            f"{EXIT_MARK}1\n") in pane.screen()
+
+
+TALKER = r'''
+from rostui import client as ros
+ros.init_node("tmux_numbers")
+Int32 = ros.msg("std_msgs/Int32")
+pub = ros.Publisher("/numbers", Int32, queue_size=100)
+rate = ros.Rate(50)
+n = 0
+while not ros.is_shutdown():
+    pub.publish(Int32(data=n))
+    n += 1
+    rate.sleep()
+'''
+
+
+def test_bag_view_record_splits_and_quits_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str],
+                                                  tmp_path: Path) -> None:
+    """--record: live counts; n splits into rec_1.mcap; q finishes and reports both files."""
+    script = tmp_path / "tmux_numbers.py"
+    script.write_text(TALKER)
+    talker = subprocess.Popen([sys.executable, str(script)], env=ros_env, cwd=REPO, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL)
+    try:
+        pane.type(view_line(ros_env, "--record", "/numbers", "-O", "rec.mcap", cwd=tmp_path))
+        pane.wait_until(lambda: pane.shows("● REC", "'rec_0.mcap'", "/numbers", " Hz"), "recording /numbers")
+        pane.keys("n")
+        pane.wait_until(lambda: pane.shows("'rec_1.mcap'", "2 files"), "the split into rec_1.mcap")
+        pane.keys("q")
+        pane.wait_until(lambda: pane.shows(f"{EXIT_MARK}0"), "exit status 0 after q")
+        assert "to rec_0.mcap, rec_1.mcap" in pane.screen()
+        assert (tmp_path / "rec_0.mcap").stat().st_size > 0 and (tmp_path / "rec_1.mcap").stat().st_size > 0
+    finally:
+        stop_process(talker)

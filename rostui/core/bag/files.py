@@ -5,7 +5,7 @@ from __future__ import annotations
 import heapq
 import os
 from collections.abc import Iterable, Iterator
-from typing import Protocol
+from typing import Any, Protocol
 
 from rostui.core.bag.mcapfile import COMPRESSIONS as MCAP_COMPRESSIONS
 from rostui.core.bag.mcapfile import MAGIC as MCAP_MAGIC
@@ -37,10 +37,11 @@ class Writer(Protocol):
 
     path: str
     size: int
+    buffered: int
     connections: dict[int, Connection]
 
     def add_connection(self, conn: Connection) -> None: ...
-    def write(self, conn_id: int, time_ns: int, data: bytes) -> None: ...
+    def write(self, conn_id: int, time_ns: int, data: Any) -> None: ...
     def flush_if_old(self) -> None: ...
     def flush(self) -> None: ...
     def close(self) -> None: ...
@@ -71,14 +72,15 @@ def open_reader(path: str) -> Reader:
     raise BagError(f"{path} is neither an MCAP file nor a rosbag file (unknown first bytes)")
 
 
-def open_writer(path: str, compression: str = "none", *, max_chunk_age: float = 0.5) -> Writer:
-    """A writer for ``path``: rosbag v2.0 when the name ends in ``.bag``, otherwise MCAP."""
+def open_writer(path: str, compression: str = "none", *, max_chunk_age: float = 0.5, chunk_crcs: bool = True) -> Writer:
+    """A writer for ``path``: rosbag v2.0 when the name ends in ``.bag``, otherwise MCAP (with chunk CRCs
+    unless ``chunk_crcs`` is False; rosbag files have none)."""
     if compression not in COMPRESSIONS:
         raise BagError(f"unknown compression '{compression}' (none, lz4, zstd or bz2)")
     try:
         if is_rosbag_name(path):
             return BagWriter(path, compression=compression, max_chunk_age=max_chunk_age)
-        return McapBagWriter(path, compression=compression, max_chunk_age=max_chunk_age)
+        return McapBagWriter(path, compression=compression, max_chunk_age=max_chunk_age, chunk_crcs=chunk_crcs)
     except OSError as exc:
         raise BagError(f"cannot create {path}: {exc.strerror}") from None
 

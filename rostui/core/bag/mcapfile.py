@@ -10,10 +10,17 @@ file was closed and otherwise streams records up to the first incomplete one.
 from __future__ import annotations
 
 import os
+import struct
 import time
+import zlib
 from collections.abc import Iterator
 from typing import Any
 
+from mcap.data_stream import RecordBuilder
+from mcap.opcode import Opcode
+from mcap.records import Channel, ChunkIndex, DataEnd, Footer, Header, MessageIndex, Schema, Statistics, SummaryOffset
+
+from rostui.core.bag.iov import Parts, write_all
 from rostui.core.bag.model import BagError, BagSummary, Connection
 
 MAGIC = b"\x89MCAP0\r\n"
@@ -21,142 +28,236 @@ COMPRESSIONS = ("none", "lz4", "zstd")
 PROFILE = "ros1"
 
 
-class _GuardedFile:
-    """The writer's output file: remembers where the last complete flush ended."""
+_MESSAGE_HEAD = struct.Struct("<BQHIQQ")  # opcode, record length, channel, sequence, log time, publish time
+_CHUNK_HEAD = struct.Struct("<BQQQQI")  # opcode, record length, start, end, uncompressed size, uncompressed crc
+_U32 = struct.Struct("<I")
+_U64 = struct.Struct("<Q")
+OP_CHUNK, OP_MESSAGE = 0x06, 0x05
 
-    def __init__(self, path: str) -> None:
-        self.raw = open(path, "wb", buffering=0)
-        self.pos = 0
 
-    def write(self, data: Any) -> int:
-        view = memoryview(data)
-        total = len(view)
-        while view:
-            n = self.raw.write(view)
-            self.pos += n
-            view = view[n:]
-        return total
+def _compress(kind: str, data: bytes) -> bytes:
+    if kind == "lz4":
+        import lz4.frame
 
-    def tell(self) -> int:
-        return self.pos
+        return lz4.frame.compress(data)
+    import zstandard
 
-    def flush(self) -> None:
-        """Nothing is buffered here."""
-
-    def cut(self, offset: int) -> None:
-        """Drop everything after ``offset``."""
-        try:
-            os.ftruncate(self.raw.fileno(), offset)
-            self.raw.seek(offset)
-        except OSError:
-            pass
-        self.pos = offset
-
-    def close(self) -> None:
-        self.raw.close()
+    return zstandard.compress(data)
 
 
 class McapBagWriter:
-    """Writes an MCAP (ros1 profile) file; ``close()`` writes the summary (indexes, statistics)."""
+    """Writes an MCAP (ros1 profile) file; ``close()`` writes the summary (indexes, statistics).
+
+    Records are laid out as the ``mcap`` library lays them out (schemas and
+    channels inside the chunk that first needs them, a message index per
+    channel after each chunk, a summary with schemas, channels, statistics and
+    chunk indexes), but an uncompressed chunk is never assembled in memory:
+    its record headers and the message buffers go to ``writev`` as they are.
+    ``chunk_crcs=False`` leaves the chunk CRC at 0 ("not computed", as the
+    MCAP spec allows): the recorder's choice, because a CRC of every byte costs
+    more CPU than the write itself; rosbag files carry no checksum at all.
+    """
 
     def __init__(self, path: str, *, compression: str = "none", chunk_bytes: int = 768 * 1024,
-                 max_chunk_age: float = 0.5) -> None:
-        from mcap.writer import CompressionType, Writer
-
+                 max_chunk_age: float = 0.5, chunk_crcs: bool = True) -> None:
         if compression not in COMPRESSIONS:
             raise BagError(f"an MCAP file cannot use {compression} compression (none, lz4 or zstd)")
-        kind = {"none": CompressionType.NONE, "lz4": CompressionType.LZ4, "zstd": CompressionType.ZSTD}[compression]
         self.path = path
         self.compression = compression
+        self.chunk_bytes = chunk_bytes
         self.max_chunk_age = max_chunk_age
-        self.out = _GuardedFile(path)
-        self.writer = Writer(self.out, chunk_size=chunk_bytes, compression=kind)  # type: ignore[arg-type]
-        self.writer.start(profile=PROFILE, library="rostui")
-        self.good_end = self.out.pos
+        self.chunk_crcs = chunk_crcs
+        self.fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
         self.connections: dict[int, Connection] = {}
-        self._channel: dict[int, int] = {}
-        self._schema: dict[tuple[str, str], int] = {}
-        self._pending = 0
-        self._chunk_started = 0.0
-        self._open_counts: dict[int, int] = {}
-        self._open_times: list[int] = []
-        self.committed_counts: dict[int, int] = {}
-        self.committed_times: list[int] = []
-        self.failed = False
         self.closed = False
+        self.failed = False
+        self._schemas: dict[tuple[str, str], Schema] = {}
+        self._channels: dict[int, Channel] = {}  # by connection id
+        self._written: set[int] = set()  # schema and channel ids whose records reached the file (negative: schemas)
+        self._chunk = Parts()
+        self._chunk_messages = 0
+        self._chunk_started = 0.0
+        self._chunk_start_ns = 0
+        self._chunk_end_ns = 0
+        self._chunk_index: dict[int, list[tuple[int, int]]] = {}
+        self._chunk_in: list[int] = []  # schema/channel records in the open chunk (as in _written)
+        self.chunk_indexes: list[ChunkIndex] = []
+        self.counts: dict[int, int] = {}
+        self.start_ns = 0
+        self.end_ns = 0
+        builder = RecordBuilder()
+        Header(PROFILE, "rostui").write(builder)
+        self.good_end = 0
+        self._append([MAGIC + builder.end()])
+
+    def _append(self, buffers: list[Any]) -> None:
+        """Write at the end of the file; on failure cut back to the last complete record."""
+        try:
+            self.good_end += write_all(self.fd, buffers)
+        except OSError:
+            self._cut()
+            raise
+
+    def _cut(self) -> None:
+        try:
+            os.ftruncate(self.fd, self.good_end)
+            os.lseek(self.fd, self.good_end, os.SEEK_SET)
+        except OSError:
+            pass
 
     @property
     def size(self) -> int:
         """Bytes written so far (plus what the open chunk holds)."""
-        return self.out.pos + self._pending
+        return self.good_end + self._chunk.size
+
+    @property
+    def buffered(self) -> int:
+        """Bytes of the open chunk: 0 when no message buffer passed to :meth:`write` is still referenced."""
+        return self._chunk.size
 
     def add_connection(self, conn: Connection) -> None:
         """Register a schema (once per type) and a channel for this connection."""
         key = (conn.type, conn.definition)
-        schema_id = self._schema.get(key)
-        if schema_id is None:
-            schema_id = self.writer.register_schema(conn.type, "ros1msg", conn.definition.encode())
-            self._schema[key] = schema_id
+        schema = self._schemas.get(key)
+        if schema is None:
+            schema = Schema(len(self._schemas) + 1, conn.definition.encode(), "ros1msg", conn.type)
+            self._schemas[key] = schema
         metadata = {"md5sum": conn.md5sum, "callerid": conn.callerid, "latching": "1" if conn.latching else "0"}
-        self._channel[conn.id] = self.writer.register_channel(conn.topic, "ros1", schema_id, metadata)
+        self._channels[conn.id] = Channel(len(self._channels) + 1, conn.topic, "ros1", metadata, schema.id)
         self.connections[conn.id] = conn
 
-    def write(self, conn_id: int, time_ns: int, data: bytes) -> None:
-        """Append one message (log and publish time are the receive time)."""
-        if not self._pending:
-            self._chunk_started = time.monotonic()
-        try:
-            self.writer.add_message(self._channel[conn_id], time_ns, data, time_ns)
-        except OSError:
-            self._rollback()
-            raise
-        self._pending += len(data) + 64
-        channel = self._channel[conn_id]
-        self._open_counts[channel] = self._open_counts.get(channel, 0) + 1
-        self._open_times.append(time_ns)
-        if self.out.pos != self.good_end:  # the library closed the chunk, this message included
-            self._commit()
+    def _declare(self, conn_id: int) -> int:
+        """Put the schema and channel records of a connection into the open chunk if the file lacks them."""
+        channel = self._channels[conn_id]
+        schema_key = -channel.schema_id
+        for key, record in ((schema_key, self._schema_by_id(channel.schema_id)), (channel.id, channel)):
+            if key not in self._written and key not in self._chunk_in:
+                builder = RecordBuilder()
+                record.write(builder)
+                self._chunk.add(builder.end())
+                self._chunk_in.append(key)
+        return channel.id
 
-    def _commit(self) -> None:
-        """The open chunk reached the file: its messages count."""
-        self.good_end = self.out.pos
-        self._pending = 0
-        for channel, n in self._open_counts.items():
-            self.committed_counts[channel] = self.committed_counts.get(channel, 0) + n
-        if self._open_times:
-            self.committed_times = [min(self._open_times + self.committed_times),
-                                    max(self._open_times + self.committed_times)]
-        self._open_counts, self._open_times = {}, []
+    def _schema_by_id(self, schema_id: int) -> Schema:
+        for schema in self._schemas.values():
+            if schema.id == schema_id:
+                return schema
+        raise KeyError(schema_id)
+
+    def write(self, conn_id: int, time_ns: int, data: Any) -> None:
+        """Append one message (log and publish time are the receive time); closes the chunk when full."""
+        channel = self._channels[conn_id]
+        channel_id = channel.id if channel.id in self._written and -channel.schema_id in self._written \
+            else self._declare(conn_id)
+        chunk = self._chunk
+        if not self._chunk_messages:
+            self._chunk_started = time.monotonic()
+            self._chunk_start_ns = self._chunk_end_ns = time_ns
+        elif time_ns < self._chunk_start_ns:
+            self._chunk_start_ns = time_ns
+        elif time_ns > self._chunk_end_ns:
+            self._chunk_end_ns = time_ns
+        entries = self._chunk_index.get(channel_id)
+        if entries is None:
+            entries = self._chunk_index[channel_id] = []
+        entries.append((time_ns, chunk.size))
+        chunk.add(_MESSAGE_HEAD.pack(OP_MESSAGE, 22 + len(data), channel_id, 0, time_ns, time_ns))
+        chunk.add(data)
+        self._chunk_messages += 1
+        if chunk.size >= self.chunk_bytes:
+            self.flush()
 
     def flush_if_old(self) -> None:
         """Close the open chunk when it is older than ``max_chunk_age``."""
-        if self._pending and time.monotonic() - self._chunk_started >= self.max_chunk_age:
+        if self._chunk_messages and time.monotonic() - self._chunk_started >= self.max_chunk_age:
             self.flush()
 
     def flush(self) -> None:
         """Write the open chunk and its message indexes."""
-        try:
-            self.writer.flush()
-        except OSError:
-            self._rollback()
-            raise
-        self._commit()
-
-    def _rollback(self) -> None:
-        """Cut the chunk that did not fit and make the writer forget it, so its summary stays true."""
-        self.out.cut(self.good_end)
-        self._pending = 0
-        self._open_counts, self._open_times = {}, []
-        self.failed = True
-        builder = getattr(self.writer, "_Writer__chunk_builder", None)
-        stats = getattr(self.writer, "_Writer__statistics", None)
-        if builder is None or stats is None:
+        if not self._chunk_messages:
             return
-        builder.reset()
-        stats.channel_message_counts.clear()
-        stats.channel_message_counts.update(self.committed_counts)
-        stats.message_count = sum(self.committed_counts.values())
-        stats.message_start_time, stats.message_end_time = (self.committed_times or [0, 0])[:2]
+        records = self._chunk.buffers()
+        plain_size = self._chunk.size
+        crc = 0
+        if self.compression == "none":
+            body = records
+            if self.chunk_crcs:
+                for buf in records:
+                    crc = zlib.crc32(buf, crc)
+            compression = b""
+        else:
+            plain = b"".join(records)
+            crc = zlib.crc32(plain) if self.chunk_crcs else 0
+            body = [_compress(self.compression, plain)]
+            compression = self.compression.encode()
+        stored = sum(len(b) for b in body)
+        record_length = 8 + 8 + 8 + 4 + 4 + len(compression) + 8 + stored
+        head = (_CHUNK_HEAD.pack(OP_CHUNK, record_length, self._chunk_start_ns, self._chunk_end_ns, plain_size, crc)
+                + _U32.pack(len(compression)) + compression + _U64.pack(stored))
+        chunk_start = self.good_end
+        chunk_length = len(head) + stored
+        indexes = RecordBuilder()
+        offsets: dict[int, int] = {}
+        for channel_id, entries in self._chunk_index.items():
+            offsets[channel_id] = chunk_start + chunk_length + indexes.count
+            MessageIndex(channel_id, entries).write(indexes)
+        index_bytes = indexes.end()
+        try:
+            self._append([head, *body, index_bytes])
+        except OSError:
+            self.failed = True
+            self._forget_chunk()
+            raise
+        for channel_id, entries in self._chunk_index.items():
+            self.counts[channel_id] = self.counts.get(channel_id, 0) + len(entries)
+        if not self.chunk_indexes:
+            self.start_ns, self.end_ns = self._chunk_start_ns, self._chunk_end_ns
+        else:
+            self.start_ns = min(self.start_ns, self._chunk_start_ns)
+            self.end_ns = max(self.end_ns, self._chunk_end_ns)
+        self.chunk_indexes.append(ChunkIndex(
+            message_start_time=self._chunk_start_ns, message_end_time=self._chunk_end_ns,
+            chunk_start_offset=chunk_start, chunk_length=chunk_length, message_index_offsets=offsets,
+            message_index_length=len(index_bytes), compression=compression.decode(), compressed_size=stored,
+            uncompressed_size=plain_size))
+        self._written.update(self._chunk_in)
+        self._forget_chunk()
+
+    def _forget_chunk(self) -> None:
+        self._chunk.clear()
+        self._chunk_messages = 0
+        self._chunk_index = {}
+        self._chunk_in = []
+
+    def _summary(self) -> bytes:
+        """DataEnd, the summary section (schemas, channels, statistics, chunk indexes, offsets) and the footer."""
+        builder = RecordBuilder()
+        DataEnd(0).write(builder)
+        summary_start = self.good_end + builder.count
+        offsets: list[SummaryOffset] = []
+        used_channels = [c for c in self._channels.values() if c.id in self._written]
+        used_schemas = [s for s in self._schemas.values() if -s.id in self._written]
+        stats = Statistics(message_count=sum(self.counts.values()), schema_count=len(used_schemas),
+                           channel_count=len(used_channels), attachment_count=0, metadata_count=0,
+                           chunk_count=len(self.chunk_indexes), message_start_time=self.start_ns,
+                           message_end_time=self.end_ns, channel_message_counts=dict(self.counts))
+        groups: list[tuple[int, list[Any]]] = [(Opcode.SCHEMA, used_schemas), (Opcode.CHANNEL, used_channels),
+                                               (Opcode.STATISTICS, [stats]), (Opcode.CHUNK_INDEX, self.chunk_indexes)]
+        summary = RecordBuilder()
+        for opcode, records in groups:
+            group_start = summary.count
+            for record in records:
+                record.write(summary)
+            offsets.append(SummaryOffset(opcode, summary_start + group_start, summary.count - group_start))
+        offset_start = summary_start + summary.count
+        for offset in offsets:
+            offset.write(summary)
+        summary_bytes = summary.end()
+        crc = zlib.crc32(summary_bytes)
+        crc = zlib.crc32(struct.pack("<BQQQ", Opcode.FOOTER, 20, summary_start, offset_start), crc)
+        footer = RecordBuilder()
+        Footer(summary_start, offset_start, crc).write(footer)
+        return builder.end() + summary_bytes + footer.end() + MAGIC
 
     def close(self) -> None:
         """Write the summary section and footer; on a full disk end the file without a summary instead."""
@@ -165,28 +266,23 @@ class McapBagWriter:
         self.closed = True
         try:
             try:
-                if self.failed:
-                    self.writer.flush()  # nothing is open after a rollback; keeps the stream position true
-                self.writer.finish()
+                self.flush()
+                self._append([self._summary()])
             except OSError:
-                self._rollback()
                 self._end_without_summary()
                 raise
         finally:
-            self.out.close()
+            os.close(self.fd)
 
     def _end_without_summary(self) -> None:
         """DataEnd, a Footer pointing at no summary, and the closing magic: a valid file without indexes."""
-        from mcap.data_stream import RecordBuilder
-        from mcap.records import DataEnd, Footer
-
         builder = RecordBuilder()
         DataEnd(0).write(builder)
         Footer(0, 0, 0).write(builder)
         try:
-            self.out.write(builder.end() + MAGIC)
+            write_all(self.fd, [builder.end() + MAGIC])
         except OSError:
-            self.out.cut(self.good_end)
+            self._cut()
 
 
 def _connection_of(channel: Any, schema: Any) -> Connection:
@@ -277,8 +373,7 @@ class McapBagReader:
             out.counts = {cid: n for cid, n in stats.channel_message_counts.items()}
             out.start_ns, out.end_ns = stats.message_start_time, stats.message_end_time
             for index in summary.chunk_indexes:
-                kind = index.compression or "none"
-                out.chunk_compression[kind] = out.chunk_compression.get(kind, 0) + 1
+                out.add_chunk(index.compression or "none", index.uncompressed_size, index.compressed_size)
         else:
             first = last = None
             for conn, t, _data in self.messages():

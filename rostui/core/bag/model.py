@@ -45,8 +45,16 @@ class BagSummary:
     start_ns: int = 0
     end_ns: int = 0
     chunk_compression: dict[str, int] = field(default_factory=dict)
+    chunk_bytes: dict[str, tuple[int, int]] = field(default_factory=dict)
+    """Per compression kind: (uncompressed, stored) bytes of all its chunks."""
     closed: bool = True
     problem: str = ""
+
+    def add_chunk(self, kind: str, uncompressed: int, stored: int) -> None:
+        """Count one chunk of ``kind`` (``none``, ``lz4``, ...) and its sizes."""
+        self.chunk_compression[kind] = self.chunk_compression.get(kind, 0) + 1
+        plain, packed = self.chunk_bytes.get(kind, (0, 0))
+        self.chunk_bytes[kind] = (plain + uncompressed, packed + stored)
 
     @property
     def message_count(self) -> int:

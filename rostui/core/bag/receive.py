@@ -35,8 +35,44 @@ BIG_FRAME = 64 * 1024
 STAGING_BYTES = 256 * 1024
 """The staging buffer for small frames (it always has room for one whole small frame)."""
 
-#: ``(payload, publisher connection header)``; the payload is ``bytes`` or, for big frames, a ``bytearray``.
+POOL_CLASS = 64 * 1024
+"""Pooled buffers come in multiples of this size."""
+
+#: ``(payload, publisher connection header)``; the payload is ``bytes`` or, for big frames, a writable buffer.
 FrameSink = Callable[[Any, dict[str, str]], None]
+
+
+class BufferPool:
+    """Reusable buffers for big frames, so each one is neither zeroed nor faulted in again.
+
+    :meth:`take` (on the receiving thread) hands out a memoryview of exactly
+    the asked size over a buffer rounded up to ``POOL_CLASS``; :meth:`give`
+    (on any thread, once nothing refers to the bytes any more) returns it.
+    At most ``limit_bytes`` are kept per size class.
+    """
+
+    def __init__(self, limit_bytes: int = 64 * 1024 * 1024) -> None:
+        self.limit_bytes = limit_bytes
+        self._free: dict[int, list[bytearray]] = {}
+
+    def take(self, size: int) -> memoryview:
+        """A writable buffer of ``size`` bytes (contents undefined)."""
+        capacity = -(-size // POOL_CLASS) * POOL_CLASS
+        free = self._free.get(capacity)
+        try:
+            buf = free.pop() if free else bytearray(capacity)
+        except IndexError:  # emptied by another thread meanwhile
+            buf = bytearray(capacity)
+        return memoryview(buf)[:size]
+
+    def give(self, view: Any) -> None:
+        """Return a buffer from :meth:`take`; anything else is ignored."""
+        if not isinstance(view, memoryview) or not isinstance(view.obj, bytearray):
+            return
+        buf = view.obj
+        free = self._free.setdefault(len(buf), [])
+        if (len(free) + 1) * len(buf) <= self.limit_bytes:
+            free.append(buf)
 
 
 class RawFrameConnection(asyncio.BufferedProtocol):
@@ -44,11 +80,17 @@ class RawFrameConnection(asyncio.BufferedProtocol):
 
     ``on_header`` checks the publisher's header (an error string drops the
     connection), ``on_frame(payload, header)`` takes each message, and
-    ``on_lost(reason)`` is called once when the connection ends.
+    ``on_lost(reason)`` is called once when the connection ends. Big frames
+    are read into ``allocate(size)`` (a new bytearray unless a pool is given).
+
+    After a big frame only the next length prefix is read into the stage, so
+    the next big frame lands in its own buffer from its first byte instead
+    of being copied there from the stage.
     """
 
     def __init__(self, request_header: dict[str, str], on_header: Callable[[dict[str, str]], str | None],
-                 on_frame: FrameSink, on_lost: Callable[[str | None], None]) -> None:
+                 on_frame: FrameSink, on_lost: Callable[[str | None], None],
+                 allocate: Callable[[int], Any] = bytearray) -> None:
         self.request_header = request_header
         self.on_header = on_header
         self.on_frame = on_frame
@@ -63,9 +105,11 @@ class RawFrameConnection(asyncio.BufferedProtocol):
         self._stage_view = memoryview(self._stage)
         self._start = 0  # first byte of the stage not yet parsed
         self._end = 0  # end of the bytes received into the stage
-        self._big: bytearray | None = None
+        self.allocate = allocate
+        self._big: Any = None
         self._big_view: memoryview | None = None
         self._big_filled = 0
+        self._expect_big = False
         self._watch: StallWatch | None = None
 
     # -- asyncio ----------------------------------------------------------------------------
@@ -82,6 +126,9 @@ class RawFrameConnection(asyncio.BufferedProtocol):
             return self._big_view[self._big_filled:]
         if len(self._stage) - self._end < BIG_FRAME + 4:
             self._compact()
+        pending = self._end - self._start
+        if self._expect_big and pending < 4:
+            return self._stage_view[self._end:self._end + 4 - pending]
         return self._stage_view[self._end:]
 
     def buffer_updated(self, nbytes: int) -> None:
@@ -92,6 +139,7 @@ class RawFrameConnection(asyncio.BufferedProtocol):
                 self._big_filled += nbytes
                 if self._big_filled == len(self._big):
                     payload, self._big, self._big_view = self._big, None, None
+                    self._expect_big = True
                     self._frame(payload)
             else:
                 self._end += nbytes
@@ -132,16 +180,18 @@ class RawFrameConnection(asyncio.BufferedProtocol):
             if stop <= end:
                 payload = bytes(view[start + 4:stop])
                 start = stop
+                self._expect_big = False
                 self._start = start
                 self._frame(payload)
                 if self.transport is None or self.transport.is_closing():
                     return
                 continue
             if size >= BIG_FRAME:
-                big = bytearray(size)
+                big = self.allocate(size) if self.header is not None else bytearray(size)
                 have = end - start - 4
-                big[:have] = view[start + 4:end]
-                self._big, self._big_view, self._big_filled = big, memoryview(big), have
+                big_view = memoryview(big)
+                big_view[:have] = view[start + 4:end]
+                self._big, self._big_view, self._big_filled = big, big_view, have
                 start = end
             break
         if start == end:
@@ -183,9 +233,11 @@ class RawSubscription(Subscription):
     callbacks (as AnyMsg), so register one with :meth:`add_callback` too.
     """
 
-    def __init__(self, node: AsyncNode, topic: str, sink: Callable[[Any, dict[str, str], str], None]) -> None:
+    def __init__(self, node: AsyncNode, topic: str, sink: Callable[[Any, dict[str, str], str], None],
+                 allocate: Callable[[int], Any] = bytearray) -> None:
         super().__init__(node, topic, AnyMsg, queue_size=None, tcp_nodelay=False)
         self.sink = sink
+        self.allocate = allocate
 
     async def _connect_once(self, uri: str) -> str | None:
         """One connection attempt through a RawFrameConnection; an error string to retry, None to stop."""
@@ -206,7 +258,7 @@ class RawSubscription(Subscription):
             if not done.done():
                 done.set_result(reason or "connection closed")
 
-        proto = RawFrameConnection(self._request_header(), self._check_header, on_frame, on_lost)
+        proto = RawFrameConnection(self._request_header(), self._check_header, on_frame, on_lost, self.allocate)
         try:
             await self.node.loop.create_connection(lambda: proto, host, port)
         except OSError as exc:
@@ -222,13 +274,14 @@ class RawSubscription(Subscription):
 
 
 async def subscribe_raw(node: AsyncNode, topic: str, sink: Callable[[Any, dict[str, str], str], None],
-                        local_callback: Callable[[AnyMsg, str], None]) -> Subscriber:
-    """Subscribe to ``topic`` with md5 ``*``: remote frames go to ``sink(payload, header, topic)``,
-    messages of same-process publishers to ``local_callback(msg, topic)``."""
+                        local_callback: Callable[[AnyMsg, str], None],
+                        allocate: Callable[[int], Any] = bytearray) -> Subscriber:
+    """Subscribe to ``topic`` with md5 ``*``: remote frames go to ``sink(payload, header, topic)`` (big ones
+    in buffers from ``allocate``), messages of same-process publishers to ``local_callback(msg, topic)``."""
     name = node.resolve(topic)
     if name in node.subscriptions:
         raise ValueError(f"topic [{name}] is already subscribed in this node")
-    sub = RawSubscription(node, name, sink)
+    sub = RawSubscription(node, name, sink, allocate)
     sub.add_callback(local_callback, name)
     sub.handles += 1
     node.subscriptions[name] = sub

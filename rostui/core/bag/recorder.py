@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from rostui.core.bag.files import Writer, open_writer
+from rostui.core.bag.receive import BufferPool, subscribe_raw
 from rostui.core.bag.model import BagError, Connection, connection_key
 
 STATUS_PERIOD = 1.0
@@ -43,6 +44,27 @@ class RecordOptions:
     duration_s: float | None = None
     max_size_mb: float | None = None
     max_chunk_age: float = 0.5
+
+
+_DURATION_UNITS = {"": 1.0, "s": 1.0, "m": 60.0, "h": 3600.0}
+
+
+def parse_duration(text: str) -> float:
+    """Seconds from rosbag record's ``--duration`` forms: ``30``, ``30s``, ``1.5m``, ``2h``.
+
+    Anything else (or a duration that is not positive) is a BagError naming the accepted forms.
+    """
+    raw = text.strip()
+    unit = raw[-1:] if raw[-1:] in ("s", "m", "h") else ""
+    number = raw[:-1] if unit else raw
+    try:
+        value = float(number) * _DURATION_UNITS[unit]
+    except ValueError:
+        value = float("nan")
+    if not value > 0 or value == float("inf"):
+        raise BagError(f"invalid duration '{text}' (a positive number of seconds, optionally with s, m or h: "
+                       "30, 30s, 5m, 2h)")
+    return value
 
 
 def stamp(now: float | None = None) -> str:
@@ -125,6 +147,8 @@ class Recorder:
         self.error: str | None = None
         self.stop = asyncio.Event()
         self._queue: queue.SimpleQueue[Any] = queue.SimpleQueue()
+        self._pool = BufferPool()
+        self._held: list[Any] = []  # pooled buffers the writer's open chunk may still refer to
         self._queued_bytes = 0
         self._written_bytes = 0
         self._loop: asyncio.AbstractEventLoop | None = None
@@ -183,7 +207,8 @@ class Recorder:
         folder = os.path.dirname(name)
         if folder and not os.path.isdir(folder):
             raise BagError(f"cannot record to {name}: folder {folder} does not exist")
-        self.writer = open_writer(name, self.opts.compression, max_chunk_age=self.opts.max_chunk_age)
+        # no chunk CRCs: a CRC of every byte costs more CPU than writing it (rosbag files carry none either)
+        self.writer = open_writer(name, self.opts.compression, max_chunk_age=self.opts.max_chunk_age, chunk_crcs=False)
         self.files.append(name)
         self._file_started = time.monotonic()
 
@@ -196,6 +221,16 @@ class Recorder:
             writer.close()
         except OSError as exc:
             self._from_writer(self._fail, f"cannot finish {writer.path}: {exc.strerror or exc}")
+        self._release_held()
+
+    def _release_held(self) -> None:
+        """Give the pooled buffers back once the writer refers to none of them (its open chunk is empty)."""
+        writer = self.writer
+        if self._held and (writer is None or not writer.buffered):
+            give = self._pool.give
+            for buf in self._held:
+                give(buf)
+            self._held = []
 
     def _limit_reached(self) -> None:
         if self.opts.split:
@@ -205,17 +240,21 @@ class Recorder:
         else:
             self._from_writer(self.stop.set)
 
-    def _write(self, conn: Connection, stamp_ns: int, data: bytes) -> bool:
+    def _write(self, conn: Connection, stamp_ns: int, data: Any) -> bool:
         writer = self.writer
         if writer is None:
             return False
         if conn.id not in writer.connections:
             writer.add_connection(conn)
+        if isinstance(data, memoryview):
+            self._held.append(data)
         try:
             writer.write(conn.id, stamp_ns, data)
         except OSError as exc:
             self._from_writer(self._fail, f"recording stopped: cannot write {writer.path}: {exc.strerror or exc}")
             return False
+        finally:
+            self._release_held()
         self.messages += 1
         self._written_bytes += len(data)
         opts = self.opts
@@ -236,6 +275,8 @@ class Recorder:
         except OSError as exc:
             self._from_writer(self._fail, f"recording stopped: cannot write {writer.path}: {exc.strerror or exc}")
             return False
+        finally:
+            self._release_held()
         if self.opts.duration_s is not None and time.monotonic() - self._file_started >= self.opts.duration_s:
             self._limit_reached()
         return True
@@ -268,13 +309,11 @@ class Recorder:
 
     # -- running ------------------------------------------------------------------------------
     async def _subscribe(self, topic: str) -> None:
-        from rostui.core.bag.receive import subscribe_raw
-
         if topic in self.subscribed:
             return
         self.subscribed.add(topic)
         self.report(f"Subscribing to {topic}")
-        await subscribe_raw(self.node, topic, self.on_frame, self.on_message)
+        await subscribe_raw(self.node, topic, self.on_frame, self.on_message, self._pool.take)
 
     async def _discover(self) -> None:
         while not self.stop.is_set():

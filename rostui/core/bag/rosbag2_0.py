@@ -14,8 +14,9 @@ import os
 import struct
 import time
 from collections.abc import Iterator
-from typing import BinaryIO
+from typing import Any, BinaryIO
 
+from rostui.core.bag.iov import Parts, write_all
 from rostui.core.bag.model import BagError, BagSummary, Connection
 
 MAGIC = b"#ROSBAG V2.0\n"
@@ -107,8 +108,7 @@ class BagWriter:
         self.chunk_infos: list[tuple[int, int, int, dict[int, int]]] = []
         self.closed = False
         self.good_end = 0
-        self._chunk: list[bytes] = []
-        self._chunk_size = 0
+        self._chunk = Parts()
         self._chunk_started = 0.0
         self._chunk_index: dict[int, list[tuple[int, int]]] = {}
         self._chunk_new_conns: set[int] = set()
@@ -123,19 +123,18 @@ class BagWriter:
         pad = FILE_HEADER_LENGTH - len(header) - 4
         return header + _U32.pack(pad) + b" " * pad
 
-    def _write_all(self, parts: list[bytes]) -> None:
-        while parts:
-            written = os.writev(self.fd, parts[:512])
-            while parts and written >= len(parts[0]):
-                written -= len(parts[0])
-                parts = parts[1:]
-            if written and parts:
-                parts[0] = parts[0][written:]
+    def _write_all(self, parts: list[Any]) -> None:
+        write_all(self.fd, parts)
 
     @property
     def size(self) -> int:
         """Bytes written so far, including the chunk being filled."""
-        return self.good_end + self._chunk_size
+        return self.good_end + self._chunk.size
+
+    @property
+    def buffered(self) -> int:
+        """Bytes of the open chunk: 0 when no message buffer passed to :meth:`write` is still referenced."""
+        return self._chunk.size
 
     def add_connection(self, conn: Connection) -> None:
         """Declare a connection; its record goes into the next chunk and the index."""
@@ -146,43 +145,42 @@ class BagWriter:
         return _record({"op": bytes([OP_CONNECTION]), "conn": _U32.pack(conn.id), "topic": conn.topic.encode()},
                        data)
 
-    def write(self, conn_id: int, time_ns: int, data: bytes) -> None:
+    def write(self, conn_id: int, time_ns: int, data: Any) -> None:
         """Append one message; closes the chunk when it is full or old."""
-        if not self._chunk:
+        chunk = self._chunk
+        if not chunk.size:
             self._chunk_started = time.monotonic()
         if conn_id not in self._written_conns:
-            rec = self._connection_record(self.connections[conn_id])
-            self._chunk.append(rec)
-            self._chunk_size += len(rec)
+            chunk.add(self._connection_record(self.connections[conn_id]))
             self._written_conns.add(conn_id)
-        self._chunk_index.setdefault(conn_id, []).append((time_ns, self._chunk_size))
-        head = _header({"op": b"\x02", "conn": _U32.pack(conn_id), "time": _time_bytes(time_ns)})
-        self._chunk.append(head + _U32.pack(len(data)))
-        self._chunk.append(data)
-        self._chunk_size += len(head) + 4 + len(data)
-        if self._chunk_size >= self.chunk_bytes:
+        self._chunk_index.setdefault(conn_id, []).append((time_ns, chunk.size))
+        chunk.add(_header({"op": b"\x02", "conn": _U32.pack(conn_id), "time": _time_bytes(time_ns)})
+                  + _U32.pack(len(data)))
+        chunk.add(data)
+        if chunk.size >= self.chunk_bytes:
             self.flush()
 
     def flush_if_old(self) -> None:
         """Close the chunk when it is older than ``max_chunk_age`` (called from a timer)."""
-        if self._chunk and time.monotonic() - self._chunk_started >= self.max_chunk_age:
+        if self._chunk.size and time.monotonic() - self._chunk_started >= self.max_chunk_age:
             self.flush()
 
     def flush(self) -> None:
         """Write the open chunk and its index records to the file."""
-        if not self._chunk:
+        if not self._chunk.size:
             return
         times = [t for entries in self._chunk_index.values() for t, _ in entries]
         start, end = min(times), max(times)
+        plain_size = self._chunk.size
         if self.compression == "none":
-            body = self._chunk
-            stored = self._chunk_size
+            body = self._chunk.buffers()
+            stored = plain_size
         else:
-            packed = _compress(self.compression, b"".join(self._chunk))
+            packed = _compress(self.compression, b"".join(self._chunk.buffers()))
             body = [packed]
             stored = len(packed)
         head = _header({"op": bytes([OP_CHUNK]), "compression": self.compression.encode(),
-                        "size": _U32.pack(self._chunk_size)})
+                        "size": _U32.pack(plain_size)})
         parts = [head, _U32.pack(stored), *body]
         counts: dict[int, int] = {}
         for conn_id, entries in self._chunk_index.items():
@@ -198,7 +196,8 @@ class BagWriter:
             raise
         self.good_end += sum(len(p) for p in parts)
         self.chunk_infos.append((chunk_pos, start, end, counts))
-        self._chunk, self._chunk_size, self._chunk_index = [], 0, {}
+        self._chunk.clear()
+        self._chunk_index = {}
 
     def _rollback(self) -> None:
         """Cut a partly written chunk off, so the file ends with complete records."""
@@ -207,7 +206,8 @@ class BagWriter:
             os.lseek(self.fd, self.good_end, os.SEEK_SET)
         except OSError:
             pass
-        self._chunk, self._chunk_size, self._chunk_index = [], 0, {}
+        self._chunk.clear()
+        self._chunk_index = {}
         self._written_conns = {c for info in self.chunk_infos for c in info[3]}
 
     def close(self) -> None:
@@ -271,6 +271,7 @@ class BagReader:
         self.data_start = self.file.tell()
         self.connections: dict[int, Connection] = {}
         self.truncated = ""
+        self.last_data_length = 0
 
     def close(self) -> None:
         """Close the file."""
@@ -294,6 +295,7 @@ class BagReader:
         if len(dlen_raw) < 4:
             raise BagError("a record is cut short")
         (dlen,) = _U32.unpack(dlen_raw)
+        self.last_data_length = dlen
         if not (skip_chunk_data and fields.get("op") == bytes([OP_CHUNK])):
             data = self.file.read(dlen)
             if len(data) < dlen:
@@ -376,8 +378,10 @@ class BagReader:
             if op == bytes([OP_CONNECTION]):
                 self._connection(fields, data)
             elif op == bytes([OP_CHUNK]):
-                kind = fields.get("compression", b"none").decode()
-                summary.chunk_compression[kind] = summary.chunk_compression.get(kind, 0) + 1
+                size = fields.get("size", b"")
+                summary.add_chunk(fields.get("compression", b"none").decode(),
+                                  _U32.unpack(size)[0] if len(size) == 4 else self.last_data_length,
+                                  self.last_data_length)
             elif op == bytes([OP_INDEX_DATA]):
                 conn_id = _U32.unpack(fields["conn"])[0]
                 count = _U32.unpack(fields["count"])[0]

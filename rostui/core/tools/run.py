@@ -5,12 +5,14 @@ below the package directory (``build/`` excluded; catkin's ``<prefix>/lib/<pkg>`
 searched too); ``EXE`` containing ``/`` is a path relative to the package.
 Arguments are passed through untouched.  Differences, by design: a ``.py`` file
 without execute bit is run with this Python, Python scripts of rostui's built-in
-packages always run with this Python, and rosrun's error lines go to stderr.
+packages and Python scripts that import rostui always run with this Python, and
+rosrun's error lines go to stderr.
 """
 
 from __future__ import annotations
 
 import os
+import re
 import shlex
 import sys
 from pathlib import Path
@@ -48,23 +50,25 @@ def _argv_for(path: Path, args: Sequence[str], prefix: str | None) -> list[str]:
     return argv
 
 
+_SCRIPT_HEAD = 64 * 1024
+"""Bytes of a script read to find its ``#!`` line and whether it imports rostui."""
+_IMPORTS_ROSTUI = re.compile(rb"^\s*(?:from\s+rostui[\s.]|import\s+rostui\b)", re.MULTILINE)
+
+
 def _runs_with_this_python(path: Path) -> bool:
+    """True for Python programs that need rostui's Python: built-in packages' scripts, non-executable .py files,
+    and scripts that import rostui (whatever their ``#!`` line names, it may not have rostui installed)."""
     if not packages.is_executable_file(path):
         return True  # only .py files get here
     try:
         inside_share = path.resolve().is_relative_to(packages.BUILTIN_SHARE)
-    except OSError:
-        inside_share = False
-    if not inside_share:
-        return False
-    if path.suffix == ".py":
-        return True
-    try:
         with path.open("rb") as fh:
-            first = fh.readline(200)
+            head = fh.read(_SCRIPT_HEAD)
     except OSError:
         return False
-    return first.startswith(b"#!") and b"python" in first
+    if not (head.startswith(b"#!") and b"python" in head.split(b"\n", 1)[0]) and path.suffix != ".py":
+        return False
+    return inside_share or _IMPORTS_ROSTUI.search(head) is not None
 
 
 def resolve(package: str, executable: str, args: Sequence[str] = (), *, prefix: str | None = None,

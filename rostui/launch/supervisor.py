@@ -307,6 +307,8 @@ class Supervisor:
         for process in self.processes:
             if self.stopping.is_set():
                 return
+            if process.state is NodeState.STOPPED:  # stopped from the monitor before its turn came
+                continue
             if process.state is NodeState.FAILED:
                 message = self._failures[id(process)]
                 self.complain(message)

@@ -74,7 +74,7 @@ async def test_table_and_output_of_each_node(tui_env: dict[str, str], tmp_path: 
 async def test_killed_respawn_node_dies_and_comes_back(tui_env: dict[str, str], tmp_path: Path) -> None:
     """os.kill from outside: the table shows the death (exit code, respawning) and then a new pid, 1 restart."""
     launch = write_launch(tmp_path / "respawn.launch",
-                          '<node pkg="tuitest" type="quiet" name="phoenix" respawn="true" respawn_delay="1.5"/>')
+                          '<node pkg="tuitest" type="quiet" name="phoenix" respawn="true" respawn_delay="3"/>')
     app = monitor(launch)
     async with app.run_test(size=SIZE) as pilot:
         await until(lambda: app.rows and cell(app, "/phoenix", "state") == "running", "the node running")
@@ -203,9 +203,8 @@ async def test_scrolling_back_stops_following(tui_env: dict[str, str], tmp_path:
     app = monitor(launch)
     async with app.run_test(size=(100, 24)) as pilot:
         await until(lambda: "a warning from chatty" in log_text(app), "all of the node's output")
-        await pilot.pause(0.2)
         log = app.log_view
-        assert app.following and log.scroll_y == log.max_scroll_y > 0
+        await until(lambda: app.following and log.scroll_y == log.max_scroll_y > 0, "the pane at its newest line")
         await pilot.press("tab", "pageup")
         await until(lambda: not app.following, "following stopped by Page Up")
         assert "paused" in str(app.query_one("#log-title").render())

@@ -109,6 +109,9 @@ async def test_restart_stop_and_start_from_the_app(tui_env: dict[str, str], tmp_
         await until(lambda: cell(app, "/second", "pid") not in ("-", str(old)), "a new pid after r")
         assert cell(app, "/second", "state") == "running"
         assert cell(app, "/second", "restarts") == "1"
+        await until(lambda: "restart /second: done" in str(app.query_one("#status").render()), "the notice")
+        await pilot.press("s")
+        assert "/second is already running" in str(app.query_one("#status").render())
         await until(lambda: not still_alive({old}), "the old process gone")
         new = int(cell(app, "/second", "pid"))
         await pilot.press("k")

@@ -16,8 +16,9 @@ import asyncio
 import os
 import signal
 import sys
+import time
 from pathlib import Path
-from typing import Callable, ClassVar
+from typing import Awaitable, Callable, ClassVar
 
 from rich.text import Text
 from textual import events
@@ -34,12 +35,12 @@ from rostui.launch.process import ManagedProcess, NodeState
 from rostui.launch.supervisor import Supervisor
 from rostui.launch.usage import Usage, UsageSampler
 
-__all__ = ["LaunchMonitorApp", "KEYS", "LAUNCHER"]
+__all__ = ["LaunchMonitorApp", "KEYS", "run_app"]
 
 #: Key help under the log pane.
 KEYS = "↑↓ node  s start  k stop  r restart  l launcher's output  f follow  Tab log/table  q quit"
-#: The log pane's name for the launcher's own output.
-LAUNCHER = "launcher"
+#: Seconds a notice (a start, stop or restart done) stays in the status line.
+NOTICE_SECONDS = 5.0
 #: Colour of each kind of state in the table.
 STATE_STYLES = {
     NodeState.STARTING: "yellow",
@@ -131,6 +132,7 @@ class LaunchMonitorApp(App[int]):
         """The label of the node whose output the log pane shows (None: the launcher's own output)."""
         self.following = True
         self.notice = ""
+        self._notice_until: float | None = None
         self.launch_error = ""
         """A load or master error that ended the launch before it ran (printed after the app leaves)."""
         self.quitting = False
@@ -264,6 +266,8 @@ class LaunchMonitorApp(App[int]):
             parts.append(" · ".join(f"{n} {word}" for word, n in counts.items()))
         elif not supervisor.finished.is_set():
             parts.append("setting up…")
+        if self.notice and self._notice_until is not None and time.monotonic() > self._notice_until:
+            self.notice = ""
         if self.notice:
             parts.append(self.notice)
         status = " │ ".join(parts)
@@ -333,24 +337,31 @@ class LaunchMonitorApp(App[int]):
         label = self.selected_label()
         if label is None or self.quitting:
             return
-        name = self._process(label).name
+        process = self._process(label)
+        name = process.name
+        if what == "start" and process.running:
+            self.set_notice(f"{name} is already running")
+            return
         calls = {"start": self.supervisor.start_node, "stop": self.supervisor.stop_node,
                  "restart": self.supervisor.restart_node}
-        self.notice = f"{what} {name}…"
-        self.update_status()
+        self.set_notice(f"{what} {name}…", seconds=None)
         self.run_worker(self._control(what, calls[what], name), group=f"control-{label}", exit_on_error=False)
 
-    async def _control(self, what: str, call: Callable[[str], object], name: str) -> None:
+    async def _control(self, what: str, call: Callable[[str], Awaitable[bool | None]], name: str) -> None:
         try:
-            result = call(name)
-            if asyncio.iscoroutine(result):
-                result = await result
+            result = await call(name)
         except LaunchError as exc:
-            self.notice = f"cannot {what} {name}: {exc.message}"
+            self.set_notice(f"cannot {what} {name}: {exc.message}")
         else:
-            self.notice = f"{what} {name}: cannot run it (see its output)" if result is False else \
-                f"{what} {name}: done"
+            self.set_notice(f"{what} {name}: cannot run it (see its output)" if result is False else
+                            f"{what} {name}: done")
         self.refresh_view()
+
+    def set_notice(self, text: str, seconds: float | None = NOTICE_SECONDS) -> None:
+        """Show ``text`` in the status line (for ``seconds``; None: until the next notice)."""
+        self.notice = text
+        self._notice_until = None if seconds is None else time.monotonic() + seconds
+        self.update_status()
 
     def action_show_launcher(self) -> None:
         """l: the launcher's own output (again: back to the selected node)."""

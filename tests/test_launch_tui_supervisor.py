@@ -8,6 +8,7 @@ output rings; these tests do the same on a plain event loop.
 from __future__ import annotations
 
 import asyncio
+import os
 from pathlib import Path
 
 import pytest
@@ -85,3 +86,41 @@ async def test_start_stop_restart_without_textual(tui_env: dict[str, str], tmp_p
     assert not still_alive(pids)
     with pytest.raises(LaunchError, match="shutting down"):
         await supervisor.start_node("/talker")
+
+
+def test_usage_counts_the_whole_process_tree(tmp_path: Path) -> None:
+    """A node whose shell runs a busy child: the tree holds both, CPU shows the child's work, memory is summed."""
+    import subprocess
+    import sys
+    import time
+
+    from rostui.launch.usage import UsageSampler, children_map, tree_of
+
+    busy = subprocess.Popen(["/bin/sh", "-c", f"{sys.executable} -c 'while True: pass' & wait"])
+    try:
+        until_child = time.monotonic() + 30
+        while len(tree_of(busy.pid, children_map())) < 2:
+            assert time.monotonic() < until_child, "the busy child never started"
+            time.sleep(0.05)
+        tree = tree_of(busy.pid, children_map())
+        sampler = UsageSampler()
+        first = sampler.measure(tree)
+        assert first is not None and first.cpu_percent == 0.0  # nothing to compare with yet
+        time.sleep(1.0)
+        second = sampler.measure(tree)
+        assert second is not None and second.cpu_percent > 10.0
+        import psutil
+
+        assert second.rss_bytes >= sum(psutil.Process(pid).memory_info().rss for pid in tree) // 2
+        assert sampler.measure([busy.pid]).rss_bytes < second.rss_bytes  # type: ignore[union-attr]
+    finally:
+        for pid in tree_of(busy.pid, children_map()):
+            try:
+                os.kill(pid, 9)
+            except ProcessLookupError:
+                pass
+        busy.wait()
+    deadline = time.monotonic() + 30
+    while sampler.measure(tree) is not None:  # killed: gone, or a zombie until it is reaped
+        assert time.monotonic() < deadline, "killed processes still measured"
+        time.sleep(0.05)

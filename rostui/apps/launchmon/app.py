@@ -33,7 +33,7 @@ from rostui.launch.errors import LaunchError
 from rostui.launch.output import DEFAULT_MAX_LINES, OutputBuffer
 from rostui.launch.process import ManagedProcess, NodeState
 from rostui.launch.supervisor import Supervisor
-from rostui.launch.usage import Usage, UsageSampler
+from rostui.launch.usage import Usage, UsageSampler, children_map
 
 __all__ = ["LaunchMonitorApp", "KEYS", "run_app"]
 
@@ -220,9 +220,10 @@ class LaunchMonitorApp(App[int]):
         self._ticks += 1
         measure_now = self._ticks % max(1, round(1.0 / self.period)) == 1 or not self._usage
         processes = self.supervisor.processes
+        children = children_map() if measure_now and processes else {}
         for process in processes:
             if measure_now:
-                self._usage[process.label] = measure(self.sampler, process)
+                self._usage[process.label] = measure(self.sampler, process, children)
             row = node_row(process, self._usage.get(process.label))
             if self.row_hook is not None:
                 row = self.row_hook(row)

@@ -7,7 +7,7 @@ import time
 from dataclasses import dataclass
 
 from rostui.launch.process import ManagedProcess, NodeState
-from rostui.launch.usage import Usage, UsageSampler
+from rostui.launch.usage import Usage, UsageSampler, tree_of
 
 #: The table's columns: key, heading and fixed width (None: as wide as the widest cell now).
 COLUMNS = (("node", "Node", None), ("state", "State", None), ("pid", "Pid", 7), ("cpu", "CPU %", 6),
@@ -91,8 +91,11 @@ def node_row(process: ManagedProcess, usage: Usage | None, now: float | None = N
     )
 
 
-def measure(sampler: UsageSampler, process: ManagedProcess) -> Usage | None:
-    """CPU and memory of the node's whole process tree (None when it does not run)."""
-    if not process.running:
+def measure(sampler: UsageSampler, process: ManagedProcess, children: dict[int, list[int]]) -> Usage | None:
+    """CPU and memory of the node's whole process tree (None when it does not run).
+
+    ``children`` is :func:`~rostui.launch.usage.children_map`, taken once for every node of a refresh.
+    """
+    if not process.running or process.pid is None:
         return None
-    return sampler.measure(p.pid for p in process.alive_tree())
+    return sampler.measure(tree_of(process.pid, children))

@@ -168,8 +168,11 @@ class BagViewApp(App[int]):
 
     @work(thread=True, exit_on_error=False)
     def _read_bag(self) -> None:
+        def progress(count: int) -> None:
+            self.call_from_thread(self.header.update, header_text(self.names, None, f"{count} messages read"))
+
         try:
-            index = load_index(self.paths)
+            index = load_index(self.paths, progress)
         except BagError as exc:
             self.error = str(exc)
             self.call_from_thread(self.exit, None, 1)

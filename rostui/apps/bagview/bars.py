@@ -35,7 +35,7 @@ def header_text(names: list[str], index: BagIndex | None, link: str = "") -> Tex
     """``square.bag · 12.3 KB · 1234 msgs · 2 topics · 9.000 s │ LINK`` and a warning for files cut short."""
     text = Text(" · ".join(names), style="bold")
     if index is None:
-        text.append(" · reading…")
+        text.append(f" · reading… {link}")
         return text
     span = (index.end_ns - index.start_ns) / 1e9
     text.append(f" · {human_size(index.size)} · {len(index)} msgs · {len(index.tracks)} topics · {span:.3f} s")

@@ -285,16 +285,17 @@ class Transport:
             pass
         self._wake.clear()
 
-    async def _wait_bag(self, t_ns: int) -> bool:
-        """Wait until the bag clock reaches ``t_ns``; False when paused, stopped or moved meanwhile."""
+    async def _wait_bag(self, t_ns: int) -> float | None:
+        """Wait until the bag clock reaches ``t_ns``; returns that wall time, or None when paused, stopped or
+        moved meanwhile."""
         gen = self._gen
         while True:
             if self.stopped or self.paused or gen != self._gen:
-                return False
+                return None
             target = self._wall_of(t_ns)
             remaining = target - self.clock()
             if remaining <= 0:
-                return True
+                return target
             if remaining > SPIN_BEFORE:
                 await self._sleep(min(remaining - SPIN_BEFORE, self.tick_period))
                 self._tick()
@@ -304,7 +305,7 @@ class Transport:
             time.sleep(max(0.0, remaining - SPIN_LAST))
             while self.clock() < target:  # the last ~0.2 ms: a sleep's wake-up is about that late
                 pass
-            return True
+            return target
 
     def _emit(self, item: MessageItem, target: float | None) -> None:
         conn, t, data = item
@@ -323,7 +324,7 @@ class Transport:
         """The pass is over: loop, hold or finish; False when :meth:`run` should return."""
         if self.loop and self._pass_published:
             if not self.paused:
-                if not await self._wait_bag(self.end_bound):
+                if await self._wait_bag(self.end_bound) is None:
                     return True  # paused, moved or stopped while waiting for the end
                 self._anchor_next = True
             self.source.seek(self.play_from)
@@ -370,6 +371,7 @@ class Transport:
                 continue
             if self._anchor_next:
                 self._anchor(item[1])
-            if await self._wait_bag(item[1]):
-                self._emit(item, self._wall_of(item[1]))
+            target = await self._wait_bag(item[1])
+            if target is not None:
+                self._emit(item, target)
         return self.published

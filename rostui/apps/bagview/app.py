@@ -42,6 +42,9 @@ REFRESH_RATE = 10.0
 #: The rates ``+`` and ``-`` step through.
 RATES = (0.1, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0)
 
+#: Messages larger than this (bytes) are inspected with arrays summarised (``rostopic echo --noarr``).
+INSPECT_ARRAYS_UP_TO = 64 * 1024
+
 #: Seconds the node may take to shut down when the app quits.
 SHUTDOWN_TIMEOUT = 3.0
 
@@ -205,8 +208,7 @@ class BagViewApp(App[int]):
         try:
             await node.start(publish_rosout=False)
             await asyncio.wait_for(node.master_call("getPid"), 5.0)
-            conns = _first_connections(index)
-            self.publishers = await advertise_connections(node, conns, self.queue_size)
+            self.publishers = await advertise_connections(node, index.connections, self.queue_size)
         except Exception:  # no master, or it refused us: browse without publishing
             try:
                 await asyncio.wait_for(node.shutdown("rostui bag view: no master"), SHUTDOWN_TIMEOUT)
@@ -264,7 +266,7 @@ class BagViewApp(App[int]):
         self.inspector_title.update(_escape(f"{topic}  {conn.type}  #{number} of {track.count}  bag {t / 1e9:.6f}  "
                                             f"{wall_text(t)}  {len(data)} B"))
         try:
-            self.inspector_text.update(_escape(message_yaml(conn, data)))
+            self.inspector_text.update(_escape(message_yaml(conn, data, noarr=len(data) > INSPECT_ARRAYS_UP_TO)))
         except BagError as exc:
             self.inspector_text.update(f"[b]{_escape(str(exc))}[/b]")
 
@@ -402,14 +404,6 @@ class BagViewApp(App[int]):
                 await asyncio.wait_for(node.shutdown("rostui bag view closed"), SHUTDOWN_TIMEOUT)
             except Exception:
                 pass
-
-
-def _first_connections(index: BagIndex) -> list[Connection]:
-    """One connection per (topic, md5sum) in the order they first appear."""
-    seen: dict[tuple[str, str], Connection] = {}
-    for conn in index.conns:
-        seen.setdefault((conn.topic, conn.md5sum), conn)
-    return list(seen.values())
 
 
 def _escape(text: str) -> str:

@@ -35,13 +35,15 @@ class TopicTrack:
 
 @dataclass
 class BagIndex:
-    """Every message of the bag(s) in time order, with per-topic tracks."""
+    """Every message of the bag(s) in time order, with per-topic tracks and the connections in order of
+    their first message."""
 
     paths: list[str]
     times: list[int] = field(default_factory=list)
     conns: list[Connection] = field(default_factory=list)
     datas: list[bytes] = field(default_factory=list)
     tracks: dict[str, TopicTrack] = field(default_factory=dict)
+    connections: list[Connection] = field(default_factory=list)
     notices: list[str] = field(default_factory=list)
     size: int = 0
 
@@ -103,11 +105,15 @@ def load_index(paths: Sequence[str], progress: Callable[[int], None] | None = No
         for path in paths:
             readers.append(open_reader(path))
         index = BagIndex(list(paths))
+        seen: set[Connection] = set()
         for conn, t, data, _i in merged_messages(readers):
             position = len(index.times)
             index.times.append(t)
             index.conns.append(conn)
             index.datas.append(data)
+            if conn not in seen:
+                seen.add(conn)
+                index.connections.append(conn)
             track = index.tracks.get(conn.topic)
             if track is None:
                 track = index.tracks[conn.topic] = TopicTrack(conn.topic, conn.type)
@@ -149,8 +155,9 @@ class IndexSource:
         self.position = self.index.position_at(t_ns)
 
 
-def message_yaml(conn: Connection, data: bytes) -> str:
-    """The message as ``rostopic echo`` prints it, decoded with the type recorded in the bag."""
+def message_yaml(conn: Connection, data: bytes, *, noarr: bool = False) -> str:
+    """The message as ``rostopic echo`` prints it (``--noarr`` with ``noarr``), decoded with the type
+    recorded in the bag."""
     from rostui.core.msg import register_types_from_definition
     from rostui.core.msg.convert import message_to_yaml
 
@@ -159,4 +166,4 @@ def message_yaml(conn: Connection, data: bytes) -> str:
         msg = cls().deserialize(data)
     except Exception as exc:  # a bad definition, or the generated deserializer's errors on damaged data
         raise BagError(f"cannot decode this {conn.type or 'message'}: {exc}") from None
-    return message_to_yaml(msg)
+    return message_to_yaml(msg, noarr=noarr)

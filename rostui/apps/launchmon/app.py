@@ -139,6 +139,7 @@ class LaunchMonitorApp(App[int]):
         self._shown_seq = 0
         self._ticks = 0
         self._usage: dict[str, Usage | None] = {}
+        self._measuring = False
         self._run_task: asyncio.Task[None] | None = None
         self._refresh_timer: Timer | None = None
         self.terminal_gone = False
@@ -218,20 +219,31 @@ class LaunchMonitorApp(App[int]):
     def refresh_view(self) -> None:
         """Read the supervisor: table rows, status line, problem line and new output lines."""
         self._ticks += 1
-        measure_now = self._ticks % max(1, round(1.0 / self.period)) == 1 or not self._usage
         processes = self.supervisor.processes
-        children = children_map() if measure_now and processes else {}
+        due = self._ticks % max(1, round(1.0 / self.period)) == 1 or not self._usage
+        if due and processes and not self._measuring and not self.terminal_gone:
+            self._measuring = True
+            self.run_worker(self._measure(list(processes)), group="usage", exit_on_error=False)
         for process in processes:
-            if measure_now:
-                self._usage[process.label] = measure(self.sampler, process, children)
             row = node_row(process, self._usage.get(process.label))
             if self.row_hook is not None:
                 row = self.row_hook(row)
             self._put_row(row)
-        if measure_now:
-            self.sampler.forget_dead()
         self._append_output()
         self.update_status()
+
+    async def _measure(self, processes: list[ManagedProcess]) -> None:
+        """CPU and memory of every running node, sampled in a thread (psutil reads /proc for each process)."""
+        def sample() -> dict[str, Usage | None]:
+            children = children_map()
+            usage = {process.label: measure(self.sampler, process, children) for process in processes}
+            self.sampler.forget_dead()
+            return usage
+
+        try:
+            self._usage = await asyncio.to_thread(sample)
+        finally:
+            self._measuring = False
 
     def _put_row(self, row: NodeRow) -> None:
         table = self.table

@@ -26,7 +26,7 @@ from rostui.core.bag.recorder import RecordOptions
 
 from bag_view_helpers import STEP_NS, T0, Counter, Int32, write_counts
 from cli_helpers import rostui
-from conftest import REPO, stop_process, until
+from conftest import REPO, start_rostui_core, stop_process, until
 
 Scenario = Callable[[Pilot, Any], Awaitable[None]]
 
@@ -140,6 +140,34 @@ def test_switched_off_topic_is_not_published(counts_bag: Path, tmp_path: Path, r
         assert counter.values("/odd") == []
     finally:
         counter.close()
+
+
+def test_without_a_master_it_browses_and_publishes_once_one_starts(counts_bag: Path, tmp_path: Path,
+                                                                  ros_env: dict[str, str]) -> None:
+    core: list[subprocess.Popen] = []
+
+    async def scenario(pilot: Pilot, app: BagViewApp) -> None:
+        await loaded(app)
+        await until(lambda: "no master at" in str(app.header.render()), "the no-master notice")
+        await pilot.press("5")
+        assert app.transport is not None and app.transport.fraction() == pytest.approx(0.5)
+        core.append(start_rostui_core(ros_env))
+        counter = Counter(ros_env, tmp_path, "/count")
+        try:
+            await until(lambda: app.node is not None, "the node once the master answers")
+            app.refresh_view()
+            assert "publishing as /bag_view_" in str(app.header.render())
+            await until(counter.connected, "the counter to connect")
+            await pilot.press("s")
+            await until(lambda: counter.received() == [("/count", 50)], "a step published")
+        finally:
+            counter.close()
+
+    try:
+        run(BagViewApp([str(counts_bag)]), scenario)
+    finally:
+        for proc in core:
+            stop_process(proc)
 
 
 # -- keys, offline --------------------------------------------------------------------------------

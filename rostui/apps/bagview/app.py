@@ -45,6 +45,9 @@ RATES = (0.1, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0)
 #: Messages larger than this (bytes) are inspected with arrays summarised (``rostopic echo --noarr``).
 INSPECT_ARRAYS_UP_TO = 64 * 1024
 
+#: Seconds between attempts to reach the master when none answered.
+RETRY_SECONDS = 2.0
+
 #: Seconds the node may take to shut down when the app quits.
 SHUTDOWN_TIMEOUT = 3.0
 
@@ -200,6 +203,11 @@ class BagViewApp(App[int]):
         self.refresh_view()
 
     async def _connect(self, index: BagIndex) -> None:
+        """Start the node and advertise every topic; without a master, browse and try again now and then."""
+        while not await self._try_connect(index):
+            await asyncio.sleep(RETRY_SECONDS)
+
+    async def _try_connect(self, index: BagIndex) -> bool:
         from rostui.core.bag.player import advertise_connections
         from rostui.core.node import AsyncNode
 
@@ -208,16 +216,18 @@ class BagViewApp(App[int]):
         try:
             await node.start(publish_rosout=False)
             await asyncio.wait_for(node.master_call("getPid"), 5.0)
-            self.publishers = await advertise_connections(node, index.connections, self.queue_size)
+            publishers = await advertise_connections(node, index.connections, self.queue_size)
         except Exception:  # no master, or it refused us: browse without publishing
             try:
                 await asyncio.wait_for(node.shutdown("rostui bag view: no master"), SHUTDOWN_TIMEOUT)
             except Exception:
                 pass
-            self.link = f"no master at {node.master_uri}: not publishing"
-            return
+            self.link = f"no master at {node.master_uri}: not publishing (trying again every {RETRY_SECONDS:g} s)"
+            return False
+        self.publishers = publishers
         self.node = node
         self.link = f"publishing as {node.name}"
+        return True
 
     # -- publishing ------------------------------------------------------------------------------------
     def _accepts(self, conn: Connection) -> bool:

@@ -33,7 +33,8 @@ def wall_text(t_ns: int) -> str:
 
 def header_text(names: list[str], index: BagIndex | None, link: str = "") -> Text:
     """``square.bag · 12.3 KB · 1234 msgs · 2 topics · 9.000 s │ LINK`` and a warning for files cut short."""
-    text = Text(" · ".join(names), style="bold")
+    text = Text()
+    text.append(" · ".join(names), style="bold")
     if index is None:
         text.append(f" · reading… {link}")
         return text

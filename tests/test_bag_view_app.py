@@ -210,6 +210,13 @@ def test_keys_move_the_cursor_change_rate_loop_topics_and_inspector(counts_bag: 
         await pilot.press("up")
         app.refresh_view()
         assert str(app.inspector_text.render()) == "data: 25"
+        await pilot.press("down", "full_stop", "full_stop")
+        app.refresh_view()
+        assert t.bag_ns() == T0 + 290_000_000 and str(app.inspector_text.render()) == "data: 29"
+        await pilot.press("comma")
+        assert t.bag_ns() == T0 + 270_000_000
+        await pilot.press("home", "comma")
+        assert t.bag_ns() == T0
         await pilot.press("i")
         assert not app.inspector.display
 

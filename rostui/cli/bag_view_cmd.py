@@ -95,8 +95,9 @@ def register(bag_app: typer.Typer) -> None:
     ) -> None:
         """View a bag like a video player: timeline, play/pause/step/seek, rate, loop, topics, inspector.
 
-        Keys: space play/pause, s step, arrows/Home/End/0-9/g seek, +/- rate, l loop,
-        up/down and t choose topics to publish, i inspector, q quit.
+        Keys: space play/pause, s step, arrows/PgUp/PgDn/Home/End/0-9/g seek, , and . the selected
+        topic's previous/next message, +/- rate, l loop, up/down and t choose topics to publish
+        (a all), i inspector, q quit.
         """
         items = list(args or [])
         if record or all_topics:

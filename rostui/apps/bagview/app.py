@@ -103,6 +103,8 @@ class BagViewApp(App[int]):
         Binding("home", "seek_fraction(0)", "start", show=False),
         Binding("end", "seek_fraction(1)", "end", show=False),
         *[Binding(str(d), f"seek_fraction({d / 10})", f"{d * 10}%", show=False) for d in range(10)],
+        Binding("comma", "message(-1)", "previous message of the topic", show=False),
+        Binding("full_stop", "message(1)", "next message of the topic", show=False),
         Binding("g,percent_sign", "goto", "go to"),
         Binding("plus,equals_sign,right_square_bracket", "rate(1)", "faster"),
         Binding("minus,left_square_bracket", "rate(-1)", "slower"),
@@ -313,6 +315,16 @@ class BagViewApp(App[int]):
         """Move the cursor by ``delta`` of the bag."""
         if self.transport is not None:
             self.transport.seek_fraction(self.transport.fraction() + delta)
+            self.refresh_view()
+
+    def action_message(self, direction: int) -> None:
+        """Move the cursor to the selected topic's previous or next message (nothing is published)."""
+        topic = self.timeline.selected_topic
+        if self.transport is None or self.index is None or topic is None:
+            return
+        target = self.index.neighbour_time(topic, self.transport.bag_ns(), direction)
+        if target is not None:
+            self.transport.seek(target)
             self.refresh_view()
 
     def on_timeline_view_seek(self, message: TimelineView.Seek) -> None:

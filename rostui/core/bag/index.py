@@ -85,6 +85,18 @@ class BagIndex:
         edges.append(bisect_right(track.times, t1))
         return [max(0, edges[i + 1] - edges[i]) for i in range(bins)]
 
+    def neighbour_time(self, topic: str, t_ns: int, direction: int) -> int | None:
+        """Time of ``topic``'s next message after ``t_ns`` (``direction`` > 0) or its last one before it
+        (< 0); None when there is none."""
+        track = self.tracks.get(topic)
+        if track is None:
+            return None
+        if direction > 0:
+            i = bisect_right(track.times, t_ns)
+            return track.times[i] if i < len(track.times) else None
+        i = bisect_left(track.times, t_ns) - 1
+        return track.times[i] if i >= 0 else None
+
     def message_at(self, topic: str, t_ns: int) -> int | None:
         """Position of ``topic``'s message under a cursor at ``t_ns``: the last one at or before it,
         else its first; None when the topic has no messages."""

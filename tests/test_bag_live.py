@@ -403,3 +403,44 @@ def test_record_stops_by_itself_at_max_size(ros_env: dict[str, str], rostui_core
         assert 40 <= recorded <= 60  # 0.5 MB of 10 KB messages
     finally:
         stop_all(items)
+
+
+def test_record_split_by_duration_and_stop_by_duration(ros_env: dict[str, str], rostui_core: Any,
+                                                       tmp_path: Path) -> None:
+    items: list = []
+    try:
+        watcher = Watcher()
+        items.append(watcher)
+        counter = Counter(watcher)
+        split = Cmd(rostui_cmd("bag", "record", "-O", str(tmp_path / "parts.bag"), "--split", "--duration", "1s",
+                               "/count"), ros_env, tmp_path, "split")
+        items.append(split)
+        once = Cmd(rostui_cmd("bag", "record", "-O", str(tmp_path / "once.mcap"), "--duration", "0.05m", "/count"),
+                   ros_env, tmp_path, "once")  # 3 s
+        items.append(once)
+        split.wait_for("Subscribing to /count")
+        once.wait_for("Subscribing to /count")
+        wait_until(lambda: counter.pub.get_num_connections() >= 2, "both recorders to connect")
+        while once.proc.poll() is None:  # the 3 s recorder stops by itself
+            counter.publish()
+            time.sleep(0.02)
+            assert counter.sent < 50 * DEADLINE, "record --duration 0.05m never stopped"
+        assert once.proc.wait() == 0, once.output
+        sent_while_once = counter.sent
+        time.sleep(0.3)
+        assert split.interrupt() == 0, split.output
+        pieces = sorted(tmp_path.glob("parts_*.bag"), key=lambda p: int(p.stem.split("_")[1]))
+        assert [p.name for p in pieces] == [f"parts_{i}.bag" for i in range(len(pieces))]
+        assert len(pieces) >= 3, split.output
+        per_piece = [counts(p).get("/count", 0) for p in pieces]
+        assert sum(per_piece) == counter.sent  # nothing lost at the cuts
+        assert all(n > 0 for n in per_piece[:-1]), per_piece
+        once_count = counts(tmp_path / "once.mcap")["/count"]
+        assert 0 < once_count <= sent_while_once
+        reader = open_reader(str(tmp_path / "once.mcap"))
+        summary = reader.summary()
+        reader.close()
+        assert summary.closed
+        assert 0 < (summary.end_ns - summary.start_ns) / 1e9 <= 3.5  # 3 s of file (checked five times a second)
+    finally:
+        stop_all(items)

@@ -44,15 +44,24 @@ def _split_ros_args(items: list[str]) -> tuple[list[str], list[str]]:
 
 def run_record(args: list[str], *, all_topics: bool, regex: str | None, exclude: str | None, name: str | None,
                prefix: str | None, bz2_flag: bool, lz4_flag: bool, compression: str | None, split: bool,
-               size: float | None, duration: float | None, max_size: float | None) -> int:
+               size: float | None, duration: str | None, max_size: float | None) -> int:
     """Record until Ctrl-C or a limit; 1 with one line on error."""
     from rostui.core.bag.model import BagError
-    from rostui.core.bag.recorder import RecordOptions, record
+    from rostui.core.bag.recorder import RecordOptions, parse_duration, record
     from rostui.core.node.engine import new_event_loop
 
     topics, ros_args = _split_ros_args(args)
     if name and prefix:
         fail("rostui bag record: use -O NAME or -o PREFIX, not both")
+    try:
+        duration_s = parse_duration(duration) if duration is not None else None
+    except BagError as exc:
+        fail(f"rostui bag record: {exc}")
+    for option, value in (("--size", size), ("--max-size", max_size)):
+        if value is not None and not value > 0:
+            fail(f"rostui bag record: {option} must be a positive number of MB, not {value:g}")
+    if split and size is None and duration_s is None:
+        fail("rostui bag record: --split needs --size MB or --duration DURATION to know where to split")
     is_bag = (name or prefix or "").endswith(".bag")
     kind = compression or (("bz2" if is_bag else "zstd") if bz2_flag else "lz4" if lz4_flag else "none")
     if is_bag and kind == "zstd":
@@ -60,7 +69,7 @@ def run_record(args: list[str], *, all_topics: bool, regex: str | None, exclude:
     if kind == "bz2" and not is_bag:
         fail("rostui bag record: MCAP files use lz4 or zstd compression, not bz2 (name the file .bag for bz2)")
     opts = RecordOptions(topics=topics, all_topics=all_topics, regex=regex, exclude=exclude, output_name=name,
-                         output_prefix=prefix, compression=kind, split=split, size_mb=size, duration_s=duration,
+                         output_prefix=prefix, compression=kind, split=split, size_mb=size, duration_s=duration_s,
                          max_size_mb=max_size)
     status = _status_writer(sys.stderr) if sys.stderr.isatty() else None
     loop = new_event_loop()
@@ -191,7 +200,8 @@ def register(app: typer.Typer) -> None:
                                                help="Chunk compression."),
         split: bool = typer.Option(False, "--split", help="Start a new file at --size or --duration."),
         size: float | None = typer.Option(None, "--size", metavar="MB", help="File size limit in MB."),
-        duration: float | None = typer.Option(None, "--duration", metavar="SEC", help="File duration in seconds."),
+        duration: str | None = typer.Option(None, "--duration", metavar="DURATION",
+                                            help="File duration: seconds, or with s, m or h (30, 30s, 5m, 2h)."),
         max_size: float | None = typer.Option(None, "--max-size", metavar="MB",
                                               help="Stop when the recording reaches this many MB in all."),
     ) -> None:

@@ -10,12 +10,12 @@ from rostui.core.bag.model import BagSummary
 
 
 def human_size(size: float) -> str:
-    """``81.5 KB`` as rosbag info writes sizes."""
-    for unit in ("B", "KB", "MB", "GB"):
-        if size < 1024.0 or unit == "GB":
-            return f"{size:.1f} {unit}"
+    """``81.5 KB`` as rosbag info writes sizes (never in bytes: 512 bytes are ``0.5 KB``)."""
+    for unit in ("KB", "MB", "GB", "TB"):
         size /= 1024.0
-    return f"{size:.1f} GB"
+        if size < 1024.0 or unit == "TB":
+            break
+    return f"{size:.1f} {unit}"
 
 
 def human_duration(seconds: float) -> str:
@@ -71,9 +71,43 @@ def info_dict(summary: BagSummary) -> dict[str, Any]:
         "size": summary.size,
         "messages": summary.message_count,
         "compression": summary.chunk_compression,
+        "chunk_bytes": {kind: {"uncompressed": plain, "stored": stored}
+                        for kind, (plain, stored) in summary.chunk_bytes.items()},
         "types": [{"type": t, "md5sum": types[t]} for t in sorted(types)],
         "topics": [{"topic": t, "messages": n, "types": ty, "connections": c} for t, n, ty, c in _topics(summary)],
     }
+
+
+def _compression_lines(summary: BagSummary) -> list[tuple[str, str]]:
+    """rosbag info's compression row (each kind with its chunk count, most used first, and the stored
+    fraction for compressed kinds) and, when any chunk is compressed, the uncompressed and compressed totals."""
+    kinds = summary.chunk_compression
+    chunks = sum(kinds.values())
+    if not chunks:
+        return [("compression", "none")]
+    parts = []
+    for kind in sorted(kinds, key=lambda k: (kinds[k], k), reverse=True):
+        plain, stored = summary.chunk_bytes.get(kind, (0, 0))
+        ratio = f"; {100.0 * stored / plain:.2f}%" if kind != "none" and plain else ""
+        parts.append(f"{kind} [{kinds[kind]}/{chunks} chunks{ratio}]")
+    rows = [("compression", ", ".join(parts))]
+    if all(kind == "none" for kind in kinds):
+        return rows
+    plain = sum(p for p, _ in summary.chunk_bytes.values())
+    stored = sum(s for _, s in summary.chunk_bytes.values())
+    plain_text, stored_text = human_size(plain), human_size(stored)
+    size_width = max(len(plain_text), len(stored_text))
+    seconds = (summary.end_ns - summary.start_ns) / 1e9
+    if seconds > 0:
+        plain_rate, stored_rate = human_size(plain / seconds), human_size(stored / seconds)
+        rate_width = max(len(plain_rate), len(stored_rate))
+        rows.append(("uncompressed", f"{plain_text:>{size_width}} @ {plain_rate:>{rate_width}}/s"))
+        rows.append(("compressed", f"{stored_text:>{size_width}} @ {stored_rate:>{rate_width}}/s "
+                                   f"({100.0 * stored / plain:.2f}%)"))
+    else:
+        rows.append(("uncompressed", f"{plain_text:>{size_width}}"))
+        rows.append(("compressed", f"{stored_text:>{size_width}}"))
+    return rows
 
 
 def format_info(summary: BagSummary) -> str:
@@ -83,12 +117,7 @@ def format_info(summary: BagSummary) -> str:
         lines += [("duration", human_duration((summary.end_ns - summary.start_ns) / 1e9)),
                   ("start", human_time(summary.start_ns)), ("end", human_time(summary.end_ns))]
     lines += [("size", human_size(summary.size)), ("messages", str(summary.message_count))]
-    chunks = sum(summary.chunk_compression.values())
-    if chunks:
-        kind = max(summary.chunk_compression, key=lambda k: summary.chunk_compression[k])
-        lines.append(("compression", f"{kind} [{summary.chunk_compression[kind]}/{chunks} chunks]"))
-    else:
-        lines.append(("compression", "none"))
+    lines += _compression_lines(summary)
     types = {c.type: c.md5sum for c in summary.connections}
     type_width = max((len(t) for t in types), default=0)
     type_lines = [f"{t:<{type_width}} [{types[t]}]" for t in sorted(types)]
@@ -99,11 +128,13 @@ def format_info(summary: BagSummary) -> str:
     for topic, count, tlist, conns in topics:
         extra = f" ({conns} connections)" if conns > 1 else ""
         unit = "msg " if count == 1 else "msgs"
-        topic_lines.append(f"{topic:<{topic_width}}   {count:>{count_width}} {unit}    : {', '.join(tlist)}{extra}")
-    out = [f"{k + ':':<13}{v}" for k, v in lines]
+        topic_lines.append(f"{topic:<{topic_width}}   {count:>{count_width}} {unit}    : "
+                           f"{', '.join(tlist):<{type_width}}{extra}")
+    width = max(len(k) for k, _ in lines) + 1
+    out = [f"{k + ':':<{width}} {v}" for k, v in lines]
     for key, rows in (("types", type_lines), ("topics", topic_lines)):
         for i, row in enumerate(rows):
-            out.append(f"{(key + ':') if i == 0 else '':<13}{row}")
+            out.append(f"{(key + ':') if i == 0 else '':<{width}} {row}")
     if not summary.closed:
         why = f" ({summary.problem})" if summary.problem else ""
         out.append(f"warning:     the file was not closed (recording interrupted){why}; "

@@ -20,7 +20,7 @@ from mcap.data_stream import RecordBuilder
 from mcap.opcode import Opcode
 from mcap.records import Channel, ChunkIndex, DataEnd, Footer, Header, MessageIndex, Schema, Statistics, SummaryOffset
 
-from rostui.core.bag.iov import Parts, write_all
+from rostui.core.bag.iov import Parts, Reservation, write_all
 from rostui.core.bag.model import BagError, BagSummary, Connection
 
 MAGIC = b"\x89MCAP0\r\n"
@@ -68,6 +68,7 @@ class McapBagWriter:
         self.max_chunk_age = max_chunk_age
         self.chunk_crcs = chunk_crcs
         self.fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+        self.reservation = Reservation(self.fd)
         self.connections: dict[int, Connection] = {}
         self.closed = False
         self.failed = False
@@ -92,6 +93,7 @@ class McapBagWriter:
 
     def _append(self, buffers: list[Any]) -> None:
         """Write at the end of the file; on failure cut back to the last complete record."""
+        self.reservation.ensure(self.good_end + sum(len(b) for b in buffers))
         try:
             self.good_end += write_all(self.fd, buffers)
         except OSError:
@@ -272,6 +274,7 @@ class McapBagWriter:
                 self._end_without_summary()
                 raise
         finally:
+            self.reservation.release(self.good_end)
             os.close(self.fd)
 
     def _end_without_summary(self) -> None:
@@ -280,7 +283,7 @@ class McapBagWriter:
         DataEnd(0).write(builder)
         Footer(0, 0, 0).write(builder)
         try:
-            write_all(self.fd, [builder.end() + MAGIC])
+            self.good_end += write_all(self.fd, [builder.end() + MAGIC])
         except OSError:
             self._cut()
 

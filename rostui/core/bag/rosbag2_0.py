@@ -16,7 +16,7 @@ import time
 from collections.abc import Iterator
 from typing import Any, BinaryIO
 
-from rostui.core.bag.iov import Parts, write_all
+from rostui.core.bag.iov import Parts, Reservation, write_all
 from rostui.core.bag.model import BagError, BagSummary, Connection
 
 MAGIC = b"#ROSBAG V2.0\n"
@@ -104,6 +104,7 @@ class BagWriter:
         self.chunk_bytes = chunk_bytes
         self.max_chunk_age = max_chunk_age
         self.fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+        self.reservation = Reservation(self.fd)
         self.connections: dict[int, Connection] = {}
         self.chunk_infos: list[tuple[int, int, int, dict[int, int]]] = []
         self.closed = False
@@ -124,6 +125,8 @@ class BagWriter:
         return header + _U32.pack(pad) + b" " * pad
 
     def _write_all(self, parts: list[Any]) -> None:
+        """Append ``parts`` at ``good_end`` (the end of the file)."""
+        self.reservation.ensure(self.good_end + sum(len(p) for p in parts))
         write_all(self.fd, parts)
 
     @property
@@ -239,6 +242,10 @@ class BagWriter:
                 self._rollback()
                 raise
         finally:
+            try:
+                self.reservation.release(os.lseek(self.fd, 0, os.SEEK_CUR))
+            except OSError:
+                pass
             os.close(self.fd)
 
 

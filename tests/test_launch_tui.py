@@ -216,3 +216,20 @@ async def test_scrolling_back_stops_following(tui_env: dict[str, str], tmp_path:
         await until(lambda: app.following and log.scroll_y == log.max_scroll_y, "following again after End")
         assert "following" in str(app.query_one("#log-title").render())
         await quit_and_check_gone(pilot, pids_of_launch(app))
+
+
+@on_loop
+async def test_a_burst_of_output_shows_its_newest_lines(tui_env: dict[str, str], tmp_path: Path) -> None:
+    """More lines between two refreshes than the pane takes at once: the newest are shown, the rest counted."""
+    launch = write_launch(tmp_path / "burst.launch", '<node pkg="tuitest" type="quiet" name="burst"/>')
+    app = monitor(launch)
+    async with app.run_test(size=SIZE) as pilot:
+        await until(lambda: "quiet is up" in log_text(app), "the node's first line")
+        output = app.supervisor.process_named("/burst").output
+        for n in range(1, 1201):  # as if the node wrote 1200 lines within one refresh
+            output.append("stdout", f"burst {n}")
+        await until(lambda: "burst 1200" in log_text(app), "the newest line of the burst")
+        text = log_text(app)
+        assert "… 700 lines skipped: more than 500 arrived between two refreshes …" in text
+        assert "burst 700\n" not in text + "\n" and "burst 701" in text
+        await quit_and_check_gone(pilot, pids_of_launch(app))

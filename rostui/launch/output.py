@@ -23,7 +23,7 @@ CHUNK = 65536
 MAX_LINE = 16384
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class OutputLine:
     """One line of output: its sequence number, where it came from (stdout, stderr or launch) and its text."""
 
@@ -79,6 +79,7 @@ async def pump(reader: asyncio.StreamReader, buffer: OutputBuffer, stream: str,
         while len(pending) > MAX_LINE:
             _append(buffer, stream, pending[:MAX_LINE])
             pending = pending[MAX_LINE:]
+        await asyncio.sleep(0)  # a node that never stops writing must not starve the rest of the loop
     if pending:
         _append(buffer, stream, pending)
 

@@ -30,7 +30,7 @@ from textual.widgets import DataTable, RichLog, Static
 from rostui.apps.launchmon.rows import COLUMNS, NodeRow, measure, node_row
 from rostui.apps.widgets.lifecycle import quit_on_signals
 from rostui.launch.errors import LaunchError
-from rostui.launch.output import DEFAULT_MAX_LINES, OutputBuffer
+from rostui.launch.output import OutputBuffer
 from rostui.launch.process import ManagedProcess, NodeState
 from rostui.launch.supervisor import Supervisor
 from rostui.launch.usage import Usage, UsageSampler, children_map
@@ -39,6 +39,10 @@ __all__ = ["LaunchMonitorApp", "KEYS", "run_app"]
 
 #: Key help under the log pane.
 KEYS = "↑↓ node  s start  k stop  r restart  l launcher's output  f follow  Tab log/table  q quit"
+#: Most output lines added to the log pane per refresh: a node flooding its output shows its newest lines.
+MAX_LINES_PER_REFRESH = 500
+#: Lines the log pane holds (the newest of the node's kept lines; drawing each costs time when a node is selected).
+PANE_LINES = 2000
 #: Seconds a notice (a start, stop or restart done) stays in the status line.
 NOTICE_SECONDS = 5.0
 #: Colour of each kind of state in the table.
@@ -155,7 +159,7 @@ class LaunchMonitorApp(App[int]):
             table.add_column(heading, key=key, width=width)
         yield table
         yield Static(id="log-title")
-        yield OutputLog(id="log", max_lines=DEFAULT_MAX_LINES, markup=False, highlight=False, wrap=False)
+        yield OutputLog(id="log", max_lines=PANE_LINES, markup=False, highlight=False, wrap=False)
         yield Static(KEYS, id="keys")
 
     def on_mount(self) -> None:
@@ -311,18 +315,25 @@ class LaunchMonitorApp(App[int]):
         self.shown = label
         self._shown_seq = 0
         self.log_view.clear()
-        self._append_output()
+        self._append_output(limit=PANE_LINES)
         self._update_log_title()
 
-    def _append_output(self) -> None:
+    def _append_output(self, limit: int | None = None) -> None:
         buffer = self._buffer()
         lines = list(buffer.since(self._shown_seq))
         if not lines:
             return
         log = self.log_view
-        for line in lines:
-            text = line.text if self.text_hook is None else self.text_hook(line.text)
-            log.write(_line_text(text, line.stream), scroll_end=self.following)
+        limit = limit or MAX_LINES_PER_REFRESH
+        skipped = buffer.next_seq - self._shown_seq - min(len(lines), limit) if self._shown_seq else 0
+        if len(lines) > limit:
+            lines = lines[-limit:]
+        if skipped > 0:
+            log.write(Text(f"… {skipped} lines skipped: more than {limit} arrived between two refreshes …",
+                           style="dim"), scroll_end=self.following)
+        hook = self.text_hook
+        texts = [_line_text(line.text if hook is None else hook(line.text), line.stream) for line in lines]
+        log.write(Text("\n").join(texts), scroll_end=self.following)  # one write: rendering is per call
         self._shown_seq = buffer.next_seq
 
     def _update_log_title(self) -> None:

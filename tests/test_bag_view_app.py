@@ -9,6 +9,7 @@ only; each step while paused publishes exactly one message.
 from __future__ import annotations
 
 import asyncio
+import io
 import os
 import subprocess
 import sys
@@ -17,10 +18,11 @@ from pathlib import Path
 from typing import Any, Awaitable, Callable
 
 import pytest
+from rich.console import Console
 from textual.pilot import Pilot
 
 from rostui.apps.bagview.app import BagViewApp, parse_goto
-from rostui.apps.bagview.record_app import BagRecordApp
+from rostui.apps.bagview.record_app import BagRecordApp, topics_table
 from rostui.core.bag.files import open_reader
 from rostui.core.bag.recorder import RecordOptions
 
@@ -323,11 +325,13 @@ def test_record_counts_live_and_splits_without_losing_or_doubling(tmp_path: Path
         rate, bandwidth = session.meters["/numbers"].rates()
         assert 30 < rate < 200 and bandwidth == pytest.approx(rate * 4)
         await pilot.press("n")
+        await until(lambda: len(session.files) == 2 and session.current is not None
+                    and session.current.recorder.gate_open, "the split")
         assert session.files == [str(tmp_path / "session_0.mcap"), str(tmp_path / "session_1.mcap")]
         first_file_count = session.meters["/numbers"].count - session.meters["/numbers"].file_count
         await until(lambda: session.meters["/numbers"].file_count >= 50, "50 messages in the second file")
         await pilot.press("r")
-        assert not session.recording
+        await until(lambda: not session.recording, "recording stopped")
         app.refresh_view()
         text = str(app.status.render())
         assert "■ STOPPED" in text and "session_1.mcap" in text and "2 files" in text
@@ -345,3 +349,31 @@ def test_record_counts_live_and_splits_without_losing_or_doubling(tmp_path: Path
     assert first and second and third
     assert first + second == list(range(first[0], second[-1] + 1)), "the split lost or doubled messages"
     assert third[0] > second[-1]
+
+
+def test_record_all_topics_finds_the_published_ones(tmp_path: Path, rostui_core: Any, ros_env: dict[str, str],
+                                                    monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)
+    script = tmp_path / "view_talker.py"
+    script.write_text(TALKER)
+    talker = subprocess.Popen([sys.executable, str(script)], env=ros_env, cwd=REPO, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL)
+
+    async def scenario(pilot: Pilot, app: BagRecordApp) -> None:
+        session = app.session
+        await until(lambda: "/numbers" in session.subscribed, "-a to find /numbers")
+        await until(lambda: session.meters.get("/numbers") is not None and session.meters["/numbers"].count > 5,
+                    "messages of /numbers")
+        app.refresh_view()
+        assert "recording all topics into " in str(app.header.render())
+        console = Console(width=100, record=True, file=io.StringIO())
+        console.print(topics_table(session))
+        rows = [line for line in console.export_text().splitlines() if line.startswith("/numbers")]
+        assert len(rows) == 1 and " Hz" in rows[0]
+
+    try:
+        run(BagRecordApp(RecordOptions(all_topics=True, output_prefix="all")), scenario)
+    finally:
+        stop_process(talker)
+    files = sorted(tmp_path.glob("all_*_0.mcap"))
+    assert len(files) == 1 and file_values(files[0])

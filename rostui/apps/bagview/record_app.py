@@ -128,16 +128,22 @@ class BagRecordApp(App[int]):
         self.table.update(topics_table(self.session))
         self.status.update(record_status(self.session, problem))
 
-    async def action_toggle_record(self) -> None:
-        """Stop, or start again into the next file."""
+    def action_toggle_record(self) -> None:
+        """Stop, or start again into the next file (in a worker: closing a file may take a moment)."""
+        self.run_worker(self._toggle(), group="control", exit_on_error=False)
+
+    async def _toggle(self) -> None:
         if self.session.recording:
             await self.session.stop()
         else:
             await self._start()
         self.refresh_view()
 
-    async def action_split(self) -> None:
-        """Go on in the next file."""
+    def action_split(self) -> None:
+        """Go on in the next file (in a worker: the next recorder connects first)."""
+        self.run_worker(self._split(), group="control", exit_on_error=False)
+
+    async def _split(self) -> None:
         try:
             await self.session.split()
         except BagError as exc:

@@ -33,6 +33,7 @@ from rostui.apps.widgets.lifecycle import quit_on_signals
 from rostui.core.bag.index import BagIndex, IndexSource, load_index, message_yaml
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.transport import Transport
+from rostui.core.node import AnyMsg
 
 __all__ = ["BagViewApp", "RATES", "parse_goto", "run_app"]
 
@@ -238,8 +239,6 @@ class BagViewApp(App[int]):
     def _publish(self, conn: Connection, _t: int, data: bytes) -> None:
         pub = self.publishers.get((conn.topic, conn.md5sum))
         if pub is not None:
-            from rostui.core.node import AnyMsg
-
             pub.publish(AnyMsg(data))
 
     # -- the screen ------------------------------------------------------------------------------------

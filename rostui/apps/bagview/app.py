@@ -85,8 +85,7 @@ class GotoPrompt(Input):
 class BagViewApp(App[int]):
     """Play, pause, step, seek and inspect a bag; publish it on a live graph.
 
-    ``index`` skips reading the files (tests pass one in). ``clock`` is the
-    transport's wall clock (tests freeze it for snapshots).
+    ``clock`` is the transport's wall clock (a snapshot test freezes it).
     """
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
@@ -119,8 +118,7 @@ class BagViewApp(App[int]):
 
     def __init__(self, paths: Sequence[str], *, rate: float = 1.0, loop: bool = False, publish: bool = True,
                  topics: Sequence[str] = (), start_playing: bool = False, master_uri: str | None = None,
-                 queue_size: int = 100, index: BagIndex | None = None,
-                 clock: Callable[[], float] = time.perf_counter) -> None:
+                 queue_size: int = 100, clock: Callable[[], float] = time.perf_counter) -> None:
         super().__init__()
         self.paths = list(paths)
         self.names = [os.path.basename(p) for p in self.paths]
@@ -133,7 +131,6 @@ class BagViewApp(App[int]):
         self.queue_size = queue_size
         self.clock = clock
         self.index: BagIndex | None = None
-        self._given_index = index
         self.transport: Transport | None = None
         self.node: Any = None
         self.publishers: dict[tuple[str, str], Any] = {}
@@ -169,10 +166,7 @@ class BagViewApp(App[int]):
         self.prompt.display = False
         self.timeline.focus()
         quit_on_signals(self)
-        if self._given_index is not None:
-            self._bag_ready(self._given_index)
-        else:
-            self._read_bag()
+        self._read_bag()
         self.set_interval(1.0 / REFRESH_RATE, self.refresh_view)
 
     @work(thread=True, exit_on_error=False)

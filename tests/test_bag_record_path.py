@@ -43,6 +43,9 @@ class FakeTransport:
     def is_closing(self) -> bool:
         return self.closed
 
+    def get_extra_info(self, name: str, default: Any = None) -> Any:
+        return default
+
 
 def framed(payload: bytes) -> bytes:
     return len(payload).to_bytes(4, "little") + payload
@@ -273,3 +276,67 @@ def test_info_of_a_compressed_rostui_mcap_shows_the_ratio_and_sizes(tmp_path: Pa
     percent = float(compression.split(";")[1].strip(" %]"))
     assert 0 < percent < 20  # 2000 equal messages compress well
     assert "KB @ " in uncompressed and f"({percent:.2f}%)" in compressed
+
+
+@pytest.mark.parametrize("loop_kind", ["uvloop", "asyncio"])
+def test_a_real_socket_delivers_every_frame_even_when_the_publisher_goes_quiet(loop_kind: str) -> None:
+    """Big frames sent in trickles, each followed by silence: the low-water mark never waits for bytes
+    that are not coming (every frame arrives before the next is sent)."""
+    import socket
+    import threading
+
+    from rostui.core.node.engine import new_event_loop
+
+    rng = random.Random(3)
+    payloads = [bytes([i % 256]) * size for i, size in
+                enumerate([70_000, 1_000_000, 5, 600_000, 2_000_000, BIG_FRAME, 300])]
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(1)
+    got: list[bytes] = []
+    arrived = threading.Semaphore(0)
+
+    def publisher() -> None:
+        conn, _ = server.accept()
+        with conn:
+            conn.recv(65536)  # the subscriber's header
+            stream = publisher_stream([])
+            conn.sendall(stream)
+            for payload in payloads:
+                data = framed(payload)
+                pos = 0
+                while pos < len(data):
+                    step = rng.choice([1, 3, 4000, 100_000, 700_000])
+                    conn.sendall(data[pos:pos + step])
+                    pos += step
+                assert arrived.acquire(timeout=30), "a frame did not arrive while the publisher was quiet"
+
+    thread = threading.Thread(target=publisher, daemon=True)
+    thread.start()
+
+    async def run() -> None:
+        done = asyncio.get_running_loop().create_future()
+
+        def on_frame(payload: Any, header: dict[str, str]) -> None:
+            got.append(bytes(payload))
+            arrived.release()
+            if len(got) == len(payloads):
+                done.set_result(None)
+
+        loop = asyncio.get_running_loop()
+        transport, _proto = await loop.create_connection(
+            lambda: RawFrameConnection({"topic": "/t"}, lambda h: None, on_frame, lambda r: None, BufferPool().take),
+            "127.0.0.1", server.getsockname()[1])
+        try:
+            await asyncio.wait_for(done, 60)
+        finally:
+            transport.close()
+
+    loop = new_event_loop() if loop_kind == "uvloop" else asyncio.new_event_loop()
+    try:
+        loop.run_until_complete(run())
+    finally:
+        loop.close()
+        server.close()
+    thread.join(10)
+    assert got == payloads

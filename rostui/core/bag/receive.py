@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import socket
 from collections.abc import Callable
 from typing import Any
 
@@ -34,6 +35,8 @@ BIG_FRAME = 64 * 1024
 """Frames of this many bytes or more are read into a buffer of their own."""
 STAGING_BYTES = 256 * 1024
 """The staging buffer for small frames (it always has room for one whole small frame)."""
+LOW_WATER_CAP = 512 * 1024
+"""While a big frame is read, the loop wakes only once this much of it (or all the rest) has arrived."""
 
 POOL_CLASS = 64 * 1024
 """Pooled buffers come in multiples of this size."""
@@ -111,11 +114,14 @@ class RawFrameConnection(asyncio.BufferedProtocol):
         self._big_filled = 0
         self._expect_big = False
         self._watch: StallWatch | None = None
+        self._sock: Any = None
+        self._low_water = 1
 
     # -- asyncio ----------------------------------------------------------------------------
     def connection_made(self, transport: asyncio.BaseTransport) -> None:
         """Send our subscriber header."""
         self.transport = transport  # type: ignore[assignment]
+        self._sock = transport.get_extra_info("socket")
         self._watch = StallWatch(self.drop)
         self._watch.progress(1)
         self.transport.write(encode_header(self.request_header))
@@ -137,10 +143,14 @@ class RawFrameConnection(asyncio.BufferedProtocol):
         try:
             if self._big is not None:
                 self._big_filled += nbytes
-                if self._big_filled == len(self._big):
+                remaining = len(self._big) - self._big_filled
+                if not remaining:
                     payload, self._big, self._big_view = self._big, None, None
                     self._expect_big = True
+                    self._set_low_water(1)
                     self._frame(payload)
+                elif remaining < self._low_water:
+                    self._set_low_water(remaining)
             else:
                 self._end += nbytes
                 self._parse_stage()
@@ -161,6 +171,19 @@ class RawFrameConnection(asyncio.BufferedProtocol):
         self.on_lost(self.error or (str(exc) if exc else None))
 
     # -- frames -----------------------------------------------------------------------------
+    def _set_low_water(self, nbytes: int) -> None:
+        """Wake the loop for this socket only once ``nbytes`` can be read (SO_RCVLOWAT): a 1 MB message then
+        takes two or three reads instead of one per 64 KB that trickles in. Never more than the frame still
+        needs, so the loop is never left waiting for bytes that are not coming."""
+        if self._sock is None or nbytes == self._low_water:
+            return
+        try:
+            self._sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVLOWAT, nbytes)
+        except (OSError, AttributeError):
+            self._sock = None  # not supported here: read whatever arrives
+            return
+        self._low_water = nbytes
+
     def _compact(self) -> None:
         """Move the unparsed tail of the stage to its front."""
         start, end = self._start, self._end
@@ -192,6 +215,7 @@ class RawFrameConnection(asyncio.BufferedProtocol):
                 big_view = memoryview(big)
                 big_view[:have] = view[start + 4:end]
                 self._big, self._big_view, self._big_filled = big, big_view, have
+                self._set_low_water(min(size - have, LOW_WATER_CAP))
                 start = end
             break
         if start == end:

@@ -148,4 +148,4 @@ def test_publish_editor(snap_compare, talkers: Talkers) -> None:
         await pilot.press("p")
         await pilot.pause()
 
-    assert snap_compare(stepped_app(clock), run_before=run_before, terminal_size=(100, 24))
+    assert snap_compare(stepped_app(clock), run_before=run_before, terminal_size=(100, 30))

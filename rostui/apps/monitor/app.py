@@ -20,9 +20,9 @@ from textual.app import App, ComposeResult
 from textual.binding import Binding, BindingType
 from textual.containers import Horizontal
 from textual.markup import escape
-from textual.widgets import DataTable, Input, Static
+from textual.widgets import Input, Static
 
-from rostui.apps.monitor.detail import Charts, MessageTree
+from rostui.apps.monitor.detail import Charts, Line, MessageTree
 from rostui.apps.monitor.editor import PublishEditor
 from rostui.apps.monitor.table import TopicTable
 from rostui.apps.widgets.lifecycle import quit_on_signals
@@ -37,7 +37,10 @@ from rostui.core.network import master_uri_from_env
 __all__ = ["MonitorApp", "run_app", "KEYS"]
 
 #: Key help at the bottom.
-KEYS = "/ filter  s sort  S reverse  Enter expand  Tab tree  f plot field  p publish  q quit"
+KEYS = "s sort  S rev  Enter expand  Tab tree  f plot  p publish  q quit"
+#: What the filter line says while it waits for "/", and while it has the keyboard.
+FILTER_IDLE = "/ filter"
+FILTER_TYPING = "name or type; Enter keeps, Esc clears"
 #: Seconds between repaints of the table, trees and charts.
 REFRESH = 0.25
 #: Seconds between rate/bandwidth samples (one sparkline step).
@@ -45,15 +48,23 @@ SAMPLE = 1.0
 
 
 class FilterInput(Input):
-    """The filter line; Escape clears it and goes back to the table."""
+    """The filter line (always on screen, so opening it repaints one line); Escape clears it."""
 
     BINDINGS: ClassVar[list[BindingType]] = [Binding("escape", "cancel", "clear filter", show=False)]
 
     def action_cancel(self) -> None:
-        """Clear the filter and close the line."""
+        """Clear the filter and give the keyboard back to the table."""
         app = self.app
         assert isinstance(app, MonitorApp)
         app.close_filter(clear=True)
+
+    def on_focus(self) -> None:
+        """Say how the line works while typing."""
+        self.placeholder = FILTER_TYPING
+
+    def on_blur(self) -> None:
+        """Back to the short hint."""
+        self.placeholder = FILTER_IDLE
 
 
 class MonitorApp(App[int]):
@@ -96,24 +107,25 @@ class MonitorApp(App[int]):
         self.shown: list[TopicRow] = []
         self.repeaters: dict[str, Repeater] = {}
         self.repaints = 0
+        self._problem: str | None = None
         self._shut = False
 
     # -- composition -------------------------------------------------------------------
     def compose(self) -> ComposeResult:
         """Status, problem line, the table, the expanded view (trees | charts), filter line, keys."""
-        yield Static(id="status")
+        yield Line(id="status")
         yield Static(id="banner")
         yield TopicTable(id="topics")
         with Horizontal(id="detail"):
             yield MessageTree(id="tree")
             yield Charts(id="charts")
-        yield FilterInput(placeholder="filter topics by name or type", id="filter")
-        yield Static(KEYS, id="keys")
+        with Horizontal(id="bottom"):
+            yield FilterInput(placeholder=FILTER_IDLE, id="filter")
+            yield Static(KEYS, id="keys")
 
     def on_mount(self) -> None:
         """Start the source and the timers; the table has the focus."""
         quit_on_signals(self)
-        self.query_one("#filter").display = False
         self.query_one("#banner").display = False
         self.table.focus()
         self.tree.set_topics(self.expanded)
@@ -173,7 +185,8 @@ class MonitorApp(App[int]):
     def paint_detail(self) -> None:
         """The message trees of the expanded topics and the charts of the topic in focus."""
         detail = self.query_one("#detail")
-        detail.display = bool(self.expanded)
+        if detail.display != bool(self.expanded):
+            detail.display = bool(self.expanded)
         if not self.expanded:
             return
         tree = self.tree
@@ -216,7 +229,7 @@ class MonitorApp(App[int]):
         parts.append(self.source.state.text())
         if self.notice:
             parts.append(self.notice)
-        self.query_one("#status", Static).update(escape(" │ ".join(parts)))
+        self.query_one("#status", Line).set(escape(" │ ".join(parts)))
         problem = ""
         if self.source.state.status != "connected":
             problem = self.source.state.text().lstrip("…✖ ")
@@ -225,8 +238,10 @@ class MonitorApp(App[int]):
         elif self.rows and not self.shown:
             problem = f"no topic matches {self.filter_text!r}"
         banner = self.query_one("#banner", Static)
-        banner.update(escape(problem))
-        banner.display = bool(problem)
+        if self._problem != problem:
+            self._problem = problem
+            banner.update(escape(problem))
+            banner.display = bool(problem)
 
     def say(self, text: str) -> None:
         """A notice in the status line (until the next one)."""
@@ -246,10 +261,7 @@ class MonitorApp(App[int]):
 
     def action_open_filter(self) -> None:
         """/: type a filter (name or type contains it); the table follows each keystroke."""
-        line = self.query_one("#filter", FilterInput)
-        line.value = self.filter_text
-        line.display = True
-        line.focus()
+        self.query_one("#filter", FilterInput).focus()
 
     @on(Input.Changed, "#filter")
     def _filter_typed(self, event: Input.Changed) -> None:
@@ -261,19 +273,17 @@ class MonitorApp(App[int]):
         self.close_filter(clear=False)
 
     def close_filter(self, *, clear: bool) -> None:
-        """Hide the filter line (``clear``: and drop the filter)."""
+        """Leave the filter line (``clear``: and drop the filter)."""
         line = self.query_one("#filter", FilterInput)
         if clear:
             self.filter_text = ""
             line.value = ""
-        line.display = False
         self.table.focus()
         self.repaint()
 
-    @on(DataTable.RowSelected, "#topics")
-    def _row_chosen(self, event: DataTable.RowSelected) -> None:
-        topic = str(event.row_key.value)
-        self.toggle_expanded(topic)
+    @on(TopicTable.Chosen)
+    def _row_chosen(self, event: TopicTable.Chosen) -> None:
+        self.toggle_expanded(event.topic)
 
     def toggle_expanded(self, topic: str) -> None:
         """Enter: show ``topic``'s newest message as a tree below the table (again: hide it)."""

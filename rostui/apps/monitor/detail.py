@@ -15,7 +15,21 @@ from rostui.core.monitor.rows import bandwidth_text, rate_text
 from rostui.core.monitor.source import FieldPlot
 from rostui.core.monitor.tree import FieldItem
 
-__all__ = ["MessageTree", "Charts", "TopicKey"]
+__all__ = ["MessageTree", "Charts", "TopicKey", "Line"]
+
+
+class Line(Static):
+    """A text of fixed height that repaints only when its text changes, without laying the screen out again."""
+
+    def __init__(self, text: str = "", *, id: str | None = None) -> None:
+        super().__init__(text, id=id)
+        self.text = text
+
+    def set(self, text: str) -> None:
+        """Show ``text`` (markup) unless it is already shown."""
+        if text != self.text:
+            self.text = text
+            self.update(text, layout=False)
 
 
 class TopicKey(str):
@@ -108,49 +122,49 @@ class Charts(Vertical):
         height: 2;
         margin-bottom: 1;
     }
-    Charts > Static {
+    Charts > Line {
         height: 1;
     }
     """
 
     def compose(self) -> ComposeResult:
         """Title, rate, bandwidth and field plot lines, each above its sparkline."""
-        yield Static(id="chart-title")
-        yield Static(id="rate-label")
+        yield Line(id="chart-title")
+        yield Line(id="rate-label")
         yield Sparkline([], id="rate-spark")
-        yield Static(id="bw-label")
+        yield Line(id="bw-label")
         yield Sparkline([], id="bw-spark")
-        yield Static(id="plot-label")
+        yield Line(id="plot-label")
         yield Sparkline([], id="plot-spark")
 
     def show(self, topic: str | None, rates: list[float], bandwidths: list[float], plot: FieldPlot | None) -> None:
         """Draw the history of ``topic`` and the plotted field."""
-        title = self.query_one("#chart-title", Static)
+        title = self.query_one("#chart-title", Line)
         if topic is None:
-            title.update("no topic selected")
+            title.set("no topic selected")
         else:
-            title.update(f"[b]{escape(topic)}[/b]" + ("" if rates else "  (not measured: off screen)"))
+            title.set(f"[b]{escape(topic)}[/b]" + ("" if rates else "  (not measured: off screen)"))
         last_rate = rates[-1] if rates else None
         last_bw = bandwidths[-1] if bandwidths else None
-        self.query_one("#rate-label", Static).update(
+        self.query_one("#rate-label", Line).set(
             f"rate {rate_text(last_rate)} Hz  (max {rate_text(max(rates)) if rates else '-'})")
-        self.query_one("#bw-label", Static).update(
+        self.query_one("#bw-label", Line).set(
             f"bandwidth {bandwidth_text(last_bw)}  (max {bandwidth_text(max(bandwidths)) if bandwidths else '-'})")
         _set_data(self.query_one("#rate-spark", Sparkline), rates)
         _set_data(self.query_one("#bw-spark", Sparkline), bandwidths)
-        label = self.query_one("#plot-label", Static)
+        label = self.query_one("#plot-label", Line)
         spark = self.query_one("#plot-spark", Sparkline)
         if plot is None:
-            label.update("field plot: f on a number in the tree")
+            label.set("field plot: f on a number in the tree")
             _set_data(spark, [])
             return
         values = list(plot.values)
         if plot.error and not values:
-            label.update(escape(f"{plot.topic}/{plot.path}: {plot.error}"))
+            label.set(escape(f"{plot.topic}/{plot.path}: {plot.error}"))
         elif not values:
-            label.update(escape(f"{plot.topic}/{plot.path}: waiting for a message"))
+            label.set(escape(f"{plot.topic}/{plot.path}: waiting for a message"))
         else:
-            label.update(escape(f"{plot.topic}/{plot.path} = {values[-1]:.6g}  "
+            label.set(escape(f"{plot.topic}/{plot.path} = {values[-1]:.6g}  "
                                 f"[{min(values):.6g} … {max(values):.6g}]"))
         _set_data(spark, values[-120:])
 

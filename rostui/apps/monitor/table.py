@@ -1,84 +1,211 @@
-"""TopicTable: the monitor's one table of topics, repainted in place and asked which topics it shows."""
+"""TopicTable: the monitor's table of topics, drawn line by line (only the rows on screen are rendered).
+
+Line 0 is the column header; the rest are rows.  Re-sorting or filtering is
+a new list of rows and one refresh, so the cost of a key press does not
+grow with the number of topics.  The cursor is anchored to a topic name:
+it stays on its topic while rows move.
+"""
 
 from __future__ import annotations
 
 from typing import ClassVar, Sequence
 
+from rich.segment import Segment
+from rich.style import Style
+from textual import events
 from textual.binding import Binding, BindingType
-from textual.widgets import DataTable
+from textual.geometry import Size
+from textual.message import Message
+from textual.scroll_view import ScrollView
+from textual.strip import Strip
 
-from rostui.core.monitor.rows import COLUMNS, TopicRow
+from rostui.core.monitor.rows import COLUMNS, Liveness, TopicRow
 
 __all__ = ["TopicTable"]
 
+#: Spaces between columns.
+GAP = 2
+#: Narrowest width of each column (the figures' columns never change width as values change).
+MIN_WIDTHS = (10, 8, 4, 4, 9, 11, 7, 10)
 
-class TopicTable(DataTable):
-    """One row per topic (row key = topic name); :meth:`show` repaints only the cells that changed."""
+_LIVENESS_CLASSES = {Liveness.LIVE: "topic-table--live", Liveness.STALE: "topic-table--stale",
+                     Liveness.WAITING: "topic-table--quiet", Liveness.NO_PUBLISHERS: "topic-table--quiet",
+                     Liveness.OFF: "topic-table--quiet"}
 
-    BINDINGS: ClassVar[list[BindingType]] = [
-        Binding("home", "scroll_top", "first topic", show=False),
-        Binding("end", "scroll_bottom", "last topic", show=False),
-    ]
+
+class TopicTable(ScrollView, can_focus=True):
+    """One row per topic; :meth:`show` takes the rows in the order to draw them."""
+
+    COMPONENT_CLASSES: ClassVar[set[str]] = {"topic-table--header", "topic-table--cursor", "topic-table--live",
+                                             "topic-table--stale", "topic-table--quiet"}
 
     DEFAULT_CSS = """
     TopicTable {
-        height: 1fr;
+        overflow-x: auto;
+        overflow-y: scroll;
+        scrollbar-size-vertical: 1;
     }
+    TopicTable > .topic-table--header { text-style: bold; background: $panel; color: $foreground; }
+    TopicTable > .topic-table--cursor { background: $primary 45%; text-style: bold; }
+    TopicTable > .topic-table--live { color: $text-success; }
+    TopicTable > .topic-table--stale { color: $text-error; text-style: bold; }
+    TopicTable > .topic-table--quiet { color: $text-muted; }
     """
 
+    BINDINGS: ClassVar[list[BindingType]] = [
+        Binding("up", "move(-1)", "up", show=False),
+        Binding("down", "move(1)", "down", show=False),
+        Binding("pageup", "page(-1)", "page up", show=False),
+        Binding("pagedown", "page(1)", "page down", show=False),
+        Binding("home", "first", "first topic", show=False),
+        Binding("end", "last", "last topic", show=False),
+        Binding("enter", "choose", "expand", show=False),
+    ]
+
+    class Chosen(Message):
+        """Enter (or a double click) on a topic's row."""
+
+        def __init__(self, topic: str) -> None:
+            super().__init__()
+            self.topic = topic
+
     def __init__(self, *, id: str | None = None) -> None:
-        super().__init__(id=id, cursor_type="row", zebra_stripes=False)
+        super().__init__(id=id)
+        self.rows: list[TopicRow] = []
         self.names: list[str] = []
-        self._cells: dict[str, tuple[str, ...]] = {}
+        self.cursor_topic: str | None = None
+        self.widths: list[int] = list(MIN_WIDTHS)
 
-    def on_mount(self) -> None:
-        """Add the columns."""
-        for label in COLUMNS:
-            self.add_column(label, key=label)
+    # -- geometry ------------------------------------------------------------------------------
+    @property
+    def page_rows(self) -> int:
+        """Rows visible below the header."""
+        return max(1, self.scrollable_content_region.height - 1)
 
-    def show(self, rows: Sequence[TopicRow]) -> None:
-        """Show ``rows`` in this order; the cursor stays on its topic when that topic is still shown."""
-        names = [r.name for r in rows]
-        if names != self.names:
-            current = self.current_topic
-            self.clear()
-            self._cells = {}
-            for row in rows:
-                cells = row.cells()
-                self._cells[row.name] = cells
-                self.add_row(*cells, key=row.name)
-            self.names = names
-            if current in names:
-                self.move_cursor(row=names.index(current), animate=False)
-            return
-        for row in rows:
-            cells = row.cells()
-            old = self._cells.get(row.name)
-            if old == cells:
-                continue
-            self._cells[row.name] = cells
-            for index, (label, value) in enumerate(zip(COLUMNS, cells)):
-                if old is None or old[index] != value:
-                    self.update_cell(row.name, label, value, update_width=True)
+    @property
+    def top_row(self) -> int:
+        """The row shown first under the header."""
+        return int(self.scroll_y)
+
+    @property
+    def cursor_row(self) -> int | None:
+        """The row of the cursor's topic, if shown."""
+        if self.cursor_topic is None:
+            return None
+        try:
+            return self.names.index(self.cursor_topic)
+        except ValueError:
+            return None
 
     @property
     def current_topic(self) -> str | None:
         """The topic under the cursor."""
-        if not self.names or not 0 <= self.cursor_row < len(self.names):
-            return None
-        return self.names[self.cursor_row]
+        return self.cursor_topic if self.cursor_row is not None else None
+
+    # -- updates from the app --------------------------------------------------------------------
+    def show(self, rows: Sequence[TopicRow]) -> None:
+        """Draw ``rows`` in this order; the cursor stays on its topic (or the nearest row when it left)."""
+        old_row = self.cursor_row
+        self.rows = list(rows)
+        self.names = [r.name for r in self.rows]
+        cells = [r.cells() for r in self.rows]
+        self.widths = [max([MIN_WIDTHS[i], len(COLUMNS[i])] + [len(c[i]) for c in cells])
+                       for i in range(len(COLUMNS))]
+        if self.names and self.cursor_row is None:
+            index = 0 if old_row is None else min(old_row, len(self.names) - 1)
+            self.cursor_topic = self.names[index]
+        width = sum(self.widths) + GAP * (len(self.widths) - 1)
+        size = Size(width, len(self.rows) + 1)
+        if size != self.virtual_size:
+            self.virtual_size = size
+        self.refresh()
 
     def visible_topics(self) -> list[str]:
-        """The topics of the rows on screen now (scrolled into view, below the header)."""
-        if not self.names:
-            return []
-        first = max(0, int(self.scroll_offset.y))
-        height = self.scrollable_content_region.height - (self.header_height if self.show_header else 0)
-        return self.names[first:first + max(0, height)]
+        """The topics of the rows on screen now."""
+        return self.names[self.top_row:self.top_row + self.page_rows]
 
     def select_topic(self, topic: str) -> bool:
-        """Put the cursor on ``topic``; False when it is not shown."""
+        """Put the cursor on ``topic`` and bring it into view; False when it is not shown."""
         if topic not in self.names:
             return False
-        self.move_cursor(row=self.names.index(topic), animate=False)
+        self.cursor_topic = topic
+        self._scroll_to_row(self.names.index(topic))
+        self.refresh()
         return True
+
+    def _select_row(self, row: int) -> None:
+        if not self.names:
+            return
+        self.select_topic(self.names[max(0, min(row, len(self.names) - 1))])
+
+    def _scroll_to_row(self, row: int) -> None:
+        top, page = self.top_row, self.page_rows
+        if row < top:
+            self.scroll_to(y=row, animate=False, force=True)
+        elif row >= top + page:
+            self.scroll_to(y=row - page + 1, animate=False, force=True)
+
+    # -- keys and mouse -------------------------------------------------------------------------
+    def action_move(self, delta: int) -> None:
+        """Up/Down: the row above or below."""
+        row = self.cursor_row
+        self._select_row(0 if row is None else row + delta)
+
+    def action_page(self, pages: int) -> None:
+        """PageUp/PageDown: a screenful up or down."""
+        row = self.cursor_row or 0
+        self._select_row(row + pages * self.page_rows)
+
+    def action_first(self) -> None:
+        """Home: the first row."""
+        self._select_row(0)
+
+    def action_last(self) -> None:
+        """End: the last row."""
+        self._select_row(len(self.names) - 1)
+
+    def action_choose(self) -> None:
+        """Enter: tell the app the cursor's topic was chosen."""
+        if self.current_topic is not None:
+            self.post_message(self.Chosen(self.current_topic))
+
+    def on_click(self, event: events.Click) -> None:
+        """A click selects the row; a double click chooses it."""
+        offset = event.get_content_offset(self)
+        if offset is None or offset.y < 1:
+            return
+        row = self.top_row + offset.y - 1
+        if row < len(self.names):
+            self._select_row(row)
+            if event.chain >= 2:
+                self.action_choose()
+
+    # -- drawing -----------------------------------------------------------------------------------
+    def _line(self, texts: Sequence[str]) -> str:
+        parts = [t.ljust(w) if i < 2 or i == len(texts) - 1 else t.rjust(w) if i < 7 else t.ljust(w)
+                 for i, (t, w) in enumerate(zip(texts, self.widths))]
+        return (" " * GAP).join(parts)
+
+    def render_line(self, y: int) -> Strip:
+        """Line ``y`` of the widget: the header, a topic's row, or blank."""
+        width = max(self.scrollable_content_region.width, self.virtual_size.width)
+        scroll_x = int(self.scroll_x)
+        if y == 0:
+            text = self._line(COLUMNS)
+            style = self.get_component_rich_style("topic-table--header")
+        else:
+            row = self.top_row + y - 1
+            if row >= len(self.rows):
+                return Strip.blank(self.scrollable_content_region.width, self.rich_style)
+            topic = self.rows[row]
+            text = self._line(topic.cells())
+            style = self.rich_style + self.get_component_rich_style(_LIVENESS_CLASSES[topic.liveness])
+            if topic.name == self.cursor_topic:
+                cursor = self.get_component_rich_style("topic-table--cursor")
+                style += Style(bgcolor=cursor.bgcolor, bold=cursor.bold)
+        strip = Strip([Segment(text.ljust(width), style)], width)
+        return strip.crop(scroll_x, scroll_x + self.scrollable_content_region.width)
+
+    def visible_texts(self) -> list[str]:
+        """The text of every visible line (header first), as drawn."""
+        return [self.render_line(y).text for y in range(self.scrollable_content_region.height)]

@@ -1,8 +1,8 @@
 """Rate, bandwidth and age of one topic's messages, with a short history for sparklines.
 
-The rate is :class:`rostui.core.tools.topic.HzStats` over the arrivals of
-the last :data:`RATE_WINDOW_SECONDS` (rostopic hz's own computation, so the
-monitor agrees with ``rostui topic hz``); the bandwidth is
+The rate is :meth:`rostui.core.tools.topic.HzStats.rate` over the arrivals
+of the last :data:`RATE_WINDOW_SECONDS` (rostopic hz's own computation, so
+the monitor agrees with ``rostui topic hz``); the bandwidth is
 :class:`~rostui.core.tools.topic.BwStats` (rostopic bw's).  Recording a
 message is one clock read and two deque appends; statistics are computed
 once per :meth:`TopicStats.sample`.
@@ -70,9 +70,9 @@ class TopicStats:
         times = self.hz.times
         while len(times) > 2 and times[0] < now - RATE_WINDOW_SECONDS:
             times.popleft()
-        figures = self.hz.stats()
-        if figures is not None:
-            self.rate = figures[0]
+        rate = self.hz.rate()
+        if rate is not None:
+            self.rate = rate
         if self.stale_at(now):
             self.rate = None
         self.bandwidth = self.bw.bytes_per_second(now) if self.rate is not None else None

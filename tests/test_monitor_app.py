@@ -93,8 +93,11 @@ def test_table_sort_and_filter(rostui_core: Any, ros_env: dict[str, str], tmp_pa
         stop_all(pubs)
 
 
-def test_subscribes_only_to_visible_rows(rostui_core: Any, ros_env: dict[str, str], tmp_path: Path) -> None:
-    """40 topics, about 10 rows on screen: the master lists the monitor on exactly the rows shown, as they change."""
+def test_subscribes_only_to_visible_rows(any_master: str, ros_env: dict[str, str], tmp_path: Path) -> None:
+    """40 topics, about 10 rows on screen: the master lists the monitor on exactly the rows shown, as they change.
+
+    Run against `rostui core` and a real roscore.
+    """
     many = ManyTopics(ros_env, tmp_path, "/many", 40, 5)
 
     async def subscribed_on_master_are_shown(app: MonitorApp, what: str) -> set[str]:

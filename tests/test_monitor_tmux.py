@@ -16,7 +16,6 @@ from typing import Any, Iterator
 
 import pytest
 
-from conftest import wait_until
 from monitor_helpers import start_publishers, stop_all
 from tmux_helpers import Pane, shell_pane
 

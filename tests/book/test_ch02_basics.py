@@ -10,12 +10,16 @@ from __future__ import annotations
 import math
 import re
 
+import pytest
+
 from book_helpers import (
     Desk, cli, desk, dot_edges, dot_nodes, dot_topics, drive, lines, ok, poll, start_core, start_teleop,
     start_turtlesim_view, status_pose,
 )
 
 __all__ = ["desk"]
+
+pytestmark = pytest.mark.timeout(300)  # one chapter, start to end, on a busy machine
 
 TURTLE_TOPICS = {"/turtle1/command_velocity", "/turtle1/pose", "/turtle1/color_sensor"}
 TURTLESIM_SERVICES = {"/clear", "/kill", "/reset", "/spawn", "/turtle1/set_pen", "/turtle1/teleport_absolute",
@@ -58,6 +62,14 @@ def test_turtlesim_in_three_terminals(desk: Desk) -> None:
     assert TURTLE_TOPICS <= dot_topics(book)
     assert {("/teleop_turtle", "/turtle1/command_velocity", ""), ("/turtle1/command_velocity", "/turtlesim", ""),
             ("/turtlesim", "/turtle1/pose", ""), ("/turtlesim", "/turtle1/color_sensor", "")} <= dot_edges(book)
+
+    graph = desk.terminal("graph")
+    graph.run("rostui graph --book")
+    graph.wait_for(r"│ /teleop_turtle │")
+    graph.wait_for(r"/turtle1/color_sensor")
+    assert "Nodes/Topics (all) · hide debug" in graph.screen() and "/rosout" not in graph.screen()
+    graph.keys("q")
+    assert graph.exit_status() == 0
 
     # 2.7.2: topics, echo (Listing 2.2), info (Listing 2.3), message types.
     assert TURTLE_TOPICS | {"/rosout", "/rosout_agg"} <= set(lines(ok("topic list", env)))

@@ -10,11 +10,15 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import pytest
+
 from book_helpers import (
     Desk, cli, desk, dot_edges, lines, ok, poll, start_core, start_turtlesim_view, status_pose,
 )
 
 __all__ = ["desk"]
+
+pytestmark = pytest.mark.timeout(300)  # one chapter, start to end, on a busy machine
 
 HELLO = re.compile(r"^\[ INFO\] \[\d+\.\d+\]: Hello, ROS!$", re.MULTILINE)
 SENDING = r"^\[ INFO\] \[\d+\.\d+\]: Sending random velocity command: linear=\S+ angular=\S+$"

@@ -8,9 +8,13 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import pytest
+
 from book_helpers import Desk, cli, desk, dot_edges, lines, log_lines, ok, poll, start_core
 
 __all__ = ["desk"]
+
+pytestmark = pytest.mark.timeout(300)  # one chapter, start to end, on a busy machine
 
 COUNTED = r"^\[DEBUG\] \[\d+\.\d+\]: Counted to \d+$"
 

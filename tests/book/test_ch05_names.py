@@ -7,9 +7,13 @@ from __future__ import annotations
 
 import re
 
+import pytest
+
 from book_helpers import Desk, desk, dot_edges, lines, ok, poll, start_core
 
 __all__ = ["desk"]
+
+pytestmark = pytest.mark.timeout(300)  # one chapter, start to end, on a busy machine
 
 
 def test_names_resolve_as_the_book_says(desk: Desk) -> None:

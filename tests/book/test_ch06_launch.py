@@ -13,9 +13,13 @@ import re
 import shutil
 from pathlib import Path
 
+import pytest
+
 from book_helpers import Desk, Terminal, cli, desk, dot_edges, dot_nodes, lines, ok, poll
 
 __all__ = ["desk"]
+
+pytestmark = pytest.mark.timeout(300)  # one chapter, start to end, on a busy machine
 
 POSITION = re.compile(r"position=\((\d+\.\d\d),(\d+\.\d\d)\) direction=(-?\d+\.\d\d)$", re.MULTILINE)
 NO_XTERM = "launch-prefix program 'xterm' is not installed"
@@ -57,7 +61,7 @@ def stop(terminal: Terminal, desk: Desk) -> None:
     assert cli("node list", desk.env).returncode != 0
 
 
-def test_launch_files_of_chapter_6(desk: Desk, tmp_path: Path) -> None:
+def test_launch_files_of_chapter_6(desk: Desk) -> None:
     env = desk.env
 
     # 6.1: example.launch starts a master and three nodes; subpose's output is on the screen (output="screen").

@@ -7,6 +7,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import pytest
 import yaml
 
 from book_helpers import (
@@ -14,6 +15,8 @@ from book_helpers import (
 )
 
 __all__ = ["desk"]
+
+pytestmark = pytest.mark.timeout(300)  # one chapter, start to end, on a busy machine
 
 DUCKS = {"huey": "red", "dewey": "blue", "louie": "green", "webby": "pink"}
 BLUE = (69, 86, 255)  # the book (groovy) prints 69, 85, 255; turtlesim has used 86 since

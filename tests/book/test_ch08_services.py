@@ -6,9 +6,13 @@ from __future__ import annotations
 
 import re
 
+import pytest
+
 from book_helpers import Desk, cli, desk, lines, log_lines, ok, poll, start_core, start_turtlesim_view
 
 __all__ = ["desk"]
+
+pytestmark = pytest.mark.timeout(300)  # one chapter, start to end, on a busy machine
 
 BOOK_SERVICES = ["/clear", "/kill", "/reset", "/rosout/get_loggers", "/rosout/set_logger_level", "/spawn",
                  "/turtle1/set_pen", "/turtle1/teleport_absolute", "/turtle1/teleport_relative",

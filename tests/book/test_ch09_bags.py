@@ -11,11 +11,15 @@ import math
 import re
 from pathlib import Path
 
+import pytest
+
 from book_helpers import (
     Desk, desk, dot_edges, lines, ok, poll, start_core, start_turtlesim_view, status_pose,
 )
 
 __all__ = ["desk"]
+
+pytestmark = pytest.mark.timeout(300)  # one chapter, start to end, on a busy machine
 
 ANON = r"\d+_\d+"
 

@@ -70,6 +70,9 @@ def test_launch_files_of_chapter_6(desk: Desk) -> None:
     example.wait_for(r"^\[ INFO\] \[\d+\.\d+\]: position=\(5\.54,5\.54\) direction=0\.00$")
     teleop = teleop_in_second_terminal(desk, example, "/teleop_key", "__name:=teleop_key")
     assert _node_list(desk) == {"/turtlesim", "/teleop_key", "/pose_subscriber", "/rosout"}
+    assert {("/teleop_key", "/turtle1/command_velocity", ""), ("/turtle1/command_velocity", "/turtlesim", ""),
+            ("/turtlesim", "/turtle1/pose", ""), ("/turtle1/pose", "/pose_subscriber", "")} <= dot_edges(
+        ok("graph --dot --book", env))
 
     def moved() -> bool:
         teleop.keys("Up")
@@ -131,4 +134,8 @@ def test_launch_files_of_chapter_6(desk: Desk) -> None:
     assert "/sim3/turtlesim_node" not in ok("launch agitr triplesim.launch --nodes", env)
     triple = launch(desk, "triple", "agitr triplesim.launch use_sim3:=1",
                     {"/sim1/turtlesim_node", "/sim2/turtlesim_node", "/sim3/turtlesim_node"})
+    graph = ok("graph --dot --book", env)
+    assert {("/sim3/turtle1/command_velocity", "/sim3/turtlesim_node", ""),
+            ("/sim3/turtlesim_node", "/sim3/turtle1/pose", ""),
+            ("/sim2/velocity_publisher", "/sim2/turtle1/command_velocity", "")} <= dot_edges(graph)
     stop(triple, desk)

@@ -11,7 +11,7 @@ import pytest
 import yaml
 
 from book_helpers import (
-    Desk, Terminal, cli, desk, lines, log_lines, ok, poll, start_core, start_turtlesim_view,
+    Desk, Terminal, cli, desk, dot_edges, lines, log_lines, ok, poll, start_core, start_turtlesim_view,
 )
 
 __all__ = ["desk"]
@@ -107,5 +107,6 @@ def test_parameters_of_chapter_7(desk: Desk, tmp_path: Path) -> None:
     fast.run("rostui launch agitr fast_yellow.launch")
     poll(lambda: "/publish_velocity" in lines(ok("node list", env)), "fast_yellow's nodes")
     assert ok("param get /publish_velocity/max_vel", env).strip() == "3"
+    assert {("/publish_velocity", "/turtlesim", "/turtle1/command_velocity")} <= dot_edges(ok("graph --dot", env))
     poll(lambda: colour_seen(env) == YELLOW, "fast_yellow's yellow background")
     assert fast.interrupt(timeout=90) in (0, 130)

@@ -8,9 +8,11 @@ with `tmux capture-pane`. q must bring the shell back with exit status 0.
 
 from __future__ import annotations
 
+import os
 import shlex
 import subprocess
 import sys
+import xmlrpc.client
 from pathlib import Path
 from typing import Any, Iterator
 
@@ -75,6 +77,34 @@ def test_bag_view_of_a_garbage_file_is_one_line_in_tmux(pane: Pane, ros_env: dic
     pane.wait_until(lambda: pane.shows(f"{EXIT_MARK}1"), "exit status 1")
     assert ("\nrostui bag view: junk.mcap is neither an MCAP file nor a rosbag file (unknown first bytes)\n"
             f"{EXIT_MARK}1\n") in pane.screen()
+
+
+def app_pids(marker: str) -> list[int]:
+    """Processes whose command line holds ``marker`` (a path only this test uses)."""
+    out = subprocess.run(["pgrep", "-f", marker], capture_output=True, text=True).stdout
+    return [int(p) for p in out.split() if int(p) != os.getpid()]
+
+
+def bag_view_nodes(env: dict[str, str]) -> list[str]:
+    """Nodes named /bag_view_... that the master knows as publishers."""
+    code, _, state = xmlrpc.client.ServerProxy(env["ROS_MASTER_URI"]).getSystemState("/test")
+    assert code == 1
+    return sorted({n for _topic, nodes in state[0] for n in nodes if n.startswith("/bag_view_")})
+
+
+def test_closing_the_terminal_while_playing_ends_the_app_and_its_node(pane: Pane, rostui_core: Any,
+                                                                     ros_env: dict[str, str],
+                                                                     tmp_path: Path) -> None:
+    """The terminal goes away (SIGHUP) mid-playback: the node unregisters and the process ends."""
+    bag = write_counts(tmp_path / "hangup.mcap", count=3000)  # 30 s
+    pane.type(view_line(ros_env, "--play", str(bag), cwd=tmp_path))
+    pane.wait_until(lambda: pane.shows("▶ PLAYING", "publishing as /bag_view_"), "playing and publishing")
+    wait_until(lambda: len(bag_view_nodes(ros_env)) == 1, "the app's node on the master")
+    pids = app_pids(str(bag))
+    assert pids
+    pane.close()
+    wait_until(lambda: not app_pids(str(bag)), "the app to end after its terminal went away", timeout=30)
+    assert bag_view_nodes(ros_env) == []
 
 
 TALKER = r'''

@@ -29,7 +29,7 @@ from textual.widgets import Input, Static
 
 from rostui.apps.bagview.bars import PLAY_KEYS, header_text, play_status, wall_text
 from rostui.apps.bagview.timeline import TimelineView
-from rostui.apps.bagview.hangup import quit_on_signals_and_hangup
+from rostui.apps.widgets.lifecycle import quit_on_signals
 from rostui.core.bag.index import BagIndex, IndexSource, load_index, message_yaml
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.transport import Transport
@@ -165,7 +165,7 @@ class BagViewApp(App[int]):
         """Read the bag (in a thread), then start the transport and, when publishing, the node."""
         self.prompt.display = False
         self.timeline.focus()
-        quit_on_signals_and_hangup(self)
+        quit_on_signals(self)
         self._read_bag()
         self.set_interval(1.0 / REFRESH_RATE, self.refresh_view)
 

@@ -22,7 +22,7 @@ from textual.widgets import Static
 
 from rostui.apps.bagview.bars import RECORD_KEYS, human_size
 from rostui.apps.bagview.recording import RecordSession
-from rostui.apps.bagview.hangup import quit_on_signals_and_hangup
+from rostui.apps.widgets.lifecycle import quit_on_signals
 from rostui.core.bag.model import BagError
 from rostui.core.bag.recorder import RecordOptions
 
@@ -99,7 +99,7 @@ class BagRecordApp(App[int]):
 
     def on_mount(self) -> None:
         """Start recording and the refresh timer."""
-        quit_on_signals_and_hangup(self)
+        quit_on_signals(self)
         self.set_interval(1.0 / REFRESH_RATE, self.refresh_view)
         if self.start_at_once:
             self.run_worker(self._start(), name="start", exclusive=True, exit_on_error=False)

@@ -1,22 +1,47 @@
-"""How a rostui app ends when its terminal goes away or it is told to stop."""
+"""How a rostui app ends when its terminal goes away or it is told to stop.
+
+SIGTERM and SIGHUP quit the app as ``q`` does: it stops its node and
+finishes its files, then Textual restores the terminal through its writer
+thread.  On a terminal that has hung up (an SSH link dropped, tmux killed)
+that thread can die on the first failed write (EIO) with its queue full, and
+``App.exit`` then waits for ever to hand it the stop marker.  So a hangup
+also starts a watchdog that ends the process a little later: the app's own
+clean-up has run by then, and nothing is left to restore on a vanished screen.
+"""
 
 from __future__ import annotations
 
 import asyncio
+import os
 import signal
+import threading
 
 from textual.app import App
 
+#: Seconds after a hangup by which the process ends, whatever Textual is doing.
+HANGUP_GRACE = 10.0
 
-def quit_on_signals(app: App) -> None:
-    """Quit ``app`` cleanly (as q would) on SIGTERM and SIGHUP; call from ``on_mount``.
+#: Exit status when the watchdog ends the process (128 + SIGHUP, as a shell reports it).
+HANGUP_STATUS = 128 + signal.SIGHUP
 
-    Where the event loop cannot take signal handlers (not the main thread, or
-    a platform without them) the default behaviour stays.
+
+def quit_on_signals(app: App, grace: float = HANGUP_GRACE) -> None:
+    """Quit ``app`` cleanly on SIGTERM and SIGHUP; after SIGHUP the process ends within ``grace`` seconds.
+
+    Call from ``on_mount``.  Where the event loop cannot take signal handlers
+    (not the main thread, or a platform without them) the default behaviour stays.
     """
     loop = asyncio.get_running_loop()
-    for sig in (signal.SIGTERM, signal.SIGHUP):
+
+    def hangup() -> None:
+        watchdog = threading.Timer(grace, os._exit, args=(HANGUP_STATUS,))
+        watchdog.daemon = True
+        watchdog.start()
+        app.call_later(app.action_quit)
+
+    handlers = {signal.SIGTERM: lambda: app.call_later(app.action_quit), signal.SIGHUP: hangup}
+    for sig, handler in handlers.items():
         try:
-            loop.add_signal_handler(sig, lambda: app.call_later(app.action_quit))
+            loop.add_signal_handler(sig, handler)
         except (NotImplementedError, RuntimeError, ValueError):
             pass

@@ -128,3 +128,14 @@ def test_publish_input() -> None:
     assert check_topic("cmd") == "/cmd"
     with pytest.raises(PublishError, match="not allowed"):
         check_topic("a b")
+
+
+def test_sparkline_starts_rates_at_zero_and_spans_a_fields_range() -> None:
+    """Rates are drawn from zero (100.0 and 100.1 Hz look alike); a field's plot spans its own range."""
+    from rostui.apps.monitor.detail import sparkline
+
+    assert sparkline([100.0, 100.1, 100.0], 10, 1) == ["███"]
+    assert sparkline([0.0, 5.0, 10.0], 10, 2) == ["  █", " ██"]
+    assert sparkline([-1.0, 0.0, 1.0], 10, 1, floor=None) == [" ▄█"]
+    assert sparkline(list(range(100)), 5, 1, floor=None) == sparkline([95, 96, 97, 98, 99], 5, 1, floor=None)
+    assert sparkline([], 10, 2) == ["", ""]

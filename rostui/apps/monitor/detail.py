@@ -8,7 +8,7 @@ from rich.text import Text
 from textual.app import ComposeResult
 from textual.markup import escape
 from textual.containers import Vertical
-from textual.widgets import Sparkline, Static, Tree
+from textual.widgets import Static, Tree
 from textual.widgets.tree import TreeNode
 
 from rostui.core.monitor.rows import bandwidth_text, rate_text
@@ -21,8 +21,8 @@ __all__ = ["MessageTree", "Charts", "TopicKey", "Line"]
 class Line(Static):
     """A text of fixed height that repaints only when its text changes, without laying the screen out again."""
 
-    def __init__(self, text: str = "", *, id: str | None = None) -> None:
-        super().__init__(text, id=id)
+    def __init__(self, text: str = "", *, id: str | None = None, classes: str | None = None) -> None:
+        super().__init__(text, id=id, classes=classes)
         self.text = text
 
     def set(self, text: str) -> None:
@@ -114,28 +114,54 @@ def _sync(node: TreeNode[str], items: Iterable[FieldItem]) -> None:
         stale.remove()
 
 
+#: Eighths of a cell, lowest first, for sparklines.
+BARS = " ▁▂▃▄▅▆▇█"
+
+
+def sparkline(values: Sequence[float], width: int, height: int, *, floor: float | None = 0.0) -> list[str]:
+    """The last ``width`` values as ``height`` lines of bars, from ``floor`` (None: the smallest value) to the largest.
+
+    A rate or a bandwidth starts at zero, so noise of 0.01 Hz on 100 Hz stays flat; a field's plot spans its range.
+    """
+    values = list(values)[-width:] if width > 0 else []
+    if not values or height < 1:
+        return [""] * max(height, 0)
+    low = min(values) if floor is None else min(floor, min(values))
+    span = max(values) - low
+    eighths = [round((v - low) / span * 8 * height) if span > 0 else (4 * height if floor is None else 0)
+               for v in values]
+    lines = []
+    for row in range(height - 1, -1, -1):
+        lines.append("".join(BARS[max(0, min(8, e - 8 * row))] for e in eighths))
+    return lines
+
+
 class Charts(Vertical):
     """Sparklines of the rate and bandwidth of one topic, and of the plotted field."""
 
     DEFAULT_CSS = """
-    Charts > Sparkline {
-        height: 2;
-        margin-bottom: 1;
-    }
     Charts > Line {
         height: 1;
     }
+    Charts > .chart {
+        height: 2;
+        color: $primary;
+        margin-bottom: 1;
+    }
     """
+
+    #: Rows of each sparkline.
+    CHART_ROWS = 2
 
     def compose(self) -> ComposeResult:
         """Title, rate, bandwidth and field plot lines, each above its sparkline."""
         yield Line(id="chart-title")
         yield Line(id="rate-label")
-        yield Sparkline([], id="rate-spark")
+        yield Line(id="rate-spark", classes="chart")
         yield Line(id="bw-label")
-        yield Sparkline([], id="bw-spark")
+        yield Line(id="bw-spark", classes="chart")
         yield Line(id="plot-label")
-        yield Sparkline([], id="plot-spark")
+        yield Line(id="plot-spark", classes="chart")
 
     def show(self, topic: str | None, rates: list[float], bandwidths: list[float], plot: FieldPlot | None) -> None:
         """Draw the history of ``topic`` and the plotted field."""
@@ -150,13 +176,12 @@ class Charts(Vertical):
             f"rate {rate_text(last_rate)} Hz  (max {rate_text(max(rates)) if rates else '-'})")
         self.query_one("#bw-label", Line).set(
             f"bandwidth {bandwidth_text(last_bw)}  (max {bandwidth_text(max(bandwidths)) if bandwidths else '-'})")
-        _set_data(self.query_one("#rate-spark", Sparkline), rates)
-        _set_data(self.query_one("#bw-spark", Sparkline), bandwidths)
+        self._draw("#rate-spark", rates, floor=0.0)
+        self._draw("#bw-spark", bandwidths, floor=0.0)
         label = self.query_one("#plot-label", Line)
-        spark = self.query_one("#plot-spark", Sparkline)
         if plot is None:
             label.set("field plot: f on a number in the tree")
-            _set_data(spark, [])
+            self._draw("#plot-spark", [], floor=0.0)
             return
         values = list(plot.values)
         if plot.error and not values:
@@ -166,9 +191,8 @@ class Charts(Vertical):
         else:
             label.set(escape(f"{plot.topic}/{plot.path} = {values[-1]:.6g}  "
                                 f"[{min(values):.6g} … {max(values):.6g}]"))
-        _set_data(spark, values[-120:])
+        self._draw("#plot-spark", values, floor=None)
 
-
-def _set_data(spark: Sparkline, values: list[float]) -> None:
-    if list(spark.data or []) != values:
-        spark.data = values
+    def _draw(self, selector: str, values: Sequence[float], *, floor: float | None) -> None:
+        line = self.query_one(selector, Line)
+        line.set("\n".join(sparkline(values, line.content_region.width, self.CHART_ROWS, floor=floor)))

@@ -41,8 +41,10 @@ class Pane:
         """A detached ``width`` x ``height`` session named ``session`` running ``command``, with no status bar.
 
         ``env`` and ``cwd`` are those the new tmux server, and so ``command``, starts with; ``fields`` are
-        the further fields of a Pane subclass.
+        the further fields of a Pane subclass.  ``COLUMNS`` and ``LINES`` are dropped from the environment
+        (pilot tests in the same pytest process can leave them set): apps must size themselves to the pane.
         """
+        env = {k: v for k, v in (os.environ if env is None else env).items() if k not in ("COLUMNS", "LINES")}
         pane = cls(socket=f"rostui-{session}-{os.getpid()}-{uuid.uuid4().hex[:8]}", session=session, **fields)
         subprocess.run(["tmux", "-u", "-L", pane.socket, "-f", "/dev/null", "new-session", "-d", "-s", session,
                         "-x", str(width), "-y", str(height), *command], env=env, cwd=cwd, check=True,

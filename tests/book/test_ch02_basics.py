@@ -8,7 +8,9 @@ larger example with nodes A, B, C, D; 2.9 wtf.
 from __future__ import annotations
 
 import math
+import os
 import re
+import signal
 
 import pytest
 
@@ -119,6 +121,23 @@ def test_turtlesim_in_three_terminals(desk: Desk) -> None:
     # 2.6: killing a node.
     assert "killed" in ok("node kill /teleop_turtle", env)
     assert teleop.exit_status() == 0
+    assert lines(ok("node list", env)) == ["/rosout", "/turtlesim"]
+
+    # A node that dies without unregistering stays listed until `rosnode cleanup`.
+    doomed = desk.terminal("doomed")
+    doomed.run("rostui run turtlesim turtle_teleop_key __name:=doomed")
+    doomed.wait_for(r"Use arrow keys to move the turtle")
+    pid = re.search(r"^Pid: (\d+)$", ok("node info /doomed", env), re.MULTILINE)[1]  # type: ignore[index]
+    os.kill(int(pid), signal.SIGKILL)
+    assert doomed.exit_status() == 128 + signal.SIGKILL
+    assert "/doomed" in lines(ok("node list", env))
+    cleanup = desk.terminal("cleanup")
+    cleanup.run("rostui node cleanup")
+    cleanup.wait_for(r"^Unable to contact the following nodes:\n \* /doomed$")
+    cleanup.wait_for(r"^Please type y or n to continue:$")
+    cleanup.type("y")
+    assert cleanup.exit_status() == 0
+    cleanup.wait_for(r"^Unregistering /doomed\ndone$")
     assert lines(ok("node list", env)) == ["/rosout", "/turtlesim"]
     sim.keys("q")
     assert sim.exit_status() == 0

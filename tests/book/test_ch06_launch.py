@@ -130,6 +130,10 @@ def test_launch_files_of_chapter_6(desk: Desk) -> None:
     assert teleop.interrupt() == 0
     stop(reverse, desk)
 
+    # A launch file by its path, without the package; --nodes lists what it would start.
+    path = Path(ok("pkg find agitr", env).strip()) / "example.launch"
+    assert lines(ok(f"launch {path} --nodes", env)) == ["/turtlesim", "/teleop_key", "/pose_subscriber"]
+
     # 6.5: triplesim.launch includes doublesim.launch; use_sim3:=1 adds a third simulator in sim3.
     assert "/sim3/turtlesim_node" not in ok("launch agitr triplesim.launch --nodes", env)
     triple = launch(desk, "triple", "agitr triplesim.launch use_sim3:=1",

@@ -139,3 +139,11 @@ def test_sparkline_starts_rates_at_zero_and_spans_a_fields_range() -> None:
     assert sparkline([-1.0, 0.0, 1.0], 10, 1, floor=None) == [" ▄█"]
     assert sparkline(list(range(100)), 5, 1, floor=None) == sparkline([95, 96, 97, 98, 99], 5, 1, floor=None)
     assert sparkline([], 10, 2) == ["", ""]
+
+
+def test_tree_of_a_big_array_counts_it() -> None:
+    """A megabyte image shows its length and first items (the array is not copied)."""
+    image = get_message_class("sensor_msgs/Image")(height=1000, width=1000, data=bytes(range(256)) * 3907)
+    data = {item.label: item for item in message_tree(image)}["data"]
+    assert data.text == "uint8[1000192]"
+    assert [c.line for c in data.children][:2] == ["[0]: 0", "[1]: 1"] and data.children[-1].label == "… 1000184 more"

@@ -80,12 +80,14 @@ class FieldPlot:
 class _Watch:
     """One subscription: its handle, statistics and the newest raw message."""
 
-    __slots__ = ("handle", "stats", "latest")
+    __slots__ = ("handle", "stats", "latest", "decoded", "decoded_from")
 
     def __init__(self) -> None:
         self.handle: Any = None
         self.stats = TopicStats()
         self.latest: Any = None
+        self.decoded: Any = None
+        self.decoded_from: Any = None
 
 
 class MonitorSource:
@@ -141,7 +143,11 @@ class MonitorSource:
         watch = self._watches.get(topic)
         if watch is None or watch.latest is None:
             return None
-        return decode(watch.latest)
+        raw = watch.latest
+        if watch.decoded_from is not raw:  # a latched or slow topic is decoded once per message, not per repaint
+            watch.decoded = decode(raw)
+            watch.decoded_from = raw
+        return watch.decoded
 
     def plot_field(self, topic: str, path: str) -> FieldPlot:
         """Record ``path`` of every message of ``topic`` from now on (one field at a time)."""

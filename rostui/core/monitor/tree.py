@@ -84,12 +84,12 @@ def _item(label: str, value: Any, field_type: str, path: str, owner: Any) -> Fie
     if isinstance(value, TVal):
         return FieldItem(label, f"{value.secs}.{value.nsecs:09d}", path, numeric=True)
     if isinstance(value, (bytes, bytearray, list, tuple)):
-        items = list(value)
+        count = len(value)  # an image's megabyte of uint8 is only counted, never copied
         base = field_type.split("[", 1)[0]
-        shown = [_item(f"[{i}]", v, base, f"{path}[{i}]", owner) for i, v in enumerate(items[:ARRAY_SHOWN])]
-        if len(items) > ARRAY_SHOWN:
-            shown.append(FieldItem(f"… {len(items) - ARRAY_SHOWN} more", "", f"{path}[…]"))
-        return FieldItem(f"{label}", f"{base}[{len(items)}]", path, tuple(shown))
+        shown = [_item(f"[{i}]", v, base, f"{path}[{i}]", owner) for i, v in enumerate(value[:ARRAY_SHOWN])]
+        if count > ARRAY_SHOWN:
+            shown.append(FieldItem(f"… {count - ARRAY_SHOWN} more", "", f"{path}[…]"))
+        return FieldItem(f"{label}", f"{base}[{count}]", path, tuple(shown))
     text = _scalar_text(value)
     names = constant_names(type(owner), field_type, value) if owner is not None else []
     if names:

@@ -23,7 +23,7 @@ from rostui.apps.monitor.editor import PublishEditor
 from rostui.core.monitor.rows import Column, Liveness, TopicRow
 
 from cli_helpers import rostui
-from conftest import rostui_cmd, stop_process, until
+from conftest import rostui_cmd, start_rostui_core, stop_process, until
 from live_helpers import Watcher
 from monitor_helpers import ManyTopics, Publisher, master_subscriptions, start_publishers, stop_all
 
@@ -280,3 +280,30 @@ def test_bad_command_line_is_one_line(ros_env: dict[str, str]) -> None:
                         (["monitor", "--period", "0"], "--period must be a positive number")):
         result = rostui(args, ros_env)
         assert result.returncode == 1 and words in result.stderr and result.stderr.count("\n") == 1, result
+
+
+def test_master_restart(ros_env: dict[str, str], tmp_path: Path) -> None:
+    """The master goes away: a red line says so and the last rows stay; a new master is found and polled."""
+    core = start_rostui_core(ros_env)
+
+    async def scenario(pilot: Pilot, app: MonitorApp) -> None:
+        nonlocal core
+        await until(lambda: "/rosout" in app.table.names, "the first master's topics", DEADLINE)
+        stop_process(core)
+        await until(lambda: "gone: waiting for it to come back" in screen_text(app, "#banner"), "the lost master",
+                    DEADLINE)
+        assert "/rosout" in app.table.names and "✖ master" in screen_text(app, "#status")
+        core = start_rostui_core(ros_env)
+        watcher = Watcher("after_restart")
+        try:
+            watcher.publisher("/after", "std_msgs/String")
+            await until(lambda: "/after" in app.table.names and app.source.state.status == "connected",
+                        "the new master's topics", DEADLINE)
+            assert not app.query_one("#banner").display
+        finally:
+            watcher.close()
+
+    try:
+        run(MonitorApp(period=0.3), scenario)
+    finally:
+        stop_process(core)

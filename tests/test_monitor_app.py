@@ -11,6 +11,7 @@ from __future__ import annotations
 import asyncio
 import re
 import subprocess
+import sys
 from pathlib import Path
 from typing import Any, Awaitable, Callable
 
@@ -307,3 +308,12 @@ def test_master_restart(ros_env: dict[str, str], tmp_path: Path) -> None:
         run(MonitorApp(period=0.3), scenario)
     finally:
         stop_process(core)
+
+
+def test_command_line_does_not_import_textual(ros_env: dict[str, str]) -> None:
+    """Registering `rostui monitor` keeps `rostui topic list` and friends free of Textual."""
+    code = ("import sys, rostui.cli.main; "
+            "print(sorted({m.split('.')[0] for m in sys.modules} & {'textual'}), "
+            "'rostui.core.monitor' in sys.modules)")
+    result = subprocess.run([sys.executable, "-c", code], env=ros_env, capture_output=True, text=True, timeout=60)
+    assert result.stdout.strip() == "[] False", result

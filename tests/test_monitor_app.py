@@ -252,6 +252,8 @@ def test_publish_once_and_at_rate(rostui_core: Any, ros_env: dict[str, str]) -> 
         await pilot.press("ctrl+r")
         await until(lambda: len(heard.messages) >= 11, "ten more messages at 20 Hz", DEADLINE)
         assert "publishing /chatter 20 Hz" in screen_text(app, "#status")
+        await live(app, "/chatter")
+        assert row(app, "/chatter").rate == pytest.approx(20, rel=0.25), "the monitor measures its own publisher"
         await pilot.press("ctrl+r")
         assert "stopped publishing /chatter" in str(editor.query_one("#pub-status", Static).render())
         count = len(heard.messages)

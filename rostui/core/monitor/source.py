@@ -279,13 +279,12 @@ class MonitorSource:
         from rostui.core.node import AnyMsg
 
         async with self._lock:
-            me = self.node.name
             for name in [t for t in self._watches if t not in self._wanted]:
                 watch = self._watches.pop(name)
                 await watch.handle.unregister()
             for name in sorted(self._wanted):
                 info = self.topics.get(name)
-                if name in self._watches or info is None or not [p for p in info.publishers if p != me]:
+                if name in self._watches or info is None or not info.publishers:
                     continue
                 watch = _Watch()
                 self._watches[name] = watch

@@ -35,6 +35,14 @@ def test_count_logs_to_console_rosout_console_app_and_rosout_log(desk: Desk, tmp
     assert log_lines(stdout, "INFO")[:3] == ["3 is divisible by 3.", "6 is divisible by 3.", "9 is divisible by 3."]
     assert log_lines(stdout, "WARN") == [] and "Counted to" not in stdout  # DEBUG is off by default
 
+    # 4.3: messages logged once (Listing 4.4): each level appears one time, however long the loop runs.
+    split.run("rostui run agitr once")
+    split.wait_for(r"^\[FATAL\] \[\d+\.\d+\]: This appears only once\.$")
+    poll(lambda: "/log_once" in lines(ok("node list", env)), "log_once still running")
+    assert split.interrupt() == 0
+    for level in ("INFO", "WARN", "ERROR", "FATAL"):
+        assert log_lines(split.screen(200), level).count("This appears only once.") == 1, level
+
     # Formatting console messages with ROSCONSOLE_FORMAT.
     split.run("ROSCONSOLE_FORMAT='[${severity}] [${node}]: ${message}' rostui run agitr hello")
     assert split.exit_status() == 0

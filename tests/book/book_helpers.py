@@ -185,16 +185,16 @@ class Desk:
         return terminal
 
     def close(self) -> None:
-        """End every terminal's program as a reader would (Ctrl-C, then q for the apps), then kill the tmux server.
+        """End every terminal's program as a reader would (q for the apps, then Ctrl-C), then kill the tmux server.
 
         Anything the terminals started that still runs afterwards is killed, so no test leaves a process behind.
         """
         started = self._programs()
-        for key in ("C-c", "q"):
+        for key, patience in (("q", 3.0), ("C-c", 10.0)):  # q ends the apps and teleops while the master runs
             for terminal in reversed(self.terminals):
                 if not self._idle(terminal):
                     terminal.keys(key)
-            deadline = time.monotonic() + 10
+            deadline = time.monotonic() + patience
             while time.monotonic() < deadline and not all(self._idle(t) for t in self.terminals):
                 time.sleep(0.2)
         subprocess.run(["tmux", "-L", self.socket, "kill-server"], capture_output=True, timeout=30)

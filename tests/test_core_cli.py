@@ -8,7 +8,7 @@ from typing import Any
 
 from rostui.core.xmlrpc import call_sync
 
-from conftest import master_port, rostui_cmd, stop_process
+from conftest import free_port, master_port, rostui_cmd, stop_process, wait_for_port, wait_until
 
 
 def test_core_prints_run_id_and_sets_core_params(rostui_core: subprocess.Popen, ros_env: dict[str, str]) -> None:
@@ -17,8 +17,12 @@ def test_core_prints_run_id_and_sets_core_params(rostui_core: subprocess.Popen, 
     assert re.fullmatch(r"[0-9a-f-]{36}", run_id)
     assert call_sync(uri, "getParam", "/test", "/rosdistro")[0] == 1
     assert call_sync(uri, "getParam", "/test", "/rosversion")[0] == 1
-    pubs, subs, _ = call_sync(uri, "getSystemState", "/test")[2]
-    assert ["/rosout_agg", ["/rosout"]] in pubs and ["/rosout", ["/rosout"]] in subs
+
+    def rosout_registered() -> bool:
+        pubs, subs, _ = call_sync(uri, "getSystemState", "/test")[2]
+        return ["/rosout_agg", ["/rosout"]] in pubs and ["/rosout", ["/rosout"]] in subs
+
+    wait_until(rosout_registered, "rosout to publish /rosout_agg and subscribe /rosout")
     stop_process(rostui_core)
     out = rostui_core.stdout.read() if rostui_core.stdout else ""
     assert rostui_core.returncode == 0
@@ -31,3 +35,23 @@ def test_second_core_on_same_port_is_one_clear_error(rostui_core: Any, ros_env: 
     assert second.returncode == 1
     assert second.stderr.strip().splitlines() == [
         f"ERROR: rostui core cannot run: another master is already running on port {master_port(ros_env)}."]
+
+
+def test_core_warns_when_ros_master_uri_names_another_port(ros_env: dict[str, str]) -> None:
+    """Like roscore: a core on a port other than ROS_MASTER_URI's says so on stderr, and still runs there."""
+    port = free_port()
+    proc = subprocess.Popen(rostui_cmd("core", "-p", str(port)), env=ros_env, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        wait_for_port(port, proc=proc)
+    finally:
+        stop_process(proc)
+    err = proc.stderr.read() if proc.stderr else ""
+    assert (f"WARNING: ROS_MASTER_URI port [{master_port(ros_env)}] does not match this roscore [{port}]"
+            in err.splitlines())
+
+
+def test_core_on_ros_master_uri_port_has_no_port_warning(rostui_core: Any, ros_env: dict[str, str]) -> None:
+    stop_process(rostui_core)
+    out = rostui_core.stdout.read() if rostui_core.stdout else ""
+    assert "does not match this roscore" not in out

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import asyncio
 import errno
+import os
 import signal
 import sys
+from urllib.parse import urlparse
 
 from rostui.core.log import DISK_CHECK_NOTICE, DISK_OK_NOTICE, disk_usage_warning, log_root
 from rostui.core.master import DEFAULT_ROSDISTRO, DEFAULT_ROSVERSION, Master
@@ -22,6 +24,19 @@ def check_log_disk_usage() -> None:
         print(warning, file=sys.stderr, flush=True)
     else:
         print(DISK_OK_NOTICE, flush=True)
+
+
+def master_port_mismatch(port: int, master_uri: str | None) -> str | None:
+    """roscore's warning when ROS_MASTER_URI names another port than the one this core listens on."""
+    if not master_uri:
+        return None
+    try:
+        uri_port = urlparse(master_uri).port
+    except ValueError:
+        return None
+    if uri_port is None or uri_port == port:
+        return None
+    return f"WARNING: ROS_MASTER_URI port [{uri_port}] does not match this roscore [{port}]"
 
 
 async def serve_core(port: int, stop: asyncio.Event) -> int:
@@ -54,6 +69,9 @@ async def serve_core(port: int, stop: asyncio.Event) -> int:
 
 def run_core(port: int) -> int:
     """Blocking entry point; Ctrl-C or SIGTERM stops everything cleanly."""
+    mismatch = master_port_mismatch(port, os.environ.get("ROS_MASTER_URI"))
+    if mismatch:
+        print(mismatch, file=sys.stderr, flush=True)
     check_log_disk_usage()
     loop = new_event_loop()
     asyncio.set_event_loop(loop)

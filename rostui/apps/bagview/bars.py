@@ -39,7 +39,7 @@ def header_text(names: list[str], index: BagIndex | None, link: str = "") -> Tex
         text.append(f" · reading… {link}")
         return text
     span = (index.end_ns - index.start_ns) / 1e9
-    text.append(f" · {human_size(index.size)} · {len(index)} msgs · {len(index.tracks)} topics · {span:.3f} s")
+    text.append(f" · {human_size(index.file_size)} · {len(index)} msgs · {len(index.tracks)} topics · {span:.3f} s")
     if link:
         text.append(f" │ {link}")
     for notice in index.notices:

@@ -8,6 +8,7 @@ read up to its last complete record, and says so in :attr:`BagIndex.notices`).
 
 from __future__ import annotations
 
+import os
 from bisect import bisect_left, bisect_right
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -49,6 +50,11 @@ class BagIndex:
 
     def __len__(self) -> int:
         return len(self.times)
+
+    @property
+    def file_size(self) -> int:
+        """Bytes of the files on disk (what `rosbag info` calls size); ``size`` counts message bytes only."""
+        return sum(os.path.getsize(path) for path in self.paths if os.path.exists(path))
 
     @property
     def start_ns(self) -> int:

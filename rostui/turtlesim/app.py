@@ -265,7 +265,8 @@ class TurtlesimApp(App[int]):
         if self.started.is_set() and self._selected not in turtles and turtles:
             self.select(next(iter(turtles)))
             return
-        self.query_one("#status", StatusLine).show(self.status_info())
+        for status in self.query("#status").results(StatusLine):  # none while the screen is torn down
+            status.show(self.status_info())
 
     # -- keys ---------------------------------------------------------------------------
     def on_key(self, event: events.Key) -> None:

@@ -4,11 +4,15 @@
 (a) ``record``: one publisher sends numbered 1 MB std_msgs/String messages
     for ``--seconds`` at a rate from a ladder, with a queue of 100 that drops
     the oldest when the subscriber reads too slowly (as every ROS publisher
-    does). By default it is ``bench/bag_publisher.cpp`` (roscpp, built here),
-    which can send faster than either recorder can record; ``--publisher
-    python`` uses a rostui publisher instead. The recorder under test
-    (`rostui bag record` to .mcap and to .bag, `rosbag record`) runs as its own
-    process and writes into the same folder. When the publisher has sent
+    does). By default it is ``bench/bag_peer.cpp publish`` (roscpp, built
+    here); ``--publisher python`` uses a rostui publisher instead. The recorder
+    under test (`rostui bag record` to .mcap and to .bag, `rosbag record`)
+    runs as its own process and writes into the same folder. With the roscpp
+    peer built, a fourth "recorder", ``receive-only`` (``bag_peer count``: a
+    roscpp subscriber that only counts), shows the ceiling: what publisher,
+    kernel and one subscriber reach on this machine with no file at all. The
+    order of the recorders
+    rotates from one rate to the next. When the publisher has sent
     everything and the file has stopped growing, the recorder gets Ctrl-C and
     its file is read back: a rate is *held* when the file has every message
     sent while the publisher kept to the rate. At each rate every recorder
@@ -56,8 +60,9 @@ LADDER = [int(x) for x in os.environ.get(
     "BENCH_BAG_LADDER", "400,500,600,700,800,900,1000,1100,1200,1300,1400,1500").split(",")]
 TOPIC = "/bench"
 BENCH = Path(__file__).resolve().parent
-CPP_PUBLISHER_SRC = BENCH / "bag_publisher.cpp"
-CPP_PUBLISHER = BENCH / "_build" / "bag_publisher"
+CPP_PEER_SRC = BENCH / "bag_peer.cpp"
+CPP_PEER = BENCH / "_build" / "bag_peer"
+RECEIVE_ONLY = "receive-only"
 CPP_LIBS = ["-lroscpp", "-lrosconsole", "-lroscpp_serialization", "-lrostime", "-lxmlrpcpp", "-lcpp_common",
             "-lboost_system"]
 
@@ -96,20 +101,20 @@ def tree_cpu_seconds(pid: int) -> float:
 
 
 # ----------------------------------------------------------------------------- the publishers
-def build_cpp_publisher() -> Path | None:
-    """Compile bench/bag_publisher.cpp unless the binary is newer; None when it cannot be built."""
-    if CPP_PUBLISHER.exists() and CPP_PUBLISHER.stat().st_mtime >= CPP_PUBLISHER_SRC.stat().st_mtime:
-        return CPP_PUBLISHER
+def build_cpp_peer() -> Path | None:
+    """Compile bench/bag_peer.cpp unless the binary is newer; None when it cannot be built."""
+    if CPP_PEER.exists() and CPP_PEER.stat().st_mtime >= CPP_PEER_SRC.stat().st_mtime:
+        return CPP_PEER
     if shutil.which("g++") is None or not Path("/usr/include/ros/ros.h").exists():
         return None
-    CPP_PUBLISHER.parent.mkdir(exist_ok=True)
-    cmd = ["g++", "-O2", str(CPP_PUBLISHER_SRC), "-o", str(CPP_PUBLISHER), "-I/usr/include", *CPP_LIBS]
-    print("building", CPP_PUBLISHER.relative_to(REPO), "...", flush=True)
+    CPP_PEER.parent.mkdir(exist_ok=True)
+    cmd = ["g++", "-O2", str(CPP_PEER_SRC), "-o", str(CPP_PEER), "-I/usr/include", *CPP_LIBS]
+    print("building", CPP_PEER.relative_to(REPO), "...", flush=True)
     done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     if done.returncode != 0:
         print(done.stderr[-2000:], file=sys.stderr)
         return None
-    return CPP_PUBLISHER
+    return CPP_PEER
 
 
 async def _publish(rate: float, seconds: float) -> None:
@@ -153,12 +158,12 @@ def publisher_main(rate: float, seconds: float) -> None:
 def publisher_argv(kind: str, rate: int, seconds: float) -> list[str]:
     """The publisher command: the roscpp one, or this script as a rostui publisher."""
     if kind == "roscpp":
-        return [str(CPP_PUBLISHER), TOPIC, str(MB), str(rate), str(seconds), str(QUEUE)]
+        return [str(CPP_PEER), "publish", TOPIC, str(MB), str(rate), str(seconds), str(QUEUE)]
     return [sys.executable, __file__, "--publisher-process", str(rate), str(seconds)]
 
 
 def read_result(pub: subprocess.Popen, timeout: float) -> dict[str, Any]:
-    """The publisher's ``{"sent": N, "seconds": S}`` line."""
+    """The first JSON line a peer prints (the publisher's ``{"sent": N, "seconds": S}``)."""
     assert pub.stdout is not None
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
@@ -169,12 +174,14 @@ def read_result(pub: subprocess.Popen, timeout: float) -> dict[str, Any]:
                 return json.loads(line)
             if not line and pub.poll() is not None:
                 break
-    raise RuntimeError(f"the publisher gave no result (exit status {pub.poll()})")
+    raise RuntimeError(f"{pub.args[0]} gave no result (exit status {pub.poll()})")
 
 
 # ----------------------------------------------------------------------------- (a) recording
 def recorder_argv(kind: str, path: Path) -> list[str]:
     """The recorder command of each kind."""
+    if kind == RECEIVE_ONLY:
+        return [str(CPP_PEER), "count", TOPIC, "__name:=record_receive_only"]
     if kind == "rosbag":
         return ["rosbag", "record", "-O", str(path), TOPIC]
     return [sys.executable, "-m", "rostui", "bag", "record", "-O", str(path), TOPIC]
@@ -202,8 +209,9 @@ def count_in(path: Path) -> int:
 def trial(kind: str, rate: int, seconds: float, env: dict[str, str], tmp: Path, publisher: str) -> dict[str, Any]:
     """One recorder at one rate: sent, recorded, the publisher's achieved rate, the recorder's CPU per message."""
     path = tmp / ("trial.bag" if kind != "rostui-mcap" else "trial.mcap")
-    rec = subprocess.Popen(recorder_argv(kind, path), env=env, cwd=tmp, stdout=subprocess.DEVNULL,
-                           stderr=subprocess.DEVNULL)
+    receive_only = kind == RECEIVE_ONLY
+    rec = subprocess.Popen(recorder_argv(kind, path), env=env, cwd=tmp, stderr=subprocess.DEVNULL, text=True,
+                           stdout=subprocess.PIPE if receive_only else subprocess.DEVNULL)
     pub: subprocess.Popen | None = None
     try:
         deadline = time.monotonic() + 30
@@ -215,24 +223,36 @@ def trial(kind: str, rate: int, seconds: float, env: dict[str, str], tmp: Path, 
         pub = subprocess.Popen(publisher_argv(publisher, rate, seconds), env=env, stdout=subprocess.PIPE,
                                stderr=subprocess.DEVNULL, text=True)
         result = read_result(pub, seconds * 10 + 60)
-        active = Path(str(path) + ".active")  # rosbag's name while recording
-        last, still = -1, 0
-        while still < 3:  # the recorder catches up: the file stops growing for 0.6 s
-            time.sleep(0.2)
-            size = max((p.stat().st_size for p in (path, active) if p.exists()), default=0)
-            still = still + 1 if size == last else 0
-            last = size
-        cpu = tree_cpu_seconds(rec.pid) - cpu_before
+        if receive_only:  # it reports and exits 1 s after the last message
+            cpu = tree_cpu_seconds(rec.pid) - cpu_before
+            deadline = time.monotonic() + 60
+            while rec.poll() is None and time.monotonic() < deadline:
+                cpu = tree_cpu_seconds(rec.pid) - cpu_before
+                time.sleep(0.1)
+            received = read_result(rec, 10)["received"] if rec.poll() is not None else 0
+        else:
+            active = Path(str(path) + ".active")  # rosbag's name while recording
+            last, still = -1, 0
+            while still < 3:  # the recorder catches up: the file stops growing for 0.6 s
+                time.sleep(0.2)
+                size = max((p.stat().st_size for p in (path, active) if p.exists()), default=0)
+                still = still + 1 if size == last else 0
+                last = size
+            cpu = tree_cpu_seconds(rec.pid) - cpu_before
     finally:
         stop(rec)
         if pub is not None:
             stop(pub)
-    deadline = time.monotonic() + 30
-    while not path.exists() and time.monotonic() < deadline:  # rosbag's child renames after the wrapper exits
-        time.sleep(0.1)
-    time.sleep(0.5)
-    recorded = count_in(path)
-    path.unlink(missing_ok=True)
+    if receive_only:
+        recorded = received
+    else:
+        deadline = time.monotonic() + 30
+        while not path.exists() and time.monotonic() < deadline:  # rosbag's child renames after the wrapper exits
+            time.sleep(0.1)
+        time.sleep(0.5)
+        recorded = count_in(path)
+        path.unlink(missing_ok=True)
+        os.sync()  # the next trial starts with no writeback of this one's data in progress
     return {"rate": rate, "sent": result["sent"], "recorded": recorded,
             "pub_rate": result["sent"] / result["seconds"] if result["seconds"] else 0.0,
             "recorder_cpu_us_per_msg": cpu / max(recorded, 1) * 1e6, "load": load_average()}
@@ -248,8 +268,9 @@ def bench_record(seconds: float, env: dict[str, str], tmp: Path, kinds: list[str
     """
     out: dict[str, Any] = {kind: {"held_mb_s": 0, "trials": []} for kind in kinds}
     racing = list(kinds)
-    for rate in LADDER:
-        for kind in list(racing):
+    for step, rate in enumerate(LADDER):
+        order = racing[step % len(racing):] + racing[:step % len(racing)]  # nobody always goes first
+        for kind in order:
             verdict = ""
             drops = 0
             for attempt in range(1, 5):
@@ -370,7 +391,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seconds", type=float, default=3.0, help="Seconds of publishing per recording trial.")
     parser.add_argument("--publisher", choices=["roscpp", "python"], default="roscpp",
-                        help="The 1 MB publisher: bench/bag_publisher.cpp (roscpp) or a rostui publisher.")
+                        help="The 1 MB publisher: bench/bag_peer.cpp (roscpp) or a rostui publisher.")
     parser.add_argument("--only", choices=["record", "play"], help="Run one part.")
     parser.add_argument("--json", help="Write the results to this file.")
     parser.add_argument("--dir", help="Record into this folder (e.g. /dev/shm: no disk, the recorders' own limits).")
@@ -387,13 +408,15 @@ def main() -> int:
         wait_port(port)
         if args.only in (None, "record"):
             publisher = args.publisher
-            if publisher == "roscpp" and build_cpp_publisher() is None:
-                print("  bench/bag_publisher.cpp cannot be built here (g++ and roscpp headers): "
+            have_peer = build_cpp_peer() is not None
+            if publisher == "roscpp" and not have_peer:
+                print("  bench/bag_peer.cpp cannot be built here (g++ and roscpp headers): "
                       "using the rostui publisher", flush=True)
                 publisher = "python"
             print(f"(a) 1 MB messages for {args.seconds:g} s per rate from the {publisher} publisher, recording to "
                   f"{tmp}; load average {load_average()}", flush=True)
-            kinds = ["rostui-mcap", "rostui-bag"] + (["rosbag"] if have_rosbag else [])
+            kinds = ([RECEIVE_ONLY] if have_peer else []) + ["rostui-mcap", "rostui-bag"] + (
+                ["rosbag"] if have_rosbag else [])
             rec = results["record"] = bench_record(args.seconds, env, tmp, kinds, publisher)
             rec["publisher"] = publisher
             rec["load_after"] = load_average()
@@ -407,6 +430,10 @@ def main() -> int:
                     rec[kind]["ratio_vs_rosbag"] = ratio
                     print(f"  {kind}: held {rec[kind]['held_mb_s']} MB/s vs rosbag {rec['rosbag']['held_mb_s']} "
                           f"MB/s = {ratio:.2f}x (target >= 1.5x)", flush=True)
+            if have_peer:
+                print(f"  {RECEIVE_ONLY} (a roscpp subscriber that writes nothing) held "
+                      f"{rec[RECEIVE_ONLY]['held_mb_s']} MB/s: no recorder can hold more on this machine",
+                      flush=True)
             print(f"  load average after: {rec['load_after']}", flush=True)
         if args.only in (None, "play"):
             print("(b) playback of 3000 messages at 1 kHz", flush=True)

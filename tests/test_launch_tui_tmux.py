@@ -130,7 +130,7 @@ def test_without_a_terminal_is_one_line_and_exit_1(tui_env: dict[str, str], tmp_
                             capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=60)
     assert result.returncode == 1
     assert result.stderr.strip().splitlines() == [
-        "rostui launch: --tui draws in a terminal: stdin and stdout must be a TTY "
+        "ERROR: rostui launch --tui draws in a terminal: stdin and stdout must be a TTY "
         "(run without --tui to launch without the monitor)"]
     assert result.stdout == ""
 

@@ -60,10 +60,11 @@ def launch_command(
         print("rostui launch: --tui runs a launch; it cannot be combined with --nodes, --args, --dump-params, "
               "--files or --ros-args", file=sys.stderr)
         raise typer.Exit(2)
-    if tui and not (sys.stdin.isatty() and sys.stdout.isatty()):
-        print("rostui launch: --tui draws in a terminal: stdin and stdout must be a TTY "
-              "(run without --tui to launch without the monitor)", file=sys.stderr)
-        raise typer.Exit(1)
+    if tui:
+        from rostui.apps.terminal import terminal_missing
+
+        if terminal_missing("rostui launch --tui", "run without --tui to launch without the monitor"):
+            raise typer.Exit(1)
     try:
         request = resolve_request(words)
         if node_args is not None:

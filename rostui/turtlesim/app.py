@@ -23,7 +23,8 @@ from textual.app import App, ComposeResult
 from textual.binding import Binding
 from textual.widgets import Static
 
-from rostui.apps.widgets.lifecycle import quit_on_signals
+from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core import names
 from rostui.core.log import Level, LogRecord
 from rostui.core.log.console import format_line
@@ -91,7 +92,7 @@ class StatusLine(Static):
             self.update(text)
 
 
-class TurtlesimApp(App[int]):
+class TurtlesimApp(ReleasesOnExit, App[int]):
     """turtlesim in the terminal: the simulator node, its view and (with ``teleop``) arrow-key driving.
 
     ``argv`` holds ROS arguments for the turtlesim node (``__name:=``,
@@ -319,14 +320,9 @@ class TurtlesimApp(App[int]):
         except Exception as exc:
             self.notify(f"{name} failed: {exc}", severity="error")
 
-    async def on_unmount(self) -> None:
-        """However the app ends, the nodes unregister and the embedded master stops."""
+    async def release(self) -> None:
+        """Unregister the nodes and stop the embedded master."""
         await self._stop_ros()
-
-    async def action_quit(self) -> None:
-        """q: unregister the nodes, stop the embedded master and leave."""
-        await self._stop_ros()
-        self.exit(0)
 
 
 def run_app(argv: Sequence[str], *, teleop: bool = True) -> int:
@@ -334,9 +330,7 @@ def run_app(argv: Sequence[str], *, teleop: bool = True) -> int:
 
     Prints one line and returns 1 when stdin or stdout is not a terminal.
     """
-    if not (sys.stdin.isatty() and sys.stdout.isatty()):
-        print("ERROR: turtlesim draws in a terminal: stdin and stdout must be a TTY "
-              "(use `rostui run turtlesim turtlesim_node --headless` without one)", file=sys.stderr)
+    if terminal_missing("turtlesim", "use `rostui run turtlesim turtlesim_node --headless` without one"):
         return 1
     try:
         app = TurtlesimApp(argv, teleop=teleop)

@@ -29,7 +29,8 @@ from textual.widgets import Input, Static
 
 from rostui.apps.bagview.bars import PLAY_KEYS, header_text, play_status, wall_text
 from rostui.apps.bagview.timeline import TimelineView
-from rostui.apps.widgets.lifecycle import quit_on_signals
+from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.bag.index import BagIndex, IndexSource, load_index, message_yaml
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.transport import Transport
@@ -82,7 +83,7 @@ class GotoPrompt(Input):
         self.app.query_one(TimelineView).focus()
 
 
-class BagViewApp(App[int]):
+class BagViewApp(ReleasesOnExit, App[int]):
     """Play, pause, step, seek and inspect a bag; publish it on a live graph.
 
     ``clock`` is the transport's wall clock (a snapshot test freezes it).
@@ -394,17 +395,8 @@ class BagViewApp(App[int]):
         self._inspected = (None, None)
         self.refresh_view()
 
-    async def action_quit(self) -> None:
-        """Stop playing, shut the node down, leave."""
-        await self.shutdown()
-        self.exit(0)
-
-    async def on_unmount(self) -> None:
-        """However the app ends: stop the transport and the node."""
-        await self.shutdown()
-
-    async def shutdown(self) -> None:
-        """Stop the transport and the node (idempotent)."""
+    async def release(self) -> None:
+        """Stop the transport and shut the node down."""
         if self.transport is not None:
             self.transport.stop()
         if self._run_task is not None:
@@ -429,9 +421,7 @@ def _escape(text: str) -> str:
 
 def run_app(paths: Sequence[str], **options: Any) -> int:
     """Run :class:`BagViewApp` in this terminal; returns the exit status (1 without a terminal or a bag)."""
-    if not (sys.stdin.isatty() and sys.stdout.isatty()):
-        print("rostui bag view: draws in a terminal: stdin and stdout must be a TTY (use `rostui bag play` "
-              "without one)", file=sys.stderr)
+    if terminal_missing("rostui bag view", "use `rostui bag play` without one"):
         return 1
     app = BagViewApp(paths, **options)
     app.run()

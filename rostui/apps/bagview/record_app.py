@@ -22,7 +22,8 @@ from textual.widgets import Static
 
 from rostui.apps.bagview.bars import RECORD_KEYS, human_size
 from rostui.apps.bagview.recording import RecordSession
-from rostui.apps.widgets.lifecycle import quit_on_signals
+from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.bag.model import BagError
 from rostui.core.bag.recorder import RecordOptions
 
@@ -66,7 +67,7 @@ def record_status(session: RecordSession, problem: str) -> Text:
     return text
 
 
-class BagRecordApp(App[int]):
+class BagRecordApp(ReleasesOnExit, App[int]):
     """Record topics with a live table of what arrives; start, stop and split from the keyboard."""
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
@@ -150,21 +151,14 @@ class BagRecordApp(App[int]):
             self.problem = str(exc)
         self.refresh_view()
 
-    async def action_quit(self) -> None:
-        """Finish the file and leave."""
-        await self.session.close()
-        self.exit(0)
-
-    async def on_unmount(self) -> None:
-        """However the app ends: finish the file."""
+    async def release(self) -> None:
+        """Finish the file."""
         await self.session.close()
 
 
 def run_record_app(opts: RecordOptions, **options: Any) -> int:
     """Run :class:`BagRecordApp` in this terminal; then print what was recorded."""
-    if not (sys.stdin.isatty() and sys.stdout.isatty()):
-        print("rostui bag view: draws in a terminal: stdin and stdout must be a TTY (use `rostui bag record` "
-              "without one)", file=sys.stderr)
+    if terminal_missing("rostui bag view", "use `rostui bag record` without one"):
         return 1
     app = BagRecordApp(opts, **options)
     app.run()

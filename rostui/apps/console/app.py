@@ -11,7 +11,6 @@ message.  Filters apply to the model; the table draws only visible rows.
 from __future__ import annotations
 
 import gc
-import sys
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -28,7 +27,8 @@ from rostui.apps.console.filters import FilterError, FilterSpec, HighlightRule, 
 from rostui.apps.console.model import ConsoleModel, ConsoleOptions
 from rostui.apps.console.source import LiveSource, SourceState
 from rostui.apps.console.table import LogTable
-from rostui.apps.widgets.lifecycle import quit_on_signals
+from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.log.levels import Level
 from rostui.core.log.rosout_read import RosoutEntry, RosoutLog, entries_text
 from rostui.core.network import master_uri_from_env
@@ -61,7 +61,7 @@ class Prompt(Input):
         app.close_prompt(cancelled=True)
 
 
-class ConsoleApp(App[int]):
+class ConsoleApp(ReleasesOnExit, App[int]):
     """Browse ROS log messages: live from /rosout_agg, or a rosout.log (``log``).
 
     ``master_uri`` defaults to ROS_MASTER_URI.  ``log_name`` is how the file
@@ -431,16 +431,10 @@ class ConsoleApp(App[int]):
         return True
 
     # -- leaving ---------------------------------------------------------------------------------------------------
-    async def on_unmount(self) -> None:
-        """However the app ends, the node unregisters."""
+    async def release(self) -> None:
+        """Unregister the app's node."""
         if self.source is not None:
             await self.source.stop()
-
-    async def action_quit(self) -> None:
-        """q: unregister and leave."""
-        if self.source is not None:
-            await self.source.stop()
-        self.exit(0)
 
 
 def _with(spec: FilterSpec, **changes: object) -> FilterSpec:
@@ -449,9 +443,7 @@ def _with(spec: FilterSpec, **changes: object) -> FilterSpec:
 
 def run_app(options: ConsoleOptions, log: RosoutLog | None = None, log_name: str | None = None) -> int:
     """Run :class:`ConsoleApp` in this terminal; returns the exit status (1 without a terminal)."""
-    if not (sys.stdin.isatty() and sys.stdout.isatty()):
-        print("ERROR: rostui console draws in a terminal: stdin and stdout must be a TTY "
-              "(use `rostui topic echo /rosout_agg` without one)", file=sys.stderr)
+    if terminal_missing("rostui console", "use `rostui topic echo /rosout_agg` without one"):
         return 1
     app = ConsoleApp(options, log, log_name=log_name, freeze_gc=True)
     app.run()

@@ -13,7 +13,6 @@ master is back.
 from __future__ import annotations
 
 import asyncio
-import sys
 from collections import OrderedDict
 from pathlib import Path
 from typing import Any
@@ -26,6 +25,8 @@ from textual.widgets import Input, Static
 
 from rostui.apps.graph.canvas import Canvas, draw, layout_view
 from rostui.apps.graph.widget import GraphView
+from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.lifecycle import ReleasesOnExit
 from rostui.core.graph.layout import Layout, LayoutHint
 from rostui.core.graph.live import KEEP_REFRESHES, LiveGraph, Mark
 from rostui.core.graph.model import RosGraph
@@ -51,7 +52,7 @@ RATE_SECONDS = 3.0
 PROMPTS = {"search": "search: ", "include": "include regex: ", "exclude": "exclude regex: "}
 
 
-class GraphApp(App[int]):
+class GraphApp(ReleasesOnExit, App[int]):
     """The ROS graph of the master at ``master_uri`` (ROS_MASTER_URI by default), refreshed every ``period`` s.
 
     A topic's rate is measured over ``rate_seconds``; "new" and "gone" marks
@@ -115,7 +116,6 @@ class GraphApp(App[int]):
         self._prompt: str | None = None
         self._prompt_before = ""
         self._polling = False
-        self._shut = False
 
     # -- composition -------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -147,7 +147,7 @@ class GraphApp(App[int]):
     # -- polling -------------------------------------------------------------------------
     def poll(self) -> None:
         """Ask the master for the graph (skipped while the previous poll still runs)."""
-        if not self._polling and not self._shut:
+        if not self._polling and not self.released:
             self._polling = True
             self.run_worker(self._poll(), group="poll", exit_on_error=False)
 
@@ -512,19 +512,9 @@ class GraphApp(App[int]):
     def _clicked(self, event: GraphView.Clicked) -> None:
         self.select(event.vertex, scroll=False)
 
-    async def action_quit(self) -> None:
-        """q: close the connection to the master and leave."""
-        await self._close()
-        self.exit(0)
-
-    async def on_unmount(self) -> None:
-        """However the app ends, the master connection closes."""
-        await self._close()
-
-    async def _close(self) -> None:
-        if not self._shut:
-            self._shut = True
-            await self.source.close()
+    async def release(self) -> None:
+        """Close the connection to the master."""
+        await self.source.close()
 
 
 def _count(number: int, noun: str) -> str:
@@ -541,9 +531,7 @@ def _section(title: str, items: Any) -> list[str]:
 
 def run_app(options: GraphOptions, *, period: float = 1.5) -> int:
     """Run :class:`GraphApp` in this terminal; returns the exit status (1 without a TTY)."""
-    if not (sys.stdin.isatty() and sys.stdout.isatty()):
-        print("ERROR: rostui graph draws in a terminal: stdin and stdout must be a TTY "
-              "(use `rostui graph --dot` without one)", file=sys.stderr)
+    if terminal_missing("rostui graph", "use `rostui graph --dot` without one"):
         return 1
     app = GraphApp(options, period=period)
     app.run()

@@ -20,7 +20,6 @@ only looked at.
 from __future__ import annotations
 
 import asyncio
-import sys
 from pathlib import Path
 
 from textual.app import App, ComposeResult
@@ -30,7 +29,8 @@ from textual.widgets import DataTable, Footer, OptionList
 from textual.worker import Worker
 
 from rostui.apps.loggers.panels import LevelList, LoggerTable, NodeList, Notice
-from rostui.apps.widgets.lifecycle import quit_on_signals
+from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.tools.loggers import (
     DEFAULT_TIMEOUT, LoggerLevel, LoggerLevels, LoggerNode, LoggerToolError, MasterGoneError, NodeGoneError,
     preferred_logger,
@@ -45,7 +45,7 @@ PING_PERIOD = 2.0
 SET_HINT = "d i w e f or Enter: set level"
 
 
-class LoggersApp(App[int]):
+class LoggersApp(ReleasesOnExit, App[int]):
     """Lists nodes, their loggers and levels; sets a logger's level with a key or a click.
 
     ``master_uri`` defaults to ROS_MASTER_URI; ``timeout`` bounds every master
@@ -80,7 +80,6 @@ class LoggersApp(App[int]):
         self.started = asyncio.Event()
         self._nodes_worker: Worker[None] | None = None
         self._loggers_worker: Worker[None] | None = None
-        self._closed = False
         self._ping_failed = False
 
     # -- composition -----------------------------------------------------------------
@@ -316,29 +315,17 @@ class LoggersApp(App[int]):
         if self.node:
             self._load(self.node)
 
-    async def _close(self) -> None:
-        if not self._closed:
-            self._closed = True
-            try:
-                await asyncio.wait_for(self.client.close(), 5.0)
-            except Exception:  # the process is ending; nothing left to tell the user
-                pass
-
-    async def action_quit(self) -> None:
-        """q: close the calling node and leave."""
-        await self._close()
-        self.exit(0)
-
-    async def on_unmount(self) -> None:
-        """However the app ends, the calling node shuts down."""
-        await self._close()
+    async def release(self) -> None:
+        """Shut the calling node down."""
+        try:
+            await asyncio.wait_for(self.client.close(), 5.0)
+        except Exception:  # the process is ending; nothing left to tell the user
+            pass
 
 
 def run_app(*, timeout: float = DEFAULT_TIMEOUT) -> int:
     """Run :class:`LoggersApp` in this terminal; returns the exit status (1 without a TTY)."""
-    if not (sys.stdin.isatty() and sys.stdout.isatty()):
-        print("ERROR: rostui loggers draws in a terminal: stdin and stdout must be a TTY "
-              "(use `rostui loggers NODE` and `rostui loggers NODE LOGGER LEVEL` without one)", file=sys.stderr)
+    if terminal_missing("rostui loggers", "use `rostui loggers NODE` and `rostui loggers NODE LOGGER LEVEL` without one"):
         return 1
     app = LoggersApp(timeout=timeout)
     app.run()

@@ -10,7 +10,6 @@ sorting, filtering, expanding and publishing repaint in the same handler.
 
 from __future__ import annotations
 
-import sys
 import time
 from pathlib import Path
 from typing import Callable, ClassVar, Sequence
@@ -25,7 +24,8 @@ from textual.widgets import Input, Static
 from rostui.apps.monitor.detail import Charts, Line, MessageTree
 from rostui.apps.monitor.editor import PublishEditor
 from rostui.apps.monitor.table import TopicTable
-from rostui.apps.widgets.lifecycle import quit_on_signals
+from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.monitor.publish import (
     PublishError, Repeater, check_topic, message_from_text, message_template, parse_rate,
 )
@@ -67,7 +67,7 @@ class FilterInput(Input):
         self.placeholder = FILTER_IDLE
 
 
-class MonitorApp(App[int]):
+class MonitorApp(ReleasesOnExit, App[int]):
     """The topics of the master at ``master_uri`` (ROS_MASTER_URI by default); ``topics`` start expanded.
 
     The master is polled every ``period`` seconds; the screen is repainted
@@ -108,7 +108,6 @@ class MonitorApp(App[int]):
         self.repeaters: dict[str, Repeater] = {}
         self.repaints = 0
         self._problem: str | None = None
-        self._shut = False
 
     # -- composition -------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -146,7 +145,7 @@ class MonitorApp(App[int]):
 
     # -- the live picture ----------------------------------------------------------------
     def _on_state(self, state: SourceState) -> None:
-        if not self._shut:
+        if not self.released:
             self.repaint()
 
     def sample(self) -> None:
@@ -155,7 +154,7 @@ class MonitorApp(App[int]):
 
     def repaint(self) -> None:
         """Rows filtered and sorted into the table, subscriptions to what is shown, trees, charts, status."""
-        if self._shut:
+        if self.released:
             return
         self.rows = self.source.rows(self.clock())
         self.shown = sort_rows(filter_rows(self.rows, self.filter_text), self.sort_column, self.sort_reverse)
@@ -382,28 +381,16 @@ class MonitorApp(App[int]):
         self.update_status()
 
     # -- the end ----------------------------------------------------------------------
-    async def action_quit(self) -> None:
-        """q: stop publishing, unsubscribe, leave."""
-        await self._close()
-        self.exit(0)
-
-    async def on_unmount(self) -> None:
-        """However the app ends, the node leaves the master."""
-        await self._close()
-
-    async def _close(self) -> None:
-        if not self._shut:
-            self._shut = True
-            for repeater in self.repeaters.values():
-                repeater.stop()
-            await self.source.stop()
+    async def release(self) -> None:
+        """Stop publishing, unsubscribe, leave the master."""
+        for repeater in self.repeaters.values():
+            repeater.stop()
+        await self.source.stop()
 
 
 def run_app(topics: Sequence[str], *, period: float = 1.0) -> int:
     """Run :class:`MonitorApp` in this terminal; returns the exit status (1 without a TTY)."""
-    if not (sys.stdin.isatty() and sys.stdout.isatty()):
-        print("ERROR: rostui monitor draws in a terminal: stdin and stdout must be a TTY "
-              "(use `rostui topic hz/bw/echo` without one)", file=sys.stderr)
+    if terminal_missing("rostui monitor", "use `rostui topic hz/bw/echo` without one"):
         return 1
     app = MonitorApp(topics, period=period)
     app.run()

@@ -45,3 +45,31 @@ def quit_on_signals(app: App, grace: float = HANGUP_GRACE) -> None:
             loop.add_signal_handler(sig, handler)
         except (NotImplementedError, RuntimeError, ValueError):
             pass
+
+
+class ReleasesOnExit:
+    """For an ``App``: ``q`` and unmounting (however the app ends) both run :meth:`release`, once.
+
+    ``q`` then leaves with exit status 0.  :attr:`released` tells periodic work
+    that the app is going.
+    """
+
+    released = False
+
+    async def release(self) -> None:
+        """Stop what the app runs: unregister its nodes, finish its files.  Subclasses override it."""
+
+    async def release_once(self) -> None:
+        """Run :meth:`release` unless it has run already."""
+        if not self.released:
+            self.released = True
+            await self.release()
+
+    async def action_quit(self) -> None:
+        """q: release, then leave."""
+        await self.release_once()
+        self.exit(0)  # type: ignore[attr-defined]
+
+    async def on_unmount(self) -> None:
+        """However the app ends, it releases what it holds."""
+        await self.release_once()

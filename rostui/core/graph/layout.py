@@ -15,7 +15,6 @@ layer order, so a small change to the graph moves little else.
 
 from __future__ import annotations
 
-import bisect
 from dataclasses import dataclass, field
 from typing import Mapping, NamedTuple, Sequence
 
@@ -251,7 +250,6 @@ def _assign_layers(n: int, dag: list[tuple[int, int]]) -> list[int]:
     for a, b in dag:
         succ[a].append(b)
         indeg[b] += 1
-    has_pred = [d > 0 for d in indeg]
     rank = [0] * n
     order = [v for v in range(n) if indeg[v] == 0]
     head = 0

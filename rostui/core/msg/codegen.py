@@ -314,7 +314,7 @@ class _DeserWalker(_Gen):
         if t == "string":
             ln, e = self.var("_l"), self.var("_e")
             self.emit(ind + 1, f"{ln}, = _unpack_I(_buf, _o)")
-            self.emit(ind + 1, f"_o += 4")
+            self.emit(ind + 1, "_o += 4")
             self.emit(ind + 1, f"{e} = _o + {ln}")
             self.emit(ind + 1, f"if {e} > _n: raise _DeserErr('{f.name}: string runs past end of buffer')")
             self.emit(ind + 1, f"_ap{a}(_buf[_o:{e}].decode('utf-8', 'replace'))")

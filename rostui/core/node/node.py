@@ -10,7 +10,6 @@ from __future__ import annotations
 import asyncio
 import itertools
 import logging
-import os
 import threading
 from typing import Any, Callable, Sequence
 from urllib.parse import urlparse

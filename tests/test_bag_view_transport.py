@@ -178,3 +178,30 @@ def test_garbage_is_a_bag_error(tmp_path: Path) -> None:
     path.write_bytes(os.urandom(4000))
     with pytest.raises(BagError, match="junk.mcap"):
         load_index([str(path)])
+
+
+def test_clock_ticks_never_run_ahead_of_the_next_message(index: BagIndex) -> None:
+    """What /clock hears (ticks) and what is published, in order, never goes back in bag time.
+
+    The test moves the transport's clock in 13 ms jumps (messages are 10 ms apart), so the clock often
+    passes a message's time while the transport sleeps before it: a tick then must not say a later time.
+    """
+    times: list[int] = []
+    now = [0.0]
+
+    def clock() -> float:
+        now[0] += 1e-5  # also runs on by itself, for the transport's last busy-wait before a message
+        return now[0]
+
+    transport = Transport(IndexSource(index), lambda _c, t, _d: times.append(t), start_ns=index.start_ns,
+                          end_ns=index.end_ns, on_tick=times.append, tick_period=0.0005, clock=clock)
+
+    async def scenario() -> None:
+        while transport.published < 60:
+            await asyncio.sleep(0.001)
+            now[0] += 0.013
+
+    drive(transport, scenario)
+    ticks = len(times) - transport.published
+    assert ticks > 0
+    assert times == sorted(times)

@@ -272,9 +272,12 @@ class Transport:
             return None
         return item
 
-    def _tick(self) -> None:
+    def _tick(self, horizon: int | None = None) -> None:
+        """Tell ``on_tick`` the bag time; while waiting for a message, never past that message's time
+        (so a /clock tick cannot run ahead of the message published next)."""
         if self.on_tick is not None:
-            self.on_tick(self.bag_ns())
+            now = self.bag_ns()
+            self.on_tick(now if horizon is None else min(now, horizon))
 
     async def _sleep(self, seconds: float) -> None:
         """Sleep up to ``seconds``; a control call wakes it early."""
@@ -298,7 +301,7 @@ class Transport:
                 return target
             if remaining > SPIN_BEFORE:
                 await self._sleep(min(remaining - SPIN_BEFORE, self.tick_period))
-                self._tick()
+                self._tick(horizon=t_ns)
                 continue
             # a short blocking sleep: precise to tens of microseconds, and it yields the CPU
             # (spinning would make the scheduler preempt us for whole time slices on a busy machine)

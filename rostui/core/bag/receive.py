@@ -263,39 +263,15 @@ class RawSubscription(Subscription):
         self.sink = sink
         self.allocate = allocate
 
-    async def _connect_once(self, uri: str) -> str | None:
-        """One connection attempt through a RawFrameConnection; an error string to retry, None to stop."""
-        try:
-            host, port = await self.node.request_topic(uri, self.topic)
-        except Exception as exc:  # publisher gone or refusing: retry while listed
-            return str(exc)
-        done: asyncio.Future[str | None] = self.node.loop.create_future()
+    def _publisher_connection(self, on_lost: Callable[[str | None], None]) -> RawFrameConnection:
+        """A RawFrameConnection handing frames to the sink."""
         sink, topic = self.sink, self.topic
 
         def on_frame(payload: Any, header: dict[str, str]) -> None:
             self.messages_received += 1
             sink(payload, header, topic)
 
-        def on_lost(reason: str | None) -> None:
-            if self.connections.get(uri) is proto:
-                self.connections[uri] = None
-            if not done.done():
-                done.set_result(reason or "connection closed")
-
-        proto = RawFrameConnection(self._request_header(), self._check_header, on_frame, on_lost, self.allocate)
-        try:
-            await self.node.loop.create_connection(lambda: proto, host, port)
-        except OSError as exc:
-            return str(exc)
-        if uri not in self.connections or self.closed:
-            proto.close()
-            return None
-        self.connections[uri] = proto  # type: ignore[assignment]
-        reason = await done
-        if proto.error and "md5" in proto.error.lower():
-            return None
-        return reason
-
+        return RawFrameConnection(self._request_header(), self._check_header, on_frame, on_lost, self.allocate)
 
 async def subscribe_raw(node: AsyncNode, topic: str, sink: Callable[[Any, dict[str, str], str], None],
                         local_callback: Callable[[AnyMsg, str], None],

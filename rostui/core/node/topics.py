@@ -453,9 +453,7 @@ class Subscription:
             if not done.done():
                 done.set_result(reason or "connection closed")
 
-        proto = SubscriberConnection(self._request_header(), self._check_header,
-                                     self._frames_handler(), on_lost, self._frame_handler(),
-                                     busy_poll=self.node.busy_poll)
+        proto = self._publisher_connection(on_lost)
         try:
             await self.node.loop.create_connection(lambda: proto, host, port)
         except OSError as exc:
@@ -468,6 +466,14 @@ class Subscription:
         if proto.error and "md5" in proto.error.lower():
             return None
         return reason
+
+    def _publisher_connection(self, on_lost: Callable[[str | None], None]) -> Any:
+        """The protocol for one connection to a publisher; ``on_lost(reason)`` when it ends.
+
+        It has ``close()`` and ``error`` (why it was dropped, or None), like :class:`SubscriberConnection`.
+        """
+        return SubscriberConnection(self._request_header(), self._check_header, self._frames_handler(), on_lost,
+                                    self._frame_handler(), busy_poll=self.node.busy_poll)
 
     def _request_header(self) -> dict[str, str]:
         header = {

@@ -17,8 +17,9 @@ import termios
 import threading
 import time
 from abc import ABC, abstractmethod
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Callable
 
 REPO = Path(__file__).resolve().parent.parent
 APP_CPU = 0
@@ -121,3 +122,40 @@ class PtyApp(ABC):
             self._reader.join(timeout=5)
         os.close(self._fd)
         return self.proc.returncode
+
+
+@dataclass
+class RecordingPty(PtyApp):
+    """A :class:`PtyApp` that keeps every byte the process writes, and times keys against it."""
+
+    data: bytearray = field(default_factory=bytearray)
+    _lock: threading.Lock = field(default_factory=threading.Lock)
+
+    def received(self, chunk: bytes) -> None:
+        """Keep ``chunk`` after the bytes before it."""
+        with self._lock:
+            self.data += chunk
+
+    @property
+    def size(self) -> int:
+        """Bytes received so far."""
+        with self._lock:
+            return len(self.data)
+
+    def since(self, offset: int) -> bytes:
+        """Bytes received after ``offset``."""
+        with self._lock:
+            return bytes(self.data[offset:])
+
+    def press(self, key: bytes, done: Callable[[bytes], bool] | bytes, timeout: float = 5.0) -> float | None:
+        """Type ``key``; seconds until the output after it shows ``done`` (a marker or a test), None if never."""
+        test = done if callable(done) else (lambda out: done in out)
+        offset = self.size
+        start = time.perf_counter()
+        self.write(key)
+        while time.perf_counter() - start < timeout:
+            if test(self.since(offset)):
+                return time.perf_counter() - start
+            time.sleep(0.0005)
+        return None
+

@@ -43,13 +43,12 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
 
-from _common import APP_CPU, REPO, PtyApp, free_port, other_cpus, ros_env, wait_port
+from _common import APP_CPU, REPO, RecordingPty, free_port, other_cpus, ros_env, wait_port
 
 COLS, ROWS = 120, 40
 LEVEL_MIX = [1] * 60 + [2] * 30 + [4] * 8 + [8] * 2
@@ -96,39 +95,8 @@ async def flood(rate: float, seconds: float) -> None:
 
 
 # -- the pseudo-terminal -----------------------------------------------------------------------
-@dataclass
-class Terminal(PtyApp):
+class Terminal(RecordingPty):
     """`rostui console` on a pty; every byte it writes is kept."""
-
-    data: bytearray = field(default_factory=bytearray)
-    _lock: threading.Lock = field(default_factory=threading.Lock)
-
-    def received(self, chunk: bytes) -> None:
-        """Keep ``chunk`` after the bytes before it."""
-        with self._lock:
-            self.data += chunk
-
-    @property
-    def size(self) -> int:
-        """Bytes received so far."""
-        with self._lock:
-            return len(self.data)
-
-    def since(self, offset: int) -> bytes:
-        """Bytes received after ``offset``."""
-        with self._lock:
-            return bytes(self.data[offset:])
-
-    def press(self, key: bytes, done: Callable[[bytes], bool], timeout: float = 5.0) -> float | None:
-        """Write ``key``; seconds until the output written after it satisfies ``done`` (None: timed out)."""
-        offset = self.size
-        start = time.perf_counter()
-        self.write(key)
-        while time.perf_counter() - start < timeout:
-            if done(self.since(offset)):
-                return time.perf_counter() - start
-            time.sleep(0.0005)
-        return None
 
     def wait_for(self, marker: bytes, timeout: float = 30.0) -> None:
         """Block until ``marker`` appears anywhere in the output."""

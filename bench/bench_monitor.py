@@ -45,7 +45,6 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 import xmlrpc.client
 from dataclasses import dataclass, field
@@ -54,7 +53,7 @@ from typing import Any
 
 import psutil
 
-from _common import APP_CPU, REPO, PtyApp, free_port, other_cpus, ros_env, wait_port
+from _common import APP_CPU, REPO, RecordingPty, free_port, other_cpus, ros_env, wait_port
 
 COLS, ROWS = 120, 40
 PAYLOAD = "x" * 64
@@ -99,39 +98,8 @@ async def publish(first: int, count: int, rate: float) -> None:
 
 
 # -- the terminal --------------------------------------------------------------------------------
-@dataclass
-class Terminal(PtyApp):
+class Terminal(RecordingPty):
     """`rostui monitor` on a pty; every byte it writes is kept."""
-
-    data: bytearray = field(default_factory=bytearray)
-    _lock: threading.Lock = field(default_factory=threading.Lock)
-
-    def received(self, chunk: bytes) -> None:
-        """Keep ``chunk`` after the bytes before it."""
-        with self._lock:
-            self.data += chunk
-
-    @property
-    def size(self) -> int:
-        """Bytes received so far."""
-        with self._lock:
-            return len(self.data)
-
-    def since(self, offset: int) -> bytes:
-        """Bytes received after ``offset``."""
-        with self._lock:
-            return bytes(self.data[offset:])
-
-    def press(self, key: bytes, marker: bytes, timeout: float = 5.0) -> float | None:
-        """Write ``key``; seconds until ``marker`` shows in the output written after it (None: timed out)."""
-        offset = self.size
-        start = time.perf_counter()
-        self.write(key)
-        while time.perf_counter() - start < timeout:
-            if marker in self.since(offset):
-                return time.perf_counter() - start
-            time.sleep(0.0005)
-        return None
 
     def wait_for(self, pattern: bytes, timeout: float = 60.0) -> re.Match[bytes]:
         """Block until ``pattern`` (a regex) matches the output; return the last match."""

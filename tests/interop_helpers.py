@@ -153,10 +153,22 @@ def run_tool(argv: Sequence[str], env: dict[str, str], timeout: float = PATIENCE
 
 
 
-def wait_for_node(env: dict[str, str], node: str) -> None:
-    """Wait until ``rosnode list`` shows a node (it has registered something)."""
-    wait_until(lambda: node in run_tool(["rosnode", "list"], env, check=False).stdout.split(),
-               f"{node} in `rosnode list`")
+def wait_for_node(env: dict[str, str], node: str, peer: Peer | None = None) -> None:
+    """Wait until ``rosnode list`` shows a node (it has registered something).
+
+    On failure the message holds the last `rosnode list` and, when given, the ``peer`` that should be ``node``.
+    """
+    last: list[subprocess.CompletedProcess] = []
+
+    def listed() -> bool:
+        last[:] = [run_tool(["rosnode", "list"], env, check=False)]
+        return node in last[0].stdout.split()
+
+    try:
+        wait_until(listed, f"{node} in `rosnode list`")
+    except AssertionError as exc:
+        seen = f"last `rosnode list`: rc={last[0].returncode}\n{last[0].stdout}{last[0].stderr}" if last else ""
+        raise AssertionError(f"{exc}\n{seen}\n{peer.describe() if peer else ''}") from None
 
 
 @pytest.fixture(scope="session")

@@ -16,11 +16,11 @@ from interop_helpers import example, run_tool, spawn, wait_for_node, wait_until 
 def graph(any_master, spawn, ros_env):
     """rostui talker /mouth, listener /ears, toggle_server /toggle_server, connected."""
     listener = spawn(example("listener.py", "__name:=ears"), label="listener")
-    wait_for_node(ros_env, "/ears")
+    wait_for_node(ros_env, "/ears", listener)
     talker = spawn(example("talker.py", "__name:=mouth"), label="talker")
     server = spawn(example("toggle_server.py"), label="toggle_server")
     listener.wait_for(r"I heard: hello world \d+$")
-    wait_for_node(ros_env, "/toggle_server")
+    wait_for_node(ros_env, "/toggle_server", server)
     return talker, listener, server
 
 

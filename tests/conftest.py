@@ -133,12 +133,32 @@ def rostui_cmd(*args: str) -> list[str]:
     return [sys.executable, "-m", "rostui", *args]
 
 
+def wait_for_core(port: int, proc: subprocess.Popen) -> None:
+    """Wait until a `rostui core` on ``port`` listens and its rosout has registered (/rosout_agg published).
+
+    The master answers before its rosout node has registered; a core is only what `roscore` is once both run.
+    """
+    from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync
+
+    wait_for_port(port, proc=proc)
+
+    def rosout_up() -> bool:
+        assert proc.poll() is None, f"rostui core exited with {proc.returncode}"
+        try:
+            publishers = call_sync(f"http://127.0.0.1:{port}/", "getSystemState", "/test")[2][0]
+        except (OSError, XmlRpcConnectionError):
+            return False
+        return any(topic == "/rosout_agg" for topic, _nodes in publishers)
+
+    wait_until(rosout_up, f"rosout of the rostui core on port {port} to register")
+
+
 def start_rostui_core(env: dict[str, str]) -> subprocess.Popen:
-    """A `rostui core` on the ros_env port, listening when this returns (output discarded; stop_process ends it)."""
+    """A `rostui core` on the ros_env port, with rosout registered when this returns (output discarded)."""
     port = master_port(env)
     proc = subprocess.Popen(rostui_cmd("core", "-p", str(port)), env=env, stdout=subprocess.DEVNULL,
                             stderr=subprocess.DEVNULL)
-    wait_for_port(port, proc=proc)
+    wait_for_core(port, proc)
     return proc
 
 
@@ -151,7 +171,7 @@ def rostui_core(ros_env: dict[str, str]) -> Iterator[subprocess.Popen]:
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
     )
     try:
-        wait_for_port(port, proc=proc)
+        wait_for_core(port, proc)
         yield proc
     finally:
         stop_process(proc)

@@ -7,6 +7,7 @@ import time
 from rich.text import Text
 
 from rostui.core.bag.index import BagIndex
+from rostui.core.bag.info import status_size
 
 #: Key help in play mode.
 PLAY_KEYS = ("space play  s step  ←→ ±1s  PgUp/Dn ±10%  Home/End  0-9 %  g go to  +- rate  l loop  "
@@ -14,15 +15,6 @@ PLAY_KEYS = ("space play  s step  ←→ ±1s  PgUp/Dn ±10%  Home/End  0-9 %  g
 
 #: Key help in record mode.
 RECORD_KEYS = "r start/stop  n split (new file)  q stop and quit"
-
-
-def human_size(size: float) -> str:
-    """``123 B``, ``4.5 KB``, ``6.7 MB``."""
-    for unit in ("B", "KB", "MB", "GB"):
-        if size < 1024 or unit == "GB":
-            return f"{int(size)} B" if unit == "B" else f"{size:.1f} {unit}"
-        size /= 1024
-    return f"{size:.1f} GB"
 
 
 def wall_text(t_ns: int) -> str:
@@ -39,7 +31,7 @@ def header_text(names: list[str], index: BagIndex | None, link: str = "") -> Tex
         text.append(f" · reading… {link}")
         return text
     span = (index.end_ns - index.start_ns) / 1e9
-    text.append(f" · {human_size(index.file_size)} · {len(index)} msgs · {len(index.tracks)} topics · {span:.3f} s")
+    text.append(f" · {status_size(index.file_size)} · {len(index)} msgs · {len(index.tracks)} topics · {span:.3f} s")
     if link:
         text.append(f" │ {link}")
     for notice in index.notices:

@@ -20,7 +20,8 @@ from textual.binding import Binding, BindingType
 from textual.containers import VerticalScroll
 from textual.widgets import Static
 
-from rostui.apps.bagview.bars import RECORD_KEYS, human_size
+from rostui.apps.bagview.bars import RECORD_KEYS
+from rostui.core.bag.info import status_size
 from rostui.apps.bagview.recording import RecordSession
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
@@ -47,8 +48,8 @@ def topics_table(session: RecordSession) -> Table:
             continue
         rate, bandwidth = meter.rates()
         style = "" if topic in subscribed or not session.recording else "dim"
-        table.add_row(topic, str(meter.file_count), str(meter.count), human_size(meter.size), f"{rate:.1f} Hz",
-                      f"{human_size(bandwidth)}/s", style=style)
+        table.add_row(topic, str(meter.file_count), str(meter.count), status_size(meter.size), f"{rate:.1f} Hz",
+                      f"{status_size(bandwidth)}/s", style=style)
     return table
 
 
@@ -58,7 +59,7 @@ def record_status(session: RecordSession, problem: str) -> Text:
     if session.file:
         text.append(f" '{session.file}'")
     nfiles = len(session.files)
-    text.append(f" │ {session.messages} msgs │ {human_size(session.total_bytes)} │ {len(session.subscribed)} topics"
+    text.append(f" │ {session.messages} msgs │ {status_size(session.total_bytes)} │ {len(session.subscribed)} topics"
                 f" │ {nfiles} file{'s' if nfiles != 1 else ''}")
     if session.dropped:
         text.append(f" │ {session.dropped} dropped", style="bold")

@@ -13,10 +13,10 @@ from __future__ import annotations
 
 import asyncio
 import sys
-from dataclasses import dataclass
 from typing import Any, Callable
 
 from rostui.core.log.rosout_read import RosoutEntry
+from rostui.core.master_link import SourceState
 from rostui.core.msg import get_message_class
 from rostui.core.node.node import AsyncNode
 
@@ -45,23 +45,6 @@ def entry_from_message(msg: Any) -> RosoutEntry:
         function=sys.intern(msg.function),
         topics=tuple(msg.topics),
     )
-
-
-@dataclass(frozen=True)
-class SourceState:
-    """What the status line says about the master: ``waiting``, ``connected`` or ``lost``, and details."""
-
-    status: str
-    master_uri: str
-    detail: str = ""
-
-    def text(self) -> str:
-        """One line for the status bar."""
-        if self.status == "connected":
-            return f"master {self.master_uri}"
-        if self.status == "lost":
-            return f"master {self.master_uri} gone: waiting for it to come back"
-        return f"waiting for master {self.master_uri}" + (f" ({self.detail})" if self.detail else "")
 
 
 class LiveSource:

@@ -225,13 +225,13 @@ class MonitorApp(ReleasesOnExit, App[int]):
         running = [f"{r.topic} {r.rate:g} Hz" for r in self.repeaters.values() if r.running]
         if running:
             parts.append("publishing " + ", ".join(running))
-        parts.append(self.source.state.text())
+        parts.append(self.source.state.text(marks=True))
         if self.notice:
             parts.append(self.notice)
         self.query_one("#status", Line).set(escape(" │ ".join(parts)))
         problem = ""
         if self.source.state.status != "connected":
-            problem = self.source.state.text().lstrip("…✖ ")
+            problem = self.source.state.text()
             if self.source.state.status == "waiting":
                 problem += "; start one with `rostui core` (retrying)"
         elif self.rows and not self.shown:

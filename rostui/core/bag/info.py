@@ -18,6 +18,15 @@ def human_size(size: float) -> str:
     return f"{size:.1f} {unit}"
 
 
+def status_size(size: float) -> str:
+    """``123 B``, ``4.5 KB``, ``6.7 MB``: a size in a live status line (whole bytes below 1 KB)."""
+    for unit in ("B", "KB", "MB", "GB"):
+        if size < 1024 or unit == "GB":
+            return f"{int(size)} B" if unit == "B" else f"{size:.1f} {unit}"
+        size /= 1024
+    return f"{size:.1f} GB"
+
+
 def human_duration(seconds: float) -> str:
     """``12.3s``, ``1:05s (65s)`` or ``1:01:05s (3665s)`` as rosbag info writes durations."""
     if seconds < 60:

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from rostui.core.bag.files import Writer, open_writer
+from rostui.core.bag.info import status_size
 from rostui.core.bag.receive import BufferPool, subscribe_raw
 from rostui.core.bag.model import BagError, Connection, connection_key
 
@@ -345,7 +346,7 @@ class Recorder:
         rate = (self.messages - n0) / (now - t0) if now > t0 else 0.0
         name = self.files[-1] if self.files else self.base
         dropped = f", {self.dropped} dropped" if self.dropped else ""
-        return (f"Recording '{name}': {self.messages} msgs, {_human(self.total_bytes)}, "
+        return (f"Recording '{name}': {self.messages} msgs, {status_size(self.total_bytes)}, "
                 f"{rate:.1f} msg/s, {len(self.subscribed)} topics{dropped}")
 
     async def run(self, status: Callable[[str], None] | None = None) -> int:
@@ -369,14 +370,6 @@ class Recorder:
             await asyncio.get_running_loop().run_in_executor(None, thread.join)
             await asyncio.sleep(0)  # errors the writer thread posted while closing
         return self.messages
-
-
-def _human(size: float) -> str:
-    for unit in ("B", "KB", "MB", "GB"):
-        if size < 1024 or unit == "GB":
-            return f"{size:.1f} {unit}" if unit != "B" else f"{int(size)} B"
-        size /= 1024
-    return f"{size:.1f} GB"
 
 
 async def record(opts: RecordOptions, argv: Sequence[str] = (), *, status: Callable[[str], None] | None = None,

@@ -11,6 +11,8 @@ from dataclasses import dataclass
 from enum import Enum
 from typing import Iterable, Sequence
 
+from rostui.core.tools.topic import bandwidth_unit
+
 __all__ = ["Liveness", "TopicRow", "Column", "COLUMNS", "sort_rows", "filter_rows", "rate_text",
            "bandwidth_text", "age_text"]
 
@@ -129,11 +131,8 @@ def bandwidth_text(bps: float | None) -> str:
     """Bytes per second as rostopic bw scales them: ``512.00B/s``, ``3.20KB/s``, ``1.05MB/s``."""
     if bps is None:
         return "-"
-    if bps < 1000:
-        return f"{bps:.2f}B/s"
-    if bps < 1_000_000:
-        return f"{bps / 1000:.2f}KB/s"
-    return f"{bps / 1_000_000:.2f}MB/s"
+    divisor, unit = bandwidth_unit(bps)
+    return f"{bps / divisor:.2f}{unit}/s"
 
 
 def age_text(age: float | None) -> str:

@@ -18,6 +18,7 @@ from collections import deque
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable
 
+from rostui.core.master_link import SourceState
 from rostui.core.monitor.rows import Liveness, TopicRow
 from rostui.core.monitor.stats import TopicStats
 from rostui.core.monitor.tree import PathError, value_at
@@ -40,23 +41,6 @@ class TopicInfo:
     type: str
     publishers: tuple[str, ...]
     subscribers: tuple[str, ...]
-
-
-@dataclass(frozen=True)
-class SourceState:
-    """``waiting`` (no master yet), ``connected`` or ``lost``, with a one-line detail."""
-
-    status: str
-    master_uri: str
-    detail: str = ""
-
-    def text(self) -> str:
-        """One line for the status bar."""
-        if self.status == "connected":
-            return "● master"
-        if self.status == "lost":
-            return f"✖ master {self.master_uri} gone: waiting for it to come back"
-        return f"… waiting for master {self.master_uri}" + (f" ({self.detail})" if self.detail else "")
 
 
 @dataclass

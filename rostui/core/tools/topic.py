@@ -596,6 +596,15 @@ def format_hz_table(rows: Sequence[tuple[str, tuple[float, float, float, float, 
     return "   ".join(heads) + "\n" + hline + "\n" + body + "\n\n"
 
 
+def bandwidth_unit(bps: float) -> tuple[float, str]:
+    """rostopic bw's unit for a byte rate, as (divisor, suffix): bytes below 1000, then KB, then MB."""
+    if bps < 1000:
+        return 1.0, "B"
+    if bps < 1_000_000:
+        return 1000.0, "KB"
+    return 1_000_000.0, "MB"
+
+
 class BwStats:
     """Sizes and arrival times of the last ``window`` messages (rostopic bw)."""
 
@@ -623,13 +632,8 @@ class BwStats:
         total = sum(self.sizes)
         bps = total / (now - self.times[0])
         mean = total / n
-        values = [bps, mean, min(self.sizes), max(self.sizes)]
-        if bps < 1000:
-            bw, mean_s, lo, hi = ["%.2fB" % v for v in values]
-        elif bps < 1000000:
-            bw, mean_s, lo, hi = ["%.2fKB" % (v / 1000) for v in values]
-        else:
-            bw, mean_s, lo, hi = ["%.2fMB" % (v / 1000000) for v in values]
+        divisor, unit = bandwidth_unit(bps)
+        bw, mean_s, lo, hi = ["%.2f%s" % (v / divisor, unit) for v in (bps, mean, min(self.sizes), max(self.sizes))]
         return "average: %s/s\n\tmean: %s min: %s max: %s window: %s\n" % (bw, mean_s, lo, hi, n)
 
 

@@ -3,14 +3,17 @@
 //   bag_peer publish TOPIC SIZE RATE SECONDS QUEUE
 //     Once a subscriber is connected (and 0.3 s more), publishes RATE std_msgs/String
 //     messages per second for SECONDS, each SIZE bytes of data starting with its number
-//     (8 digits). Publishing runs on schedule: a message that is due goes out at once,
+//     (8 digits). The message is kept as its wire bytes, so roscpp's serialisation is one
+//     memcpy and the publisher's own cost stays far below any recorder's.
+//     Publishing runs on schedule: a message that is due goes out at once,
 //     and when the subscriber reads too slowly roscpp's per-subscriber queue of QUEUE
 //     messages drops the oldest, as every ROS publisher does. Then it prints
 //     {"sent": N, "seconds": S} and keeps its connections open (so queued messages
 //     still go out) until SIGINT or until its subscriber leaves.
 //
 //   bag_peer count TOPIC
-//     A recorder that records nothing: subscribes to std_msgs/String (queue 100000),
+//     A recorder that records nothing: subscribes to std_msgs/String (queue 100000)
+//     without deserialising it (roscpp has read the frame; the callback only counts),
 //     counts the messages, and once none has come for 1 s after the first one prints
 //     {"received": N} and exits. Receiving is all it does, so the highest rate it
 //     holds is what the publisher, the kernel and one roscpp subscriber reach on this
@@ -27,8 +30,67 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <thread>
+#include <vector>
+
+namespace {
+
+// A std_msgs/String whose wire bytes (string length and data) are laid out already: roscpp's
+// serialisation of it is one memcpy into the buffer it sends, not a std::string walk.
+struct WireString {
+  std::vector<uint8_t> bytes;
+};
+
+// A std_msgs/String that a subscriber takes without deserialising: roscpp has read the
+// frame into its buffer; the callback only counts.
+struct CountedString {};
+
+}  // namespace
+
+namespace ros {
+namespace message_traits {
+template <class T>
+struct StringTraits {
+  static const char* value() { return MD5Sum<std_msgs::String>::value(); }
+  static const char* value(const T&) { return value(); }
+};
+template <> struct MD5Sum<WireString> : StringTraits<WireString> {};
+template <> struct MD5Sum<CountedString> : StringTraits<CountedString> {};
+template <class T>
+struct StringType {
+  static const char* value() { return DataType<std_msgs::String>::value(); }
+  static const char* value(const T&) { return value(); }
+};
+template <> struct DataType<WireString> : StringType<WireString> {};
+template <> struct DataType<CountedString> : StringType<CountedString> {};
+template <class T>
+struct StringDefinition {
+  static const char* value() { return Definition<std_msgs::String>::value(); }
+  static const char* value(const T&) { return value(); }
+};
+template <> struct Definition<WireString> : StringDefinition<WireString> {};
+template <> struct Definition<CountedString> : StringDefinition<CountedString> {};
+}  // namespace message_traits
+
+namespace serialization {
+template <>
+struct Serializer<WireString> {
+  template <typename Stream>
+  inline static void write(Stream& stream, const WireString& m) {
+    std::memcpy(stream.advance(static_cast<uint32_t>(m.bytes.size())), m.bytes.data(), m.bytes.size());
+  }
+  inline static uint32_t serializedLength(const WireString& m) { return static_cast<uint32_t>(m.bytes.size()); }
+};
+template <>
+struct Serializer<CountedString> {
+  template <typename Stream>
+  inline static void read(Stream&, CountedString&) {}
+  inline static uint32_t serializedLength(const CountedString&) { return 0; }
+};
+}  // namespace serialization
+}  // namespace ros
 
 namespace {
 
@@ -42,7 +104,7 @@ int publish(const std::string& topic, long size, double rate, double seconds, in
   ros::NodeHandle nh;
   ros::AsyncSpinner spinner(1);
   spinner.start();
-  ros::Publisher pub = nh.advertise<std_msgs::String>(topic, queue);
+  ros::Publisher pub = nh.advertise<WireString>(topic, queue);
 
   const auto wait_start = Clock::now();
   while (ros::ok() && pub.getNumSubscribers() < 1) {
@@ -54,8 +116,10 @@ int publish(const std::string& topic, long size, double rate, double seconds, in
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
 
-  std_msgs::String msg;
-  msg.data.assign(static_cast<size_t>(size), 'x');
+  WireString msg;
+  msg.bytes.assign(static_cast<size_t>(size) + 4, 'x');
+  const uint32_t length = static_cast<uint32_t>(size);
+  std::memcpy(msg.bytes.data(), &length, 4);  // little-endian, as the wire wants on x86 and ARM
   const long count = static_cast<long>(rate * seconds);
   const auto start = Clock::now();
   char number[16];
@@ -64,7 +128,7 @@ int publish(const std::string& topic, long size, double rate, double seconds, in
     const auto due = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(sent / rate));
     std::this_thread::sleep_until(due);
     std::snprintf(number, sizeof number, "%08ld", sent);
-    msg.data.replace(0, 8, number, 8);
+    std::memcpy(msg.bytes.data() + 4, number, 8);
     pub.publish(msg);
   }
   const double took = std::chrono::duration<double>(Clock::now() - start).count();
@@ -81,8 +145,8 @@ int count(const std::string& topic) {
   ros::NodeHandle nh;
   std::atomic<long> received{0};
   std::atomic<Clock::rep> last{0};
-  ros::Subscriber sub = nh.subscribe<std_msgs::String>(
-      topic, 100000, [&](const std_msgs::String::ConstPtr&) {
+  ros::Subscriber sub = nh.subscribe<CountedString>(
+      topic, 100000, [&](const boost::shared_ptr<const CountedString>&) {
         ++received;
         last = Clock::now().time_since_epoch().count();
       });

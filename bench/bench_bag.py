@@ -22,7 +22,8 @@
     recorder leaves the race at its first rate with drops in two runs.
     Reported: the highest held rate per recorder, the ratio
     rostui/rosbag (target >= 1.5x), and each recorder's CPU time per message
-    (its whole process tree, user + system) at the rates it held.
+    (its whole process tree, user + system) at the rates it held; each trial
+    also prints the publisher's CPU time per message.
 (b) ``play``: a .bag of 3000 std_msgs/Int32 at 1 ms spacing is played by
     `rostui bag play` and `rosbag play`; a subscriber in this process stamps
     arrivals. The error of message i is its arrival time minus its bag time
@@ -57,7 +58,7 @@ sys.path.insert(0, str(REPO))
 MB = 1_000_000
 QUEUE = 100
 LADDER = [int(x) for x in os.environ.get(
-    "BENCH_BAG_LADDER", "400,500,600,700,800,900,1000,1100,1200,1300,1400,1500").split(",")]
+    "BENCH_BAG_LADDER", ",".join(str(r) for r in range(400, 2100, 100))).split(",")]
 TOPIC = "/bench"
 BENCH = Path(__file__).resolve().parent
 CPP_PEER_SRC = BENCH / "bag_peer.cpp"
@@ -223,6 +224,7 @@ def trial(kind: str, rate: int, seconds: float, env: dict[str, str], tmp: Path, 
         pub = subprocess.Popen(publisher_argv(publisher, rate, seconds), env=env, stdout=subprocess.PIPE,
                                stderr=subprocess.DEVNULL, text=True)
         result = read_result(pub, seconds * 10 + 60)
+        pub_cpu = tree_cpu_seconds(pub.pid)
         if receive_only:  # it reports and exits 1 s after the last message
             cpu = tree_cpu_seconds(rec.pid) - cpu_before
             deadline = time.monotonic() + 60
@@ -255,7 +257,8 @@ def trial(kind: str, rate: int, seconds: float, env: dict[str, str], tmp: Path, 
         os.sync()  # the next trial starts with no writeback of this one's data in progress
     return {"rate": rate, "sent": result["sent"], "recorded": recorded,
             "pub_rate": result["sent"] / result["seconds"] if result["seconds"] else 0.0,
-            "recorder_cpu_us_per_msg": cpu / max(recorded, 1) * 1e6, "load": load_average()}
+            "recorder_cpu_us_per_msg": cpu / max(recorded, 1) * 1e6,
+            "publisher_cpu_us_per_msg": pub_cpu / max(result["sent"], 1) * 1e6, "load": load_average()}
 
 
 def bench_record(seconds: float, env: dict[str, str], tmp: Path, kinds: list[str], publisher: str) -> dict[str, Any]:
@@ -286,7 +289,8 @@ def bench_record(seconds: float, env: dict[str, str], tmp: Path, kinds: list[str
                 print(f"  {kind:12} {rate:5d} MB/s target, publisher {row['pub_rate']:6.1f}/s: "
                       f"{row['recorded']}/{row['sent']} recorded, {note}"
                       f"{f' (run {attempt})' if attempt > 1 else ''}; recorder CPU "
-                      f"{row['recorder_cpu_us_per_msg']:.0f} us/msg; load {row['load']}", flush=True)
+                      f"{row['recorder_cpu_us_per_msg']:.0f} us/msg, publisher {row['publisher_cpu_us_per_msg']:.0f} us/msg; "
+                      f"load {row['load']}", flush=True)
                 if verdict:
                     break
             if verdict == "held":

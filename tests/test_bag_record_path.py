@@ -342,15 +342,16 @@ def test_a_real_socket_delivers_every_frame_even_when_the_publisher_goes_quiet(l
     assert got == payloads
 
 
+@pytest.mark.parametrize("direct", [False, True])
 @pytest.mark.parametrize("name", ["r.bag", "r.mcap"])
-def test_blocks_reserved_ahead_are_given_back_at_close(tmp_path: Path, name: str) -> None:
+def test_blocks_reserved_ahead_are_given_back_at_close(tmp_path: Path, name: str, direct: bool) -> None:
     path = tmp_path / name
-    writer = open_writer(str(path))
+    writer = open_writer(str(path), direct=direct)
     writer.add_connection(Connection(0, "/big", "std_msgs/String", STRING_MD5, "string data\n", "/p"))
     for i in range(5):
         writer.write(0, 1_000 + i, bytes(1_000_000))
     writer.flush()
-    reserving = writer.reservation.enabled  # type: ignore[attr-defined]
+    reserving = writer.out.reservation.enabled  # type: ignore[attr-defined]
     if reserving:
         assert os.stat(path).st_blocks * 512 >= 32 * 1024 * 1024 > os.stat(path).st_size
     writer.close()

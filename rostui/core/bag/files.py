@@ -72,15 +72,18 @@ def open_reader(path: str) -> Reader:
     raise BagError(f"{path} is neither an MCAP file nor a rosbag file (unknown first bytes)")
 
 
-def open_writer(path: str, compression: str = "none", *, max_chunk_age: float = 0.5, chunk_crcs: bool = True) -> Writer:
+def open_writer(path: str, compression: str = "none", *, max_chunk_age: float = 0.5, chunk_crcs: bool = True,
+                direct: bool = False) -> Writer:
     """A writer for ``path``: rosbag v2.0 when the name ends in ``.bag``, otherwise MCAP (with chunk CRCs
-    unless ``chunk_crcs`` is False; rosbag files have none)."""
+    unless ``chunk_crcs`` is False; rosbag files have none); ``direct`` bypasses the page cache where the file
+    system allows it (:mod:`rostui.core.bag.sink`)."""
     if compression not in COMPRESSIONS:
         raise BagError(f"unknown compression '{compression}' (none, lz4, zstd or bz2)")
     try:
         if is_rosbag_name(path):
-            return BagWriter(path, compression=compression, max_chunk_age=max_chunk_age)
-        return McapBagWriter(path, compression=compression, max_chunk_age=max_chunk_age, chunk_crcs=chunk_crcs)
+            return BagWriter(path, compression=compression, max_chunk_age=max_chunk_age, direct=direct)
+        return McapBagWriter(path, compression=compression, max_chunk_age=max_chunk_age, chunk_crcs=chunk_crcs,
+                             direct=direct)
     except OSError as exc:
         raise BagError(f"cannot create {path}: {exc.strerror}") from None
 

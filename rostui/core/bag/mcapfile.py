@@ -20,8 +20,9 @@ from mcap.data_stream import RecordBuilder
 from mcap.opcode import Opcode
 from mcap.records import Channel, ChunkIndex, DataEnd, Footer, Header, MessageIndex, Schema, Statistics, SummaryOffset
 
-from rostui.core.bag.iov import Parts, Reservation, write_all
+from rostui.core.bag.iov import Parts
 from rostui.core.bag.model import BagError, BagSummary, Connection
+from rostui.core.bag.sink import open_append
 
 MAGIC = b"\x89MCAP0\r\n"
 COMPRESSIONS = ("none", "lz4", "zstd")
@@ -56,10 +57,12 @@ class McapBagWriter:
     ``chunk_crcs=False`` leaves the chunk CRC at 0 ("not computed", as the
     MCAP spec allows): the recorder's choice, because a CRC of every byte costs
     more CPU than the write itself; rosbag files carry no checksum at all.
+    ``direct`` writes the file around the page cache where it can (see
+    :mod:`rostui.core.bag.sink`).
     """
 
     def __init__(self, path: str, *, compression: str = "none", chunk_bytes: int = 768 * 1024,
-                 max_chunk_age: float = 0.5, chunk_crcs: bool = True) -> None:
+                 max_chunk_age: float = 0.5, chunk_crcs: bool = True, direct: bool = False) -> None:
         if compression not in COMPRESSIONS:
             raise BagError(f"an MCAP file cannot use {compression} compression (none, lz4 or zstd)")
         self.path = path
@@ -67,8 +70,7 @@ class McapBagWriter:
         self.chunk_bytes = chunk_bytes
         self.max_chunk_age = max_chunk_age
         self.chunk_crcs = chunk_crcs
-        self.fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
-        self.reservation = Reservation(self.fd)
+        self.out = open_append(path, direct)
         self.connections: dict[int, Connection] = {}
         self.closed = False
         self.failed = False
@@ -93,19 +95,15 @@ class McapBagWriter:
 
     def _append(self, buffers: list[Any]) -> None:
         """Write at the end of the file; on failure cut back to the last complete record."""
-        self.reservation.ensure(self.good_end + sum(len(b) for b in buffers))
         try:
-            self.good_end += write_all(self.fd, buffers)
+            self.good_end += self.out.append(buffers)
         except OSError:
             self._cut()
             raise
 
     def _cut(self) -> None:
-        try:
-            os.ftruncate(self.fd, self.good_end)
-            os.lseek(self.fd, self.good_end, os.SEEK_SET)
-        except OSError:
-            pass
+        self.out.cut(self.good_end)
+        self.good_end = self.out.end
 
     @property
     def size(self) -> int:
@@ -173,6 +171,7 @@ class McapBagWriter:
         """Close the open chunk when it is older than ``max_chunk_age``."""
         if self._chunk_messages and time.monotonic() - self._chunk_started >= self.max_chunk_age:
             self.flush()
+        self.out.sync_if_old()
 
     def flush(self) -> None:
         """Write the open chunk and its message indexes."""
@@ -274,8 +273,7 @@ class McapBagWriter:
                 self._end_without_summary()
                 raise
         finally:
-            self.reservation.release(self.good_end)
-            os.close(self.fd)
+            self.out.close()
 
     def _end_without_summary(self) -> None:
         """DataEnd, a Footer pointing at no summary, and the closing magic: a valid file without indexes."""
@@ -283,7 +281,7 @@ class McapBagWriter:
         DataEnd(0).write(builder)
         Footer(0, 0, 0).write(builder)
         try:
-            self.good_end += write_all(self.fd, [builder.end() + MAGIC])
+            self.good_end += self.out.append([builder.end() + MAGIC])
         except OSError:
             self._cut()
 

@@ -209,7 +209,8 @@ class Recorder:
         if folder and not os.path.isdir(folder):
             raise BagError(f"cannot record to {name}: folder {folder} does not exist")
         # no chunk CRCs: a CRC of every byte costs more CPU than writing it (rosbag files carry none either)
-        self.writer = open_writer(name, self.opts.compression, max_chunk_age=self.opts.max_chunk_age, chunk_crcs=False)
+        self.writer = open_writer(name, self.opts.compression, max_chunk_age=self.opts.max_chunk_age, chunk_crcs=False,
+                                  direct=True)
         self.files.append(name)
         self._file_started = time.monotonic()
 

@@ -16,8 +16,9 @@ import time
 from collections.abc import Iterator
 from typing import Any, BinaryIO
 
-from rostui.core.bag.iov import Parts, Reservation, write_all
+from rostui.core.bag.iov import Parts
 from rostui.core.bag.model import BagError, BagSummary, Connection
+from rostui.core.bag.sink import open_append
 
 MAGIC = b"#ROSBAG V2.0\n"
 FILE_HEADER_LENGTH = 4096
@@ -93,18 +94,21 @@ def _decompress(kind: str, data: bytes) -> bytes:
 
 
 class BagWriter:
-    """Writes a rosbag v2.0 file; ``close()`` writes the index and the final file header."""
+    """Writes a rosbag v2.0 file; ``close()`` writes the index and the final file header.
+
+    With ``direct`` the file is written around the page cache where it can be (see
+    :mod:`rostui.core.bag.sink`); the recorder asks for that.
+    """
 
     def __init__(self, path: str, *, compression: str = "none", chunk_bytes: int = 768 * 1024,
-                 max_chunk_age: float = 0.5) -> None:
+                 max_chunk_age: float = 0.5, direct: bool = False) -> None:
         if compression not in COMPRESSIONS:
             raise BagError(f"a .bag file cannot use {compression} compression (none, bz2 or lz4)")
         self.path = path
         self.compression = compression
         self.chunk_bytes = chunk_bytes
         self.max_chunk_age = max_chunk_age
-        self.fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
-        self.reservation = Reservation(self.fd)
+        self.out = open_append(path, direct)
         self.connections: dict[int, Connection] = {}
         self.chunk_infos: list[tuple[int, int, int, dict[int, int]]] = []
         self.closed = False
@@ -126,8 +130,7 @@ class BagWriter:
 
     def _write_all(self, parts: list[Any]) -> None:
         """Append ``parts`` at ``good_end`` (the end of the file)."""
-        self.reservation.ensure(self.good_end + sum(len(p) for p in parts))
-        write_all(self.fd, parts)
+        self.out.append(parts)
 
     @property
     def size(self) -> int:
@@ -167,6 +170,7 @@ class BagWriter:
         """Close the chunk when it is older than ``max_chunk_age`` (called from a timer)."""
         if self._chunk.size and time.monotonic() - self._chunk_started >= self.max_chunk_age:
             self.flush()
+        self.out.sync_if_old()
 
     def flush(self) -> None:
         """Write the open chunk and its index records to the file."""
@@ -204,11 +208,8 @@ class BagWriter:
 
     def _rollback(self) -> None:
         """Cut a partly written chunk off, so the file ends with complete records."""
-        try:
-            os.ftruncate(self.fd, self.good_end)
-            os.lseek(self.fd, self.good_end, os.SEEK_SET)
-        except OSError:
-            pass
+        self.out.cut(self.good_end)
+        self.good_end = self.out.end
         self._chunk.clear()
         self._chunk_index = {}
         self._written_conns = {c for info in self.chunk_infos for c in info[3]}
@@ -237,16 +238,12 @@ class BagWriter:
                                       "end_time": _time_bytes(end), "count": _U32.pack(len(counts))}, data))
             try:
                 self._write_all(parts)
-                os.pwrite(self.fd, self._file_header(index_pos, len(used), len(self.chunk_infos)), len(MAGIC))
+                self.out.rewrite(self._file_header(index_pos, len(used), len(self.chunk_infos)), len(MAGIC))
             except OSError:
                 self._rollback()
                 raise
         finally:
-            try:
-                self.reservation.release(os.lseek(self.fd, 0, os.SEEK_CUR))
-            except OSError:
-                pass
-            os.close(self.fd)
+            self.out.close()
 
 
 class BagReader:

@@ -17,7 +17,7 @@
 //     counts the messages, and once none has come for 1 s after the first one prints
 //     {"received": N} and exits. Receiving is all it does, so the highest rate it
 //     holds is what the publisher, the kernel and one roscpp subscriber reach on this
-//     machine: the ceiling for every recorder.
+//     machine: the most a roscpp recorder (rosbag record) could hold.
 //
 // Build (bench_bag.py does this itself):
 //   g++ -O2 bench/bag_peer.cpp -o bench/_build/bag_peer -I/usr/include

@@ -9,8 +9,10 @@
     under test (`rostui bag record` to .mcap and to .bag, `rosbag record`)
     runs as its own process and writes into the same folder. With the roscpp
     peer built, a fourth "recorder", ``receive-only`` (``bag_peer count``: a
-    roscpp subscriber that only counts), shows the ceiling: what publisher,
-    kernel and one subscriber reach on this machine with no file at all. The
+    roscpp subscriber that only counts), shows what publisher, kernel and
+    one roscpp subscriber reach on this machine with no file at all (roscpp's
+    receive path, not the machine's limit: rostui's raw receive path has held
+    more while writing a file). The
     order of the recorders
     rotates from one rate to the next. When the publisher has sent
     everything and the file has stopped growing, the recorder gets Ctrl-C and
@@ -436,7 +438,7 @@ def main() -> int:
                           f"MB/s = {ratio:.2f}x (target >= 1.5x)", flush=True)
             if have_peer:
                 print(f"  {RECEIVE_ONLY} (a roscpp subscriber that writes nothing) held "
-                      f"{rec[RECEIVE_ONLY]['held_mb_s']} MB/s: no recorder can hold more on this machine",
+                      f"{rec[RECEIVE_ONLY]['held_mb_s']} MB/s: what roscpp's receive path alone reaches here",
                       flush=True)
             print(f"  load average after: {rec['load_after']}", flush=True)
         if args.only in (None, "play"):

@@ -51,27 +51,18 @@ struct CountedString {};
 
 namespace ros {
 namespace message_traits {
-template <class T>
-struct StringTraits {
-  static const char* value() { return MD5Sum<std_msgs::String>::value(); }
+// Each trait of both types answers what std_msgs/String's trait answers.
+template <template <class> class Trait, class T>
+struct AsString {
+  static const char* value() { return Trait<std_msgs::String>::value(); }
   static const char* value(const T&) { return value(); }
 };
-template <> struct MD5Sum<WireString> : StringTraits<WireString> {};
-template <> struct MD5Sum<CountedString> : StringTraits<CountedString> {};
-template <class T>
-struct StringType {
-  static const char* value() { return DataType<std_msgs::String>::value(); }
-  static const char* value(const T&) { return value(); }
-};
-template <> struct DataType<WireString> : StringType<WireString> {};
-template <> struct DataType<CountedString> : StringType<CountedString> {};
-template <class T>
-struct StringDefinition {
-  static const char* value() { return Definition<std_msgs::String>::value(); }
-  static const char* value(const T&) { return value(); }
-};
-template <> struct Definition<WireString> : StringDefinition<WireString> {};
-template <> struct Definition<CountedString> : StringDefinition<CountedString> {};
+template <> struct MD5Sum<WireString> : AsString<MD5Sum, WireString> {};
+template <> struct MD5Sum<CountedString> : AsString<MD5Sum, CountedString> {};
+template <> struct DataType<WireString> : AsString<DataType, WireString> {};
+template <> struct DataType<CountedString> : AsString<DataType, CountedString> {};
+template <> struct Definition<WireString> : AsString<Definition, WireString> {};
+template <> struct Definition<CountedString> : AsString<Definition, CountedString> {};
 }  // namespace message_traits
 
 namespace serialization {

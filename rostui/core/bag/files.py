@@ -14,6 +14,7 @@ from rostui.core.bag.model import BagError, BagSummary, Connection
 from rostui.core.bag.rosbag2_0 import COMPRESSIONS as BAG_COMPRESSIONS
 from rostui.core.bag.rosbag2_0 import MAGIC as BAG_MAGIC
 from rostui.core.bag.rosbag2_0 import BagReader, BagWriter
+from rostui.core.bag.sink import AppendFile
 
 COMPRESSIONS = ("none", "lz4", "zstd", "bz2")
 
@@ -39,6 +40,7 @@ class Writer(Protocol):
     size: int
     buffered: int
     connections: dict[int, Connection]
+    out: AppendFile
 
     def add_connection(self, conn: Connection) -> None: ...
     def write(self, conn_id: int, time_ns: int, data: Any) -> None: ...

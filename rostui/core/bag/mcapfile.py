@@ -34,6 +34,14 @@ _CHUNK_HEAD = struct.Struct("<BQQQQI")  # opcode, record length, start, end, unc
 _U32 = struct.Struct("<I")
 _U64 = struct.Struct("<Q")
 OP_CHUNK, OP_MESSAGE = 0x06, 0x05
+OP_PADDING = 0x80
+"""A private record (the spec leaves 0x80-0xFF to applications; readers skip them): zeros before a chunk that
+put its big message on a block boundary, so the recorder's direct writes take it without a copy."""
+
+
+def _padding_record(size: int) -> bytes:
+    """A padding record of exactly ``size`` bytes (at least 9: opcode and length)."""
+    return bytes([OP_PADDING]) + _U64.pack(size - 9) + bytes(size - 9)
 
 
 def _compress(kind: str, data: bytes) -> bytes:
@@ -149,6 +157,8 @@ class McapBagWriter:
         channel = self._channels[conn_id]
         channel_id = channel.id if channel.id in self._written and -channel.schema_id in self._written \
             else self._declare(conn_id)
+        if self._chunk_messages and self.out.takes_in_place(data):
+            self.flush()  # a chunk's padding can line up only its first big message
         chunk = self._chunk
         if not self._chunk_messages:
             self._chunk_started = time.monotonic()
@@ -195,7 +205,9 @@ class McapBagWriter:
         record_length = 8 + 8 + 8 + 4 + 4 + len(compression) + 8 + stored
         head = (_CHUNK_HEAD.pack(OP_CHUNK, record_length, self._chunk_start_ns, self._chunk_end_ns, plain_size, crc)
                 + _U32.pack(len(compression)) + compression + _U64.pack(stored))
-        chunk_start = self.good_end
+        pad = self.out.lend_padding([head, *body], 9)
+        lead = [_padding_record(pad)] if pad else []
+        chunk_start = self.good_end + pad
         chunk_length = len(head) + stored
         indexes = RecordBuilder()
         offsets: dict[int, int] = {}
@@ -204,7 +216,7 @@ class McapBagWriter:
             MessageIndex(channel_id, entries).write(indexes)
         index_bytes = indexes.end()
         try:
-            self._append([head, *body, index_bytes])
+            self._append([*lead, head, *body, index_bytes])
         except OSError:
             self.failed = True
             self._forget_chunk()

@@ -19,11 +19,14 @@ work as for any other subscription.
 from __future__ import annotations
 
 import asyncio
+import ctypes
 import logging
+import mmap
 import socket
 from collections.abc import Callable
 from typing import Any
 
+from rostui.core.bag.sink import LendableBuffer
 from rostui.core.node import AnyMsg, AsyncNode, Subscriber
 from rostui.core.node.topics import Subscription
 from rostui.core.node.transport import StallWatch
@@ -39,7 +42,8 @@ LOW_WATER_CAP = 512 * 1024
 """While a big frame is read, the loop wakes only once this much of it (or all the rest) has arrived."""
 
 POOL_CLASS = 64 * 1024
-"""Pooled buffers come in multiples of this size."""
+"""Pooled buffers come in multiples of this size (plus a page, so the bytes can start on one)."""
+PAGE = mmap.PAGESIZE
 
 #: ``(payload, publisher connection header)``; the payload is ``bytes`` or, for big frames, a writable buffer.
 FrameSink = Callable[[Any, dict[str, str]], None]
@@ -49,9 +53,11 @@ class BufferPool:
     """Reusable buffers for big frames, so each one is neither zeroed nor faulted in again.
 
     :meth:`take` (on the receiving thread) hands out a memoryview of exactly
-    the asked size over a buffer rounded up to ``POOL_CLASS``; :meth:`give`
-    (on any thread, once nothing refers to the bytes any more) returns it.
-    At most ``limit_bytes`` are kept per size class.
+    the asked size, starting on a page, over a :class:`LendableBuffer`
+    rounded up to ``POOL_CLASS``: a direct bag file can write it without
+    copying it. :meth:`give` (on any thread, once nothing refers to the
+    bytes any more) returns it. At most ``limit_bytes`` are kept per size
+    class.
     """
 
     def __init__(self, limit_bytes: int = 64 * 1024 * 1024) -> None:
@@ -60,13 +66,15 @@ class BufferPool:
 
     def take(self, size: int) -> memoryview:
         """A writable buffer of ``size`` bytes (contents undefined)."""
-        capacity = -(-size // POOL_CLASS) * POOL_CLASS
+        capacity = -(-size // POOL_CLASS) * POOL_CLASS + PAGE
         free = self._free.get(capacity)
         try:
-            buf = free.pop() if free else bytearray(capacity)
+            buf = free.pop() if free else LendableBuffer(capacity)
         except IndexError:  # emptied by another thread meanwhile
-            buf = bytearray(capacity)
-        return memoryview(buf)[:size]
+            buf = LendableBuffer(capacity)
+        view = memoryview(buf)
+        start = -ctypes.addressof(ctypes.c_char.from_buffer(view)) % PAGE
+        return view[start:start + size]
 
     def give(self, view: Any) -> None:
         """Return a buffer from :meth:`take`; anything else is ignored."""

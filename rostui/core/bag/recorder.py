@@ -149,7 +149,7 @@ class Recorder:
         self.stop = asyncio.Event()
         self._queue: queue.SimpleQueue[Any] = queue.SimpleQueue()
         self._pool = BufferPool()
-        self._held: list[Any] = []  # pooled buffers the writer's open chunk may still refer to
+        self._held: list[Any] = []  # pooled buffers the writer's open chunk or its file may still refer to
         self._queued_bytes = 0
         self._written_bytes = 0
         self._loop: asyncio.AbstractEventLoop | None = None
@@ -226,13 +226,19 @@ class Recorder:
         self._release_held()
 
     def _release_held(self) -> None:
-        """Give the pooled buffers back once the writer refers to none of them (its open chunk is empty)."""
+        """Give the pooled buffers back once the writer refers to none of them (its open chunk is empty) and
+        its file no longer writes straight from them."""
         writer = self.writer
         if self._held and (writer is None or not writer.buffered):
             give = self._pool.give
-            for buf in self._held:
-                give(buf)
-            self._held = []
+            busy = writer.out.lent_in_use() if writer is not None else ()
+            kept = []
+            for view in self._held:
+                if id(view.obj) in busy:
+                    kept.append(view)
+                else:
+                    give(view)
+            self._held = kept
 
     def _limit_reached(self) -> None:
         if self.opts.split:

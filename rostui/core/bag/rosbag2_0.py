@@ -25,6 +25,9 @@ FILE_HEADER_LENGTH = 4096
 OP_MSG_DATA, OP_FILE_HEADER, OP_INDEX_DATA, OP_CHUNK, OP_CHUNK_INFO, OP_CONNECTION = 2, 3, 4, 5, 6, 7
 COMPRESSIONS = ("none", "bz2", "lz4")
 _U32 = struct.Struct("<I")
+PAD_FIELD = "pad"
+"""A chunk header field of spaces that puts the chunk's big message on a block boundary, so the recorder's
+direct writes take it without a copy (see :mod:`rostui.core.bag.sink`)."""
 _TIME = struct.Struct("<II")
 
 
@@ -153,6 +156,8 @@ class BagWriter:
 
     def write(self, conn_id: int, time_ns: int, data: Any) -> None:
         """Append one message; closes the chunk when it is full or old."""
+        if self._chunk.size and self.out.takes_in_place(data):
+            self.flush()  # a chunk's padding can line up only its first big message
         chunk = self._chunk
         if not chunk.size:
             self._chunk_started = time.monotonic()
@@ -186,9 +191,13 @@ class BagWriter:
             packed = _compress(self.compression, b"".join(self._chunk.buffers()))
             body = [packed]
             stored = len(packed)
-        head = _header({"op": bytes([OP_CHUNK]), "compression": self.compression.encode(),
-                        "size": _U32.pack(plain_size)})
-        parts = [head, _U32.pack(stored), *body]
+        fields = {"op": bytes([OP_CHUNK]), "compression": self.compression.encode(), "size": _U32.pack(plain_size)}
+        parts = [_header(fields), _U32.pack(stored), *body]
+        pad = self.out.lend_padding(parts, len(_field(PAD_FIELD, b"")))
+        if pad:
+            # readers look fields up by name and skip the rest (rosbag's own file header is padded in its data)
+            fields[PAD_FIELD] = b" " * (pad - len(_field(PAD_FIELD, b"")))
+            parts[0] = _header(fields)
         counts: dict[int, int] = {}
         for conn_id, entries in self._chunk_index.items():
             counts[conn_id] = len(entries)

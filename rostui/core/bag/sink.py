@@ -197,6 +197,7 @@ class DirectAppendFile(AppendFile):
         self.base = 0  # the file offset byte 0 of the current staging buffer stands for (always block aligned)
         self._fill = 0  # bytes of the current staging buffer in use
         self._written = 0  # bytes of the current buffer (a multiple of BLOCK) the file already has or is getting
+        self._done = 0  # bytes of the buffer being appended that are already taken
         self.durable = 0
         self._direct = True
         self._synced_at = time.monotonic()
@@ -250,7 +251,7 @@ class DirectAppendFile(AppendFile):
             return super().append(buffers)
         self._reap()
         index = 0
-        self._done = 0  # bytes of buffers[index] already taken
+        self._done = 0
         try:
             while index < len(buffers):
                 data = memoryview(buffers[index]).cast("B")

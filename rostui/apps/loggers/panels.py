@@ -90,7 +90,12 @@ class LoggerTable(DataTable[Text]):
 
     def on_mount(self) -> None:
         """Two columns: logger and level."""
-        self.add_column("Logger", key="logger")
+        self._add_columns([])
+
+    def _add_columns(self, names: list[str]) -> None:
+        # The logger column is as wide as the longest name, set here rather than measured by the table: the
+        # table measures new rows only when it is next idle, and rows replaced before that kept the old width.
+        self.add_column("Logger", key="logger", width=max([len("Logger"), *map(len, names)]))
         self.add_column("Level", key="level", width=5)
 
     @property
@@ -108,7 +113,8 @@ class LoggerTable(DataTable[Text]):
             for item in items:
                 self.update_cell(item.name, "level", level_text(item.level))
             return
-        self.clear()
+        self.clear(columns=True)
+        self._add_columns(names)
         self.logger_names = names
         for item in items:
             self.add_row(Text(item.name), level_text(item.level), key=item.name)

@@ -92,7 +92,8 @@ async def feed(pilot: Pilot, talkers: Talkers, clock: SteppedClock, messages: in
     def connected() -> bool:
         app.repaint()
         stats = [app.source._watches.get(t) for t in TOPICS]
-        return all(w is not None and w.handle.get_num_connections() > 0 for w in stats)
+        # a watch exists before its subscription does: its handle is set once subscribing finished
+        return all(w is not None and w.handle is not None and w.handle.get_num_connections() > 0 for w in stats)
     await until(connected, "the monitor connected to both topics", DEADLINE)
     start = clock.now
     for k in range(messages):

@@ -19,7 +19,8 @@ from typing import Callable, Iterator, Sequence
 
 import pytest
 
-from conftest import REPO, SYSTEM_PYTHON, need_peer, stop_process, wait_until  # noqa: F401  (re-exported)
+from conftest import REPO, SYSTEM_PYTHON, need_command, need_peer, stop_process, wait_until  # noqa: F401  (re-exported)
+from debian_peers import describe
 
 PEERS = Path(__file__).resolve().parent / "peers"
 EXAMPLES = REPO / "examples"
@@ -142,7 +143,7 @@ def example(script: str, *args: str) -> list[str]:
 def run_tool(argv: Sequence[str], env: dict[str, str], timeout: float = PATIENCE,
              check: bool = True) -> subprocess.CompletedProcess[str]:
     """Run a real ROS command-line tool to completion; fail loudly if it fails."""
-    need_peer(shutil.which(argv[0]) is not None, f"{argv[0]} (Debian ros-core)")
+    need_command(argv[0])
     proc = subprocess.run(list(argv), env=env, cwd=REPO, stdin=subprocess.DEVNULL, capture_output=True,
                           text=True, timeout=timeout)
     if check and proc.returncode != 0:
@@ -174,8 +175,8 @@ def wait_for_node(env: dict[str, str], node: str, peer: Peer | None = None) -> N
 @pytest.fixture(scope="session")
 def roscpp_peer_bin(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """bench/roscpp_peer.cpp compiled against Debian's libroscpp-dev."""
-    need_peer(shutil.which("g++") is not None, "g++")
-    need_peer(Path("/usr/include/ros/ros.h").exists(), "roscpp headers (Debian libroscpp-dev)")
+    need_command("g++")
+    need_peer(Path("/usr/include/ros/ros.h").exists(), describe("/usr/include/ros/ros.h"))
     if not ROSCPP_SOURCE.exists():
         pytest.fail(f"{ROSCPP_SOURCE} does not exist")
     out = tmp_path_factory.mktemp("roscpp") / "roscpp_peer"

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import subprocess
 from pathlib import Path
 
@@ -15,7 +14,7 @@ from rostui.core.bag.model import BagError, Connection
 from rostui.core.msg import get_message_class
 
 from cli_helpers import rostui
-from conftest import need_peer
+from conftest import need_command, need_peer
 
 Pose = get_message_class("turtlesim/Pose")
 Velocity = get_message_class("turtlesim/Velocity")
@@ -150,7 +149,7 @@ def test_convert_between_mcap_and_bag_keeps_every_message(tmp_path: Path, ros_en
 
 
 def test_real_rosbag_info_reads_a_rostui_bag(tmp_path: Path, ros_env: dict[str, str]) -> None:
-    need_peer(shutil.which("rosbag") is not None, "rosbag (Debian python3-rosbag)")
+    need_command("rosbag")
     write_poses(tmp_path / "poses.bag", compression="lz4")
     theirs = subprocess.run(["rosbag", "info", str(tmp_path / "poses.bag")], capture_output=True, text=True,
                             env=ros_env, timeout=60)

@@ -16,7 +16,7 @@ import pytest
 from rostui.core.bag.files import open_reader
 
 from cli_helpers import rostui
-from conftest import REPO, need_peer, rostui_cmd, stop_process, wait_until
+from conftest import REPO, need_command, rostui_cmd, stop_process, wait_until
 from live_helpers import DEADLINE, Program, Watcher, start_headless_sim, stop_all
 
 HOME = (5.544444561004639, 5.544444561004639)
@@ -151,7 +151,7 @@ def test_the_book_bag_of_squares_records_and_replays_into_a_fresh_turtlesim(
 
 def test_rostui_bag_plays_with_real_rosbag_and_real_bags_play_with_rostui(
         ros_env: dict[str, str], real_roscore: Any, tmp_path: Path) -> None:
-    need_peer(shutil.which("rosbag") is not None, "rosbag (Debian python3-rosbag)")
+    need_command("rosbag")
     items: list = []
     ours, theirs = tmp_path / "ours.bag", tmp_path / "theirs.bag"
     topics = ["/turtle1/command_velocity", "/turtle1/pose"]

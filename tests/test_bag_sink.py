@@ -241,13 +241,12 @@ def test_real_rosbag_reads_and_plays_a_padded_bag(tmp_path: Path, monkeypatch: p
                                                   ros_env: dict[str, str], real_roscore: object) -> None:
     """A .bag whose chunks carry the padding field reads with rosbag's Python API and plays with its C++
     player, big messages and all."""
-    import shutil
     import subprocess
 
-    from conftest import need_peer
+    from conftest import need_command
     from live_helpers import Watcher, stop_all
 
-    need_peer(shutil.which("rosbag") is not None, "rosbag (Debian python3-rosbag)")
+    need_command("rosbag")
     path = tmp_path / "padded.bag"
     sent = _lend_bag(path, monkeypatch, count=12)
     assert b"pad=" in path.read_bytes()

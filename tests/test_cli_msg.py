@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from cli_helpers import rostui
-from conftest import REPO, SYSTEM_PYTHON, need_peer
+from conftest import REPO, SYSTEM_PYTHON, need_command, need_peer
 
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="2">
@@ -68,7 +68,7 @@ def ws(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
 
 def real(tool: str, args: list[str], env: dict[str, str]) -> subprocess.CompletedProcess[str]:
     """Run a real ROS tool (rosmsg / rossrv)."""
-    need_peer(shutil.which(tool) is not None, f"{tool} (Debian ros-core)")
+    need_command(tool)
     return subprocess.run([tool, *args], env=env, capture_output=True, text=True, timeout=60,
                           stdin=subprocess.DEVNULL)
 

@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
 
 from cli_helpers import rostui
-from conftest import need_peer
+from conftest import need_command, need_peer
+from debian_peers import describe
 
 ROSBASH = Path("/usr/share/bash-completion/completions/rosbash")
 
@@ -45,12 +45,12 @@ def ws(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
 
 
 def rospack(args: list[str], env: dict[str, str]) -> subprocess.CompletedProcess[str]:
-    need_peer(shutil.which("rospack") is not None, "rospack (Debian rospack-tools)")
+    need_command("rospack")
     return subprocess.run(["rospack", *args], env=env, capture_output=True, text=True, timeout=60)
 
 
 def rosls(arg: str, env: dict[str, str]) -> subprocess.CompletedProcess[str]:
-    need_peer(ROSBASH.exists(), "rosls (Debian rosbash)")
+    need_peer(ROSBASH.exists(), describe(str(ROSBASH)))
     return subprocess.run(["bash", "-c", f'source {ROSBASH}; rosls "$1"', "rosls", arg], env=env,
                           capture_output=True, text=True, timeout=60)
 

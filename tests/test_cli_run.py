@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -11,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from cli_helpers import rostui
-from conftest import REPO, need_peer
+from conftest import REPO, need_command
 
 PACKAGE_XML = '<?xml version="1.0"?>\n<package format="2"><name>{name}</name><version>0.0.1</version>' \
               '<description>t</description><maintainer email="t@example.com">t</maintainer>' \
@@ -46,7 +45,7 @@ def ws(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
 
 
 def rosrun(args: list[str], env: dict[str, str], input: str | None = None) -> subprocess.CompletedProcess[str]:
-    need_peer(shutil.which("rosrun") is not None, "rosrun (Debian rosbash)")
+    need_command("rosrun")
     return subprocess.run(["rosrun", *args], env=env, capture_output=True, text=True, timeout=60, input=input,
                           stdin=None if input is not None else subprocess.DEVNULL)
 

@@ -9,7 +9,6 @@ publishes.
 from __future__ import annotations
 
 import re
-import shutil
 import sys
 import time
 from typing import Iterator
@@ -17,7 +16,7 @@ from typing import Iterator
 import pytest
 
 from cli_helpers import normalize, rostui
-from conftest import need_peer
+from conftest import need_command
 from interop_helpers import Peer, Spawn, example, rospy_peer, rostui_peer, run_tool, spawn, wait_for_node, wait_until  # noqa: F401
 
 RATE_LINE = re.compile(r"average rate: (\d+\.\d{3})")
@@ -29,7 +28,7 @@ def rostui_argv(*args: str) -> list[str]:
 
 
 def need_rostopic() -> None:
-    need_peer(shutil.which("rostopic") is not None, "rostopic (Debian ros-core)")
+    need_command("rostopic")
 
 
 @pytest.fixture

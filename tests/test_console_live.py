@@ -8,7 +8,6 @@ ROS_HOME on a free port.
 from __future__ import annotations
 
 import asyncio
-import shutil
 import subprocess
 from pathlib import Path
 from typing import Any
@@ -21,7 +20,7 @@ from rostui.apps.console.model import ConsoleOptions
 from rostui.core.node.node import AsyncNode
 
 from conftest import (
-    SYSTEM_PYTHON, have_rospy, master_port, need_peer, rostui_cmd, stop_process, until, wait_for_port,
+    SYSTEM_PYTHON, have_rospy, master_port, need_command, need_peer, rostui_cmd, stop_process, until, wait_for_port,
 )
 from console_helpers import DEADLINE, log_until_seen
 
@@ -96,7 +95,7 @@ def start_master(kind: str, env: dict[str, str]) -> subprocess.Popen:
 def test_master_going_away_and_coming_back(kind: str, ros_env: dict[str, str]) -> None:
     """The master stops: the app says so and keeps running; a new master starts: messages flow again."""
     if kind == "roscore":
-        need_peer(shutil.which("roscore") is not None, "roscore (Debian ros-core)")
+        need_command("roscore")
     masters = [start_master(kind, ros_env)]
 
     async def talker_seen(app: ConsoleApp, text: str) -> None:

@@ -5,7 +5,6 @@ Requires Debian's ros-core (fails instead of skipping when ROSTUI_REQUIRE_INTERO
 
 from __future__ import annotations
 
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -13,7 +12,7 @@ from typing import Any, Iterator
 
 import pytest
 
-from conftest import REPO, free_port, need_peer, stop_process, wait_for_port
+from conftest import REPO, free_port, need_command, stop_process, wait_for_port
 from rostui.core.xmlrpc import XmlRpcFault, call_sync
 
 A = "http://127.0.0.1:1/"  # nothing listens on port 1: notifications fail fast
@@ -189,7 +188,7 @@ def _normalise(value: Any, uri: str) -> Any:
 @pytest.fixture
 def rosmaster_uri(ros_env: dict[str, str]) -> Iterator[str]:
     """A real ``rosmaster --core`` on a free port."""
-    need_peer(shutil.which("rosmaster") is not None, "rosmaster (Debian ros-core)")
+    need_command("rosmaster")
     port = free_port()
     proc = subprocess.Popen(["rosmaster", "--core", "-p", str(port)], env=ros_env,
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -223,7 +222,7 @@ def test_same_results_as_rosmaster(rosmaster_uri: str, rostui_master_uri: str) -
 
 def test_real_rosparam_and_rostopic_against_rostui(rostui_master_uri: str, ros_env: dict[str, str],
                                                    tmp_path: Path) -> None:
-    need_peer(shutil.which("rosparam") is not None, "rosparam (Debian ros-core)")
+    need_command("rosparam")
     env = dict(ros_env, ROS_MASTER_URI=rostui_master_uri)
     run = lambda *cmd: subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=30)  # noqa: E731
     assert run("rosparam", "set", "/demo/value", "42").returncode == 0

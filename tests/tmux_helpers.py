@@ -9,7 +9,6 @@ or the user's.
 from __future__ import annotations
 
 import os
-import shutil
 import subprocess
 import uuid
 from contextlib import contextmanager
@@ -17,7 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable, Iterator, Sequence, TypeVar
 
-from conftest import need_peer, wait_until
+from conftest import need_command, wait_until
 
 DEADLINE = 30.0
 """Seconds a tmux command or a wait for the screen may take (generous: CI machines are slow)."""
@@ -105,7 +104,7 @@ def shell_pane(session: str, width: int, height: int, kind: type[PaneT] = Pane) 
 
     Fails (or skips, unless interop is required) when tmux is not installed.
     """
-    need_peer(shutil.which("tmux") is not None, "tmux")
+    need_command("tmux")
     pane = kind.start(session, width, height, [PLAIN_SHELL])
     try:
         yield pane

@@ -58,6 +58,11 @@ FAST: dict[tuple[str, str], tuple[int, Callable[[Sequence[str]], int]]] = {
 def main() -> None:
     """Console-script entry point."""
     argv = sys.argv[1:]
+    if argv == ["--version"]:
+        from rostui import __version__
+
+        print(f"rostui {__version__}")
+        raise SystemExit(0)
     entry = FAST.get(tuple(argv[:2]))  # type: ignore[arg-type]
     rest = argv[2:]
     if entry is not None and len(rest) == entry[0] and not any(a.startswith("-") for a in rest):

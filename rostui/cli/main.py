@@ -25,8 +25,19 @@ app = typer.Typer(
 )
 
 
+def _print_version(value: bool) -> None:
+    if value:
+        from rostui import __version__
+
+        typer.echo(f"rostui {__version__}")
+        raise typer.Exit()
+
+
 @app.callback()
-def root() -> None:
+def root(
+    version: bool = typer.Option(False, "--version", callback=_print_version, is_eager=True,
+                                 help="Print rostui's version and exit."),
+) -> None:
     """rostui: roscore, rostopic, rosnode, rosservice, rosparam and friends, in one terminal tool."""
 
 

@@ -14,7 +14,6 @@ from __future__ import annotations
 import os
 import re
 import shlex
-import shutil
 import subprocess
 import sys
 import time
@@ -26,7 +25,7 @@ import psutil
 import pytest
 
 from cli_helpers import rostui
-from conftest import need_peer, wait_until
+from conftest import need_command, wait_until
 
 DEADLINE = 60.0
 """Seconds a wait for the screen may take (generous: the book tests share the machine with others)."""
@@ -141,7 +140,7 @@ class Desk:
     """A private tmux server with one session whose windows are the reader's terminals."""
 
     def __init__(self, env: dict[str, str], tmp: Path, width: int = 100, height: int = 30) -> None:
-        need_peer(shutil.which("tmux") is not None, "tmux")
+        need_command("tmux")
         self.env = self._terminal_env(env, tmp)
         self.socket = f"rostui-book-{os.getpid()}-{uuid.uuid4().hex[:8]}"
         self.session = "book"

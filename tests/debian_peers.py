@@ -1,0 +1,78 @@
+"""What the tests take from Debian: each program, file and system-Python module a test uses as a
+real peer, and the Debian package that installs it.
+
+``.ci/run`` installs the packages listed in ``.ci/debian-packages``; ``test_ci_peers.py`` checks
+that every package named here is in that list, that every program, ``/usr`` file and module the
+tests name is here, and (where the package is installed) that ``dpkg -S`` agrees with this table.
+"""
+
+from __future__ import annotations
+
+#: Programs a test runs or looks up on PATH, and the package that installs each.
+COMMANDS: dict[str, str] = {
+    "roscore": "python3-roslaunch",
+    "roslaunch": "python3-roslaunch",
+    "rosmaster": "python3-rosmaster",
+    "rostopic": "python3-rostopic",
+    "rosnode": "python3-rosnode",
+    "rosservice": "python3-rosservice",
+    "rosparam": "python3-rosparam",
+    "rosbag": "python3-rosbag",
+    "rosmsg": "python3-rosmsg",
+    "rossrv": "python3-rosmsg",
+    "roswtf": "python3-roswtf",
+    "rosrun": "rosbash",
+    "rospack": "rospack-tools",
+    "g++": "g++",
+    "tmux": "tmux",
+    "ssh": "openssh-client",
+    "ssh-keygen": "openssh-client",
+}
+
+#: Files a test reads or runs by absolute path, and the package that installs each.
+FILES: dict[str, str] = {
+    "/usr/share/bash-completion/completions/rosbash": "rosbash",
+    "/usr/include/ros/ros.h": "libroscpp-dev",
+    "/usr/lib/genpy/genmsg_py.py": "python3-genpy",
+    "/usr/lib/genpy/gensrv_py.py": "python3-genpy",
+    "/usr/sbin/sshd": "openssh-server",
+}
+
+#: Top-level modules a test imports under the system Python (/usr/bin/python3), and their packages.
+MODULES: dict[str, str] = {
+    "rospy": "python3-rospy",
+    "rosbag": "python3-rosbag",
+    "roslz4": "python3-roslz4",
+    "rosgraph": "python3-rosgraph",
+    "rostopic": "python3-rostopic",
+    "roslaunch": "python3-roslaunch",
+    "genpy": "python3-genpy",
+    "genmsg": "python3-genmsg",
+    "std_msgs": "python3-std-msgs",
+    "std_srvs": "python3-std-srvs",
+    "geometry_msgs": "python3-geometry-msgs",
+    "sensor_msgs": "python3-sensor-msgs",
+    "rosgraph_msgs": "python3-rosgraph-msgs",
+    "roscpp": "python3-roscpp-msg",
+}
+
+#: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.
+BASE_COMMANDS: frozenset[str] = frozenset({
+    "bash", "sh", "du", "stty", "dpkg", "env", "kill", "ps", "pgrep", "python3", "git", "cat", "true", "sleep",
+})
+BASE_FILES: frozenset[str] = frozenset({"/usr/bin/python3", "/bin/sh"})
+
+#: Modules the tests generate themselves (with genpy, from rostui's own .msg files) before importing.
+GENERATED_MODULES: frozenset[str] = frozenset({"turtlesim"})
+
+#: Programs a test looks for but passes without, checking the behaviour either way (named, so the
+#: scan knows they are not forgotten): xterm is a launch-prefix whose absence roslaunch reports too.
+OPTIONAL_COMMANDS: frozenset[str] = frozenset({"xterm"})
+
+
+def describe(name: str) -> str:
+    """``name (Debian package)`` for a program, file or module in the tables above."""
+    for table in (COMMANDS, FILES, MODULES):
+        if name in table:
+            return f"{name} (Debian {table[name]})"
+    raise KeyError(f"{name} is not in tests/debian_peers.py: add it and its Debian package")

@@ -45,10 +45,10 @@ REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
 from rostui.apps.graph.canvas import draw, layout_view  # noqa: E402
-from rostui.core.graph.dot import to_dot  # noqa: E402
-from rostui.core.graph.model import RosGraph  # noqa: E402
-from rostui.core.graph.search import fuzzy_rank  # noqa: E402
-from rostui.core.graph.view import FilterError, GraphOptions, ViewMode, build_view  # noqa: E402
+from rostui.models.graph.dot import to_dot  # noqa: E402
+from rostui.models.graph.model import RosGraph  # noqa: E402
+from rostui.models.graph.search import fuzzy_rank  # noqa: E402
+from rostui.models.graph.view import FilterError, GraphOptions, ViewMode, build_view  # noqa: E402
 
 NODES, TOPICS, ROBOTS = 1000, 2000, 20
 STAGES = ("driver", "perception", "planning", "control")

@@ -14,12 +14,12 @@ import asyncio
 from pathlib import Path
 from typing import Any, Awaitable, Callable
 
-from rostui.apps.graph.app import GraphApp
-from rostui.core.graph.model import RosGraph
-from rostui.core.xmlrpc import call_sync, ros_result
-
 from conftest import until
 from live_helpers import Program, start_headless_sim, wait_until
+
+from rostui.apps.graph.app import GraphApp
+from rostui.core.xmlrpc import call_sync, ros_result
+from rostui.models.graph.model import RosGraph
 
 #: (publisher, topic, subscriber or None) of the book's turtlesim graph.
 BOOK_EDGES = (

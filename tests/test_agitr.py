@@ -15,13 +15,10 @@ from pathlib import Path
 from typing import Any, Iterator
 
 import pytest
+from live_helpers import Program, Watcher, log_lines, log_stamps, start_headless_sim, stop_all, wait_until
 
 from rostui.core import packages
-from rostui.core.tools.run import resolve
-
-from live_helpers import (
-    Program, Watcher, log_lines, log_stamps, start_headless_sim, stop_all, wait_until,
-)
+from rostui.tools.run import resolve
 
 CENTRE = 5.544445
 LAUNCH_FILES = ["example.launch", "doublesim.launch", "reverse.launch", "triplesim.launch", "fast_yellow.launch"]

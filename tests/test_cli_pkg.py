@@ -8,7 +8,6 @@ import subprocess
 from pathlib import Path
 
 import pytest
-
 from cli_helpers import rostui
 from conftest import need_command, need_peer
 from debian_peers import describe
@@ -102,7 +101,7 @@ def test_ls_unknown_package(ws: dict[str, str]) -> None:
 
 
 def test_ls_json_and_columns(ws: dict[str, str]) -> None:
-    from rostui.core.tools.pkg import columns
+    from rostui.tools.pkg import columns
 
     assert json.loads(rostui(["pkg", "ls", "--json", "tpkg/msg"], ws).stdout) == \
         rostui(["pkg", "ls", "tpkg/msg"], ws).stdout.splitlines()

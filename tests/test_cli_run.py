@@ -8,7 +8,6 @@ import sys
 from pathlib import Path
 
 import pytest
-
 from cli_helpers import rostui
 from conftest import REPO, need_command
 
@@ -129,7 +128,7 @@ def test_usage_error_without_executable(ws: dict[str, str]) -> None:
 
 def test_builtin_package_scripts_use_this_python(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     from rostui.core import packages
-    from rostui.core.tools import run
+    from rostui.tools import run
 
     share = tmp_path / "share"
     write(share / "agitr" / "package.xml", PACKAGE_XML.format(name="agitr"), 0o644)
@@ -158,7 +157,7 @@ def test_builtin_package_scripts_use_this_python(tmp_path: Path, monkeypatch: py
 def test_installed_package_libexec_dir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """A package at <prefix>/share/<pkg> also runs executables from <prefix>/lib/<pkg> (catkin/Debian layout)."""
     from rostui.core import packages
-    from rostui.core.tools import run
+    from rostui.tools import run
 
     prefix = tmp_path / "usr"
     write(prefix / "share" / "ipkg" / "package.xml", PACKAGE_XML.format(name="ipkg"), 0o644)

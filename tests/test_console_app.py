@@ -14,17 +14,16 @@ from pathlib import Path
 from typing import Any, Awaitable, Callable
 
 import pytest
+from conftest import until
+from console_helpers import log_until_seen, write_sample_log
 from textual import events
 from textual.pilot import Pilot
 
 from rostui.apps.console.app import ConsoleApp
-from rostui.apps.console.model import ConsoleOptions
 from rostui.core.log import Level
 from rostui.core.log.rosout_read import RosoutEntry, read_rosout_log
 from rostui.core.node.node import AsyncNode
-
-from conftest import until
-from console_helpers import log_until_seen, write_sample_log
+from rostui.models.console.model import ConsoleOptions
 
 Scenario = Callable[[Pilot, ConsoleApp], Awaitable[None]]
 

@@ -13,16 +13,15 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from textual.pilot import Pilot
-
-from rostui.apps.console.app import ConsoleApp
-from rostui.apps.console.model import ConsoleOptions
-from rostui.core.node.node import AsyncNode
-
 from conftest import (
     SYSTEM_PYTHON, have_rospy, master_port, need_command, need_peer, rostui_cmd, stop_process, until, wait_for_port,
 )
 from console_helpers import DEADLINE, log_until_seen
+from textual.pilot import Pilot
+
+from rostui.apps.console.app import ConsoleApp
+from rostui.core.node.node import AsyncNode
+from rostui.models.console.model import ConsoleOptions
 
 ROSPY_LOGGER = r'''
 import rospy

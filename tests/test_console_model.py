@@ -10,9 +10,9 @@ import random
 
 import pytest
 
-from rostui.apps.console.filters import ALL_LEVELS, FilterError, FilterSpec, HighlightRule, compile_filter
-from rostui.apps.console.model import ConsoleModel
 from rostui.core.log.rosout_read import RosoutEntry
+from rostui.models.console.filters import ALL_LEVELS, FilterError, FilterSpec, HighlightRule, compile_filter
+from rostui.models.console.model import ConsoleModel
 
 NODES = ["/talker", "/listener", "/ns/cam", "/rosout"]
 LEVELS = [1, 2, 2, 2, 4, 8, 16]

@@ -14,15 +14,14 @@ import time
 from pathlib import Path
 
 import pytest
+from console_helpers import T0, write_sample_log
 from textual.pilot import Pilot
+from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
 
 from rostui.apps.console.app import ConsoleApp
 from rostui.apps.console.columns import clock_text
-from rostui.apps.console.model import ConsoleOptions
 from rostui.core.log.rosout_read import RosoutEntry, read_rosout_log
-
-from console_helpers import T0, write_sample_log
-from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
+from rostui.models.console.model import ConsoleOptions
 
 
 @pytest.fixture(autouse=True)

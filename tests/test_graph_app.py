@@ -13,17 +13,16 @@ from pathlib import Path
 from typing import Any, Iterator
 
 import pytest
-from textual.pilot import Pilot
-
-from rostui.apps.graph.app import GraphApp
-from rostui.core.graph.live import Mark
-from rostui.core.graph.view import GraphOptions, ViewMode, book_setup
-
 from conftest import master_port, start_rostui_core, stop_process, until
 from graph_helpers import (
     banner, book_system, details, has_edges, run_graph, screen_text, settled, shown_names, status, stop_programs,
 )
 from live_helpers import Program, wait_until
+from textual.pilot import Pilot
+
+from rostui.apps.graph.app import GraphApp
+from rostui.models.graph.live import Mark
+from rostui.models.graph.view import GraphOptions, ViewMode, book_setup
 
 FIGURE_2_4 = {"/teleop_turtle", "/turtlesim", "/turtle1/command_velocity", "/turtle1/cmd_vel", "/turtle1/pose",
               "/turtle1/color_sensor"}

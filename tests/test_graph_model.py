@@ -13,12 +13,12 @@ import re
 import pytest
 
 from rostui.apps.graph.canvas import draw, layout_view
-from rostui.core.graph.dot import to_dot
-from rostui.core.graph.layout import layered_layout
-from rostui.core.graph.live import LiveGraph, Mark
-from rostui.core.graph.model import RosGraph
-from rostui.core.graph.search import fuzzy_rank
-from rostui.core.graph.view import (
+from rostui.models.graph.dot import to_dot
+from rostui.models.graph.layout import layered_layout
+from rostui.models.graph.live import LiveGraph, Mark
+from rostui.models.graph.model import RosGraph
+from rostui.models.graph.search import fuzzy_rank
+from rostui.models.graph.view import (
     FilterError, GraphOptions, Kind, ViewMode, book_setup, build_view, focus_view, is_debug_node,
 )
 

@@ -15,15 +15,14 @@ from pathlib import Path
 from typing import Any, Iterator
 
 import pytest
-from textual.pilot import Pilot
-
-from rostui.apps.graph.app import GraphApp
-from rostui.core.graph.view import GraphOptions, ViewMode, book_setup
-
 from conftest import until
 from graph_helpers import book_system, settled, stop_programs
 from live_helpers import Program
+from textual.pilot import Pilot
 from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
+
+from rostui.apps.graph.app import GraphApp
+from rostui.models.graph.view import GraphOptions, ViewMode, book_setup
 
 SIZE = (110, 16)
 

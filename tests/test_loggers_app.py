@@ -17,19 +17,18 @@ from pathlib import Path
 from typing import Any, Iterator
 
 import pytest
+from conftest import start_rostui_core, stop_process
+from live_helpers import Program
+from loggers_helpers import (
+    listed_nodes, marked_level, notice, quick_app, run_app, select_logger, select_node, shown_levels, until,
+)
 from textual.pilot import Pilot
 
 from rostui.apps.loggers.app import LoggersApp
 from rostui.apps.loggers.panels import LevelList, LoggerTable, NodeList
 from rostui.core.log import Level
 from rostui.core.node import AsyncNode
-from rostui.core.tools.loggers import LEVEL_NAMES
-
-from conftest import start_rostui_core, stop_process
-from live_helpers import Program
-from loggers_helpers import (
-    listed_nodes, marked_level, notice, quick_app, run_app, select_logger, select_node, shown_levels, until,
-)
+from rostui.models.loggers import LEVEL_NAMES
 
 
 async def package_node(name: str, *extra_loggers: tuple[str, str]) -> AsyncNode:

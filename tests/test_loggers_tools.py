@@ -1,12 +1,12 @@
-"""The pure parts of rostui.core.tools.loggers: level spelling, finding logger nodes, the preferred logger."""
+"""The pure parts of rostui.models.loggers: level spelling, finding logger nodes, the preferred logger."""
 
 from __future__ import annotations
 
 import pytest
 
-from rostui.core.tools.loggers import (
-    LEVEL_NAMES, LoggerLevel, LoggerNode, display_level, format_loggers, logger_nodes, preferred_logger,
-    request_level, resolve_node_name,
+from rostui.models.loggers import (
+    LEVEL_NAMES, LoggerLevel, LoggerNode, display_level, format_loggers, logger_nodes, preferred_logger, request_level,
+    resolve_node_name,
 )
 
 ROSPY = ["rosgraph", "rosgraph.network", "rosout", "rospy", "rospy.core", "rospy.topics", "xmlrpc"]

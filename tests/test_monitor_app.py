@@ -16,17 +16,16 @@ from pathlib import Path
 from typing import Any, Awaitable, Callable
 
 import pytest
+from cli_helpers import rostui
+from conftest import rostui_cmd, start_rostui_core, stop_process, until
+from live_helpers import Watcher
+from monitor_helpers import ManyTopics, Publisher, master_subscriptions, start_publishers, stop_all
 from textual.pilot import Pilot
 from textual.widgets import Input, Static, TextArea
 
 from rostui.apps.monitor.app import MonitorApp
 from rostui.apps.monitor.editor import PublishEditor
-from rostui.core.monitor.rows import Column, Liveness, TopicRow
-
-from cli_helpers import rostui
-from conftest import rostui_cmd, start_rostui_core, stop_process, until
-from live_helpers import Watcher
-from monitor_helpers import ManyTopics, Publisher, master_subscriptions, start_publishers, stop_all
+from rostui.models.monitor.rows import Column, Liveness, TopicRow
 
 Scenario = Callable[[Pilot, MonitorApp], Awaitable[None]]
 DEADLINE = 30.0
@@ -319,6 +318,6 @@ def test_command_line_does_not_import_textual(ros_env: dict[str, str]) -> None:
     """Registering `rostui monitor` keeps `rostui topic list` and friends free of Textual."""
     code = ("import sys, rostui.cli.main; "
             "print(sorted({m.split('.')[0] for m in sys.modules} & {'textual'}), "
-            "'rostui.core.monitor' in sys.modules)")
+            "'rostui.models.monitor' in sys.modules)")
     result = subprocess.run([sys.executable, "-c", code], env=ros_env, capture_output=True, text=True, timeout=60)
     assert result.stdout.strip() == "[] False", result

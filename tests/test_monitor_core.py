@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import pytest
 
-from rostui.core.monitor.publish import PublishError, check_topic, message_from_text, message_template, parse_rate
-from rostui.core.monitor.rows import (
+from rostui.core.msg import get_message_class
+from rostui.models.monitor.publish import PublishError, check_topic, message_from_text, message_template, parse_rate
+from rostui.models.monitor.rows import (
     Column, Liveness, TopicRow, age_text, bandwidth_text, filter_rows, rate_text, sort_rows,
 )
-from rostui.core.monitor.stats import STALE_MIN_SECONDS, TopicStats
-from rostui.core.monitor.tree import ARRAY_SHOWN, PathError, constant_names, message_tree, value_at
-from rostui.core.msg import get_message_class
-from rostui.core.tools.topic import HzStats
+from rostui.models.monitor.stats import STALE_MIN_SECONDS, TopicStats
+from rostui.models.monitor.tree import ARRAY_SHOWN, PathError, constant_names, message_tree, value_at
+from rostui.tools.topic.rates import HzStats
 
 
 def rows() -> list[TopicRow]:

@@ -11,9 +11,9 @@ from typing import Any, Iterator
 import pytest
 import yaml
 
-from rostui.core.tools.param_quick import simple_value_text
 from rostui.core.xmlrpc import XmlRpcConnectionError, XmlRpcFault, XmlRpcProtocolError, call_sync
 from rostui.core.xmlrpc.quick import quick_call
+from rostui.tools.param_quick import simple_value_text
 
 ANSWERS: list[Any] = [
     [1, "ok", "bf238e12-e67f-11f1-aca0-02fc00000001"], [1, "", True], [-1, "Parameter [/x] is not set", 0],

@@ -48,7 +48,7 @@ def complete_executables(ctx: typer.Context, incomplete: str) -> List[str]:
 
 def _types(kind: str, incomplete: str) -> List[str]:
     try:
-        from rostui.core.tools.msgtypes import list_types
+        from rostui.tools.msgtypes import list_types
 
         return _starting(list_types(kind), incomplete)
     except Exception:  # noqa: BLE001

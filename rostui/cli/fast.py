@@ -2,7 +2,7 @@
 
 Scripts call `rostui topic list` or `rostui param get NAME` in loops; loading
 Typer costs more than the query itself.  Exactly these plain forms (no
-options) run here, through the same ``rostui.core.tools`` functions the Typer
+options) run here, through the same ``rostui.tools`` functions the Typer
 commands use; anything else, including ``--help``, goes to the full CLI.
 """
 
@@ -17,20 +17,20 @@ if TYPE_CHECKING:
 
 def _topic_list(args: Sequence[str]) -> int:
     from rostui.cli.common import master_call
-    from rostui.core.tools import topic as tools
+    from rostui.tools.topic.listing import format_list, topic_list
 
-    pubs, subs = tools.topic_list(lambda method, *a: master_call("/rostopic", method, *a))
-    sys.stdout.write(tools.format_list(pubs, subs, verbose=False, publishers_only=False,
-                                      subscribers_only=False, namespace=None))
+    pubs, subs = topic_list(lambda method, *a: master_call("/rostopic", method, *a))
+    sys.stdout.write(format_list(pubs, subs, verbose=False, publishers_only=False,
+                                 subscribers_only=False, namespace=None))
     return 0
 
 
 def _param_get(args: Sequence[str]) -> int:
     """``param get NAME`` over :func:`quick_call`; PyYAML loads only for values it must format."""
     from rostui.cli.common import fail, master_uri
-    from rostui.core.tools.param_quick import script_resolve, simple_value_text
     from rostui.core.xmlrpc import RosApiError, XmlRpcConnectionError, ros_result
     from rostui.core.xmlrpc.quick import quick_call
+    from rostui.tools.param_quick import script_resolve, simple_value_text
 
     key = script_resolve(args[0])
     uri = master_uri()
@@ -42,7 +42,7 @@ def _param_get(args: Sequence[str]) -> int:
         fail(f"ERROR: Parameter [{key}] is not set")
     text = simple_value_text(value)
     if text is None:
-        from rostui.core.tools.param import format_get
+        from rostui.tools.param import format_get
 
         text = format_get(value)
     print(text)

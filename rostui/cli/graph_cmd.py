@@ -35,7 +35,7 @@ def graph_command(
     f focus, Enter details, ? all keys, q quit.
     """
     from rostui.cli.common import fail
-    from rostui.core.graph.view import FilterError, GraphOptions, ViewMode, book_setup, compile_pattern
+    from rostui.models.graph.view import FilterError, GraphOptions, ViewMode, book_setup, compile_pattern
 
     if view not in VIEWS:
         fail(f"ERROR: --view must be one of {', '.join(VIEWS)}, not {view!r}")
@@ -53,9 +53,9 @@ def graph_command(
         fail(f"ERROR: {exc}")
     if dot:
         from rostui.cli.common import master_caller
-        from rostui.core.graph.dot import to_dot
-        from rostui.core.graph.model import fetch_graph
-        from rostui.core.graph.view import build_view
+        from rostui.models.graph.dot import to_dot
+        from rostui.models.graph.model import fetch_graph
+        from rostui.models.graph.view import build_view
 
         graph = fetch_graph(master_caller(CALLER))
         shown = build_view(graph, options)

@@ -32,7 +32,7 @@ def loggers_command(
         raise typer.Exit(run_app(timeout=timeout))
     if logger is not None and level is None:
         fail(f"ERROR: rostui loggers {node} {logger}: give a LEVEL too (DEBUG, INFO, WARN, ERROR or FATAL)")
-    from rostui.core.tools import loggers as tools
+    from rostui.models import loggers as tools
 
     target = tools.resolve_node_name(node)
     try:

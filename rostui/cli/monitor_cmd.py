@@ -27,7 +27,7 @@ def monitor_command(
     """
     from rostui.cli.common import fail
     from rostui.core.names import InvalidNameError, validate_name
-    from rostui.core.tools.topic import resolve_topic
+    from rostui.tools.topic.common import resolve_topic
 
     if not period > 0:
         fail(f"ERROR: --period must be a positive number of seconds, not {period:g}")

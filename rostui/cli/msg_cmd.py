@@ -20,7 +20,7 @@ def _show(kind: str, type_name: str, raw: bool, as_json: bool) -> None:
     import sys
 
     from rostui.cli.common import fail, print_json
-    from rostui.core.tools.msgtypes import TypeLookupError, show, show_json
+    from rostui.tools.msgtypes import TypeLookupError, show, show_json
 
     try:
         if as_json:
@@ -33,7 +33,7 @@ def _show(kind: str, type_name: str, raw: bool, as_json: bool) -> None:
 
 def _list(kind: str, as_json: bool) -> None:
     from rostui.cli.common import print_json
-    from rostui.core.tools.msgtypes import list_types
+    from rostui.tools.msgtypes import list_types
 
     names = list_types(kind)  # type: ignore[arg-type]
     if as_json:
@@ -47,7 +47,7 @@ def _md5(kind: str, type_name: str) -> None:
     import sys
 
     from rostui.cli.common import fail
-    from rostui.core.tools.msgtypes import TypeLookupError, md5
+    from rostui.tools.msgtypes import TypeLookupError, md5
 
     try:
         out, notice = md5(kind, type_name)  # type: ignore[arg-type]
@@ -60,7 +60,7 @@ def _md5(kind: str, type_name: str) -> None:
 
 def _package(kind: str, package: str, single_line: bool, as_json: bool) -> None:
     from rostui.cli.common import fail
-    from rostui.core.tools.msgtypes import TypeLookupError, package_types
+    from rostui.tools.msgtypes import TypeLookupError, package_types
 
     try:
         names = package_types(kind, package)  # type: ignore[arg-type]
@@ -70,7 +70,7 @@ def _package(kind: str, package: str, single_line: bool, as_json: bool) -> None:
 
 
 def _packages(kind: str, single_line: bool, as_json: bool) -> None:
-    from rostui.core.tools.msgtypes import packages_with_types
+    from rostui.tools.msgtypes import packages_with_types
 
     _print_names(packages_with_types(kind), single_line, as_json)  # type: ignore[arg-type]
 

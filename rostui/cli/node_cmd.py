@@ -31,7 +31,7 @@ def list_command(
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """List active nodes (like `rosnode list`)."""
-    from rostui.core.tools.node import filter_namespace, format_list, lookup_uris, script_resolve, system_state
+    from rostui.tools.node import filter_namespace, format_list, lookup_uris, script_resolve, system_state
 
     call = master_caller(CALLER)
     nodes = filter_namespace(system_state(call).nodes(), script_resolve(namespace) if namespace else None)
@@ -51,7 +51,7 @@ def info_command(
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """Print a node's publications, subscriptions, services, pid and connections (like `rosnode info`)."""
-    from rostui.core.tools.node import format_info, node_info, script_resolve
+    from rostui.tools.node import format_info, node_info, script_resolve
 
     call = master_caller(CALLER)
     infos = [node_info(call, script_resolve(n), quiet=quiet) for n in nodes]
@@ -80,8 +80,8 @@ def ping_command(
     all_: bool = typer.Option(False, "-a", "--all", help="Ping all nodes once."),
 ) -> None:
     """Test connectivity to a node over XML-RPC (like `rosnode ping`)."""
-    from rostui.core.tools.node import PING_TIMEOUT, PingError, lookup_uris, ping_node, script_resolve, system_state
     from rostui.cli.common import fail
+    from rostui.tools.node import PING_TIMEOUT, PingError, lookup_uris, ping_node, script_resolve, system_state
 
     call = master_caller(CALLER)
     if all_:
@@ -140,8 +140,8 @@ def kill_command(
     all_: bool = typer.Option(False, "-a", "--all", help="Kill all nodes."),
 ) -> None:
     """Ask nodes to shut down (like `rosnode kill`)."""
-    from rostui.core.tools.node import kill_nodes, script_resolve, system_state
     from rostui.cli.common import fail
+    from rostui.tools.node import kill_nodes, script_resolve, system_state
 
     call = master_caller(CALLER)
     if all_:
@@ -150,7 +150,7 @@ def kill_command(
         targets = [script_resolve(n) for n in nodes]
     else:
         fail("ERROR: please specify the nodes to kill (or -a to kill all nodes)")
-    from rostui.core.tools.node import lookup_uris
+    from rostui.tools.node import lookup_uris
 
     uris = lookup_uris(call, targets)
     unknown = [n for n in targets if uris.get(n) is None]
@@ -173,7 +173,7 @@ def cleanup_command(
     Asks for confirmation like rosnode does; answer y or n.  If stdin ends
     without an answer (e.g. not a terminal), nothing is purged ("aborting").
     """
-    from rostui.core.tools.node import cleanup_nodes, system_state, unreachable_nodes
+    from rostui.tools.node import cleanup_nodes, system_state, unreachable_nodes
 
     call = master_caller(CALLER)
     dead = unreachable_nodes(call, system_state(call).nodes(), on_error=lambda line: _echo(line, err=True))

@@ -18,7 +18,7 @@ CALLER = "/rosparam"
 
 
 def _resolve(name: str) -> str:
-    from rostui.core.tools.param import script_resolve
+    from rostui.tools.param import script_resolve
 
     return script_resolve(name)
 
@@ -36,7 +36,7 @@ def list_command(
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """List parameter names (like `rosparam list`)."""
-    from rostui.core.tools.param import list_names
+    from rostui.tools.param import list_names
 
     ns = _resolve(namespace) if namespace else None
     found = list_names(master_caller(CALLER)("getParamNames"), ns)
@@ -70,7 +70,7 @@ def get_command(
 
         print_json(_jsonable(value, base64))
         return
-    from rostui.core.tools.param import format_get
+    from rostui.tools.param import format_get
 
     print(format_get(value))
 
@@ -95,7 +95,7 @@ def set_command(
     verbose: bool = typer.Option(False, "-v", help="Print what is set."),
 ) -> None:
     """Set a parameter; the value is YAML-typed, a dictionary merges into the namespace (like `rosparam set`)."""
-    from rostui.core.tools.param import ParamError, apply_assignments, check_marshallable, leaf_assignments, set_param
+    from rostui.tools.param import ParamError, apply_assignments, check_marshallable, leaf_assignments, set_param
 
     key = _resolve(name)
     call = master_caller(CALLER)
@@ -103,7 +103,7 @@ def set_command(
         if textfile is not None:
             if value is not None:
                 _fail(ParamError("ERROR: give either a value or -t FILE, not both"))
-            from rostui.core.tools.param import read_param_file
+            from rostui.tools.param import read_param_file
 
             text = read_param_file(textfile)
             check_marshallable(key, text)
@@ -124,7 +124,7 @@ def delete_command(
     verbose: bool = typer.Option(False, "-v", help="Print what is deleted."),
 ) -> None:
     """Delete a parameter or a whole namespace (like `rosparam delete`)."""
-    from rostui.core.tools.param import ParamError, delete_param
+    from rostui.tools.param import ParamError, delete_param
 
     key = _resolve(name)
     try:
@@ -143,8 +143,8 @@ def dump_command(
     verbose: bool = typer.Option(False, "-v", help="Print what is dumped."),
 ) -> None:
     """Write a namespace's parameters to a YAML file (like `rosparam dump`)."""
-    from rostui.core.tools.param import format_dump
     from rostui.core.xmlrpc import RosApiError
+    from rostui.tools.param import format_dump
 
     key = _resolve(namespace or "/")
     try:
@@ -178,7 +178,7 @@ def load_command(
     verbose: bool = typer.Option(False, "-v", help="Print what is loaded."),
 ) -> None:
     """Load parameters from a YAML file, merging into the namespace (like `rosparam load`)."""
-    from rostui.core.tools.param import ParamError, apply_assignments, load_text, read_param_file
+    from rostui.tools.param import ParamError, apply_assignments, load_text, read_param_file
 
     ns = _resolve(namespace or "/")
     try:

@@ -17,7 +17,7 @@ def list_cmd(as_json: bool = typer.Option(False, "--json", help=JSON_OPTION_HELP
     """List every package and its directory (like `rospack list`)."""
     from rostui.cli.common import print_json
     from rostui.core.packages import list_packages
-    from rostui.core.tools.pkg import list_lines
+    from rostui.tools.pkg import list_lines
 
     if as_json:
         print_json({name: str(path) for name, path in sorted(list_packages().items())})
@@ -30,7 +30,7 @@ def list_cmd(as_json: bool = typer.Option(False, "--json", help=JSON_OPTION_HELP
 def find_cmd(package: str = typer.Argument(..., autocompletion=complete_packages)) -> None:
     """Print the directory of a package (like `rospack find`)."""
     from rostui.cli.common import fail
-    from rostui.core.tools.pkg import PackageToolError, find
+    from rostui.tools.pkg import PackageToolError, find
 
     try:
         print(find(package))
@@ -49,7 +49,7 @@ def ls_cmd(
     import sys
 
     from rostui.cli.common import fail, print_json
-    from rostui.core.tools.pkg import PackageToolError, columns, ls_entries, ls_target
+    from rostui.tools.pkg import PackageToolError, columns, ls_entries, ls_target
 
     try:
         names = ls_entries(ls_target(path))

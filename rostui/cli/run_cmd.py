@@ -31,7 +31,7 @@ def run_command(
     """
     import sys
 
-    from rostui.core.tools.run import RunError, choose_interactively, exec_argv, resolve
+    from rostui.tools.run import RunError, choose_interactively, exec_argv, resolve
 
     args: List[str] = list(ctx.args)
     try:

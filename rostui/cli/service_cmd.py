@@ -20,13 +20,13 @@ CALLER = "/rosservice"
 
 
 def _state() -> Any:
-    from rostui.core.tools.node import system_state
+    from rostui.tools.node import system_state
 
     return system_state(master_caller(CALLER))
 
 
 def _resolve(name: str) -> str:
-    from rostui.core.tools.node import script_resolve
+    from rostui.tools.node import script_resolve
 
     return script_resolve(name)
 
@@ -44,7 +44,7 @@ def list_command(
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """List active services (like `rosservice list`)."""
-    from rostui.core.tools.service import list_services
+    from rostui.tools.service import list_services
 
     items = list_services(_state(), _resolve(namespace) if namespace else None)
     if json_out:
@@ -62,7 +62,7 @@ def info_command(
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """Print a service's node, URI, type and arguments (like `rosservice info`)."""
-    from rostui.core.tools.service import ServiceToolError, request_fields, service_node, service_uri, probe_type
+    from rostui.tools.service import ServiceToolError, probe_type, request_fields, service_node, service_uri
 
     name = _resolve(service)
     call = master_caller(CALLER)
@@ -86,7 +86,7 @@ def info_command(
 @service_app.command("node")
 def node_command(service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services)) -> None:
     """Print the node that provides a service (like `rosservice node`)."""
-    from rostui.core.tools.service import service_node
+    from rostui.tools.service import service_node
 
     name = _resolve(service)
     node = service_node(_state(), name)
@@ -100,7 +100,7 @@ def node_command(service: str = typer.Argument(..., help="Service name.", autoco
 @service_app.command("uri")
 def uri_command(service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services)) -> None:
     """Print a service's rosrpc URI (like `rosservice uri`)."""
-    from rostui.core.tools.service import service_uri
+    from rostui.tools.service import service_uri
 
     name = _resolve(service)
     uri = service_uri(master_caller(CALLER), name)
@@ -114,7 +114,7 @@ def uri_command(service: str = typer.Argument(..., help="Service name.", autocom
 @service_app.command("type")
 def type_command(service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services)) -> None:
     """Print a service's type (like `rosservice type`)."""
-    from rostui.core.tools.service import ServiceToolError, service_type
+    from rostui.tools.service import ServiceToolError, service_type
 
     name = _resolve(service)
     try:
@@ -131,7 +131,7 @@ def type_command(service: str = typer.Argument(..., help="Service name.", autoco
 @service_app.command("args")
 def args_command(service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services)) -> None:
     """Print a service's request fields (like `rosservice args`)."""
-    from rostui.core.tools.service import ServiceToolError, service_args
+    from rostui.tools.service import ServiceToolError, service_args
 
     try:
         print(" ".join(service_args(master_caller(CALLER), _resolve(service))))
@@ -146,7 +146,7 @@ def find_command(
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """List the services of a type (like `rosservice find`)."""
-    from rostui.core.tools.service import find_services
+    from rostui.tools.service import find_services
 
     found = find_services(master_caller(CALLER), _state(), type_name)
     if json_out:
@@ -170,7 +170,7 @@ def call_command(
     stdin is the request, as with rosservice (empty stdin: no call).
     """
     from rostui.core.msg.convert import message_to_yaml
-    from rostui.core.tools.service import (
+    from rostui.tools.service import (
         ServiceToolError, build_request, build_request_from_value, call_service, parse_stdin_requests,
         resolve_call_type,
     )

@@ -1,6 +1,6 @@
 """`rostui topic`: Topics: list, info, type, find, echo, hz, bw, pub (like `rostopic`).
 
-Commands parse, call :mod:`rostui.core.tools.topic` and print; everything
+Commands parse, call :mod:`rostui.tools.topic` and print; everything
 heavier than Typer is imported inside the command that needs it, so
 ``rostui topic list`` starts fast.
 """
@@ -37,7 +37,7 @@ def _call(method: str, *args: Any) -> Any:
 
 
 def _resolve(name: str) -> str:
-    from rostui.core.tools.topic import resolve_topic
+    from rostui.tools.topic.common import resolve_topic
 
     try:
         return resolve_topic(name)
@@ -60,7 +60,7 @@ def _run_async(coro: Any) -> int:
     """Run a long-running tool; one-line errors for what it reports."""
     import asyncio
 
-    from rostui.core.tools.topic import TopicToolError
+    from rostui.tools.topic.common import TopicToolError
 
     try:
         import uvloop
@@ -93,19 +93,19 @@ def list_command(
     as_json: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """List active topics (like `rostopic list`)."""
-    from rostui.core.tools import topic as tools
+    from rostui.tools.topic.listing import format_list, list_json, topic_list
 
     if publishers and subscribers:
         _fail("ERROR: you may only specify one of -p, -s")
     ns = _resolve(namespace) if namespace else None
-    pubs, subs = tools.topic_list(_call)
+    pubs, subs = topic_list(_call)
     if as_json:
         from rostui.cli.common import print_json
 
-        print_json(tools.list_json(pubs, subs, namespace=ns))
+        print_json(list_json(pubs, subs, namespace=ns))
         return
-    _out(tools.format_list(pubs, subs, verbose=verbose, publishers_only=publishers,
-                           subscribers_only=subscribers, namespace=ns))
+    _out(format_list(pubs, subs, verbose=verbose, publishers_only=publishers,
+                     subscribers_only=subscribers, namespace=ns))
 
 
 @topic_app.command("info")
@@ -114,18 +114,19 @@ def info_command(
     as_json: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """Print type, publishers and subscribers of a topic (like `rostopic info`)."""
-    from rostui.core.tools import topic as tools
+    from rostui.tools.topic.common import TopicToolError
+    from rostui.tools.topic.listing import format_info, topic_info
 
     try:
-        info = tools.topic_info(_call, _resolve(topic))
-    except tools.TopicToolError as e:
+        info = topic_info(_call, _resolve(topic))
+    except TopicToolError as e:
         _fail(f"ERROR: {e}")
     if as_json:
         from rostui.cli.common import print_json
 
         print_json(info)
         return
-    _out(tools.format_info(info) + "\n")
+    _out(format_info(info) + "\n")
 
 
 @topic_app.command("type")
@@ -134,12 +135,13 @@ def type_command(
     as_json: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """Print the message type of a topic or field (like `rostopic type`)."""
-    from rostui.core.tools import topic as tools
+    from rostui.tools.topic.common import TopicToolError
+    from rostui.tools.topic.listing import type_text
 
     name = _resolve(topic)
     try:
-        text = tools.type_text(_call, name)
-    except tools.TopicToolError as e:
+        text = type_text(_call, name)
+    except TopicToolError as e:
         _fail(str(e))
     if as_json:
         from rostui.cli.common import print_json
@@ -159,9 +161,9 @@ def find_command(
     as_json: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """List the topics of a message type (like `rostopic find`)."""
-    from rostui.core.tools import topic as tools
+    from rostui.tools.topic.listing import find_by_type
 
-    found = tools.find_by_type(_call, msg_type)
+    found = find_by_type(_call, msg_type)
     if as_json:
         from rostui.cli.common import print_json
 
@@ -185,15 +187,17 @@ def echo_command(
     """Print messages of a topic (like `rostopic echo`); waits until the topic is published."""
     if width is not None and width < 2:
         _fail("ERROR: Fixed width for numeric values must be at least 2")
-    from rostui.core.tools import topic as tools
+    from rostui.tools.topic.common import UsageError
+    from rostui.tools.topic.echo import field_evaluator
+    from rostui.tools.topic.runners import run_echo
 
     name = _resolve(topic)
     try:
-        tools.field_evaluator(name)  # malformed [index] specs are reported before connecting
-    except tools.UsageError as e:
+        field_evaluator(name)  # malformed [index] specs are reported before connecting
+    except UsageError as e:
         _fail(f"ERROR: {e}")
     _check_master()
-    raise typer.Exit(_run_async(tools.run_echo(
+    raise typer.Exit(_run_async(run_echo(
         name, _out, plot=plot, noarr=noarr, nostr=nostr, offset=offset, count=count,
         fixed_width=width, clear=clear)))
 
@@ -204,11 +208,11 @@ def hz_command(
     window: int = typer.Option(-1, "-w", "--window", metavar="WINDOW", help="Window size, in # of messages, for calculating rate."),
 ) -> None:
     """Print the publishing rate of topics every second (like `rostopic hz`)."""
-    from rostui.core.tools import topic as tools
+    from rostui.tools.topic.runners import run_hz
 
     names = [_resolve(t) for t in topics]
     _check_master()
-    raise typer.Exit(_run_async(tools.run_hz(names, window, _out)))
+    raise typer.Exit(_run_async(run_hz(names, window, _out)))
 
 
 @topic_app.command("bw")
@@ -217,11 +221,11 @@ def bw_command(
     window: Optional[int] = typer.Option(None, "-w", "--window", metavar="WINDOW", help="Window size, in # of messages, for calculating rate."),
 ) -> None:
     """Print the bandwidth used by a topic every second (like `rostopic bw`)."""
-    from rostui.core.tools import topic as tools
+    from rostui.tools.topic.runners import run_bw
 
     name = _resolve(topic)
     _check_master()
-    raise typer.Exit(_run_async(tools.run_bw(name, window, _out)))
+    raise typer.Exit(_run_async(run_bw(name, window, _out)))
 
 
 @topic_app.command("pub", context_settings={"ignore_unknown_options": True})
@@ -237,7 +241,11 @@ def pub_command(
     verbose: bool = typer.Option(False, "-v", help="Print verbose output."),
 ) -> None:
     """Publish a message to a topic (like `rostopic pub`); latched unless a rate is given."""
-    from rostui.core.tools import topic as tools
+    from rostui.tools.topic.common import TopicToolError, UsageError
+    from rostui.tools.topic.pub_args import (
+        build_message, message_class, parse_yaml_args, stdin_documents, yaml_documents_from_file,
+    )
+    from rostui.tools.topic.runners import run_pub
 
     values = list(values or [])
     if rate is not None:
@@ -248,38 +256,38 @@ def pub_command(
     if values and file:
         _fail("ERROR: args conflict with -f setting")
     try:
-        pub_args = tools.parse_yaml_args(values)
-    except tools.UsageError as e:
+        pub_args = parse_yaml_args(values)
+    except UsageError as e:
         _fail(f"ERROR: {e}")
     _check_master()
     name = _resolve(topic)
     try:
-        cls = tools.message_class(msg_type)
-    except tools.TopicToolError as e:
+        cls = message_class(msg_type)
+    except TopicToolError as e:
         _fail(f"ERROR: {e}")
     documents = None
     single = False
     if not pub_args and len(cls.__slots__):
         if file:
             try:
-                docs = tools.yaml_documents_from_file(file)
-            except tools.TopicToolError as e:
+                docs = yaml_documents_from_file(file)
+            except TopicToolError as e:
                 _fail(f"ERROR: {e}")
             single = len(docs) == 1
             documents = docs
         elif sys.stdin.isatty():
             _fail("ERROR: Please specify message values")
         else:
-            documents = tools.stdin_documents()
+            documents = stdin_documents()
         if rate is None and not latch and not once:
             rate = 10.0
     else:
         from rostui.core.rostime import Time
 
         try:
-            tools.build_message(cls, pub_args, Time.now())  # bad values: one line before advertising
-        except tools.TopicToolError as e:
+            build_message(cls, pub_args, Time.now())  # bad values: one line before advertising
+        except TopicToolError as e:
             _fail(f"ERROR: {e}")
-    raise typer.Exit(_run_async(tools.run_pub(
+    raise typer.Exit(_run_async(run_pub(
         name, cls, pub_args, _out, rate=rate, once=once, latch=latch, documents=documents,
         verbose=verbose, substitute=substitute, single_document=single)))

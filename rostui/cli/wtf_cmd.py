@@ -19,7 +19,7 @@ def wtf_command(
 
     from rostui.cli.common import print_json
     from rostui.core.log.console import color_wanted
-    from rostui.core.tools.wtf import format_finding, run_checks, summary_line
+    from rostui.tools.wtf import format_finding, run_checks, summary_line
 
     report = run_checks(timeout=timeout)
     if as_json:

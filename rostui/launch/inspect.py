@@ -110,7 +110,8 @@ def node_argv(node: NodeSpec, anons: dict[str, str], *, as_shown: bool = False) 
     as roslaunch --args prints it.  Raises :class:`LaunchError` when the
     executable cannot be found.
     """
-    from rostui.core.tools.run import RunError, resolve as resolve_executable
+    from rostui.tools.run import RunError
+    from rostui.tools.run import resolve as resolve_executable
 
     ctx = SubstitutionContext(anons=anons, filename=node.filename)
     name = resolve(node.name, ctx) or node.name

@@ -1,9 +1,9 @@
 """ConsoleApp: rqt_console in the terminal.
 
 Live, the app runs a node on Textual's loop that subscribes to /rosout_agg
-(:class:`~rostui.apps.console.source.LiveSource`); offline, it shows the
+(:class:`~rostui.models.console.source.LiveSource`); offline, it shows the
 messages of a rosout.log read before it started.  Either way messages reach
-the :class:`~rostui.apps.console.model.ConsoleModel` through :meth:`ConsoleApp.ingest`,
+the :class:`~rostui.models.console.model.ConsoleModel` through :meth:`ConsoleApp.ingest`,
 in batches on a timer, and the table repaints once per batch, never per
 message.  Filters apply to the model; the table draws only visible rows.
 """
@@ -23,15 +23,15 @@ from textual.timer import Timer
 from textual.widgets import Input, Static
 
 from rostui.apps.console.bars import KEY_HELP, Bar, StatusInfo, detail_markup, filter_markup, status_markup
-from rostui.apps.console.filters import FilterError, FilterSpec, HighlightRule, compile_text
-from rostui.apps.console.model import ConsoleModel, ConsoleOptions
-from rostui.apps.console.source import LiveSource, SourceState
 from rostui.apps.console.table import LogTable
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.log.levels import Level
 from rostui.core.log.rosout_read import RosoutEntry, RosoutLog, entries_text
 from rostui.core.network import master_uri_from_env
+from rostui.models.console.filters import FilterError, FilterSpec, HighlightRule, compile_text
+from rostui.models.console.model import ConsoleModel, ConsoleOptions
+from rostui.models.console.source import LiveSource, SourceState
 
 __all__ = ["ConsoleApp", "ConsoleOptions", "run_app"]
 

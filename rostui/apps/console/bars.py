@@ -14,11 +14,11 @@ from textual.content import Content
 from textual.widget import Widget
 
 from rostui.apps.console.columns import printable
-from rostui.apps.console.filters import FilterSpec, HighlightRule
-from rostui.apps.console.model import ConsoleModel
 from rostui.apps.console.table import HIGHLIGHT_COLOURS
 from rostui.core.log.levels import Level
 from rostui.core.log.rosout_read import RosoutEntry
+from rostui.models.console.filters import FilterSpec, HighlightRule
+from rostui.models.console.model import ConsoleModel
 
 __all__ = ["Bar", "KEY_HELP", "LEVEL_KEYS", "StatusInfo", "detail_markup", "filter_markup", "status_markup"]
 

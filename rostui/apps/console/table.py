@@ -23,8 +23,8 @@ from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
 from rostui.apps.console.columns import GAP, Layout, cell, layout_for, row_texts
-from rostui.apps.console.filters import HighlightRule, first_highlight
-from rostui.apps.console.model import ConsoleModel
+from rostui.models.console.filters import HighlightRule, first_highlight
+from rostui.models.console.model import ConsoleModel
 
 __all__ = ["HIGHLIGHT_COLOURS", "LogTable"]
 

@@ -1,8 +1,8 @@
 """GraphApp: rqt_graph in the terminal, live, with filters, search, focus and details.
 
 The app polls the master's ``getSystemState`` every ``period`` seconds,
-turns the registrations into the chosen view (:mod:`rostui.core.graph.view`),
-lays it out in a thread (:mod:`rostui.core.graph.layout`) and draws it with
+turns the registrations into the chosen view (:mod:`rostui.models.graph.view`),
+lays it out in a thread (:mod:`rostui.models.graph.layout`) and draws it with
 :class:`~rostui.apps.graph.widget.GraphView`.  A view whose vertices and edges
 did not change keeps its drawing exactly; new and vanished vertices are
 marked for a few refreshes.  When the master stops answering the last graph
@@ -27,17 +27,17 @@ from rostui.apps.graph.canvas import Canvas, draw, layout_view
 from rostui.apps.graph.widget import GraphView
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.lifecycle import ReleasesOnExit
-from rostui.core.graph.layout import Layout, LayoutHint
-from rostui.core.graph.live import KEEP_REFRESHES, LiveGraph, Mark
-from rostui.core.graph.model import RosGraph
-from rostui.core.graph.search import fuzzy_rank
-from rostui.core.graph.source import GraphSource, RateReport, SourceError
-from rostui.core.graph.view import (
+from rostui.core.network import master_uri_from_env
+from rostui.models.graph.layout import Layout, LayoutHint
+from rostui.models.graph.live import KEEP_REFRESHES, LiveGraph, Mark
+from rostui.models.graph.model import RosGraph
+from rostui.models.graph.search import fuzzy_rank
+from rostui.models.graph.source import GraphSource, RateReport, SourceError
+from rostui.models.graph.view import (
     FilterError, GraphOptions, Kind, ViewGraph, ViewMode, book_setup, build_view, focus_view, kind_of, name_of,
     namespace_of,
 )
-from rostui.core.network import master_uri_from_env
-from rostui.core.tools.node import NodeInfo
+from rostui.tools.node import NodeInfo
 
 __all__ = ["GraphApp", "run_app", "KEYS"]
 

@@ -8,8 +8,8 @@ what drew it, so the widget can colour, highlight and hit-test by cell.
 
 from __future__ import annotations
 
-from rostui.core.graph.layout import Box, Layout, LayoutHint, layered_layout
-from rostui.core.graph.view import Kind, ViewGraph
+from rostui.models.graph.layout import Box, Layout, LayoutHint, layered_layout
+from rostui.models.graph.view import Kind, ViewGraph
 
 __all__ = ["Canvas", "draw", "label_text", "box_size", "layout_view", "MAX_LABEL"]
 

@@ -19,8 +19,8 @@ from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
 from rostui.apps.graph.canvas import EMPTY, Canvas
-from rostui.core.graph.live import Mark
-from rostui.core.graph.view import Kind, kind_of
+from rostui.models.graph.live import Mark
+from rostui.models.graph.view import Kind, kind_of
 
 __all__ = ["GraphView"]
 

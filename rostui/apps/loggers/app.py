@@ -31,7 +31,7 @@ from textual.worker import Worker
 from rostui.apps.loggers.panels import LevelList, LoggerTable, NodeList, Notice
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
-from rostui.core.tools.loggers import (
+from rostui.models.loggers import (
     DEFAULT_TIMEOUT, LoggerLevel, LoggerLevels, LoggerNode, LoggerToolError, MasterGoneError, NodeGoneError,
     preferred_logger,
 )

@@ -13,7 +13,7 @@ from rich.text import Text
 from textual.widgets import DataTable, OptionList, Static
 from textual.widgets.option_list import Option
 
-from rostui.core.tools.loggers import LEVEL_NAMES, LoggerLevel, LoggerNode
+from rostui.models.loggers import LEVEL_NAMES, LoggerLevel, LoggerNode
 
 #: How each level is coloured in the logger table and the level list (rqt_console's hues).
 LEVEL_STYLES = {

@@ -1,6 +1,6 @@
 """MonitorApp: every topic live in one table, expanded topics as message trees, sparklines, publishing.
 
-A :class:`~rostui.core.monitor.source.MonitorSource` runs on Textual's loop:
+A :class:`~rostui.models.monitor.source.MonitorSource` runs on Textual's loop:
 it polls the master and subscribes only to the topics whose rows are on
 screen (plus the expanded and plotted ones).  A timer repaints the table,
 the trees and the charts a few times a second; a second timer samples rates
@@ -26,13 +26,13 @@ from rostui.apps.monitor.editor import PublishEditor
 from rostui.apps.monitor.table import TopicTable
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
-from rostui.core.monitor.publish import (
+from rostui.core.network import master_uri_from_env
+from rostui.models.monitor.publish import (
     PublishError, Repeater, check_topic, message_from_text, message_template, parse_rate,
 )
-from rostui.core.monitor.rows import Column, Liveness, TopicRow, filter_rows, sort_rows
-from rostui.core.monitor.source import MonitorSource, SourceState
-from rostui.core.monitor.tree import PathError, message_tree, value_at
-from rostui.core.network import master_uri_from_env
+from rostui.models.monitor.rows import Column, Liveness, TopicRow, filter_rows, sort_rows
+from rostui.models.monitor.source import MonitorSource, SourceState
+from rostui.models.monitor.tree import PathError, message_tree, value_at
 
 __all__ = ["MonitorApp", "run_app", "KEYS"]
 

@@ -6,14 +6,14 @@ from typing import Iterable, Sequence
 
 from rich.text import Text
 from textual.app import ComposeResult
-from textual.markup import escape
 from textual.containers import Vertical
+from textual.markup import escape
 from textual.widgets import Static, Tree
 from textual.widgets.tree import TreeNode
 
-from rostui.core.monitor.rows import bandwidth_text, rate_text
-from rostui.core.monitor.source import FieldPlot
-from rostui.core.monitor.tree import FieldItem
+from rostui.models.monitor.rows import bandwidth_text, rate_text
+from rostui.models.monitor.source import FieldPlot
+from rostui.models.monitor.tree import FieldItem
 
 __all__ = ["MessageTree", "Charts", "TopicKey", "Line"]
 

@@ -16,7 +16,7 @@ from textual.markup import escape
 from textual.screen import ModalScreen
 from textual.widgets import Input, Label, Static, TextArea
 
-from rostui.core.monitor.publish import PublishError, message_template
+from rostui.models.monitor.publish import PublishError, message_template
 
 __all__ = ["PublishEditor", "EDITOR_KEYS"]
 

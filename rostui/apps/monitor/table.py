@@ -19,7 +19,7 @@ from textual.message import Message
 from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
-from rostui.core.monitor.rows import COLUMNS, Liveness, TopicRow
+from rostui.models.monitor.rows import COLUMNS, Liveness, TopicRow
 
 __all__ = ["TopicTable"]
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field, replace
 from enum import Enum
 from typing import Iterable, Mapping
 
-from rostui.core.graph.model import RosGraph
+from rostui.models.graph.model import RosGraph
 
 __all__ = [
     "Kind", "ViewMode", "Vertex", "ViewGraph", "GraphOptions", "FilterError", "book_setup",

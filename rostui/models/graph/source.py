@@ -2,7 +2,7 @@
 
 All of it is async and never blocks the caller's loop: master polls go
 through an :class:`~rostui.core.xmlrpc.XmlRpcClient`, ``node info`` reuses
-:func:`rostui.core.tools.node.node_info` in a thread, and a rate is measured
+:func:`rostui.tools.node.node_info` in a thread, and a rate is measured
 by a short-lived anonymous node (``/rostui_graph_<pid>_<ms>``) that
 subscribes, counts arrivals with rostopic hz's statistics and leaves.
 """
@@ -14,8 +14,8 @@ import time
 from dataclasses import dataclass
 from typing import Any
 
-from rostui.core.graph.model import RosGraph
-from rostui.core.tools.node import NodeInfo
+from rostui.models.graph.model import RosGraph
+from rostui.tools.node import NodeInfo
 
 __all__ = ["GraphSource", "SourceError", "RateReport", "CALLER_ID", "NODE_NAME"]
 
@@ -78,8 +78,8 @@ class GraphSource:
 
     async def node_info(self, node: str) -> NodeInfo:
         """``rosnode info`` data for ``node`` (its ``error`` says when the node or master cannot be reached)."""
-        from rostui.core.tools.node import node_info
         from rostui.core.xmlrpc import XmlRpcError, call_sync, ros_result
+        from rostui.tools.node import node_info
 
         def call(method: str, *args: Any) -> Any:
             return ros_result(call_sync(self.master_uri, method, CALLER_ID, *args, timeout=CALL_TIMEOUT))
@@ -92,7 +92,7 @@ class GraphSource:
     async def measure_rate(self, topic: str, seconds: float = 3.0) -> RateReport:
         """Subscribe to ``topic`` for ``seconds`` and report its rate (SourceError when that cannot be done)."""
         from rostui.core.node import AnyMsg, AsyncNode
-        from rostui.core.tools.topic import HzStats
+        from rostui.tools.topic.rates import HzStats
 
         stats = HzStats()
         node = AsyncNode(NODE_NAME, anonymous=True, argv=[], master_uri=self.master_uri)

@@ -1,7 +1,7 @@
 """The monitor's table as data: one row per topic, its columns as text, sorting and filtering.
 
 A row joins what the master says (type, publishers, subscribers) with what
-the monitor measured (:class:`~rostui.core.monitor.stats.Sample`) and the
+the monitor measured (:class:`~rostui.models.monitor.stats.Sample`) and the
 topic's liveness (:class:`Liveness`).
 """
 
@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from enum import Enum
 from typing import Iterable, Sequence
 
-from rostui.core.tools.topic import bandwidth_unit
+from rostui.tools.topic.rates import bandwidth_unit
 
 __all__ = ["Liveness", "TopicRow", "Column", "COLUMNS", "sort_rows", "filter_rows", "rate_text",
            "bandwidth_text", "age_text"]

@@ -8,7 +8,7 @@ prints the same text.
 
 from __future__ import annotations
 
-from rostui.core.graph.view import Kind, ViewGraph
+from rostui.models.graph.view import Kind, ViewGraph
 
 __all__ = ["to_dot"]
 

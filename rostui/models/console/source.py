@@ -16,9 +16,9 @@ import sys
 from typing import Any, Callable
 
 from rostui.core.log.rosout_read import RosoutEntry
-from rostui.core.master_link import SourceState
 from rostui.core.msg import get_message_class
 from rostui.core.node.node import AsyncNode
+from rostui.models.master_link import SourceState
 
 __all__ = ["LiveSource", "SourceState", "entry_from_message"]
 

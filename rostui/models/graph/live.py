@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from enum import Enum
 
-from rostui.core.graph.model import RosGraph
-from rostui.core.graph.view import node_id, topic_id
+from rostui.models.graph.model import RosGraph
+from rostui.models.graph.view import node_id, topic_id
 
 __all__ = ["Mark", "LiveGraph", "KEEP_REFRESHES"]
 

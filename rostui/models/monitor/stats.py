@@ -1,9 +1,9 @@
 """Rate, bandwidth and age of one topic's messages, with a short history for sparklines.
 
-The rate is :meth:`rostui.core.tools.topic.HzStats.rate` over the arrivals
+The rate is :meth:`rostui.tools.topic.rates.HzStats.rate` over the arrivals
 of the last :data:`RATE_WINDOW_SECONDS` (rostopic hz's own computation, so
 the monitor agrees with ``rostui topic hz``); the bandwidth is
-:class:`~rostui.core.tools.topic.BwStats` (rostopic bw's).  Recording a
+:class:`~rostui.tools.topic.rates.BwStats` (rostopic bw's).  Recording a
 message is one clock read and two deque appends; statistics are computed
 once per :meth:`TopicStats.sample`.
 """
@@ -14,7 +14,7 @@ import time
 from collections import deque
 from dataclasses import dataclass
 
-from rostui.core.tools.topic import BwStats, HzStats
+from rostui.tools.topic.rates import BwStats, HzStats
 
 __all__ = ["TopicStats", "Sample", "RATE_WINDOW_SECONDS", "HISTORY", "STALE_MIN_SECONDS", "STALE_PERIODS"]
 

@@ -57,7 +57,7 @@ class RosGraph:
 
     @cached_property
     def vertex_cache(self) -> dict[str, Any]:
-        """Vertex objects of this graph's views, by id (filled by :func:`rostui.core.graph.view.build_view`)."""
+        """Vertex objects of this graph's views, by id (filled by :func:`rostui.models.graph.view.build_view`)."""
         return {}
 
     @cached_property

@@ -17,13 +17,13 @@ from __future__ import annotations
 
 from bisect import bisect_left
 from collections import Counter, deque
-from itertools import compress
 from dataclasses import dataclass
+from itertools import compress
 from typing import Iterable, Iterator
 
 from rostui.core.log.levels import Level
 from rostui.core.log.rosout_read import RosoutEntry
-from rostui.apps.console.filters import LEVEL, NODE, FilterSpec, Selector, compile_selector
+from rostui.models.console.filters import LEVEL, NODE, FilterSpec, Selector, compile_selector
 
 __all__ = ["ConsoleModel", "ConsoleOptions"]
 

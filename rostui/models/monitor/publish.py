@@ -23,7 +23,8 @@ class PublishError(Exception):
 def message_template(type_name: str) -> tuple[Any, str]:
     """``(class, YAML template)`` of ``type_name``; :class:`PublishError` for an unknown type."""
     from rostui.core.msg.convert import default_yaml_template
-    from rostui.core.tools.topic import TopicToolError, message_class
+    from rostui.tools.topic.common import TopicToolError
+    from rostui.tools.topic.pub_args import message_class
 
     try:
         cls = message_class(type_name.strip())
@@ -37,7 +38,8 @@ def message_from_text(cls: Any, text: str) -> Any:
     import yaml
 
     from rostui.core.rostime import Time
-    from rostui.core.tools.topic import TopicToolError, build_message, yaml_error
+    from rostui.tools.topic.common import TopicToolError
+    from rostui.tools.topic.pub_args import build_message, yaml_error
 
     try:
         document = yaml.safe_load(text)
@@ -112,7 +114,7 @@ class Repeater:
 def check_topic(name: str) -> str:
     """``name`` resolved as ``rostopic pub`` resolves it; :class:`PublishError` for an empty or illegal name."""
     from rostui.core.names import InvalidNameError, validate_name
-    from rostui.core.tools.topic import resolve_topic
+    from rostui.tools.topic.common import resolve_topic
 
     name = name.strip()
     if not name:

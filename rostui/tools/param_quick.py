@@ -4,7 +4,7 @@
 strings that YAML writes as plain, unquoted scalars the text is the value
 itself, so :func:`simple_value_text` gives it without importing ``yaml``
 (which costs more than the whole query).  Anything it is not certain about
-returns None and goes through PyYAML (:func:`rostui.core.tools.param.format_get`).
+returns None and goes through PyYAML (:func:`rostui.tools.param.format_get`).
 """
 
 from __future__ import annotations

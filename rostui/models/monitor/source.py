@@ -18,10 +18,10 @@ from collections import deque
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable
 
-from rostui.core.master_link import SourceState
-from rostui.core.monitor.rows import Liveness, TopicRow
-from rostui.core.monitor.stats import TopicStats
-from rostui.core.monitor.tree import PathError, value_at
+from rostui.models.master_link import SourceState
+from rostui.models.monitor.rows import Liveness, TopicRow
+from rostui.models.monitor.stats import TopicStats
+from rostui.models.monitor.tree import PathError, value_at
 
 __all__ = ["MonitorSource", "SourceState", "TopicInfo", "FieldPlot", "NODE_NAME"]
 
@@ -122,7 +122,7 @@ class MonitorSource:
 
     def latest(self, topic: str) -> Any:
         """The newest message of a subscribed topic, decoded (None before one came)."""
-        from rostui.core.tools.topic import decode
+        from rostui.tools.topic.echo import decode
 
         watch = self._watches.get(topic)
         if watch is None or watch.latest is None:
@@ -138,7 +138,7 @@ class MonitorSource:
         self.plot = FieldPlot(topic, path)
         watch = self._watches.get(topic)
         if watch is not None and watch.latest is not None:
-            from rostui.core.tools.topic import decode
+            from rostui.tools.topic.echo import decode
 
             self.plot.add(decode(watch.latest))
         return self.plot
@@ -182,7 +182,7 @@ class MonitorSource:
         return Liveness.LIVE
 
     def history(self, topic: str) -> tuple[list[float], list[float]]:
-        """The last :data:`~rostui.core.monitor.stats.HISTORY` rate and bandwidth samples of ``topic`` (empty when not subscribed)."""
+        """The last :data:`~rostui.models.monitor.stats.HISTORY` rate and bandwidth samples of ``topic`` (empty when not subscribed)."""
         watch = self._watches.get(topic)
         if watch is None:
             return [], []
@@ -283,7 +283,7 @@ class MonitorSource:
             watch.latest = raw
             plot = self.plot
             if plot is not None and plot.topic == topic:
-                from rostui.core.tools.topic import decode
+                from rostui.tools.topic.echo import decode
 
                 try:
                     plot.add(decode(raw))

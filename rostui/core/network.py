@@ -12,14 +12,17 @@ import os
 from typing import NamedTuple
 from urllib.parse import urlparse
 
+from .localhost import LOCALHOST_NAMES, connect_host
 from .masteruri import DEFAULT_MASTER_URI, master_uri_from_env
 
-__all__ = ["DEFAULT_MASTER_URI", "Addressing", "is_loopback_host", "master_uri_from_env", "resolve_addressing"]
+__all__ = ["DEFAULT_MASTER_URI", "Addressing", "connect_host", "is_loopback_host", "master_uri_from_env",
+           "resolve_addressing"]
+
 
 
 def is_loopback_host(host: str) -> bool:
     """True for localhost names and 127.0.0.0/8 or ::1 addresses."""
-    if host in ("localhost", "localhost.localdomain", "ip6-localhost"):
+    if host in LOCALHOST_NAMES:
         return True
     import ipaddress
 

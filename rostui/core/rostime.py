@@ -9,11 +9,13 @@ from __future__ import annotations
 
 import numbers
 import time as _time
-from typing import Any
+from typing import TypeVar, overload
 
 __all__ = ["Time", "Duration", "TVal"]
 
 _NSEC = 1_000_000_000
+
+_T = TypeVar("_T", bound="TVal")
 
 
 def _canon(secs: int, nsecs: int) -> tuple[int, int]:
@@ -41,13 +43,13 @@ class TVal:
         self.secs, self.nsecs = _canon(int(secs), int(nsecs))
 
     @classmethod
-    def from_sec(cls, float_secs: float) -> Any:
+    def from_sec(cls: type[_T], float_secs: float) -> _T:
         """Create a value from float seconds (``time.time()`` style)."""
         secs = int(float_secs)
         return cls(secs, int((float_secs - secs) * _NSEC))
 
     @classmethod
-    def from_nsec(cls, nsec: int) -> Any:
+    def from_nsec(cls: type[_T], nsec: int) -> _T:
         """Create a value from integer nanoseconds."""
         secs, nsecs = divmod(int(nsec), _NSEC)
         return cls(secs, nsecs)
@@ -91,10 +93,10 @@ class TVal:
     def _cmp_key(self, other: object) -> tuple[int, int]:
         if not isinstance(other, type(self)._cmp_base()):
             raise TypeError(f"cannot compare {type(self).__name__} to {type(other).__name__}")
-        return self.to_nsec(), other.to_nsec()  # type: ignore[attr-defined]
+        return self.to_nsec(), other.to_nsec()
 
     @classmethod
-    def _cmp_base(cls) -> type:
+    def _cmp_base(cls) -> type[TVal]:
         return TVal
 
     def __lt__(self, other: object) -> bool:
@@ -128,7 +130,7 @@ class TVal:
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, self._cmp_base()):
             return False
-        return self.secs == other.secs and self.nsecs == other.nsecs  # type: ignore[attr-defined]
+        return self.secs == other.secs and self.nsecs == other.nsecs
 
     def __ne__(self, other: object) -> bool:
         return not self.__eq__(other)
@@ -146,7 +148,7 @@ class Time(TVal):
             raise TypeError("time values must be positive")
 
     @classmethod
-    def _cmp_base(cls) -> type:
+    def _cmp_base(cls) -> type[TVal]:
         return Time
 
     @classmethod
@@ -165,14 +167,18 @@ class Time(TVal):
     def __repr__(self) -> str:
         return f"rostui.Time[{self.to_nsec()}]"
 
-    def __add__(self, other: object) -> "Time":
+    def __add__(self, other: Duration) -> Time:
         if not isinstance(other, Duration):
             return NotImplemented
         return self.__class__(self.secs + other.secs, self.nsecs + other.nsecs)
 
     __radd__ = __add__
 
-    def __sub__(self, other: object) -> Any:
+    @overload
+    def __sub__(self, other: Time) -> Duration: ...
+    @overload
+    def __sub__(self, other: Duration) -> Time: ...
+    def __sub__(self, other: object) -> Duration | Time:
         if isinstance(other, Time):
             return Duration(self.secs - other.secs, self.nsecs - other.nsecs)
         if isinstance(other, Duration):
@@ -186,7 +192,7 @@ class Duration(TVal):
     __slots__ = ()
 
     @classmethod
-    def _cmp_base(cls) -> type:
+    def _cmp_base(cls) -> type[TVal]:
         return Duration
 
     def __hash__(self) -> int:
@@ -201,7 +207,7 @@ class Duration(TVal):
     def __abs__(self) -> "Duration":
         return self if self.secs >= 0 else -self
 
-    def __add__(self, other: object) -> Any:
+    def __add__(self, other: Duration) -> Duration:
         if isinstance(other, Duration):
             return self.__class__(self.secs + other.secs, self.nsecs + other.nsecs)
         return NotImplemented
@@ -222,14 +228,22 @@ class Duration(TVal):
 
     __rmul__ = __mul__
 
-    def __floordiv__(self, val: object) -> Any:
+    @overload
+    def __floordiv__(self, val: float) -> Duration: ...
+    @overload
+    def __floordiv__(self, val: Duration) -> int: ...
+    def __floordiv__(self, val: object) -> Duration | int:
         if isinstance(val, numbers.Real):
             return self.__class__.from_sec(self.to_sec() // float(val))
         if isinstance(val, Duration):
             return int(self.to_sec() // val.to_sec())
         return NotImplemented
 
-    def __truediv__(self, val: object) -> Any:
+    @overload
+    def __truediv__(self, val: float) -> Duration: ...
+    @overload
+    def __truediv__(self, val: Duration) -> float: ...
+    def __truediv__(self, val: object) -> Duration | float:
         if isinstance(val, numbers.Real):
             return self.__class__.from_sec(self.to_sec() / float(val))
         if isinstance(val, Duration):
@@ -241,7 +255,7 @@ class Duration(TVal):
             return self.__class__.from_sec(self.to_sec() % val.to_sec())
         return NotImplemented
 
-    def __divmod__(self, val: object) -> Any:
+    def __divmod__(self, val: Duration) -> tuple[int, Duration]:
         if isinstance(val, Duration):
             q, r = divmod(self.to_sec(), val.to_sec())
             return int(q), self.__class__.from_sec(r)

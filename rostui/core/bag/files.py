@@ -37,10 +37,13 @@ class Writer(Protocol):
     """What both writers offer."""
 
     path: str
-    size: int
-    buffered: int
     connections: dict[int, Connection]
     out: AppendFile
+
+    @property
+    def size(self) -> int: ...
+    @property
+    def buffered(self) -> int: ...
 
     def add_connection(self, conn: Connection) -> None: ...
     def write(self, conn_id: int, time_ns: int, data: Any) -> None: ...

@@ -48,10 +48,17 @@ def _compress(kind: str, data: bytes) -> bytes:
     if kind == "lz4":
         import lz4.frame
 
-        return lz4.frame.compress(data)
+        packed: bytes = lz4.frame.compress(data)
+        return packed
     import zstandard
 
     return zstandard.compress(data)
+
+
+def _built(builder: RecordBuilder) -> bytes:
+    """The records written to ``builder`` so far; it starts empty again."""
+    data: bytes = builder.end()  # type: ignore[no-untyped-call]  # mcap leaves end() unannotated
+    return data
 
 
 class McapBagWriter:
@@ -99,7 +106,7 @@ class McapBagWriter:
         builder = RecordBuilder()
         Header(PROFILE, "rostui").write(builder)
         self.good_end = 0
-        self._append([MAGIC + builder.end()])
+        self._append([MAGIC + _built(builder)])
 
     def _append(self, buffers: list[Any]) -> None:
         """Write at the end of the file; on failure cut back to the last complete record."""
@@ -142,7 +149,7 @@ class McapBagWriter:
             if key not in self._written and key not in self._chunk_in:
                 builder = RecordBuilder()
                 record.write(builder)
-                self._chunk.add(builder.end())
+                self._chunk.add(_built(builder))
                 self._chunk_in.append(key)
         return channel.id
 
@@ -214,7 +221,7 @@ class McapBagWriter:
         for channel_id, entries in self._chunk_index.items():
             offsets[channel_id] = chunk_start + chunk_length + indexes.count
             MessageIndex(channel_id, entries).write(indexes)
-        index_bytes = indexes.end()
+        index_bytes = _built(indexes)
         try:
             self._append([*lead, head, *body, index_bytes])
         except OSError:
@@ -265,12 +272,12 @@ class McapBagWriter:
         offset_start = summary_start + summary.count
         for offset in offsets:
             offset.write(summary)
-        summary_bytes = summary.end()
+        summary_bytes = _built(summary)
         crc = zlib.crc32(summary_bytes)
         crc = zlib.crc32(struct.pack("<BQQQ", Opcode.FOOTER, 20, summary_start, offset_start), crc)
         footer = RecordBuilder()
         Footer(summary_start, offset_start, crc).write(footer)
-        return builder.end() + summary_bytes + footer.end() + MAGIC
+        return _built(builder) + summary_bytes + _built(footer) + MAGIC
 
     def close(self) -> None:
         """Write the summary section and footer; on a full disk end the file without a summary instead."""
@@ -293,7 +300,7 @@ class McapBagWriter:
         DataEnd(0).write(builder)
         Footer(0, 0, 0).write(builder)
         try:
-            self.good_end += self.out.append([builder.end() + MAGIC])
+            self.good_end += self.out.append([_built(builder) + MAGIC])
         except OSError:
             self._cut()
 

@@ -11,9 +11,8 @@ of its exact size that the kernel fills directly, which is then handed to the
 recorder as it is.
 
 :class:`RawSubscription` is a subscription whose publisher connections use it;
-:func:`subscribe_raw` registers one with the master the way
-``AsyncNode.subscribe`` does, so publisher updates, reconnects and shutdown
-work as for any other subscription.
+:func:`subscribe_raw` registers one with ``AsyncNode.add_subscription``, so
+publisher updates, reconnects and shutdown work as for any other subscription.
 """
 
 from __future__ import annotations
@@ -24,12 +23,12 @@ import logging
 import mmap
 import socket
 from collections.abc import Callable
-from typing import Any
+from typing import Any, cast
 
 from rostui.core.bag.sink import LendableBuffer
 from rostui.core.node import AnyMsg, AsyncNode, Subscriber
-from rostui.core.node.topics import Subscription
-from rostui.core.node.transport import StallWatch
+from rostui.core.node.topics import Subscription, TopicHost
+from rostui.core.node.transport import PublisherConnection, StallWatch
 from rostui.core.tcpros import LEN, MAX_HEADER, decode_header, encode_header, max_frame_from_env
 
 log = logging.getLogger("rostui.bag")
@@ -86,7 +85,7 @@ class BufferPool:
             free.append(buf)
 
 
-class RawFrameConnection(asyncio.BufferedProtocol):
+class RawFrameConnection(asyncio.BufferedProtocol, PublisherConnection):
     """A subscription's connection to one publisher that delivers raw frames with as few copies as possible.
 
     ``on_header`` checks the publisher's header (an error string drops the
@@ -128,11 +127,11 @@ class RawFrameConnection(asyncio.BufferedProtocol):
     # -- asyncio ----------------------------------------------------------------------------
     def connection_made(self, transport: asyncio.BaseTransport) -> None:
         """Send our subscriber header."""
-        self.transport = transport  # type: ignore[assignment]
+        self.transport = stream = cast(asyncio.Transport, transport)  # TCP: a stream transport
         self._sock = transport.get_extra_info("socket")
         self._watch = StallWatch(self.drop)
         self._watch.progress(1)
-        self.transport.write(encode_header(self.request_header))
+        stream.write(encode_header(self.request_header))
 
     def get_buffer(self, sizehint: int) -> memoryview:
         """Where the next read goes: the rest of the big frame being filled, or the stage's free space."""
@@ -244,34 +243,22 @@ class RawFrameConnection(asyncio.BufferedProtocol):
         self.header = header
         self.max_frame = max_frame_from_env()
 
-    # -- closing ----------------------------------------------------------------------------
-    def drop(self, reason: str) -> None:
-        """Close the connection, remembering why."""
-        self.error = reason
-        log.warning("dropping connection to publisher: %s", reason)
-        if self.transport is not None:
-            self.transport.close()
-
-    def close(self) -> None:
-        """Close the connection without error."""
-        if self.transport is not None:
-            self.transport.close()
-
 
 class RawSubscription(Subscription):
     """A raw (``*``) subscription whose publisher connections hand frames to ``sink`` without decoding.
 
     Publishers in the same process still deliver through the subscription's
-    callbacks (as AnyMsg), so register one with :meth:`add_callback` too.
+    callbacks (as AnyMsg), so register it with a callback too (as
+    :func:`subscribe_raw` does).
     """
 
-    def __init__(self, node: AsyncNode, topic: str, sink: Callable[[Any, dict[str, str], str], None],
+    def __init__(self, node: TopicHost, topic: str, sink: Callable[[Any, dict[str, str], str], None],
                  allocate: Callable[[int], Any] = bytearray) -> None:
         super().__init__(node, topic, AnyMsg, queue_size=None, tcp_nodelay=False)
         self.sink = sink
         self.allocate = allocate
 
-    def _publisher_connection(self, on_lost: Callable[[str | None], None]) -> RawFrameConnection:
+    def publisher_connection(self, on_lost: Callable[[str | None], None]) -> RawFrameConnection:
         """A RawFrameConnection handing frames to the sink."""
         sink, topic = self.sink, self.topic
 
@@ -279,7 +266,8 @@ class RawSubscription(Subscription):
             self.messages_received += 1
             sink(payload, header, topic)
 
-        return RawFrameConnection(self._request_header(), self._check_header, on_frame, on_lost, self.allocate)
+        return RawFrameConnection(self.request_header(), self.check_header, on_frame, on_lost, self.allocate)
+
 
 async def subscribe_raw(node: AsyncNode, topic: str, sink: Callable[[Any, dict[str, str], str], None],
                         local_callback: Callable[[AnyMsg, str], None],
@@ -287,16 +275,4 @@ async def subscribe_raw(node: AsyncNode, topic: str, sink: Callable[[Any, dict[s
     """Subscribe to ``topic`` with md5 ``*``: remote frames go to ``sink(payload, header, topic)`` (big ones
     in buffers from ``allocate``), messages of same-process publishers to ``local_callback(msg, topic)``."""
     name = node.resolve(topic)
-    if name in node.subscriptions:
-        raise ValueError(f"topic [{name}] is already subscribed in this node")
-    sub = RawSubscription(node, name, sink, allocate)
-    sub.add_callback(local_callback, name)
-    sub.handles += 1
-    node.subscriptions[name] = sub
-    try:
-        uris = await node.master_call("registerSubscriber", name, AnyMsg._type, node.uri)
-    except Exception:
-        node.subscriptions.pop(name, None)
-        raise
-    sub.update_publishers(list(uris))
-    return Subscriber(node, sub, local_callback, name)
+    return await node.add_subscription(RawSubscription(node, name, sink, allocate), local_callback, name)

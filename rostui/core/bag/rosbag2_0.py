@@ -50,6 +50,8 @@ def _time_bytes(ns: int) -> bytes:
 
 
 def _time_ns(raw: bytes) -> int:
+    sec: int
+    nsec: int
     sec, nsec = _TIME.unpack(raw)
     return sec * 1_000_000_000 + nsec
 
@@ -79,8 +81,9 @@ def _compress(kind: str, data: bytes) -> bytes:
         import lz4.frame
 
         # roslz4 (rosbag's reader) takes no content-size field: frames as it writes them itself
-        return lz4.frame.compress(data, block_size=lz4.frame.BLOCKSIZE_MAX1MB, content_checksum=True,
-                                  store_size=False)
+        packed: bytes = lz4.frame.compress(data, block_size=lz4.frame.BLOCKSIZE_MAX1MB, content_checksum=True,
+                                           store_size=False)
+        return packed
     return data
 
 
@@ -92,7 +95,8 @@ def _decompress(kind: str, data: bytes) -> bytes:
     if kind == "lz4":
         import lz4.frame
 
-        return lz4.frame.decompress(data)
+        unpacked: bytes = lz4.frame.decompress(data)
+        return unpacked
     raise BagError(f"unsupported chunk compression '{kind}'")
 
 
@@ -280,7 +284,7 @@ class BagReader:
         if fields.get("op") != bytes([OP_FILE_HEADER]):
             self.file.close()
             raise BagError(f"{path}: the file header record is missing")
-        self.index_pos = struct.unpack("<Q", fields["index_pos"])[0]
+        self.index_pos: int = struct.unpack("<Q", fields["index_pos"])[0]
         self.data_start = self.file.tell()
         self.connections: dict[int, Connection] = {}
         self.truncated = ""

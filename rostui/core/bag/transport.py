@@ -282,9 +282,8 @@ class Transport:
     async def _sleep(self, seconds: float) -> None:
         """Sleep up to ``seconds``; a control call wakes it early."""
         try:
-            async with asyncio.timeout(max(0.0, seconds)):
-                await self._wake.wait()
-        except TimeoutError:
+            await asyncio.wait_for(self._wake.wait(), max(0.0, seconds))
+        except asyncio.TimeoutError:
             pass
         self._wake.clear()
 

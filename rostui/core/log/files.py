@@ -14,6 +14,7 @@ import time
 from pathlib import Path
 from typing import Iterator, Mapping, TextIO
 
+from rostui.core.log.levels import Level
 from rostui.core.log.record import LogRecord
 
 __all__ = [
@@ -154,7 +155,7 @@ def close_quietly(handle: TextIO | None) -> None:
             pass
 
 
-_PY_LEVEL_NAMES = {1: "DEBUG", 2: "INFO", 4: "WARNING", 8: "ERROR", 16: "CRITICAL"}
+_PY_LEVEL_NAMES: dict[int, str] = {level.value: level.python_name for level in Level}
 
 
 class NodeLogFile:

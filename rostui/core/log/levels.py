@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import enum
+from typing import Iterable
 
 __all__ = ["Level"]
 
-_ALIASES = {"WARNING": "WARN", "ERR": "ERROR", "CRITICAL": "FATAL"}
+_PYTHON_NAMES = {"WARN": "WARNING", "FATAL": "CRITICAL"}
+_ALIASES = {"ERR": "ERROR", **{python: ros for ros, python in _PYTHON_NAMES.items()}}
 
 
 class Level(enum.IntEnum):
@@ -24,6 +26,11 @@ class Level(enum.IntEnum):
         return self.name.rjust(5)
 
     @property
+    def python_name(self) -> str:
+        """Python's logging name for this severity (``WARNING``, ``CRITICAL``...), as in rospy's log files."""
+        return _PYTHON_NAMES.get(self.name, self.name)
+
+    @property
     def text(self) -> str:
         """The lowercase name roscpp's ``~get_loggers`` answers with (``info``, ``warn``...)."""
         return self.name.lower()
@@ -38,10 +45,18 @@ class Level(enum.IntEnum):
             try:
                 return cls(int(text))
             except ValueError:
-                raise ValueError(f"unknown log level {int(text)} (use 1, 2, 4, 8 or 16)") from None
+                values = _either(str(level.value) for level in cls)
+                raise ValueError(f"unknown log level {int(text)} (use {values})") from None
         key = str(text).strip().upper()
         key = _ALIASES.get(key, key)
         try:
             return cls[key]
         except KeyError:
-            raise ValueError(f"unknown log level '{text}' (use debug, info, warn, error or fatal)") from None
+            names = _either(level.text for level in cls)
+            raise ValueError(f"unknown log level '{text}' (use {names})") from None
+
+
+def _either(words: Iterable[str]) -> str:
+    """``a, b or c``."""
+    *most, last = words
+    return f"{', '.join(most)} or {last}"

@@ -13,7 +13,7 @@ import os
 import sys
 import threading
 import time
-from types import FrameType
+from types import CodeType, FrameType
 from typing import Any, Callable
 
 from rostui.core.log.console import Console
@@ -27,7 +27,7 @@ __all__ = ["NodeLog", "Sink", "package_logger"]
 Sink = Callable[[LogRecord], None]
 
 _NS = 1_000_000_000
-_DEBUG, _INFO, _WARN, _ERROR, _FATAL = 1, 2, 4, 8, 16
+_DEBUG, _INFO, _WARN, _ERROR, _FATAL = (level.value for level in Level)  # plain ints for the level gate
 
 
 def package_logger(package: str | None) -> str:
@@ -65,8 +65,8 @@ class NodeLog:
         self._sinks: tuple[Sink, ...] = ()
         self._broken_sinks: set[int] = set()
         self._named: dict[str, tuple[str, int]] = {}
-        self._once: set[tuple[Any, int]] = set()
-        self._last: dict[tuple[Any, int], int] = {}
+        self._once: set[tuple[CodeType, int]] = set()
+        self._last: dict[tuple[CodeType, int], int] = {}
         self._gate = threading.Lock()
         self.tree.register(default_logger)
         self._threshold = int(self.tree.effective_level(default_logger))
@@ -113,7 +113,7 @@ class NodeLog:
         self._sinks = tuple(s for s in self._sinks if s is not sink)
 
     # -- emission ---------------------------------------------------------------------------
-    def _emit(self, level: int, msg: Any, args: tuple, logger: str | None, frame: FrameType,
+    def _emit(self, level: int, msg: Any, args: tuple[Any, ...], logger: str | None, frame: FrameType,
               stamp: int | None = None) -> None:
         name = self._full_name(logger)[0]
         text = (msg % args) if args else (msg if isinstance(msg, str) else str(msg))
@@ -175,7 +175,7 @@ class NodeLog:
         self._emit(_FATAL, msg, args, logger, sys._getframe(stacklevel))
 
     # -- once -------------------------------------------------------------------------------
-    def _emit_once(self, level: int, msg: Any, args: tuple, logger: str | None, frame: FrameType) -> None:
+    def _emit_once(self, level: int, msg: Any, args: tuple[Any, ...], logger: str | None, frame: FrameType) -> None:
         key = (frame.f_code, frame.f_lineno)
         with self._gate:
             if key in self._once:
@@ -224,7 +224,7 @@ class NodeLog:
         self._emit_once(_FATAL, msg, args, logger, sys._getframe(stacklevel))
 
     # -- throttle ---------------------------------------------------------------------------
-    def _emit_throttled(self, period: float, level: int, msg: Any, args: tuple, logger: str | None,
+    def _emit_throttled(self, period: float, level: int, msg: Any, args: tuple[Any, ...], logger: str | None,
                         frame: FrameType) -> None:
         key = (frame.f_code, frame.f_lineno)
         now = self.clock()

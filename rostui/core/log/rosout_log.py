@@ -18,13 +18,14 @@ import time
 from pathlib import Path
 from typing import Any, Callable, Sequence, TextIO
 
-from rostui.core.log.record import LogRecord
 from rostui.core.log.files import close_quietly
+from rostui.core.log.levels import Level
+from rostui.core.log.record import LogRecord
 
 __all__ = ["ROSOUT_LEVEL_NAMES", "RosoutLogWriter", "format_rosout_line", "startup_text"]
 
 #: Level byte -> the name rosout writes.
-ROSOUT_LEVEL_NAMES: dict[int, str] = {1: "DEBUG", 2: "INFO", 4: "WARN", 8: "ERROR", 16: "FATAL"}
+ROSOUT_LEVEL_NAMES: dict[int, str] = {level.value: level.name for level in Level}
 
 
 def startup_text(stamp_ns: int) -> str:

@@ -34,7 +34,7 @@ __all__ = [
 #: Malformed lines kept with their text (the rest are only counted).
 KEPT_MALFORMED = 100
 
-_LEVELS = {"DEBUG": 1, "INFO": 2, "WARN": 4, "ERROR": 8, "FATAL": 16}
+_LEVELS: dict[str, int] = {level.name: level.value for level in Level}
 
 _STAMP = r"(?P<secs>\d+)\.(?P<frac>\d{1,9})"
 _TOPICS = r"\[topics: (?P<topics>[^\]]*)\] "

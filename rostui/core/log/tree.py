@@ -88,7 +88,9 @@ class LoggerTree:
                     return level
                 cut = probe.rfind(".")
                 if cut < 0:
-                    return self._levels[ROOT_LOGGER]  # type: ignore[return-value]
+                    root = self._levels[ROOT_LOGGER]
+                    assert root is not None, "the root logger always has a level"
+                    return root
                 probe = probe[:cut]
 
     def enabled(self, name: str, level: Level | int) -> bool:

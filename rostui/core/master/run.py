@@ -21,10 +21,15 @@ async def _serve(port: int) -> int:
     print(f"ROS_MASTER_URI={master.uri}", flush=True)
     print(f"setting /run_id to {master.run_id}", flush=True)
     loop = asyncio.get_running_loop()
-    stop = loop.create_future()
+    stop: asyncio.Future[str] = loop.create_future()
+
+    def on_signal(sig: signal.Signals) -> None:
+        if not stop.done():
+            stop.set_result(f"signal {sig}")
+
     for sig in (signal.SIGINT, signal.SIGTERM):
         try:
-            loop.add_signal_handler(sig, lambda s=sig: stop.done() or stop.set_result(f"signal {s}"))
+            loop.add_signal_handler(sig, on_signal, sig)
         except (NotImplementedError, RuntimeError):  # pragma: no cover - non-Unix
             pass
     shutdown_call = asyncio.ensure_future(master.wait_for_shutdown_request())
@@ -50,7 +55,7 @@ def run_master_forever(port: int) -> int:
     except ImportError:  # pragma: no cover - uvloop is a dependency on Unix
         return asyncio.run(_serve(port))
     try:
-        return uvloop.run(_serve(port))  # type: ignore[attr-defined]
+        return uvloop.run(_serve(port))
     except AttributeError:  # pragma: no cover - old uvloop without run()
         uvloop.install()
         return asyncio.run(_serve(port))

@@ -19,10 +19,11 @@ from .errors import (
     SerializationError,
     UnknownMessageTypeError,
 )
-from .message import Message, Service
+from .message import Message, Service, install_hooks
 from .registry import (
     DEFINITION_SEPARATOR,
     TypeStore,
+    _reconstruct,
     clear_cache,
     full_text,
     get_message_class,
@@ -47,3 +48,13 @@ __all__ = [
     "BUILTIN_TYPES", "PRIMITIVE_TYPES", "Constant", "Field", "MsgSpec", "SrvSpec",
     "parse_msg_text", "parse_srv_text",
 ]
+
+
+def _message_text(msg: Message) -> str:
+    """``str(msg)``: the text ``rostopic echo`` prints for *msg*."""
+    from .convert import message_to_yaml  # deferred: importing the package does not load yaml
+
+    return message_to_yaml(msg)
+
+
+install_hooks(text=_message_text, unpickle=_reconstruct)

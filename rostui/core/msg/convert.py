@@ -15,6 +15,7 @@ import yaml
 from ..rostime import Duration, Time, TVal
 from .errors import MessageValueError, UnknownMessageTypeError
 from .message import Message
+from .registry import get_message_class
 from .spec import HEADER_TYPE
 
 __all__ = [
@@ -44,22 +45,15 @@ def _split_type(t: str) -> tuple[str, bool, int | None]:
     return t, False, None
 
 
-def _class_of(t: str) -> type[Message]:
-    from .registry import get_message_class
-
-    return get_message_class(t)
-
-
 def _field_class(msg: Message | type[Message], base: str) -> type[Message]:
     """The class of a nested field type, preferring the store that built *msg*'s class."""
-    spec = getattr(msg, "_spec", None)
     init = getattr(msg, "__init__", None)
-    globs = getattr(init, "__globals__", None)
-    if spec is not None and globs is not None:
-        var = "_C_" + base.replace("/", "__")
-        if var in globs:
-            return globs[var]
-    return _class_of(base)
+    globs: dict[str, object] | None = getattr(init, "__globals__", None)
+    if msg._spec is not None and globs is not None:
+        cls = globs.get("_C_" + base.replace("/", "__"))
+        if isinstance(cls, type) and issubclass(cls, Message):
+            return cls
+    return get_message_class(base)
 
 
 # ----------------------------------------------------------------------------- dict view
@@ -233,7 +227,7 @@ def fill_message_args(msg: Message, args: list[Any], *, now: Time | None = None)
     stamp = now if now is not None else Time.now()
     keys: dict[str, Any] = {"now": stamp}
     try:
-        keys["auto"] = _class_of(HEADER_TYPE)(stamp=Time(stamp.secs, stamp.nsecs))
+        keys["auto"] = get_message_class(HEADER_TYPE)(stamp=Time(stamp.secs, stamp.nsecs))
     except UnknownMessageTypeError:  # pragma: no cover - std_msgs is built in
         pass
     if len(args) == 1 and isinstance(args[0], dict):
@@ -272,20 +266,20 @@ def _strify(
     tp = type(val)
     if tp in (int, float) and width is not None:
         if tp is float:
-            s = ("%." + str(width) + "f") % val
+            s: str = ("%." + str(width) + "f") % val
             return s[: max(s.find("."), width)]
-        return ("%" + str(width) + "d") % val
+        digits: str = ("%" + str(width) + "d") % val
+        return digits
     if tp in (int, float, bool):
         return str(val)
     if isinstance(val, str):
         return _yaml_str(val)
     if isinstance(val, TVal):
-        if time_offset is not None and isinstance(val, Time):
-            val = val - time_offset
+        tv: TVal = val - time_offset if time_offset is not None and isinstance(val, Time) else val
         if width is not None:
             fmt = "%" + str(width) + "d"
-            return f"\n{indent}secs: " + (fmt % val.secs) + f"\n{indent}nsecs: " + (fmt % val.nsecs)
-        return "\n%ssecs: %s\n%snsecs: %9d" % (indent, val.secs, indent, val.nsecs)
+            return f"\n{indent}secs: " + (fmt % tv.secs) + f"\n{indent}nsecs: " + (fmt % tv.nsecs)
+        return "\n%ssecs: %s\n%snsecs: %9d" % (indent, tv.secs, indent, tv.nsecs)
     if tp in (list, tuple):
         if not val:
             return "[]"
@@ -400,11 +394,10 @@ class _ProtoDumper(yaml.SafeDumper):
 
 
 def _represent_proto(dumper: _ProtoDumper, obj: _ProtoMsg) -> yaml.Node:
-    for _, v in obj.items:
-        if isinstance(v, list) and len(v) > _MAX_BLOCK_ITEMS:
-            dumper.default_flow_style = None
-    if len(obj.items) > _MAX_BLOCK_ITEMS:
-        dumper.default_flow_style = None
+    long_list = any(isinstance(v, list) and len(v) > _MAX_BLOCK_ITEMS for _, v in obj.items)
+    if long_list or len(obj.items) > _MAX_BLOCK_ITEMS:
+        # types-PyYAML types the attribute as bool, but PyYAML's None (flow style for leaf collections) is meant
+        dumper.default_flow_style = None  # type: ignore[assignment]
     return dumper.represent_mapping("tag:yaml.org,2002:map", obj.items)
 
 

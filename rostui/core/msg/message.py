@@ -1,34 +1,52 @@
-"""Base classes of generated message and service classes."""
+"""Base classes of generated message and service classes.
+
+This module knows nothing of YAML or of the type registry: ``str()`` and
+pickling of messages go through :attr:`Message._text_hook` and
+:attr:`Message._unpickle_hook`, which :mod:`rostui.core.msg` installs with
+:func:`install_hooks` when the package is imported.
+"""
 
 from __future__ import annotations
 
-from typing import Any, Callable, ClassVar
+from types import MethodType
+from typing import Any, Callable, ClassVar, Generic, TypeAlias, TypeVar, cast
 
-__all__ = ["Message", "Service", "hybridmethod"]
+from .spec import MsgSpec, SrvSpec
+
+__all__ = ["Buffer", "Message", "Service", "hybridmethod", "install_hooks"]
+
+Buffer: TypeAlias = bytes | bytearray | memoryview
+"""What ``deserialize`` reads: a serialized message."""
+
+_M = TypeVar("_M", bound="Message")
 
 
-class hybridmethod:
+class hybridmethod(Generic[_M]):
     """Descriptor: ``Cls.deserialize(buf)`` builds a new message; ``msg.deserialize(buf)`` fills *msg*.
 
     The instance form exists for rospy-style code (``m = Cls(); m.deserialize(b)``).
     """
 
-    def __init__(self, func: Callable[..., Any]) -> None:
+    def __init__(self, func: Callable[[type[_M], Buffer], _M]) -> None:
         """Wrap *func*, a function ``(cls, buf) -> instance``."""
         self.func = func
         self.__doc__ = func.__doc__
 
-    def __get__(self, obj: Any, objtype: type | None = None) -> Callable[..., Any]:
-        cls = objtype if objtype is not None else type(obj)
+    def __get__(self, obj: _M | None, objtype: type[_M] | None = None) -> Callable[[Buffer], _M]:
+        """The builder bound to the class, or a function filling *obj* in place."""
         func = self.func
         if obj is None:
-            return func.__get__(cls, type(cls))
+            if objtype is None:
+                raise TypeError("hybridmethod.__get__ needs an instance or a class")
+            return cast(Callable[[Buffer], _M], MethodType(func, objtype))
+        cls = objtype if objtype is not None else type(obj)
+        target = obj
 
-        def fill(buf: bytes | bytearray | memoryview) -> Any:
+        def fill(buf: Buffer) -> _M:
             new = func(cls, buf)
             for name in cls.__slots__:
-                setattr(obj, name, getattr(new, name))
-            return obj
+                setattr(target, name, getattr(new, name))
+            return target
 
         return fill
 
@@ -36,21 +54,41 @@ class hybridmethod:
 class Message:
     """Base of every generated ROS message class (rospy-like, mutable, slotted).
 
-    Generated subclasses define ``_type``, ``_md5sum``, ``_full_text``,
-    ``_has_header``, ``__slots__`` (the field names, in order), ``_slot_types``,
-    the constants, ``__init__``, ``serialize()`` and ``deserialize()``.
+    The annotations below are what each generated subclass provides: its
+    fields (``__slots__``, in order, and their types ``_slot_types``), the
+    constants, ``__init__``, ``serialize()`` and ``deserialize()``.
     ``_connection_header`` is a free slot the node layer may set on received messages.
     """
 
-    __slots__ = ("_connection_header",)
+    __slots__: ClassVar[tuple[str, ...]] = ("_connection_header",)
+
+    _connection_header: dict[str, str]
+    """The publisher's connection header, on messages a subscriber received."""
 
     _type: ClassVar[str] = ""
+    """The type name, ``pkg/Name``."""
     _md5sum: ClassVar[str] = ""
+    """The md5sum of the definition, as genmsg computes it."""
     _full_text: ClassVar[str] = ""
+    """The ``message_definition``: own text, then each nested type."""
     _has_header: ClassVar[bool] = False
+    """True when the first field is a ``std_msgs/Header`` named ``header``."""
     _slot_types: ClassVar[list[str]] = []
+    """The type of each field, in field order (``float64[9]``, ``std_msgs/Header``)."""
     _defaults: ClassVar[dict[str, Callable[[], Any]]] = {}
-    _spec: ClassVar[Any] = None
+    """For each field, a function building its default value."""
+    _spec: ClassVar[MsgSpec | None] = None
+    """The parsed definition the class was generated from."""
+    _source: ClassVar[str]
+    """The generated Python source of ``__init__``, ``serialize`` and ``deserialize``."""
+
+    deserialize: ClassVar[hybridmethod[Message]]
+    """``Cls.deserialize(buf)`` builds a message from wire bytes; ``msg.deserialize(buf)`` fills *msg*."""
+
+    _text_hook: ClassVar[Callable[[Message], str]]
+    """Renders a message for ``str()`` (installed by :func:`install_hooks`)."""
+    _unpickle_hook: ClassVar[Callable[[str, str, str], Message]]
+    """``(type, md5sum, full_text)`` to an empty instance when unpickling (installed by :func:`install_hooks`)."""
 
     def __init__(self, *args: Any, **kwds: Any) -> None:
         """Fill fields from positional values (field order) and keywords; the rest get defaults."""
@@ -88,9 +126,7 @@ class Message:
     __hash__ = None  # type: ignore[assignment]  # mutable, like genpy messages
 
     def __str__(self) -> str:
-        from .convert import message_to_yaml
-
-        return message_to_yaml(self)
+        return Message._text_hook(self)
 
     def __repr__(self) -> str:
         return self.__str__()
@@ -102,16 +138,30 @@ class Message:
         for n, v in zip(self.__slots__, state):
             setattr(self, n, v)
 
-    def __reduce__(self) -> tuple[Any, ...]:
-        from .registry import _reconstruct
-
-        return (_reconstruct, (self._type, self._md5sum, self._full_text), self.__getstate__())
+    def __reduce__(self) -> tuple[Callable[[str, str, str], Message], tuple[str, str, str], list[Any]]:
+        return (Message._unpickle_hook, (self._type, self._md5sum, self._full_text), self.__getstate__())
 
 
 class Service:
     """Base of generated service classes: holds the request and response classes."""
 
     _type: ClassVar[str] = ""
+    """The service type name, ``pkg/Name``."""
     _md5sum: ClassVar[str] = ""
+    """The md5sum of request and response definitions together."""
     _request_class: ClassVar[type[Message]]
+    """The generated class of ``pkg/NameRequest``."""
     _response_class: ClassVar[type[Message]]
+    """The generated class of ``pkg/NameResponse``."""
+    _spec: ClassVar[SrvSpec]
+    """The parsed definition the class was generated from."""
+
+
+def install_hooks(
+    *,
+    text: Callable[[Message], str],
+    unpickle: Callable[[str, str, str], Message],
+) -> None:
+    """Give every message its ``str()`` (*text*) and its unpickling constructor (*unpickle*)."""
+    Message._text_hook = text
+    Message._unpickle_hook = unpickle

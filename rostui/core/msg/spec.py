@@ -64,7 +64,7 @@ def split_type_name(type_name: str) -> tuple[str, str]:
 def is_valid_type_name(type_name: str) -> bool:
     """True for a syntactically legal ``pkg/Name`` (no array suffix)."""
     m = _TYPE_RE.match(type_name)
-    return bool(m) and m.group(2) is None and "/" in type_name
+    return m is not None and m.group(2) is None and "/" in type_name
 
 
 @dataclass(frozen=True)

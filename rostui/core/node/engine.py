@@ -65,23 +65,23 @@ class Engine:
         Used for blocking calls made from the engine thread: the coroutine must
         not use objects bound to the engine loop.
         """
-        result: list[Any] = []
+        values: list[T] = []
+        errors: list[BaseException] = []
 
         def work() -> None:
-            async def main() -> Any:
+            async def main() -> T:
                 return await make()
             try:
-                result.append((True, asyncio.run(main())))
+                values.append(asyncio.run(main()))
             except BaseException as exc:  # re-raised in the caller's thread
-                result.append((False, exc))
+                errors.append(exc)
 
         worker = threading.Thread(target=work, name="rostui-detached", daemon=True)
         worker.start()
         worker.join()
-        ok, value = result[0]
-        if not ok:
-            raise value
-        return value
+        if errors:
+            raise errors[0]
+        return values[0]
 
     def call_soon(self, fn: Callable[..., Any], *args: Any) -> None:
         """Schedule a plain function on the loop from any thread."""

@@ -9,17 +9,57 @@ that levels can be read and changed from outside at run time.
 from __future__ import annotations
 
 import logging
-from typing import TYPE_CHECKING, Any
+from collections.abc import Mapping
+from typing import Any, Callable, Protocol
 
-from rostui.core.log import Level, LogRecord, NodeLogFile, log_root, run_log_dir
-from rostui.core.msg import get_message_class, get_service_class
+from rostui.core.log import Level, LogRecord, NodeLog, NodeLogFile, log_root, run_log_dir
+from rostui.core.msg import Message, Service, get_message_class, get_service_class
+from rostui.core.names import NodeArgs
 from rostui.core.node.services import ServiceException
 from rostui.core.rostime import Time
 
-if TYPE_CHECKING:
-    from rostui.core.node.node import AsyncNode, Publisher
-
 ROSOUT_QUEUE = 100
+
+
+class MessagePublisher(Protocol):
+    """A handle that publishes messages on one topic."""
+
+    def publish(self, msg: Message, /) -> None:
+        """Send one message."""
+
+
+class LoggingHost(Protocol):
+    """What a node's logging link needs from its node (an AsyncNode is one)."""
+
+    @property
+    def name(self) -> str:
+        """The node's name."""
+
+    @property
+    def args(self) -> NodeArgs:
+        """The node's ROS arguments (``__log:=`` names its log file)."""
+
+    @property
+    def log(self) -> NodeLog:
+        """The node's log."""
+
+    @property
+    def is_shutdown(self) -> bool:
+        """True once shutdown began."""
+
+    @property
+    def publications(self) -> Mapping[str, object]:
+        """The node's publications by topic (a /rosout record lists the topics)."""
+
+    async def advertise(self, topic: str, msg_class: type[Message], *, queue_size: int | None = None
+                        ) -> MessagePublisher:
+        """Publish on a topic."""
+
+    async def advertise_service(self, name: str, srv_class: type[Service], handler: Callable[[Any], Any]) -> object:
+        """Serve a service."""
+
+    async def get_param(self, name: str, default: Any = ...) -> Any:
+        """A parameter's value, or ``default`` when it is unset."""
 
 
 _PY_TO_ROS = {logging.DEBUG: Level.DEBUG, logging.INFO: Level.INFO, logging.WARNING: Level.WARN,
@@ -33,7 +73,7 @@ class LibraryLogForwarder(logging.Handler):
     /rosout, like roscpp's own warnings do.
     """
 
-    def __init__(self, node: "AsyncNode") -> None:
+    def __init__(self, node: LoggingHost) -> None:
         super().__init__(logging.WARNING)
         self.node = node
 
@@ -46,7 +86,7 @@ class LibraryLogForwarder(logging.Handler):
             self.handleError(record)
 
 
-def attach_library_log(node: "AsyncNode") -> LibraryLogForwarder | None:
+def attach_library_log(node: LoggingHost) -> LibraryLogForwarder | None:
     """Forward rostui's library warnings to ``node`` unless another node already receives them."""
     library = logging.getLogger("rostui")
     if any(isinstance(h, LibraryLogForwarder) for h in library.handlers):
@@ -69,10 +109,11 @@ def detach_library_log(handler: LibraryLogForwarder | None) -> None:
 class NodeLogging:
     """The ROS side of one node's logging."""
 
-    def __init__(self, node: "AsyncNode") -> None:
+    def __init__(self, node: LoggingHost) -> None:
         self.node = node
         self.log_class = get_message_class("rosgraph_msgs/Log")
-        self.rosout: "Publisher | None" = None
+        self.header_class = get_message_class("std_msgs/Header")
+        self.rosout: MessagePublisher | None = None
         self.file: NodeLogFile | None = None
         self.forwarder: LibraryLogForwarder | None = None
 
@@ -98,15 +139,9 @@ class NodeLogging:
         """The /rosout sink: one rosgraph_msgs/Log per record."""
         if self.rosout is None or self.node.is_shutdown:
             return
-        msg = self.log_class()
-        msg.header.stamp = Time(record.secs, record.nsecs)
-        msg.level = int(record.level)
-        msg.name = record.node
-        msg.msg = record.message
-        msg.file = record.file
-        msg.function = record.function
-        msg.line = record.line
-        msg.topics = sorted(self.node.publications)
+        msg = self.log_class(header=self.header_class(stamp=Time(record.secs, record.nsecs)),
+                             level=int(record.level), name=record.node, msg=record.message, file=record.file,
+                             function=record.function, line=record.line, topics=sorted(self.node.publications))
         self.rosout.publish(msg)
 
     def get_loggers(self, _request: Any) -> Any:

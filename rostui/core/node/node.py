@@ -17,7 +17,7 @@ from urllib.parse import urlparse
 from rostui.core import names
 from rostui.core.log import Console, LoggerTree, NodeLog, package_logger
 from rostui.core.memory import tune_allocator
-from rostui.core.network import Addressing, master_uri_from_env, resolve_addressing
+from rostui.core.network import Addressing, connect_host, master_uri_from_env, resolve_addressing
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.busypoll import BusyPoll, busy_poll_for
 from rostui.core.node.logging_link import NodeLogging
@@ -394,6 +394,34 @@ class AsyncNode:
             sub.update_publishers(list(uris))
         return Subscriber(self, sub, callback, callback_args)
 
+    async def add_subscription(self, sub: Subscription, callback: Callable[..., Any] | None = None,
+                               callback_args: Any = None) -> Subscriber:
+        """Register a subscription built by the caller, e.g. of a Subscription subclass.
+
+        ``sub`` must have been built for this node with its topic name
+        already resolved (:meth:`resolve`), and the topic must not be
+        subscribed in this node yet (ValueError otherwise).  ``callback``,
+        when given, is added to ``sub`` as :meth:`subscribe` adds it.  The
+        master is told, ``sub`` connects to the publishers, and the handle
+        returned unregisters it like one from :meth:`subscribe`.
+        """
+        name = sub.topic
+        if sub.node is not self:
+            raise ValueError(f"the subscription to [{name}] belongs to another node")
+        if name in self.subscriptions:
+            raise ValueError(f"topic [{name}] is already subscribed in this node")
+        if callback is not None:
+            sub.add_callback(callback, callback_args)
+        sub.handles += 1
+        self.subscriptions[name] = sub
+        try:
+            uris = await self.master_call("registerSubscriber", name, sub.type_name, self.uri)
+        except Exception:
+            self.subscriptions.pop(name, None)
+            raise
+        sub.update_publishers(list(uris))
+        return Subscriber(self, sub, callback, callback_args)
+
     async def release_subscription(self, sub: Subscription) -> None:
         """Drop one handle; unregister when none are left."""
         sub.handles -= 1
@@ -438,7 +466,7 @@ class AsyncNode:
                 uri = await self.lookup_service(resolved)
                 parsed = urlparse(uri)
                 _, writer = await asyncio.wait_for(
-                    asyncio.open_connection(parsed.hostname, parsed.port), 1.0)
+                    asyncio.open_connection(connect_host(parsed.hostname or ""), parsed.port), 1.0)
                 writer.close()
                 return
             except (ServiceException, OSError, asyncio.TimeoutError) as exc:

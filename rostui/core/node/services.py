@@ -11,14 +11,12 @@ from __future__ import annotations
 
 import asyncio
 import logging
-from typing import TYPE_CHECKING, Any, Callable
+from typing import Any, Callable, Protocol
 from urllib.parse import urlparse
 
+from rostui.core.localhost import connect_host
+from rostui.core.node.transport import InboundConnection
 from rostui.core.tcpros import LEN, MAX_HEADER, decode_header, encode_header, max_frame_from_env
-
-if TYPE_CHECKING:
-    from rostui.core.node.node import AsyncNode
-    from rostui.core.node.transport import InboundConnection
 
 log = logging.getLogger("rostui.services")
 
@@ -28,6 +26,21 @@ class ServiceException(Exception):
 
 
 Handler = Callable[[Any], Any]
+
+
+class ServiceHost(Protocol):
+    """What service servers and proxies need from their node (an AsyncNode is one)."""
+
+    @property
+    def name(self) -> str:
+        """The node's name: the callerid in service headers."""
+
+    @property
+    def loop(self) -> asyncio.AbstractEventLoop:
+        """The engine loop (threaded handlers run in its executor)."""
+
+    async def lookup_service(self, name: str) -> str:
+        """The rosrpc URI of a service, or ServiceException if none is registered."""
 
 
 def make_response(srv_class: Any, result: Any) -> Any:
@@ -54,7 +67,7 @@ def make_response(srv_class: Any, result: Any) -> Any:
 class ServiceServer:
     """A service advertised by a node; answers rosrpc connections."""
 
-    def __init__(self, node: "AsyncNode", name: str, srv_class: Any, handler: Handler,
+    def __init__(self, node: ServiceHost, name: str, srv_class: Any, handler: Handler,
                  *, threaded: bool) -> None:
         self.node = node
         self.name = name
@@ -66,7 +79,8 @@ class ServiceServer:
     @property
     def type_name(self) -> str:
         """The service type, e.g. ``std_srvs/Empty``."""
-        return self.srv_class._type
+        name: str = self.srv_class._type
+        return name
 
     def reply_header(self) -> dict[str, str]:
         """The header this server sends to every client."""
@@ -78,7 +92,7 @@ class ServiceServer:
             "type": self.srv_class._type,
         }
 
-    def accept(self, header: dict[str, str], conn: "InboundConnection") -> "ServiceConnection | str":
+    def accept(self, header: dict[str, str], conn: InboundConnection) -> ServiceConnection | str:
         """Answer a client's header; return a connection handler or a refusal."""
         if header.get("probe") == "1":
             conn.write(encode_header(self.reply_header()))
@@ -103,7 +117,7 @@ class ServiceServer:
                 result = self.handler(request)
                 if asyncio.iscoroutine(result):
                     result = await result
-            payload = make_response(self.srv_class, result).serialize()
+            payload: bytes = make_response(self.srv_class, result).serialize()
             self.calls += 1
             return b"\x01" + LEN.pack(len(payload)) + payload
         except Exception as exc:
@@ -117,7 +131,7 @@ class ServiceServer:
 class ServiceConnection:
     """One client connection to a ServiceServer; requests are answered in order."""
 
-    def __init__(self, server: ServiceServer, conn: "InboundConnection", *, persistent: bool) -> None:
+    def __init__(self, server: ServiceServer, conn: InboundConnection, *, persistent: bool) -> None:
         self.server = server
         self.conn = conn
         self.persistent = persistent
@@ -170,7 +184,7 @@ async def read_header(reader: asyncio.StreamReader) -> dict[str, str]:
 async def probe_service(uri: str, service: str, callerid: str, timeout: float = 5.0) -> dict[str, str]:
     """Ask a service server for its header (type, md5sum) without calling it."""
     host, port = parse_rosrpc_uri(uri)
-    reader, writer = await asyncio.wait_for(asyncio.open_connection(host, port), timeout)
+    reader, writer = await asyncio.wait_for(asyncio.open_connection(connect_host(host), port), timeout)
     try:
         writer.write(encode_header({"callerid": callerid, "service": service, "md5sum": "*", "probe": "1"}))
         header = await asyncio.wait_for(read_header(reader), timeout)
@@ -184,7 +198,7 @@ async def probe_service(uri: str, service: str, callerid: str, timeout: float = 
 class ServiceProxy:
     """A client handle for one service; optionally keeps its connection open."""
 
-    def __init__(self, node: "AsyncNode", name: str, srv_class: Any, *, persistent: bool = False,
+    def __init__(self, node: ServiceHost, name: str, srv_class: Any, *, persistent: bool = False,
                  headers: dict[str, str] | None = None) -> None:
         self.node = node
         self.name = name
@@ -205,7 +219,7 @@ class ServiceProxy:
         uri = await self.node.lookup_service(self.name)
         host, port = parse_rosrpc_uri(uri)
         try:
-            reader, writer = await asyncio.open_connection(host, port)
+            reader, writer = await asyncio.open_connection(connect_host(host), port)
         except OSError as exc:
             raise ServiceException(f"unable to connect to service [{self.name}]: {exc}") from exc
         header = {"callerid": self.node.name, "service": self.name, "md5sum": self.srv_class._md5sum,

@@ -3,18 +3,59 @@
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING, Any
+from collections.abc import Mapping
+from typing import Any, Protocol
 
-if TYPE_CHECKING:
-    from rostui.core.node.node import AsyncNode
+from rostui.core.network import Addressing
+from rostui.core.node.params import ParamCache
+from rostui.core.node.services import ServiceServer
+from rostui.core.node.topics import Publication, Subscription
 
 Result = list[Any]
+
+
+class SlaveHost(Protocol):
+    """What the slave API reads and calls on its node (an AsyncNode is one)."""
+
+    @property
+    def master_uri(self) -> str:
+        """The master the node registered with."""
+
+    @property
+    def addressing(self) -> Addressing:
+        """How the node's servers are reached (``advertise_host``)."""
+
+    @property
+    def tcpros_port(self) -> int:
+        """The port of the node's TCPROS server."""
+
+    @property
+    def publications(self) -> Mapping[str, Publication]:
+        """The node's publications by topic."""
+
+    @property
+    def subscriptions(self) -> Mapping[str, Subscription]:
+        """The node's subscriptions by topic."""
+
+    @property
+    def services(self) -> Mapping[str, ServiceServer]:
+        """The node's services by name."""
+
+    @property
+    def params(self) -> ParamCache:
+        """The node's cache of subscribed parameters."""
+
+    def next_connection_id(self) -> int:
+        """A fresh id for a connection (getBusInfo)."""
+
+    def request_shutdown(self, reason: str) -> None:
+        """Begin shutting the node down."""
 
 
 class SlaveApi:
     """XML-RPC methods every ROS node serves; each returns ``[code, msg, value]``."""
 
-    def __init__(self, node: "AsyncNode") -> None:
+    def __init__(self, node: SlaveHost) -> None:
         self._node = node
 
     def getBusStats(self, caller_id: str) -> Result:

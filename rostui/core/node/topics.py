@@ -8,7 +8,7 @@ engine's queues the frame and wakes the loop once per batch.
 A `Subscription` connects to every publisher the master lists, checks each
 publisher header, deserialises frames and calls callbacks.  Publishers in the
 same process are linked directly: message objects are handed over without
-serialisation.
+serialisation.  Both reach their node only through `TopicHost`.
 """
 
 from __future__ import annotations
@@ -21,14 +21,13 @@ import socket
 import threading
 from dataclasses import dataclass
 from threading import get_ident
-from typing import TYPE_CHECKING, Any, Callable, Iterable, Iterator, Sequence
+from typing import Any, Callable, Iterable, Iterator, Protocol, Sequence
 
+from rostui.core.localhost import connect_host
 from rostui.core.node.anymsg import AnyMsg
-from rostui.core.node.transport import InboundConnection, SubscriberConnection, set_nodelay
+from rostui.core.node.busypoll import BusyPoll
+from rostui.core.node.transport import InboundConnection, PublisherConnection, SubscriberConnection, set_nodelay
 from rostui.core.tcpros import LEN, encode_header
-
-if TYPE_CHECKING:
-    from rostui.core.node.node import AsyncNode
 
 log = logging.getLogger("rostui.topics")
 
@@ -45,6 +44,35 @@ class TopicType:
     def of(cls, msg_class: Any) -> "TopicType":
         """The TopicType of a generated message class."""
         return cls(msg_class._type, msg_class._md5sum, msg_class._full_text)
+
+
+class TopicHost(Protocol):
+    """What publications and subscriptions need from their node (an AsyncNode is one)."""
+
+    @property
+    def name(self) -> str:
+        """The node's name: the callerid in connection headers."""
+
+    @property
+    def loop(self) -> asyncio.AbstractEventLoop:
+        """The engine loop that runs the node's connections."""
+
+    @property
+    def loop_thread_id(self) -> int:
+        """The thread id of the engine loop (publishing from it needs no hand-off)."""
+
+    @property
+    def busy_poll(self) -> BusyPoll | None:
+        """The loop's busy poller, told of every read, if the node uses one."""
+
+    def next_connection_id(self) -> int:
+        """A fresh id for a connection (getBusInfo / getBusStats)."""
+
+    async def request_topic(self, uri: str, topic: str) -> tuple[str, int]:
+        """The TCPROS host and port a publisher's slave API (at ``uri``) offers for ``topic``."""
+
+    def local_publication(self, uri: str, topic: str) -> Publication | None:
+        """The publication of ``topic`` by a node of this process at ``uri``, for direct delivery."""
 
 
 COALESCE_BYTES = 64 * 1024
@@ -164,7 +192,7 @@ class Publication:
     """Every publisher handle of one topic in one node shares this object."""
 
     def __init__(
-        self, node: "AsyncNode", topic: str, topic_type: TopicType, *,
+        self, node: TopicHost, topic: str, topic_type: TopicType, *,
         queue_size: int | None, latch: bool, tcp_nodelay: bool,
     ) -> None:
         self.node = node
@@ -325,9 +353,15 @@ Callback = Callable[..., Any]
 
 
 class Subscription:
-    """Every subscriber handle of one topic in one node shares this object."""
+    """Every subscriber handle of one topic in one node shares this object.
 
-    def __init__(self, node: "AsyncNode", topic: str, msg_class: Any, *, queue_size: int | None,
+    A subclass may open its own kind of connection to each publisher by
+    overriding :meth:`publisher_connection`; :meth:`AsyncNode.add_subscription
+    <rostui.core.node.node.AsyncNode.add_subscription>` registers such a
+    subscription.
+    """
+
+    def __init__(self, node: TopicHost, topic: str, msg_class: Any, *, queue_size: int | None,
                  tcp_nodelay: bool) -> None:
         self.node = node
         self.topic = topic
@@ -336,7 +370,7 @@ class Subscription:
         self.queue_size = queue_size
         self.tcp_nodelay = tcp_nodelay
         self.callbacks: tuple[tuple[Callback, Any], ...] = ()
-        self.connections: dict[str, SubscriberConnection | None] = {}
+        self.connections: dict[str, PublisherConnection | None] = {}
         self.local_pubs: dict[str, Publication] = {}
         self.publisher_uris: list[str] = []
         self.handles = 0
@@ -347,7 +381,8 @@ class Subscription:
     @property
     def type_name(self) -> str:
         """The type registered with the master (``*`` for raw subscribers)."""
-        return self.msg_class._type
+        name: str = self.msg_class._type
+        return name
 
     def add_callback(self, cb: Callback, args: Any = None) -> None:
         """Register a callback ``cb(msg)`` or ``cb(msg, args)``."""
@@ -453,9 +488,9 @@ class Subscription:
             if not done.done():
                 done.set_result(reason or "connection closed")
 
-        proto = self._publisher_connection(on_lost)
+        proto = self.publisher_connection(on_lost)
         try:
-            await self.node.loop.create_connection(lambda: proto, host, port)
+            await self.node.loop.create_connection(lambda: proto, connect_host(host), port)
         except OSError as exc:
             return str(exc)
         if uri not in self.connections or self.closed:
@@ -467,15 +502,20 @@ class Subscription:
             return None
         return reason
 
-    def _publisher_connection(self, on_lost: Callable[[str | None], None]) -> Any:
-        """The protocol for one connection to a publisher; ``on_lost(reason)`` when it ends.
+    def publisher_connection(self, on_lost: Callable[[str | None], None]) -> PublisherConnection:
+        """A new connection to one publisher; it must call ``on_lost(reason)`` once when it ends.
 
-        It has ``close()`` and ``error`` (why it was dropped, or None), like :class:`SubscriberConnection`.
+        By default a :class:`SubscriberConnection` that decodes each frame
+        and hands it to the callbacks.  A subclass may return its own kind of
+        :class:`PublisherConnection`; it should send :meth:`request_header`,
+        refuse a publisher that :meth:`check_header` objects to, and count
+        the messages it takes in ``messages_received``.
         """
-        return SubscriberConnection(self._request_header(), self._check_header, self._frames_handler(), on_lost,
+        return SubscriberConnection(self.request_header(), self.check_header, self._frames_handler(), on_lost,
                                     self._frame_handler(), busy_poll=self.node.busy_poll)
 
-    def _request_header(self) -> dict[str, str]:
+    def request_header(self) -> dict[str, str]:
+        """The connection header this subscription sends to a publisher."""
         header = {
             "callerid": self.node.name,
             "topic": self.topic,
@@ -487,7 +527,8 @@ class Subscription:
             header["message_definition"] = self.msg_class._full_text
         return header
 
-    def _check_header(self, header: dict[str, str]) -> str | None:
+    def check_header(self, header: dict[str, str]) -> str | None:
+        """Why a publisher's connection header is unacceptable (missing fields, other md5sum), or None."""
         missing = [k for k in ("md5sum", "type") if k not in header]
         if missing:
             return f"Publisher header did not have required element: {missing[0]}"

@@ -3,8 +3,9 @@
 `InboundConnection` is every connection accepted by a node's TCPROS server: it
 reads the peer's header and hands the connection to a topic publication or a
 service.  `SubscriberConnection` is the connection a subscription opens to a
-publisher.  Both drop a peer that stalls mid-frame, sends a bad header or a
-length over the cap, and never let one peer affect another.
+publisher (a `PublisherConnection`).  Both drop a peer that stalls mid-frame,
+sends a bad header or a length over the cap, and never let one peer affect
+another.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ from __future__ import annotations
 import asyncio
 import logging
 import socket
-from typing import Any, Callable, Protocol
+from typing import Any, Callable, Protocol, cast
 
 from rostui.core.node.busypoll import BusyPoll
 from rostui.core.tcpros import (
@@ -114,7 +115,7 @@ class InboundConnection(asyncio.Protocol):
 
     def connection_made(self, transport: asyncio.BaseTransport) -> None:
         """Start the header timer."""
-        self.transport = transport  # type: ignore[assignment]
+        self.transport = cast(asyncio.Transport, transport)  # TCP: a stream transport
         self.peer = transport.get_extra_info("peername")
         self._watch = StallWatch(self.drop)
         self._watch.progress(1)
@@ -199,7 +200,36 @@ class InboundConnection(asyncio.Protocol):
             self.handler.connection_lost()
 
 
-class SubscriberConnection(asyncio.Protocol):
+class PublisherConnection(asyncio.BaseProtocol):
+    """The base of every connection a subscription opens to a publisher.
+
+    The subscription and the slave API read ``header`` (the publisher's
+    connection header once accepted, else None), ``error`` (why the
+    connection was dropped, or None) and ``bytes_received``, and call
+    :meth:`close`.  Subclasses set the three attributes in ``__init__`` and
+    are asyncio protocols (``asyncio.Protocol`` or ``asyncio.BufferedProtocol``
+    first among their bases).
+    """
+
+    header: dict[str, str] | None
+    error: str | None
+    bytes_received: int
+    transport: asyncio.BaseTransport | None
+
+    def drop(self, reason: str) -> None:
+        """Close the connection, remembering why."""
+        self.error = reason
+        log.warning("dropping connection to publisher: %s", reason)
+        if self.transport is not None:
+            self.transport.close()
+
+    def close(self) -> None:
+        """Close the connection without error."""
+        if self.transport is not None:
+            self.transport.close()
+
+
+class SubscriberConnection(asyncio.Protocol, PublisherConnection):
     """A subscription's connection to one publisher.
 
     ``on_header`` validates the publisher's header and returns an error string
@@ -235,11 +265,11 @@ class SubscriberConnection(asyncio.Protocol):
 
     def connection_made(self, transport: asyncio.BaseTransport) -> None:
         """Send our subscriber header."""
-        self.transport = transport  # type: ignore[assignment]
-        set_nodelay(transport)
+        self.transport = stream = cast(asyncio.Transport, transport)  # TCP: a stream transport
+        set_nodelay(stream)
         self._watch = StallWatch(self.drop)
         self._watch.progress(1)
-        self.transport.write(encode_header(self.request_header))
+        stream.write(encode_header(self.request_header))
 
     def data_received(self, data: bytes) -> None:
         """Parse the publisher header, then message frames."""
@@ -277,18 +307,6 @@ class SubscriberConnection(asyncio.Protocol):
         if frames:
             self.messages_received += len(frames)
             self.on_frames(frames, self.header)
-
-    def drop(self, reason: str) -> None:
-        """Close the connection, remembering why."""
-        self.error = reason
-        log.warning("dropping connection to publisher: %s", reason)
-        if self.transport is not None:
-            self.transport.close()
-
-    def close(self) -> None:
-        """Close the connection without error."""
-        if self.transport is not None:
-            self.transport.close()
 
     def connection_lost(self, exc: Exception | None) -> None:
         """Report the end of the connection once."""

@@ -11,6 +11,11 @@ TYPE_CHECKING = False
 if TYPE_CHECKING:
     from typing import Any
 
+    from .blocking import call_sync
+    from .client import XmlRpcClient
+    from .marshal import EncodedResponse
+    from .server import DEFAULT_MAX_BODY, XmlRpcServer
+
 from .errors import RosApiError, XmlRpcConnectionError, XmlRpcError, XmlRpcFault, XmlRpcProtocolError
 from .result import ros_result
 

@@ -8,6 +8,7 @@ import zlib
 from typing import Any
 from urllib.parse import urlsplit
 
+from ..localhost import connect_host
 from .errors import XmlRpcConnectionError, XmlRpcFault, XmlRpcProtocolError
 from .marshal import Fault, decode_response, encode_call
 
@@ -46,7 +47,7 @@ def call_sync(uri: str, method: str, *args: Any, timeout: float = 10.0) -> Any:
     """
     host, port, path = split_uri(uri)
     body = encode_call(method, args)
-    conn = http.client.HTTPConnection(host, port, timeout=timeout)
+    conn = http.client.HTTPConnection(connect_host(host), port, timeout=timeout)
     try:
         try:
             conn.request("POST", path, body, {"Content-Type": "text/xml", "User-Agent": "rostui-xmlrpc"})

@@ -8,6 +8,7 @@ import sys
 import zlib
 from typing import Any
 
+from ..localhost import connect_host
 from .blocking import MAX_RESPONSE, call_sync, split_uri as _split_uri, unwrap_response as _unwrap
 from .errors import XmlRpcConnectionError, XmlRpcFault, XmlRpcProtocolError
 from .marshal import encode_call
@@ -17,7 +18,7 @@ __all__ = ["XmlRpcClient", "call_sync"]
 if sys.version_info >= (3, 11):
     _timeout = asyncio.timeout
 else:  # pragma: no cover - Python 3.10
-    from .server import _timeout  # type: ignore[attr-defined]
+    from .server import _timeout
 
 
 def _request_head(host: str, port: int, path: str, length: int) -> bytes:
@@ -91,7 +92,7 @@ class XmlRpcClient:
     async def _connect(self) -> None:
         try:
             self._reader, self._writer = await asyncio.open_connection(
-                self._host, self._port, limit=1 << 16)
+                connect_host(self._host), self._port, limit=1 << 16)
         except OSError as exc:
             reason = exc.strerror or str(exc)
             if isinstance(exc, ConnectionRefusedError):

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import socket
 
+from ..localhost import connect_host
 from .errors import XmlRpcConnectionError
 
 __all__ = ["quick_call"]
@@ -111,7 +112,8 @@ def _decode_simple(body: bytes) -> Any:
 def _exchange(host: str, port: int, request: bytes, timeout: float) -> tuple[bytes, bytes] | None:
     """Send ``request``; the response head and body, or None when the answer is not a plain 200."""
     address = host.encode("ascii") if host.isascii() else host  # bytes: no idna codec import
-    with socket.create_connection((address, port), timeout=timeout) as sock:
+    # typeshed wants a str host; getaddrinfo takes bytes as well
+    with socket.create_connection((address, port), timeout=timeout) as sock:  # type: ignore[arg-type]
         sock.sendall(request)
         data = b""
         while b"\r\n\r\n" not in data:
@@ -153,7 +155,7 @@ def quick_call(uri: str, method: str, *args: str, timeout: float = 10.0) -> Any:
                f"Content-Type: text/xml\r\nContent-Length: {len(body)}\r\nConnection: close\r\n\r\n"
                ).encode("latin-1") + body
     try:
-        answer = _exchange(host, port, request, timeout)
+        answer = _exchange(connect_host(host), port, request, timeout)
     except ConnectionRefusedError:
         raise XmlRpcConnectionError(uri, "connection refused") from None
     except (socket.timeout, TimeoutError):

@@ -18,7 +18,7 @@ import inspect
 import logging
 import sys
 import zlib
-from typing import Any, Callable
+from typing import Any, AsyncIterator, Callable
 
 from .marshal import EncodedResponse, Fault, decode_call, encode_fault, encode_response, exception_fault_string
 
@@ -40,7 +40,7 @@ if sys.version_info >= (3, 11):
     _timeout = asyncio.timeout
 else:  # pragma: no cover - Python 3.10
     @contextlib.asynccontextmanager
-    async def _timeout(delay: float | None):  # type: ignore[no-redef]
+    async def _timeout(delay: float | None) -> AsyncIterator[None]:
         task = asyncio.current_task()
         loop = asyncio.get_running_loop()
         handle = loop.call_later(delay, task.cancel) if delay is not None and task else None

@@ -60,7 +60,7 @@ def offline(path: Path, **options: Any) -> ConsoleApp:
 def messages(app: ConsoleApp) -> list[str]:
     """The message column of every visible row, as drawn (header and blank lines left out)."""
     lines = app.table.visible_texts()[1:]
-    layout = app.table.layout
+    layout = app.table.column_layout
     start = layout.columns[0].width + 1
     width = layout.columns[1].width
     return [line[start:start + width].rstrip() for line in lines if line.strip()]

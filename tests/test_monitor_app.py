@@ -164,13 +164,14 @@ def test_dead_publisher_marks_topic_stale(rostui_core: Any, ros_env: dict[str, s
 
     async def scenario(pilot: Pilot, app: MonitorApp) -> None:
         await live(app, "/dying")
-        await until(lambda: "alive" in str(app.tree.topic_node("/dying").children[0].label), "the message tree",
-                    DEADLINE)
+        await until(lambda: "alive" in str(app.message_trees.topic_node("/dying").children[0].label),
+                    "the message tree", DEADLINE)
         pub.kill()
         await until(lambda: row(app, "/dying").liveness is Liveness.STALE, "the row marked stale", DEADLINE)
         assert row(app, "/dying").cells()[-1] == "✖ stale" and row(app, "/dying").rate is None
         assert len(row(app, "/dying").publishers) == 1, "the master still lists the dead publisher"
-        await until(lambda: "stale" in str(app.tree.topic_node("/dying").label), "the tree marked stale", DEADLINE)
+        await until(lambda: "stale" in str(app.message_trees.topic_node("/dying").label), "the tree marked stale",
+                    DEADLINE)
 
     try:
         run(MonitorApp(["/dying"], period=0.3), scenario)
@@ -190,7 +191,7 @@ def test_expand_tree_constants_and_plot(rostui_core: Any, ros_env: dict[str, str
         assert app.table.select_topic("/log")
         await pilot.press("enter")
         assert app.expanded == ["/log"]
-        tree = app.tree
+        tree = app.message_trees
 
         def labels() -> list[str]:
             node = tree.topic_node("/log")

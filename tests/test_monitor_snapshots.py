@@ -129,8 +129,8 @@ def test_expanded_log_tree(snap_compare, talkers: Talkers) -> None:
         app = pilot.app
         assert isinstance(app, MonitorApp)
         await pilot.press("tab")
-        topics = app.tree.topic_node("/diagnostics/log").children[-1]
-        app.tree.move_cursor(topics)
+        topics = app.message_trees.topic_node("/diagnostics/log").children[-1]
+        app.message_trees.move_cursor(topics)
         await pilot.press("enter")
         await pilot.pause()
 

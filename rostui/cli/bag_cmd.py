@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import sys
 import time
+from typing import Callable, TextIO
 
 import typer
 
@@ -18,21 +19,21 @@ def _ros_log(text: str) -> None:
     print(f"[ INFO] [{time.time():.6f}]: {text}", flush=True)
 
 
-def _status_writer(stream: object) -> object:
+def _status_writer(stream: TextIO) -> Callable[[str], None]:
     """A status-line printer: rewritten in place on a terminal, one line a second otherwise."""
-    tty = getattr(stream, "isatty", lambda: False)()
+    tty = stream.isatty()
     last = [0.0]
 
     def show(line: str) -> None:
         if tty:
-            stream.write("\r" + line)  # type: ignore[attr-defined]
-            stream.flush()  # type: ignore[attr-defined]
+            stream.write("\r" + line)
+            stream.flush()
             return
         now = time.monotonic()
         if now - last[0] >= 1.0:
             last[0] = now
-            stream.write(line.rstrip() + "\n")  # type: ignore[attr-defined]
-            stream.flush()  # type: ignore[attr-defined]
+            stream.write(line.rstrip() + "\n")
+            stream.flush()
     return show
 
 

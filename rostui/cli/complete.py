@@ -8,9 +8,12 @@ missing master never breaks the shell.
 
 from __future__ import annotations
 
-from typing import Any, Iterable, List
+from typing import TYPE_CHECKING, Any, Iterable, List
 
 import typer
+
+if TYPE_CHECKING:
+    from rostui.tools.msgtypes import Kind
 
 __all__ = [
     "complete_packages", "complete_executables", "complete_msg_types", "complete_srv_types",
@@ -46,7 +49,7 @@ def complete_executables(ctx: typer.Context, incomplete: str) -> List[str]:
         return []
 
 
-def _types(kind: str, incomplete: str) -> List[str]:
+def _types(kind: Kind, incomplete: str) -> List[str]:
     try:
         from rostui.tools.msgtypes import list_types
 

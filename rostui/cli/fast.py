@@ -63,7 +63,7 @@ def main() -> None:
 
         print(f"rostui {__version__}")
         raise SystemExit(0)
-    entry = FAST.get(tuple(argv[:2]))  # type: ignore[arg-type]
+    entry = FAST.get((argv[0], argv[1])) if len(argv) >= 2 else None
     rest = argv[2:]
     if entry is not None and len(rest) == entry[0] and not any(a.startswith("-") for a in rest):
         sys.stdout.flush()

@@ -2,10 +2,15 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import typer
 
 from rostui.cli.common import JSON_OPTION_HELP
 from rostui.cli.complete import complete_msg_types, complete_packages, complete_srv_types
+
+if TYPE_CHECKING:
+    from rostui.tools.msgtypes import Kind
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
 
@@ -16,7 +21,7 @@ srv_app = typer.Typer(name="srv", help="Service types: show, list, md5, package 
                       no_args_is_help=True, context_settings=CONTEXT)
 
 
-def _show(kind: str, type_name: str, raw: bool, as_json: bool) -> None:
+def _show(kind: Kind, type_name: str, raw: bool, as_json: bool) -> None:
     import sys
 
     from rostui.cli.common import fail, print_json
@@ -24,18 +29,18 @@ def _show(kind: str, type_name: str, raw: bool, as_json: bool) -> None:
 
     try:
         if as_json:
-            print_json(show_json(kind, type_name))  # type: ignore[arg-type]
+            print_json(show_json(kind, type_name))
         else:
-            sys.stdout.write(show(kind, type_name, raw))  # type: ignore[arg-type]
+            sys.stdout.write(show(kind, type_name, raw))
     except TypeLookupError as exc:
         fail(exc.message, exc.code)
 
 
-def _list(kind: str, as_json: bool) -> None:
+def _list(kind: Kind, as_json: bool) -> None:
     from rostui.cli.common import print_json
     from rostui.tools.msgtypes import list_types
 
-    names = list_types(kind)  # type: ignore[arg-type]
+    names = list_types(kind)
     if as_json:
         print_json(names)
     else:
@@ -43,14 +48,14 @@ def _list(kind: str, as_json: bool) -> None:
             print(name)
 
 
-def _md5(kind: str, type_name: str) -> None:
+def _md5(kind: Kind, type_name: str) -> None:
     import sys
 
     from rostui.cli.common import fail
     from rostui.tools.msgtypes import TypeLookupError, md5
 
     try:
-        out, notice = md5(kind, type_name)  # type: ignore[arg-type]
+        out, notice = md5(kind, type_name)
     except TypeLookupError as exc:
         fail(exc.message, exc.code)
     sys.stdout.write(out)
@@ -58,21 +63,21 @@ def _md5(kind: str, type_name: str) -> None:
         print(notice, file=sys.stderr)
 
 
-def _package(kind: str, package: str, single_line: bool, as_json: bool) -> None:
+def _package(kind: Kind, package: str, single_line: bool, as_json: bool) -> None:
     from rostui.cli.common import fail
     from rostui.tools.msgtypes import TypeLookupError, package_types
 
     try:
-        names = package_types(kind, package)  # type: ignore[arg-type]
+        names = package_types(kind, package)
     except TypeLookupError as exc:
         fail(exc.message, exc.code)
     _print_names(names, single_line, as_json)
 
 
-def _packages(kind: str, single_line: bool, as_json: bool) -> None:
+def _packages(kind: Kind, single_line: bool, as_json: bool) -> None:
     from rostui.tools.msgtypes import packages_with_types
 
-    _print_names(packages_with_types(kind), single_line, as_json)  # type: ignore[arg-type]
+    _print_names(packages_with_types(kind), single_line, as_json)
 
 
 def _print_names(names: list[str], single_line: bool, as_json: bool) -> None:
@@ -87,7 +92,7 @@ def _print_names(names: list[str], single_line: bool, as_json: bool) -> None:
         print("\n".join(names))
 
 
-def _add_commands(app: typer.Typer, kind: str) -> None:
+def _add_commands(app: typer.Typer, kind: Kind) -> None:
     """The same five commands for messages and services."""
     what = "message" if kind == "msg" else "service"
     tool = "rosmsg" if kind == "msg" else "rossrv"

@@ -93,12 +93,13 @@ def ping_command(
         dead = []
         for n in nodes:
             _echo(f"pinging {n} with a timeout of {PING_TIMEOUT:.1f}s")
-            if uris.get(n) is None:
+            uri = uris.get(n)
+            if uri is None:
                 _echo(f"cannot ping [{n}]: unknown node", err=True)
                 continue
             try:
-                ms = ping_node(uris[n])
-                _echo(f"xmlrpc reply from {uris[n]}\ttime={ms:f}ms")
+                ms = ping_node(uri)
+                _echo(f"xmlrpc reply from {uri}\ttime={ms:f}ms")
             except PingError as exc:
                 _echo(str(exc), err=True)
                 dead.append(n)

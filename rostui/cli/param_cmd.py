@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import Any, NoReturn, Optional
 
 import typer
 
@@ -23,7 +23,7 @@ def _resolve(name: str) -> str:
     return script_resolve(name)
 
 
-def _fail(exc: Exception) -> None:
+def _fail(exc: Exception) -> NoReturn:
     from rostui.cli.common import fail
 
     fail(str(exc))

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import sys
-from typing import Any, List, Optional
+from typing import Any, List, NoReturn, Optional
 
 import typer
 
@@ -31,7 +31,7 @@ def _resolve(name: str) -> str:
     return script_resolve(name)
 
 
-def _fail(exc: Exception) -> None:
+def _fail(exc: Exception) -> NoReturn:
     from rostui.cli.common import fail
 
     fail(str(exc))

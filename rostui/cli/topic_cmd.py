@@ -8,7 +8,7 @@ heavier than Typer is imported inside the command that needs it, so
 from __future__ import annotations
 
 import sys
-from typing import Any, List, Optional
+from typing import Any, Callable, Coroutine, Iterable, List, NoReturn, Optional
 
 import typer
 
@@ -45,7 +45,7 @@ def _resolve(name: str) -> str:
         _fail(f"ERROR: invalid topic name [{name}]: {e}")
 
 
-def _fail(message: str) -> None:
+def _fail(message: str) -> NoReturn:
     from rostui.cli.common import fail
 
     fail(message)
@@ -62,6 +62,7 @@ def _run_async(coro: Any) -> int:
 
     from rostui.tools.topic.common import TopicToolError
 
+    runner: Callable[[Coroutine[Any, Any, int]], int]
     try:
         import uvloop
 
@@ -265,7 +266,7 @@ def pub_command(
         cls = message_class(msg_type)
     except TopicToolError as e:
         _fail(f"ERROR: {e}")
-    documents = None
+    documents: Iterable[Any] | None = None
     single = False
     if not pub_args and len(cls.__slots__):
         if file:

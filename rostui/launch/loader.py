@@ -165,7 +165,7 @@ class XmlLoader:
                               exc.lineno or None) from None
         root = tree.getroot()
         if root.tag != "launch":
-            raise LaunchError("Invalid roslaunch XML syntax: no root <launch> tag", filename, root.sourceline)
+            raise LaunchError("Invalid roslaunch XML syntax: no root <launch> tag", filename, _line(root))
         return root
 
     def _sub(self, text: str | None, scope: Scope) -> str | None:
@@ -184,7 +184,7 @@ class XmlLoader:
     @staticmethod
     def _check_attrs(tag: etree._Element) -> None:
         allowed = ATTRS.get(tag.tag, set()) | {"if", "unless"}
-        for attr in tag.attrib:
+        for attr in map(_str, tag.attrib):
             if attr not in allowed:
                 raise LaunchError(f"unknown <{tag.tag}> attribute '{attr}'")
 
@@ -238,7 +238,7 @@ class XmlLoader:
             try:
                 default_machine = self._element(tag, scope, config, default_machine)
             except LaunchError as exc:
-                raise exc.located(scope.filename, tag.sourceline) from None
+                raise exc.located(scope.filename, _line(tag)) from None
         return default_machine
 
     def _element(self, tag: etree._Element, scope: Scope, config: LaunchConfig,
@@ -381,7 +381,7 @@ class XmlLoader:
                 else:
                     self._env_tag(sub, env_scope)
             except LaunchError as exc:
-                raise exc.located(scope.filename, sub.sourceline) from None
+                raise exc.located(scope.filename, _line(sub)) from None
         for key, value in [*scope.params, *param_scope.params]:
             if is_private(key):
                 key = key[1:]
@@ -405,7 +405,7 @@ class XmlLoader:
             package=pkg, type=node_type, name=name, namespace=namespace, args=args or "",
             remaps=remap_scope.all_remaps(), env=list(env_scope.env), machine=machine or None,
             respawn=respawn_flag, respawn_delay=delay, required=required_flag, output=output, cwd=cwd,
-            launch_prefix=prefix or None, filename=scope.filename, line=tag.sourceline,
+            launch_prefix=prefix or None, filename=scope.filename, line=_line(tag),
             test_name=test_name, time_limit=time_limit, retry=retry)
 
     def _param_tag(self, tag: etree._Element, scope: Scope, config: LaunchConfig, force_local: bool) -> None:
@@ -482,7 +482,7 @@ class XmlLoader:
             with open(file_, encoding="utf-8") as fh:
                 text = fh.read()
         else:
-            text = "".join(tag.itertext())
+            text = "".join(map(_str, tag.itertext()))
         if subst_value:
             text = self._sub(text, scope) or ""
         try:
@@ -522,7 +522,7 @@ class XmlLoader:
             limit = self._float(timeout, 0.0, "timeout")
             if limit <= 0:
                 raise LaunchError(f"'timeout' must be a positive number: [{timeout}]")
-        machine = Machine(name, address, env_loader, port, user, password, limit, tag.sourceline, scope.filename)
+        machine = Machine(name, address, env_loader, port, user, password, limit, _line(tag), scope.filename)
         return machine, default == "true"
 
     def _include_tag(self, tag: etree._Element, scope: Scope, config: LaunchConfig,
@@ -549,7 +549,7 @@ class XmlLoader:
                     self._check_attrs(sub)
                     self._env_tag(sub, child)
             except LaunchError as exc:
-                raise exc.located(scope.filename, sub.sourceline) from None
+                raise exc.located(scope.filename, _line(sub)) from None
         child.filename = filename
         passed = child.include_args or {}
         for name in child.arg_names:
@@ -576,3 +576,16 @@ class XmlLoader:
             if unused:
                 raise LaunchError(f"unused args [{', '.join(unused)}] for include of [{filename}]")
         return default_machine
+
+
+# lxml-stubs 0.5 types an element's line as ``...`` and its attribute names and text as
+# ``str | bytes``; lxml gives a parsed document's lines as int (None when unknown) and its text as str.
+def _line(element: etree._Element) -> int | None:
+    """The line of ``element`` in its file, if known."""
+    line = element.sourceline
+    return line if isinstance(line, int) else None
+
+
+def _str(text: str | bytes) -> str:
+    """An attribute name or text node of a parsed element, as str."""
+    return text if isinstance(text, str) else text.decode("utf-8")

@@ -45,15 +45,9 @@ class ParamError(Exception):
 _ANGLE = re.compile(r"^\s*!(degrees|radians)\s+(.+)$")
 
 
-def _yaml():
-    import yaml
-
-    return yaml
-
-
 def _loader() -> Any:
     """A SafeLoader that also understands rosparam's ``!degrees`` and ``!radians`` tags."""
-    yaml = _yaml()
+    import yaml
 
     class Loader(yaml.SafeLoader):
         pass
@@ -108,7 +102,7 @@ def parse_value(text: str) -> Any:
     ``1.0`` is a float, ``'1'`` and ``!!str 5`` strings, ``[1, 2]`` a list, a
     multi-line ``key: value`` block a dict.  Raises ParamError for bad YAML.
     """
-    yaml = _yaml()
+    import yaml
     try:
         return yaml.load(text, Loader=_loader())
     except yaml.YAMLError as exc:
@@ -220,7 +214,7 @@ def format_get(value: Any) -> str:
     simple = simple_value_text(value)
     if simple is not None:
         return simple
-    yaml = _yaml()
+    import yaml
     text = yaml.safe_dump(_plain(value), default_flow_style=False)
     if text.endswith("\n...\n"):
         text = text[: -len("\n...\n")]
@@ -229,7 +223,7 @@ def format_get(value: Any) -> str:
 
 def format_dump(value: Any) -> str:
     """The text ``rosparam dump`` writes to its file."""
-    yaml = _yaml()
+    import yaml
     return yaml.safe_dump(_plain(value), default_flow_style=False)
 
 
@@ -252,7 +246,7 @@ def load_text(text: str, namespace: str, source: str) -> list[tuple[str, Any]]:
     """
     from rostui.core import names
 
-    yaml = _yaml()
+    import yaml
     docs: list[Any] = []
     try:
         for doc in yaml.load_all(text, Loader=_loader()):

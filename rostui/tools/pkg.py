@@ -5,6 +5,7 @@ from __future__ import annotations
 import locale
 import os
 from pathlib import Path
+from typing import Callable
 
 from rostui.core import packages
 
@@ -60,7 +61,7 @@ def ls_target(spec: str) -> Path:
     return target
 
 
-def _collate_key():  # type: ignore[no-untyped-def]
+def _collate_key() -> Callable[[str], str]:
     """Sort key matching ls's order in the current locale (LC_COLLATE)."""
     try:
         locale.setlocale(locale.LC_COLLATE, "")

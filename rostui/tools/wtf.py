@@ -74,7 +74,7 @@ class Report:
 
 def format_finding(finding: Finding, color: bool = False) -> str:
     """One line: ``ERROR what is wrong (hint: what to do)``, the level colored like roswtf on a TTY."""
-    level = finding.level
+    level: str = finding.level
     if color:
         level = "\x1b[31m\x1b[1mERROR\x1b[0m" if level == "ERROR" else "\x1b[1mWARNING\x1b[0m"
     return f"{level} {finding.message} (hint: {finding.hint})"
@@ -106,7 +106,7 @@ def _is_local_address(address: str) -> bool:
 
 
 def _resolve(host: str) -> list[str]:
-    return sorted({info[4][0] for info in socket.getaddrinfo(host, None, proto=socket.IPPROTO_TCP)})
+    return sorted({str(info[4][0]) for info in socket.getaddrinfo(host, None, proto=socket.IPPROTO_TCP)})
 
 
 def _check_environment(env: Mapping[str, str], uri: str) -> list[Finding]:
@@ -221,8 +221,8 @@ def _check_graph(call: Caller, master: str, timeout: float) -> list[Finding]:
         uses: dict[str, list[str]] = {}
         for role, group, attr in (("publishes", publishers, "publications"), ("subscribes", subscribers, "subscriptions")):
             for n in group.get(topic, []):
-                s = states.get(n)
-                t = getattr(s, attr).get(topic) if s is not None and s.alive else None
+                state = states.get(n)
+                t = getattr(state, attr).get(topic) if state is not None and state.alive else None
                 if t and t != "*":
                     uses.setdefault(t, []).append(f"{n} {role}")
         if len(uses) > 1:

@@ -144,7 +144,7 @@ def main(argv: list[str] | None = None) -> int:
         command = driver.step(latest["pose"])
         if command is None:
             return
-        twist = Twist()
+        twist: Any = Twist()  # a generated class: its fields are not known statically
         twist.linear.x, twist.angular.z = command
         twist_pub.publish(twist)
         velocity_pub.publish(Velocity(linear=command[0], angular=command[1]))

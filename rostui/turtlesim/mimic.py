@@ -39,7 +39,7 @@ def main(argv: list[str] | None = None) -> int:
     velocity_pub = ros.Publisher(f"{output_ns}/command_velocity", Velocity, queue_size=1)
 
     def copy_motion(pose: Any) -> None:
-        twist = Twist()
+        twist: Any = Twist()  # a generated class: its fields are not known statically
         twist.linear.x = pose.linear_velocity
         twist.angular.z = pose.angular_velocity
         twist_pub.publish(twist)

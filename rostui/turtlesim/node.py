@@ -210,16 +210,22 @@ class TurtlesimNode:
             self._turtle_call(world.teleport_relative, name, req.linear, req.angular)
             return TeleportRelative._response_class()
 
-        pose, color, twist_sub, velocity_sub, *services = await asyncio.gather(
-            node.advertise(f"{name}/pose", Pose, queue_size=1),
-            node.advertise(f"{name}/color_sensor", Color, queue_size=1),
-            node.subscribe(f"{name}/cmd_vel", Twist, on_twist, queue_size=1),
-            node.subscribe(f"{name}/command_velocity", Velocity, on_velocity, queue_size=1),
-            node.advertise_service(f"{name}/set_pen", SetPen, on_set_pen),
-            node.advertise_service(f"{name}/teleport_absolute", TeleportAbsolute, on_teleport_absolute),
-            node.advertise_service(f"{name}/teleport_relative", TeleportRelative, on_teleport_relative),
+        (pose, color), subscribers, services = await asyncio.gather(
+            asyncio.gather(
+                node.advertise(f"{name}/pose", Pose, queue_size=1),
+                node.advertise(f"{name}/color_sensor", Color, queue_size=1),
+            ),
+            asyncio.gather(
+                node.subscribe(f"{name}/cmd_vel", Twist, on_twist, queue_size=1),
+                node.subscribe(f"{name}/command_velocity", Velocity, on_velocity, queue_size=1),
+            ),
+            asyncio.gather(
+                node.advertise_service(f"{name}/set_pen", SetPen, on_set_pen),
+                node.advertise_service(f"{name}/teleport_absolute", TeleportAbsolute, on_teleport_absolute),
+                node.advertise_service(f"{name}/teleport_relative", TeleportRelative, on_teleport_relative),
+            ),
         )
-        return _TurtleEndpoints(pose, color, (twist_sub, velocity_sub), tuple(services))
+        return _TurtleEndpoints(pose, color, subscribers, services)
 
     async def _detach(self, endpoints: _TurtleEndpoints) -> None:
         node = self.node

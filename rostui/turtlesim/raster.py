@@ -17,9 +17,20 @@ RGB = tuple[int, int, int]
 class PixelSource(Protocol):
     """What the raster reads from the path image (see rostui.turtlesim.canvas.PathImage)."""
 
-    background: RGB
-    rows: Sequence[bytearray]
-    generation: int
+    @property
+    def background(self) -> RGB:
+        """The colour of the empty canvas."""
+        ...
+
+    @property
+    def rows(self) -> Sequence[bytearray]:
+        """One bytearray of RGB triples per pixel row."""
+        ...
+
+    @property
+    def generation(self) -> int:
+        """A number that changes with every drawing."""
+        ...
 
     def changes_since(self, generation: int) -> tuple[int, list[tuple[int, int, int, int]] | None]:
         """The new generation and the pixel rectangles changed since ``generation`` (None: all)."""

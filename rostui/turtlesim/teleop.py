@@ -262,7 +262,7 @@ def run_teleop(argv: Sequence[str], *, topic: str | None = None) -> int:
             if command is None:
                 continue
             linear, angular = command
-            twist = Twist()
+            twist: Any = Twist()  # a generated class: its fields are not known statically
             twist.linear.x = linear
             twist.angular.z = angular
             if velocity_pub is None:

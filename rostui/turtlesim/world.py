@@ -281,7 +281,7 @@ class TurtleWorld:
         body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
         shape = pymunk.Circle(body, TURTLE_RADIUS)
         shape.filter = pymunk.ShapeFilter(categories=_TURTLE_CATEGORY, mask=_TURTLE_CATEGORY)
-        shape.turtle = turtle  # type: ignore[attr-defined]
+        shape.turtle = turtle
         turtle.body = body
         turtle.prev_x, turtle.prev_down = turtle.x, turtle.down
         self.space.add(body, shape)

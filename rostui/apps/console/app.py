@@ -14,7 +14,7 @@ import gc
 import time
 from dataclasses import replace
 from pathlib import Path
-from typing import ClassVar, Iterable
+from typing import Any, ClassVar, Iterable
 
 from textual.app import App, ComposeResult
 from textual.binding import Binding, BindingType
@@ -22,7 +22,7 @@ from textual.containers import VerticalScroll
 from textual.timer import Timer
 from textual.widgets import Input, Static
 
-from rostui.apps.console.bars import KEY_HELP, Bar, StatusInfo, detail_markup, filter_markup, status_markup
+from rostui.apps.console.bars import KEY_HELP, LEVEL_KEYS, Bar, StatusInfo, detail_markup, filter_markup, status_markup
 from rostui.apps.console.table import LogTable
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
@@ -31,7 +31,8 @@ from rostui.core.log.rosout_read import RosoutEntry, RosoutLog, entries_text
 from rostui.core.network import master_uri_from_env
 from rostui.models.console.filters import FilterError, FilterSpec, HighlightRule, compile_text
 from rostui.models.console.model import ConsoleModel, ConsoleOptions
-from rostui.models.console.source import LiveSource, SourceState
+from rostui.models.console.source import LiveSource
+from rostui.models.master_link import LinkStatus, SourceState
 
 __all__ = ["ConsoleApp", "ConsoleOptions", "run_app"]
 
@@ -79,11 +80,7 @@ class ConsoleApp(ReleasesOnExit, App[int]):
 
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("q", "quit", "quit"),
-        Binding("1", "toggle_level(1)", "DEBUG", show=False),
-        Binding("2", "toggle_level(2)", "INFO", show=False),
-        Binding("3", "toggle_level(4)", "WARN", show=False),
-        Binding("4", "toggle_level(8)", "ERROR", show=False),
-        Binding("5", "toggle_level(16)", "FATAL", show=False),
+        *(Binding(key, f"toggle_level({int(level)})", level.name, show=False) for level, key in LEVEL_KEYS.items()),
         Binding("slash", "open_prompt('search')", "search"),
         Binding("r", "toggle_regex", "regex"),
         Binding("escape", "clear_search", "clear search", show=False),
@@ -183,9 +180,9 @@ class ConsoleApp(ReleasesOnExit, App[int]):
 
     def _on_state(self, state: SourceState) -> None:
         previous, self.source_state = self.source_state, state
-        if state.status == "lost":
+        if state.status is LinkStatus.LOST:
             self.notify(state.text(), title="master", severity="error", timeout=6)
-        elif state.status == "connected" and previous is not None and previous.status == "lost":
+        elif state.status is LinkStatus.CONNECTED and previous is not None and previous.status is LinkStatus.LOST:
             self.notify(f"master {state.master_uri} is back: listening to /rosout_agg again", title="master",
                         timeout=6)
         self.refresh_bars()
@@ -204,8 +201,8 @@ class ConsoleApp(ReleasesOnExit, App[int]):
             source, ok = f"file {self.log_name}", True
             malformed = self.log_file.malformed_summary()
         else:
-            state = self.source_state or SourceState("waiting", self.master_uri)
-            source, ok, malformed = state.text(), state.status == "connected", ""
+            state = self.source_state or SourceState(LinkStatus.WAITING, self.master_uri)
+            source, ok, malformed = state.text(), state.status is LinkStatus.CONNECTED, ""
         return StatusInfo(follow=self.table.follow, source=source, source_ok=ok, malformed=malformed, notice=notice)
 
     def refresh_bars(self) -> None:
@@ -437,8 +434,8 @@ class ConsoleApp(ReleasesOnExit, App[int]):
             await self.source.stop()
 
 
-def _with(spec: FilterSpec, **changes: object) -> FilterSpec:
-    return replace(spec, **changes)  # type: ignore[arg-type]
+def _with(spec: FilterSpec, **changes: Any) -> FilterSpec:
+    return replace(spec, **changes)
 
 
 def run_app(options: ConsoleOptions, log: RosoutLog | None = None, log_name: str | None = None) -> int:

@@ -22,14 +22,11 @@ from rostui.models.console.model import ConsoleModel
 
 __all__ = ["Bar", "KEY_HELP", "LEVEL_KEYS", "StatusInfo", "detail_markup", "filter_markup", "status_markup"]
 
-#: The key that toggles each level, as the filter bar shows it.
-LEVEL_KEYS: dict[Level, str] = {Level.DEBUG: "1", Level.INFO: "2", Level.WARN: "3", Level.ERROR: "4",
-                                Level.FATAL: "5"}
+#: The key that toggles each level, as the filter bar shows it: 1 (DEBUG) to 5 (FATAL).
+LEVEL_KEYS: dict[Level, str] = {level: str(key) for key, level in enumerate(Level, start=1)}
 
-_LEVEL_COLOURS = {Level.DEBUG: "$text-success", Level.INFO: "$foreground", Level.WARN: "$text-warning",
-                  Level.ERROR: "$text-error", Level.FATAL: "$text-error"}
-
-_KNOWN_LEVELS = frozenset(int(level) for level in Level)
+_LEVEL_COLOURS: dict[int, str] = {Level.DEBUG: "$text-success", Level.INFO: "$foreground",
+                                  Level.WARN: "$text-warning", Level.ERROR: "$text-error", Level.FATAL: "$text-error"}
 
 _HIGHLIGHT_COLOURS = ["$accent 30%", "$success 30%", "$secondary 80%", "$error 25%"]
 
@@ -148,8 +145,7 @@ def detail_markup(seq: int | None, entry: RosoutEntry | None, source_name: str =
     """Every field of the selected message, its full text last."""
     if seq is None or entry is None:
         return Content.from_markup("[dim]no message selected[/]")
-    colour = _LEVEL_COLOURS.get(Level(entry.level), "$foreground") if entry.level in _KNOWN_LEVELS \
-        else "$foreground"
+    colour = _LEVEL_COLOURS.get(entry.level, "$foreground")
     parts: list[str | Content | tuple[str, str]] = [
         (f"#{seq + 1}", "bold"), "  ", (entry.level_name, f"bold {colour}"), "  ",
         (printable(entry.node) or "(no node)", "bold"),

@@ -23,6 +23,7 @@ from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
 from rostui.apps.console.columns import GAP, Layout, cell, layout_for, row_texts
+from rostui.core.log.levels import Level
 from rostui.models.console.filters import HighlightRule, first_highlight
 from rostui.models.console.model import ConsoleModel
 
@@ -31,8 +32,7 @@ __all__ = ["HIGHLIGHT_COLOURS", "LogTable"]
 #: Highlight rules cycle through this many colours.
 HIGHLIGHT_COLOURS = 4
 
-_LEVEL_CLASSES = {1: "log-table--debug", 2: "log-table--info", 4: "log-table--warn", 8: "log-table--error",
-                  16: "log-table--fatal"}
+_LEVEL_CLASSES = {int(level): f"log-table--{level.text}" for level in Level}
 
 #: Rendered rows kept between repaints.
 _CACHE_ROWS = 2048
@@ -114,7 +114,7 @@ class LogTable(ScrollView, can_focus=True):
         return int(self.scroll_y)
 
     @property
-    def layout(self) -> Layout:
+    def column_layout(self) -> Layout:
         """The columns at the current width (recomputed when width, ``#`` digits or node width change)."""
         key = (self.scrollable_content_region.width, len(str(self.model.end)), self.model.longest_node)
         if self._layout is None or key != self._layout_key:
@@ -161,12 +161,15 @@ class LogTable(ScrollView, can_focus=True):
         Setting ``virtual_size`` lays out the whole screen; at 20 batches a
         second that is most of the app's time.  The table's box does not
         depend on its row count (its scrollbar is always shown), so updating
-        the scroll range and the scrollbar is all a new row count needs.
+        the scroll range, the scrollbar's range and a scroll position past
+        the new end is all a new row count needs.
         """
         size = Size(self.scrollable_content_region.width, height)
         if size != self.virtual_size:
             self.set_reactive(LogTable.virtual_size, size)
-            self._scroll_update(size)
+            if self.show_vertical_scrollbar:
+                self.vertical_scrollbar.window_virtual_size = height
+            self.scroll_y = min(self.scroll_y, self.max_scroll_y)
 
     def refilter(self) -> None:
         """The filter changed: keep the selected message in view if it is still shown."""
@@ -297,7 +300,7 @@ class LogTable(ScrollView, can_focus=True):
 
     def render_line(self, y: int) -> Strip:
         """Line ``y`` of the widget: the header, a message row, or blank."""
-        layout = self.layout
+        layout = self.column_layout
         if y == 0:
             return self._header(layout)
         row = self.top_row + y - 1

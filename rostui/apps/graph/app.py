@@ -69,10 +69,10 @@ class GraphApp(ReleasesOnExit, App[int]):
         Binding("1", "set_view('nodes')", "nodes only", show=False),
         Binding("2", "set_view('active')", "nodes/topics (active)", show=False),
         Binding("3", "set_view('all')", "nodes/topics (all)", show=False),
-        Binding("d", "toggle('hide_debug')", "hide debug"),
-        Binding("s", "toggle('hide_dead_sinks')", "hide dead sinks"),
-        Binding("l", "toggle('hide_leaf_topics')", "hide leaf topics"),
-        Binding("g", "toggle('group_namespaces')", "group namespaces"),
+        Binding("d", "toggle_option('hide_debug')", "hide debug"),
+        Binding("s", "toggle_option('hide_dead_sinks')", "hide dead sinks"),
+        Binding("l", "toggle_option('hide_leaf_topics')", "hide leaf topics"),
+        Binding("g", "toggle_option('group_namespaces')", "group namespaces"),
         Binding("b", "book", "book's setup"),
         Binding("i", "prompt('include')", "include"),
         Binding("x", "prompt('exclude')", "exclude"),
@@ -365,7 +365,7 @@ class GraphApp(ReleasesOnExit, App[int]):
         """1/2/3: a view by name."""
         self.set_options(self.options.with_(view=ViewMode(view)))
 
-    def action_toggle(self, flag: str) -> None:
+    def action_toggle_option(self, flag: str) -> None:
         """Flip one of the hide/group boxes."""
         self.set_options(self.options.with_(**{flag: not getattr(self.options, flag)}))
 

@@ -24,10 +24,10 @@ _LINES = {
     _UP | _DOWN | _LEFT | _RIGHT: "┼",
 }
 #: Corners and sides per kind: top-left, top-right, bottom-left, bottom-right, horizontal, vertical.
-_BORDERS = {
-    Kind.NODE: "╭╮╰╯─│",
-    Kind.TOPIC: "┌┐└┘─│",
-    Kind.GROUP: "╔╗╚╝═║",
+_BORDERS: dict[Kind, tuple[str, ...]] = {
+    Kind.NODE: tuple("╭╮╰╯─│"),
+    Kind.TOPIC: tuple("┌┐└┘─│"),
+    Kind.GROUP: tuple("╔╗╚╝═║"),
 }
 
 #: Owner value of a cell nothing drew.

@@ -91,9 +91,9 @@ class OutputLog(RichLog):
         else:
             super().action_scroll_end()
 
-    def _on_mouse_scroll_up(self, event: events.MouseScrollUp) -> None:
+    def on_mouse_scroll_up(self, _event: events.MouseScrollUp) -> None:
+        """The mouse wheel back: stop following (Textual's own handler then scrolls)."""
         self._stop_following()
-        super()._on_mouse_scroll_up(event)
 
 
 class LaunchMonitorApp(App[int]):

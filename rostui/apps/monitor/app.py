@@ -26,12 +26,14 @@ from rostui.apps.monitor.editor import PublishEditor
 from rostui.apps.monitor.table import TopicTable
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
+from rostui.core.msg import Message
 from rostui.core.network import master_uri_from_env
+from rostui.models.master_link import LinkStatus, SourceState
 from rostui.models.monitor.publish import (
     PublishError, Repeater, check_topic, message_from_text, message_template, parse_rate,
 )
 from rostui.models.monitor.rows import Column, Liveness, TopicRow, filter_rows, sort_rows
-from rostui.models.monitor.source import MonitorSource, SourceState
+from rostui.models.monitor.source import MonitorSource
 from rostui.models.monitor.tree import PathError, message_tree, value_at
 
 __all__ = ["MonitorApp", "run_app", "KEYS"]
@@ -127,7 +129,7 @@ class MonitorApp(ReleasesOnExit, App[int]):
         quit_on_signals(self)
         self.query_one("#banner").display = False
         self.table.focus()
-        self.tree.set_topics(self.expanded)
+        self.message_trees.set_topics(self.expanded)
         self.run_worker(self.source.run(), group="source", exit_on_error=False)
         self.set_interval(self.refresh_period, self.repaint)
         self.set_interval(self.sample_period, self.sample)
@@ -139,7 +141,7 @@ class MonitorApp(ReleasesOnExit, App[int]):
         return self.query_one("#topics", TopicTable)
 
     @property
-    def tree(self) -> MessageTree:
+    def message_trees(self) -> MessageTree:
         """The message trees of the expanded topics."""
         return self.query_one("#tree", MessageTree)
 
@@ -188,7 +190,7 @@ class MonitorApp(ReleasesOnExit, App[int]):
             detail.display = bool(self.expanded)
         if not self.expanded:
             return
-        tree = self.tree
+        tree = self.message_trees
         for topic in self.expanded:
             row = self.row_of(topic)
             heading = f"{topic} [{row.type}]" if row is not None else f"{topic} (not published)"
@@ -210,8 +212,8 @@ class MonitorApp(ReleasesOnExit, App[int]):
 
     def focus_topic(self) -> str | None:
         """The topic the charts are about: the tree's under its cursor when the tree has focus, else the table's."""
-        if self.focused is self.tree:
-            where = self.tree.cursor_topic_and_path()
+        if self.focused is self.message_trees:
+            where = self.message_trees.cursor_topic_and_path()
             if where is not None:
                 return where[0]
         return self.table.current_topic or (self.expanded[0] if self.expanded else None)
@@ -230,9 +232,9 @@ class MonitorApp(ReleasesOnExit, App[int]):
             parts.append(self.notice)
         self.query_one("#status", Line).set(escape(" │ ".join(parts)))
         problem = ""
-        if self.source.state.status != "connected":
+        if self.source.state.status is not LinkStatus.CONNECTED:
             problem = self.source.state.text()
-            if self.source.state.status == "waiting":
+            if self.source.state.status is LinkStatus.WAITING:
                 problem += "; start one with `rostui core` (retrying)"
         elif self.rows and not self.shown:
             problem = f"no topic matches {self.filter_text!r}"
@@ -290,7 +292,7 @@ class MonitorApp(ReleasesOnExit, App[int]):
             self.expanded.remove(topic)
         else:
             self.expanded.append(topic)
-        self.tree.set_topics(self.expanded)
+        self.message_trees.set_topics(self.expanded)
         self.repaint()
 
     def action_collapse(self) -> None:
@@ -301,7 +303,7 @@ class MonitorApp(ReleasesOnExit, App[int]):
 
     def action_plot(self) -> None:
         """f: plot the number under the tree's cursor over time (in the charts)."""
-        where = self.tree.cursor_topic_and_path() if self.focused is self.tree else None
+        where = self.message_trees.cursor_topic_and_path() if self.focused is self.message_trees else None
         if where is None or not where[1]:
             self.say("f plots a number: Tab to the tree, pick a numeric field")
             return
@@ -320,18 +322,18 @@ class MonitorApp(ReleasesOnExit, App[int]):
     def action_publish(self) -> None:
         """p: open the publish editor for the topic in focus."""
         topic = self.focus_topic() or ""
-        self.push_screen(PublishEditor(topic, self.topic_type(topic) or "" if topic else ""))
+        self.push_screen(PublishEditor(self, topic, self.topic_type(topic) or "" if topic else ""))
 
     # -- publishing (called by the editor) -------------------------------------------------
-    def _message(self, editor: PublishEditor) -> tuple[str, object, object]:
+    def _message(self, editor: PublishEditor) -> tuple[str, type[Message], Message]:
         topic = check_topic(editor.topic)
-        if editor.msg_class is None or getattr(editor.msg_class, "_type", None) != editor.type_name:
+        cls = editor.msg_class
+        if cls is None or cls._type != editor.type_name:
             cls, _ = message_template(editor.type_name)
             editor.msg_class = cls
-        cls = editor.msg_class
         known = self.topic_type(topic)
-        if known and known != "*" and known != cls._type:  # type: ignore[attr-defined]
-            raise PublishError(f"{topic} is published as {known}, not {cls._type}")  # type: ignore[attr-defined]
+        if known and known != "*" and known != cls._type:
+            raise PublishError(f"{topic} is published as {known}, not {cls._type}")
         return topic, cls, message_from_text(cls, editor.yaml_text)
 
     def send_once(self, editor: PublishEditor) -> None:

@@ -1,12 +1,12 @@
 """PublishEditor: choose a topic and type, edit the YAML of a message, send it once or at a rate.
 
-The editor only edits; the app publishes (``MonitorApp.send_once``,
-``MonitorApp.toggle_repeat``) and reports back through :meth:`PublishEditor.say`.
+The editor only edits; its :class:`PublishHost` (the monitor app) publishes
+(``send_once``, ``toggle_repeat``) and reports back through :meth:`PublishEditor.say`.
 """
 
 from __future__ import annotations
 
-from typing import ClassVar
+from typing import ClassVar, Protocol
 
 from textual import on
 from textual.app import ComposeResult
@@ -16,16 +16,33 @@ from textual.markup import escape
 from textual.screen import ModalScreen
 from textual.widgets import Input, Label, Static, TextArea
 
+from rostui.core.msg import Message
 from rostui.models.monitor.publish import PublishError, message_template
 
-__all__ = ["PublishEditor", "EDITOR_KEYS"]
+__all__ = ["PublishEditor", "PublishHost", "EDITOR_KEYS"]
 
 #: Key help at the bottom of the editor.
 EDITOR_KEYS = "ctrl+s send once · ctrl+r start/stop at rate · Enter on type: new template · Esc close"
 
 
+class PublishHost(Protocol):
+    """What publishes for the editor: the monitor app."""
+
+    def topic_type(self, topic: str) -> str | None:
+        """The type the master knows for ``topic``."""
+        ...
+
+    def send_once(self, editor: "PublishEditor") -> None:
+        """Publish the editor's message once."""
+        ...
+
+    def toggle_repeat(self, editor: "PublishEditor") -> None:
+        """Start or stop publishing the editor's message at its rate."""
+        ...
+
+
 class PublishEditor(ModalScreen[None]):
-    """The publish form for ``topic`` of ``type_name`` (either may be empty)."""
+    """The publish form for ``topic`` of ``type_name`` (either may be empty); ``host`` publishes."""
 
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("escape", "close", "close", priority=True),
@@ -33,11 +50,12 @@ class PublishEditor(ModalScreen[None]):
         Binding("ctrl+r", "repeat", "start/stop at rate", priority=True),
     ]
 
-    def __init__(self, topic: str, type_name: str) -> None:
+    def __init__(self, host: PublishHost, topic: str, type_name: str) -> None:
         super().__init__()
+        self.host = host
         self.initial_topic = topic
         self.initial_type = type_name
-        self.msg_class: object | None = None
+        self.msg_class: type[Message] | None = None
 
     def compose(self) -> ComposeResult:
         """Topic and type, the YAML, the rate, a status line and the keys."""
@@ -107,8 +125,7 @@ class PublishEditor(ModalScreen[None]):
 
     @on(Input.Submitted, "#pub-topic")
     def _topic_entered(self) -> None:
-        app = self.app
-        known = getattr(app, "topic_type", lambda _t: None)(self.topic.strip())
+        known = self.host.topic_type(self.topic.strip())
         if known and not self.type_name:
             self.query_one("#pub-type", Input).value = known
             self.load_template()
@@ -116,11 +133,11 @@ class PublishEditor(ModalScreen[None]):
 
     def action_send(self) -> None:
         """ctrl+s: publish the message once."""
-        self.app.send_once(self)  # type: ignore[attr-defined]
+        self.host.send_once(self)
 
     def action_repeat(self) -> None:
         """ctrl+r: publish at the typed rate, or stop doing so."""
-        self.app.toggle_repeat(self)  # type: ignore[attr-defined]
+        self.host.toggle_repeat(self)
 
     def action_close(self) -> None:
         """Esc: back to the table (repeating publishers keep going)."""

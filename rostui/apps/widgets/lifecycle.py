@@ -68,7 +68,8 @@ class ReleasesOnExit:
     async def action_quit(self) -> None:
         """q: release, then leave."""
         await self.release_once()
-        self.exit(0)  # type: ignore[attr-defined]
+        assert isinstance(self, App), "ReleasesOnExit is mixed into an App"
+        self.exit(0)
 
     async def on_unmount(self) -> None:
         """However the app ends, it releases what it holds."""

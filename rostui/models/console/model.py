@@ -23,15 +23,12 @@ from typing import Iterable, Iterator
 
 from rostui.core.log.levels import Level
 from rostui.core.log.rosout_read import RosoutEntry
-from rostui.models.console.filters import LEVEL, NODE, FilterSpec, Selector, compile_selector
+from rostui.models.console.filters import ALL_LEVELS, LEVEL, NODE, FilterSpec, Selector, compile_selector
 
 __all__ = ["ConsoleModel", "ConsoleOptions"]
 
 #: Messages kept when no --max is given.
 DEFAULT_CAPACITY = 100_000
-
-#: Level bytes ``min_level`` can rank; a message with any other level is always kept.
-KNOWN_LEVELS = frozenset(int(level) for level in Level)
 
 #: Row-list entries skipped at the front before the list is compacted.
 _COMPACT_AT = 4096
@@ -73,7 +70,7 @@ class ConsoleModel:
         self.min_level = int(min_level)
         self.spec = spec or FilterSpec()
         self._select: Selector | None = compile_selector(self.spec)
-        self._slots: list[tuple | None] = []
+        self._slots: list[tuple] = []  # slot seq % capacity; only those of first..end-1 are read
         self.first = 0
         self.end = 0
         self._rows: list[int] = []
@@ -107,9 +104,7 @@ class ConsoleModel:
         """The message with sequence number ``seq`` (must still be kept)."""
         if not self.first <= seq < self.end:
             raise IndexError(f"message {seq} is not kept (kept: {self.first}..{self.end - 1})")
-        fields = self._slots[seq % self.capacity]
-        assert fields is not None
-        return RosoutEntry._make(fields)
+        return RosoutEntry._make(self._slots[seq % self.capacity])
 
     def seq_at(self, row: int) -> int:
         """The sequence number shown in ``row`` (0 = oldest shown)."""
@@ -126,9 +121,7 @@ class ConsoleModel:
         slots, capacity = self._slots, self.capacity
         for index in range(self._head, len(self._rows)):
             seq = self._rows[index]
-            fields = slots[seq % capacity]
-            assert fields is not None
-            yield seq, RosoutEntry._make(fields)
+            yield seq, RosoutEntry._make(slots[seq % capacity])
 
     def ingest(self, entries: Iterable[tuple]) -> int:
         """Take one batch of arriving messages (RosoutEntry or its plain tuple); returns how many were kept."""
@@ -137,7 +130,7 @@ class ConsoleModel:
         if self.paused:
             pending = self._pending
             for entry in entries:
-                if entry[LEVEL] < min_level and entry[LEVEL] in KNOWN_LEVELS:
+                if entry[LEVEL] < min_level and entry[LEVEL] in ALL_LEVELS:
                     self.below_level += 1
                     continue
                 pending.append(tuple(entry))
@@ -156,15 +149,13 @@ class ConsoleModel:
         dropped = below = 0
         for entry in entries:
             level = entry[LEVEL]
-            if level < min_level and level in KNOWN_LEVELS:
+            if level < min_level and level in ALL_LEVELS:
                 below += 1
                 continue
             fields = tuple(entry)
             slot = end % capacity
             if end - first >= capacity:
-                old = slots[slot]
-                assert old is not None
-                counts[old[LEVEL]] -= 1
+                counts[slots[slot][LEVEL]] -= 1
                 slots[slot] = fields
                 first += 1
                 dropped += 1
@@ -215,7 +206,7 @@ class ConsoleModel:
 
     def clear(self) -> None:
         """Forget every kept message (numbering goes on; the pause buffer stays)."""
-        self._slots = [None] * len(self._slots)  # keeps slot = seq % capacity
+        self._slots = [()] * len(self._slots)  # frees the messages, keeps slot = seq % capacity
         self.first = self.end
         self._rows = []
         self._head = 0
@@ -239,8 +230,8 @@ class ConsoleModel:
         start, count = self.first % self.capacity, self.end - self.first
         slots = self._slots
         if start + count <= len(slots):
-            return slots[start:start + count]  # type: ignore[return-value]
-        return slots[start:] + slots[:start + count - len(slots)]  # type: ignore[operator]
+            return slots[start:start + count]
+        return slots[start:] + slots[:start + count - len(slots)]
 
     def set_min_level(self, level: int) -> None:
         """Keep messages at or above ``level`` from now on (kept ones stay)."""

@@ -120,15 +120,15 @@ def layered_layout(sizes: Mapping[str, tuple[int, int]], edges: Sequence[tuple[s
     widths = [sizes[v][0] for v in ids]
     chains: list[list[int]] = []
     total = n
-    for a, b in dag:
-        chain = [a]
-        for r in range(rank[a] + 1, rank[b]):
+    for tail, head in dag:
+        chain = [tail]
+        for r in range(rank[tail] + 1, rank[head]):
             rank.append(r)
             heights.append(1)
             widths.append(0)
             chain.append(total)
             total += 1
-        chain.append(b)
+        chain.append(head)
         chains.append(chain)
     succ: list[list[int]] = [[] for _ in range(total)]
     pred: list[list[int]] = [[] for _ in range(total)]
@@ -490,10 +490,10 @@ def _route(ids: list[str], layers: list[list[int]], ys: list[int], widths: list[
     for li in range(len(layers)):
         spans = []
         for u in layers[li]:
-            targets = buses.get(u)
-            if not targets:
+            bus = buses.get(u)
+            if not bus:
                 continue
-            rows = [row(u)] + [row(w) for w in targets]
+            rows = [row(u)] + [row(w) for w in bus]
             lo, hi = min(rows), max(rows)
             if lo != hi:
                 spans.append((lo, hi, u))

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Collection, Mapping, Sequence
 
 __all__ = ["RosGraph", "fetch_graph", "fetch_graph_async"]
 
@@ -37,12 +37,12 @@ class RosGraph:
         return cls(table(pubs), table(subs), table(srvs), {str(t): str(ty) for t, ty in types})
 
     @classmethod
-    def build(cls, publishers: Mapping[str, Sequence[str]] | None = None,
-              subscribers: Mapping[str, Sequence[str]] | None = None,
-              services: Mapping[str, Sequence[str]] | None = None,
+    def build(cls, publishers: Mapping[str, Collection[str]] | None = None,
+              subscribers: Mapping[str, Collection[str]] | None = None,
+              services: Mapping[str, Collection[str]] | None = None,
               topic_types: Mapping[str, str] | None = None) -> "RosGraph":
         """A graph from plain mappings (benchmarks, tests, merged live views)."""
-        def norm(table: Mapping[str, Sequence[str]] | None) -> dict[str, tuple[str, ...]]:
+        def norm(table: Mapping[str, Collection[str]] | None) -> dict[str, tuple[str, ...]]:
             return {k: tuple(sorted(set(v))) for k, v in sorted((table or {}).items()) if v}
 
         return cls(norm(publishers), norm(subscribers), norm(services), dict(topic_types or {}))

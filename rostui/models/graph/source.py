@@ -92,6 +92,7 @@ class GraphSource:
     async def measure_rate(self, topic: str, seconds: float = 3.0) -> RateReport:
         """Subscribe to ``topic`` for ``seconds`` and report its rate (SourceError when that cannot be done)."""
         from rostui.core.node import AnyMsg, AsyncNode
+        from rostui.models.master_link import MASTER_ERRORS
         from rostui.tools.topic.rates import HzStats
 
         stats = HzStats()
@@ -100,12 +101,12 @@ class GraphSource:
             await node.start(announce=False)
             await node.subscribe(topic, AnyMsg, lambda _msg: stats.add(time.time()))
             await asyncio.sleep(seconds)
-        except Exception as exc:
+        except MASTER_ERRORS + (ValueError,) as exc:  # ValueError: a topic name that does not resolve
             raise SourceError(f"cannot measure {topic}: {_reason(exc)}") from None
         finally:
             try:
                 await asyncio.wait_for(node.shutdown("rate measured"), CALL_TIMEOUT)
-            except Exception:
+            except MASTER_ERRORS:  # the master is gone; closing our own sockets is all that matters
                 pass
         count = len(stats.times)
         numbers = stats.stats()
@@ -121,10 +122,7 @@ class GraphSource:
     async def _reset(self) -> None:
         client, self._client = self._client, None
         if client is not None:
-            try:
-                await client.close()
-            except Exception:
-                pass
+            await client.close()
 
 
 def _reason(exc: BaseException) -> str:

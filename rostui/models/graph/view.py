@@ -11,7 +11,7 @@ import re
 from collections import deque
 from dataclasses import dataclass, field, replace
 from enum import Enum
-from typing import Iterable, Mapping
+from typing import Any, Iterable, Mapping, Sequence
 
 from rostui.models.graph.model import RosGraph
 
@@ -38,7 +38,7 @@ class ViewMode(str, Enum):
     ALL = "all"
 
     @property
-    def title(self) -> str:
+    def label(self) -> str:
         """The name rqt_graph gives the view."""
         return {"nodes": "Nodes only", "active": "Nodes/Topics (active)", "all": "Nodes/Topics (all)"}[self.value]
 
@@ -135,13 +135,13 @@ class GraphOptions:
     include: str = ""
     exclude: str = ""
 
-    def with_(self, **changes: object) -> "GraphOptions":
+    def with_(self, **changes: Any) -> "GraphOptions":
         """A copy with ``changes`` applied."""
-        return replace(self, **changes)  # type: ignore[arg-type]
+        return replace(self, **changes)
 
     def describe(self) -> str:
         """One line naming the view and every option that is on."""
-        parts = [self.view.title]
+        parts = [self.view.label]
         for flag, label in ((self.hide_debug, "hide debug"), (self.hide_dead_sinks, "hide dead sinks"),
                             (self.hide_leaf_topics, "hide leaf topics"), (self.group_namespaces, "group ns")):
             if flag:
@@ -219,8 +219,8 @@ def build_view(graph: RosGraph, options: GraphOptions) -> ViewGraph:
 
     nodes = [n for n in graph.nodes() if not is_debug_node(n)] if hide_debug else graph.nodes()
     visible_nodes = set(nodes)
-    pubs: dict[str, tuple[str, ...] | list[str]] = {}
-    subs: dict[str, tuple[str, ...] | list[str]] = {}
+    pubs: dict[str, Sequence[str]] = {}
+    subs: dict[str, Sequence[str]] = {}
     empty: tuple[str, ...] = ()
     publishers, subscribers = graph.publishers, graph.subscribers
     for topic in graph.topics():
@@ -229,11 +229,11 @@ def build_view(graph: RosGraph, options: GraphOptions) -> ViewGraph:
         all_pubs, all_subs = publishers.get(topic, empty), subscribers.get(topic, empty)
         if active_only and not (all_pubs and all_subs):
             continue
+        p: Sequence[str] = all_pubs
+        s: Sequence[str] = all_subs
         if hide_debug:
             p = [n for n in all_pubs if n in visible_nodes]
             s = [n for n in all_subs if n in visible_nodes]
-        else:
-            p, s = all_pubs, all_subs
         if not p and not s:
             continue
         if dead_sinks and not s:
@@ -279,19 +279,19 @@ def build_view(graph: RosGraph, options: GraphOptions) -> ViewGraph:
         return ViewGraph(vertices, tuple(edge_list), {})
     edges: dict[tuple[str, str], list[str]] = {}
     for topic in topics:
-        for p in pubs[topic]:
-            if p not in shown_nodes:
+        for pub in pubs[topic]:
+            if pub not in shown_nodes:
                 continue
-            for s in subs[topic]:
-                if p != s and s in shown_nodes:
-                    edges.setdefault(("n:" + p, "n:" + s), []).append(topic)
+            for sub in subs[topic]:
+                if pub != sub and sub in shown_nodes:
+                    edges.setdefault(("n:" + pub, "n:" + sub), []).append(topic)
     if options.group_namespaces:
         return _grouped(vertices, edges, options.expanded)
     return ViewGraph(vertices, tuple(sorted(edges)), {e: tuple(sorted(ts)) for e, ts in edges.items()})
 
 
-def _included(include: re.Pattern[str], nodes: list[str], pubs: dict[str, list[str]], subs: dict[str, list[str]],
-              topic_views: bool) -> tuple[list[str], list[str]]:
+def _included(include: re.Pattern[str], nodes: list[str], pubs: Mapping[str, Sequence[str]],
+              subs: Mapping[str, Sequence[str]], topic_views: bool) -> tuple[list[str], list[str]]:
     """Nodes and topics kept by ``include``: the matches plus their direct neighbours."""
     seed_nodes = {n for n in nodes if include.search(n)}
     keep_nodes = set(seed_nodes)

@@ -1,13 +1,14 @@
 """MonitorSource: the master's topics, and subscriptions to exactly the topics the monitor shows.
 
-One anonymous node ``/rostui_monitor_<pid>_<ms>`` runs on the caller's
-event loop.  Every ``period`` seconds it asks the master for
-``getSystemState`` and ``getTopicTypes``; whenever the wanted set changes
-(the app says which topics are on screen or expanded) it subscribes to the
-new ones with md5 ``*`` (no decoding: arrivals and sizes are all the table
-needs) and unsubscribes from those no longer wanted.  Messages are decoded
-only for a tree or a field plot.  When the master stops answering, the node
-is dropped and the source waits for a master to answer again.
+One anonymous node ``/rostui_monitor_<pid>_<ms>``, kept registered by a
+:class:`~rostui.models.master_link.MasterLink`, runs on the caller's event
+loop.  Every ``period`` seconds it asks the master for ``getSystemState``
+and ``getTopicTypes``; whenever the wanted set changes (the app says which
+topics are on screen or expanded) it subscribes to the new ones with md5
+``*`` (no decoding: arrivals and sizes are all the table needs) and
+unsubscribes from those no longer wanted.  Messages are decoded only for a
+tree or a field plot.  When the master stops answering (or another one
+answers) the link drops the node and registers again once a master answers.
 """
 
 from __future__ import annotations
@@ -18,17 +19,18 @@ from collections import deque
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable
 
-from rostui.models.master_link import SourceState
+from rostui.core.msg import MessageError
+from rostui.core.node import AnyMsg, AsyncNode, Publisher, Subscriber
+from rostui.core.xmlrpc import XmlRpcProtocolError
+from rostui.models.master_link import CALL_TIMEOUT, LinkedSource, MasterLink, SourceState, failure_reason
 from rostui.models.monitor.rows import Liveness, TopicRow
 from rostui.models.monitor.stats import TopicStats
 from rostui.models.monitor.tree import PathError, value_at
 
-__all__ = ["MonitorSource", "SourceState", "TopicInfo", "FieldPlot", "NODE_NAME"]
+__all__ = ["MonitorSource", "TopicInfo", "FieldPlot", "NODE_NAME", "topics_from_wire"]
 
 #: The monitor's node name (made anonymous).
 NODE_NAME = "rostui_monitor"
-#: Seconds a master call may take before the master counts as gone.
-CALL_TIMEOUT = 3.0
 #: Values kept per plotted field.
 PLOT_POINTS = 600
 
@@ -49,7 +51,7 @@ class FieldPlot:
 
     topic: str
     path: str
-    values: deque = field(default_factory=lambda: deque(maxlen=PLOT_POINTS))
+    values: deque[float] = field(default_factory=lambda: deque(maxlen=PLOT_POINTS))
     error: str = ""
 
     def add(self, msg: Any) -> None:
@@ -67,14 +69,14 @@ class _Watch:
     __slots__ = ("handle", "stats", "latest", "decoded", "decoded_from")
 
     def __init__(self) -> None:
-        self.handle: Any = None
+        self.handle: Subscriber | None = None
         self.stats = TopicStats()
-        self.latest: Any = None
+        self.latest: AnyMsg | None = None
         self.decoded: Any = None
         self.decoded_from: Any = None
 
 
-class MonitorSource:
+class MonitorSource(LinkedSource):
     """The master at ``master_uri`` as the monitor sees it; call :meth:`run` as a task, :meth:`stop` to end.
 
     ``clock`` (wall time in seconds) stamps arrivals and is "now" for ages
@@ -88,19 +90,17 @@ class MonitorSource:
         self.master_uri = master_uri
         self.period = period
         self.clock = clock
-        self.on_state = on_state or (lambda _s: None)
         self.on_topics = on_topics or (lambda: None)
-        self.state = SourceState("waiting", master_uri)
         self.topics: dict[str, TopicInfo] = {}
-        self.node: Any = None
         self.polls = 0
         self.plot: FieldPlot | None = None
-        self.publishers: dict[str, Any] = {}
+        self.publishers: dict[str, Publisher] = {}
         self._wanted: frozenset[str] = frozenset()
         self._watches: dict[str, _Watch] = {}
         self._wake = asyncio.Event()
-        self._stopped = False
         self._lock = asyncio.Lock()
+        self.link = MasterLink(NODE_NAME, master_uri, on_connect=self._poll, session=self._serve,
+                               on_drop=self._forget, on_state=on_state, check_period=period)
 
     # -- what the app asks for -------------------------------------------------------
     @property
@@ -191,45 +191,32 @@ class MonitorSource:
     # -- publishing ------------------------------------------------------------------
     async def publish(self, topic: str, cls: Any, msg: Any, *, latch: bool) -> None:
         """Publish ``msg`` on ``topic`` from the monitor's node (advertising it first, kept until the end)."""
-        if self.node is None:
+        node = self.node
+        if node is None:
             raise RuntimeError(f"no master at {self.master_uri}")
         pub = self.publishers.get(topic)
         if pub is not None and (pub.msg_class._md5sum != cls._md5sum or pub.impl.latch != latch):
             await pub.unregister()
             pub = None
         if pub is None:
-            pub = await self.node.advertise(topic, cls, queue_size=100, latch=latch)
+            pub = await node.advertise(topic, cls, queue_size=100, latch=latch)
             self.publishers[topic] = pub
         pub.publish(msg)
 
     # -- the loop --------------------------------------------------------------------
     async def run(self) -> None:
         """Connect, poll the master, keep the subscriptions as wanted; reconnect after a master loss."""
-        had_master = False
-        while not self._stopped:
-            try:
-                await self._connect()
-                await self._poll()
-            except Exception as exc:  # any failure to reach the master is said on screen, then retried
-                await self._drop_node()
-                self._set_state("lost" if had_master else "waiting", "" if had_master else _reason(exc))
-                await self._sleep(self.period)
-                continue
-            had_master = True
-            self._set_state("connected")
-            next_poll = time.monotonic() + self.period
-            try:
-                while not self._stopped:
-                    await self._apply_wanted()
-                    await self._sleep(max(0.0, next_poll - time.monotonic()))
-                    if time.monotonic() >= next_poll:
-                        await self._poll()
-                        next_poll = time.monotonic() + self.period
-            except Exception:
-                pass
-            await self._drop_node()
-            if not self._stopped:
-                self._set_state("lost")
+        await self.link.run()
+
+    async def _serve(self, node: AsyncNode) -> None:
+        """While registered: keep the subscriptions as wanted, poll the master every ``period``."""
+        next_poll = time.monotonic() + self.period
+        while True:
+            await self._apply_wanted(node)
+            await self._sleep(max(0.0, next_poll - time.monotonic()))
+            if time.monotonic() >= next_poll:
+                await self._poll(node)
+                next_poll = time.monotonic() + self.period
 
     async def _sleep(self, seconds: float) -> None:
         try:
@@ -238,41 +225,30 @@ class MonitorSource:
             pass
         self._wake.clear()
 
-    async def _connect(self) -> None:
-        from rostui.core.node import AsyncNode
-
-        node = AsyncNode(NODE_NAME, anonymous=True, argv=[], master_uri=self.master_uri)
-        node.log.console = None  # library warnings must not write over the screen
-        self.node = node
-        await asyncio.wait_for(node.start(publish_rosout=False), CALL_TIMEOUT)
-
-    async def _poll(self) -> None:
-        node = self.node
-        pubs, subs, _ = await asyncio.wait_for(node.master_call("getSystemState"), CALL_TIMEOUT)
-        types = dict(await asyncio.wait_for(node.master_call("getTopicTypes"), CALL_TIMEOUT))
-        publishers = {t: tuple(n) for t, n in pubs}
-        subscribers = {t: tuple(n) for t, n in subs}
-        self.topics = {name: TopicInfo(name, types.get(name, "unknown type"), publishers.get(name, ()),
-                                       subscribers.get(name, ()))
-                       for name in set(publishers) | set(subscribers)}
+    async def _poll(self, node: AsyncNode) -> None:
+        state = await asyncio.wait_for(node.master_call("getSystemState"), CALL_TIMEOUT)
+        types = await asyncio.wait_for(node.master_call("getTopicTypes"), CALL_TIMEOUT)
+        try:
+            self.topics = topics_from_wire(state, types)
+        except (TypeError, ValueError) as exc:
+            raise XmlRpcProtocolError(node.master_uri, f"malformed system state: {exc}") from None
         self.polls += 1
         self.on_topics()
 
-    async def _apply_wanted(self) -> None:
+    async def _apply_wanted(self, node: AsyncNode) -> None:
         """Subscribe to wanted topics that have publishers; unsubscribe from the unwanted ones."""
-        from rostui.core.node import AnyMsg
-
         async with self._lock:
             for name in [t for t in self._watches if t not in self._wanted]:
-                watch = self._watches.pop(name)
-                await watch.handle.unregister()
+                handle = self._watches.pop(name).handle
+                if handle is not None:
+                    await handle.unregister()
             for name in sorted(self._wanted):
                 info = self.topics.get(name)
                 if name in self._watches or info is None or not info.publishers:
                     continue
                 watch = _Watch()
                 self._watches[name] = watch
-                watch.handle = await self.node.subscribe(name, AnyMsg, self._receiver(name, watch))
+                watch.handle = await node.subscribe(name, AnyMsg, self._receiver(name, watch))
 
     def _receiver(self, topic: str, watch: _Watch) -> Callable[[Any], None]:
         add = watch.stats.add
@@ -287,37 +263,30 @@ class MonitorSource:
 
                 try:
                     plot.add(decode(raw))
-                except Exception as exc:  # an undecodable message is a note on the plot, not a crash
-                    plot.error = f"cannot decode: {_reason(exc)}"
+                except MessageError as exc:  # an undecodable message is a note on the plot, not a crash
+                    plot.error = f"cannot decode: {failure_reason(exc)}"
 
         return on_message
 
-    async def _drop_node(self) -> None:
-        node, self.node = self.node, None
+    def _forget(self) -> None:
+        """The node is being dropped: its subscriptions and publishers go with it."""
         self._watches.clear()
         self.publishers.clear()
-        if node is not None:
-            try:
-                await asyncio.wait_for(node.shutdown("rostui monitor done"), CALL_TIMEOUT)
-            except Exception:  # the master is gone; closing our own sockets is all that matters
-                pass
-
-    def _set_state(self, status: str, detail: str = "") -> None:
-        state = SourceState(status, self.master_uri, detail)
-        if state != self.state:
-            self.state = state
-            self.on_state(state)
 
     async def stop(self) -> None:
         """Unsubscribe, unadvertise and shut the node down."""
-        self._stopped = True
-        self._wake.set()
-        await self._drop_node()
+        await self.link.stop()
 
 
-def _reason(exc: BaseException) -> str:
-    text = str(exc)
-    if "Unable to communicate" in text or isinstance(exc, (OSError, asyncio.TimeoutError)):
-        return "no answer"
-    return text.splitlines()[0] if text else type(exc).__name__
+def topics_from_wire(state: Any, types: Any) -> dict[str, TopicInfo]:
+    """Every topic with a publisher or subscriber, from getSystemState's and getTopicTypes' answers.
+
+    TypeError or ValueError when they are not shaped as a master answers.
+    """
+    pubs, subs, _ = state
+    known = dict(types)
+    publishers: dict[str, tuple[str, ...]] = {t: tuple(n) for t, n in pubs}
+    subscribers: dict[str, tuple[str, ...]] = {t: tuple(n) for t, n in subs}
+    return {name: TopicInfo(name, known.get(name, "unknown type"), publishers.get(name, ()), subscribers.get(name, ()))
+            for name in set(publishers) | set(subscribers)}
 

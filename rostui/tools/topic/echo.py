@@ -117,9 +117,9 @@ def _plot_fields(val: Any, f: str, keep: Callable[[Any], Iterable[str]] | None) 
         return f
     if is_message(val):
         fields = list(keep(val)) if keep is not None else val.__slots__
-        sub = [_plot_fields(_plot_attr(val, a, t), f + "." + a, keep)
-               for a, t in zip(val.__slots__, val._slot_types) if a in fields]
-        sub = [s for s in sub if s is not None]
+        found = [_plot_fields(_plot_attr(val, a, t), f + "." + a, keep)
+                 for a, t in zip(val.__slots__, val._slot_types) if a in fields]
+        sub = [s for s in found if s is not None]
         return ",".join(sub) if sub else None
     if tp in (list, tuple):
         if not val:
@@ -128,8 +128,8 @@ def _plot_fields(val: Any, f: str, keep: Callable[[Any], Iterable[str]] | None) 
         if type(v0) in (bool, int, float, str) or isinstance(v0, TVal):
             return ",".join(f"{f}{x}" for x in range(len(val)))
         if is_message(v0):
-            sub = [_plot_fields(v, f"{f}{x}", keep) for x, v in enumerate(val)]
-            sub = [s for s in sub if s]
+            found = [_plot_fields(v, f"{f}{x}", keep) for x, v in enumerate(val)]
+            sub = [s for s in found if s]
             return ",".join(sub) if sub else None
     return None
 
@@ -153,9 +153,9 @@ def _plot_values(val: Any, offset: Any, keep: Callable[[Any], Iterable[str]] | N
         return str(val)
     if is_message(val):
         fields = list(keep(val)) if keep is not None else val.__slots__
-        sub = [_plot_values(_plot_attr(val, a, t), offset, keep)
-               for a, t in zip(val.__slots__, val._slot_types) if a in fields]
-        sub = [s for s in sub if s is not None]
+        found = [_plot_values(_plot_attr(val, a, t), offset, keep)
+                 for a, t in zip(val.__slots__, val._slot_types) if a in fields]
+        sub = [s for s in found if s is not None]
         return ",".join(sub) if sub else None
     if isinstance(val, str):
         return val

@@ -36,6 +36,15 @@ def _in_namespace(topic: str, ns: str | None) -> bool:
     return topic == ns or topic.startswith(prefix)
 
 
+def _verbose_section(title: str, rows: Sequence[tuple[str, str, list[str]]], noun: str) -> list[str]:
+    """One part of ``rostopic list -v``: a blank line, the title, and `` * topic [type] N nouns`` per topic."""
+    lines = ["", title]
+    for topic, type_name, nodes in rows:
+        count = len(nodes)
+        lines.append(f" * {topic} [{type_name}] {count} {noun}s" if count > 1 else f" * {topic} [{type_name}] 1 {noun}")
+    return lines
+
+
 def format_list(pubs: Sequence[tuple[str, str, list[str]]], subs: Sequence[tuple[str, str, list[str]]], *,
                 verbose: bool = False, publishers_only: bool = False, subscribers_only: bool = False,
                 namespace: str | None = None) -> str:
@@ -45,17 +54,9 @@ def format_list(pubs: Sequence[tuple[str, str, list[str]]], subs: Sequence[tuple
     lines: list[str] = []
     if verbose:
         if not subscribers_only:
-            lines.append("")
-            lines.append("Published topics:")
-            for t, ty, nodes in pubs:
-                n = len(nodes)
-                lines.append(f" * {t} [{ty}] {n} publishers" if n > 1 else f" * {t} [{ty}] 1 publisher")
+            lines += _verbose_section("Published topics:", pubs, "publisher")
         if not publishers_only:
-            lines.append("")
-            lines.append("Subscribed topics:")
-            for t, ty, nodes in subs:
-                n = len(nodes)
-                lines.append(f" * {t} [{ty}] {n} subscribers" if n > 1 else f" * {t} [{ty}] 1 subscriber")
+            lines += _verbose_section("Subscribed topics:", subs, "subscriber")
         lines.append("")
         return "\n".join(lines) + "\n"
     if publishers_only:

@@ -78,9 +78,9 @@ async def _wait_for_topic(run: _Run, topic: str) -> tuple[str, str, str] | None:
     warned = False
     while True:
         types = await _master(run.node, "getTopicTypes")
-        found = find_topic_type(lambda _m: types, topic)
-        if found[0] is not None:
-            return found  # type: ignore[return-value]
+        type_name, real_topic, path = find_topic_type(lambda _m: types, topic)
+        if type_name is not None and real_topic is not None:
+            return type_name, real_topic, path
         if not warned:
             sys.stderr.write(f"WARNING: topic [{topic}] does not appear to be published yet\n")
             sys.stderr.flush()
@@ -205,8 +205,8 @@ async def run_pub(topic: str, cls: Any, pub_args: list[Any], out: Out, *, rate: 
             s = f"publishing and latching [{message_to_yaml(msg)}]" if verbose else "publishing and latching message"
             out(s + (f" for {ONCE_DELAY} seconds\n" if once_ else ". Press ctrl-C to terminate\n"))
 
-        async def at_rate(msg: Any, args: list[Any]) -> None:
-            period = 1.0 / rate  # type: ignore[operator]
+        async def at_rate(msg: Any, args: list[Any], hz: float) -> None:
+            period = 1.0 / hz
             loop = asyncio.get_running_loop()
             nxt = loop.time()
             while not run.stop.is_set():
@@ -234,7 +234,7 @@ async def run_pub(topic: str, cls: Any, pub_args: list[Any], out: Out, *, rate: 
                 else:
                     await run.stop.wait()
             else:
-                await at_rate(msg, pub_args)
+                await at_rate(msg, pub_args, rate)
             return 0
 
         await _wait_for_subscriber(run, pub, SUBSCRIBER_TIMEOUT)
@@ -250,7 +250,7 @@ async def run_pub(topic: str, cls: Any, pub_args: list[Any], out: Out, *, rate: 
             msg = build_message(cls, args, Time.now())
             if single_document and rate is not None:
                 out("Got one message and a rate, publishing repeatedly\n")
-                await at_rate(msg, args)
+                await at_rate(msg, args, rate)
             elif rate is None and not once:
                 announce(msg, False)
                 pub.publish(msg)

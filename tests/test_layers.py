@@ -100,3 +100,9 @@ def test_a_wrong_import_is_found(tmp_path: Path, monkeypatch: pytest.MonkeyPatch
     monkeypatch.setattr(__import__(__name__), "REPO", tmp_path)
     monkeypatch.setattr(__import__(__name__), "PACKAGE", tmp_path / "rostui")
     assert [v.split(": ", 1)[1] for v in _violations()] == [expected]
+
+
+def test_every_folder_of_code_is_a_package() -> None:
+    """setuptools packages only folders with an ``__init__.py``: one without it works in a checkout, not installed."""
+    folders = {p.parent for p in PACKAGE.rglob("*.py")}
+    assert sorted(str(f.relative_to(REPO)) for f in folders if not (f / "__init__.py").exists()) == []

@@ -22,6 +22,9 @@ from rostui.core.bag.sink import open_append
 
 MAGIC = b"#ROSBAG V2.0\n"
 FILE_HEADER_LENGTH = 4096
+#: The file header record as rosbag writes it: header length, header, data length, data padding the header
+#: to FILE_HEADER_LENGTH.  rosbag rewrites it in place (reindex, append), so it must be exactly this size.
+FILE_HEADER_RECORD_SIZE = 4 + FILE_HEADER_LENGTH + 4
 OP_MSG_DATA, OP_FILE_HEADER, OP_INDEX_DATA, OP_CHUNK, OP_CHUNK_INFO, OP_CONNECTION = 2, 3, 4, 5, 6, 7
 COMPRESSIONS = ("none", "bz2", "lz4")
 _U32 = struct.Struct("<I")
@@ -126,13 +129,13 @@ class BagWriter:
         self._chunk_new_conns: set[int] = set()
         self._written_conns: set[int] = set()
         self._write_all([MAGIC, self._file_header(0, 0, 0)])
-        self.good_end = len(MAGIC) + FILE_HEADER_LENGTH
+        self.good_end = len(MAGIC) + FILE_HEADER_RECORD_SIZE
 
     def _file_header(self, index_pos: int, conn_count: int, chunk_count: int) -> bytes:
         fields = {"op": bytes([OP_FILE_HEADER]), "index_pos": struct.pack("<Q", index_pos),
                   "conn_count": _U32.pack(conn_count), "chunk_count": _U32.pack(chunk_count)}
         header = _header(fields)
-        pad = FILE_HEADER_LENGTH - len(header) - 4
+        pad = FILE_HEADER_LENGTH - (len(header) - 4)
         return header + _U32.pack(pad) + b" " * pad
 
     def _write_all(self, parts: list[Any]) -> None:

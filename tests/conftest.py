@@ -151,24 +151,26 @@ def rostui_cmd(*args: str) -> list[str]:
     return [sys.executable, "-m", "rostui", *args]
 
 
-def wait_for_core(port: int, proc: subprocess.Popen) -> None:
-    """Wait until a `rostui core` on ``port`` listens and its rosout has registered (/rosout_agg published).
+def wait_for_core(port: int, proc: subprocess.Popen, timeout: float = 30.0) -> None:
+    """Wait until a core (`rostui core` or a real `roscore`) on ``port`` listens and its rosout has registered
+    (/rosout_agg published, /rosout subscribed).
 
     The master answers before its rosout node has registered; a core is only what `roscore` is once both run.
     """
     from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync
 
-    wait_for_port(port, proc=proc)
+    wait_for_port(port, timeout=timeout, proc=proc)
 
     def rosout_up() -> bool:
-        assert proc.poll() is None, f"rostui core exited with {proc.returncode}"
+        assert proc.poll() is None, f"the core exited with {proc.returncode}"
         try:
-            publishers = call_sync(f"http://127.0.0.1:{port}/", "getSystemState", "/test")[2][0]
+            publishers, subscribers, _ = call_sync(f"http://127.0.0.1:{port}/", "getSystemState", "/test")[2]
         except (OSError, XmlRpcConnectionError):
             return False
-        return any(topic == "/rosout_agg" for topic, _nodes in publishers)
+        return (any(topic == "/rosout_agg" for topic, _nodes in publishers)
+                and any(topic == "/rosout" for topic, _nodes in subscribers))
 
-    wait_until(rosout_up, f"rosout of the rostui core on port {port} to register")
+    wait_until(rosout_up, f"rosout of the core on port {port} to register", timeout=timeout)
 
 
 def start_rostui_core(env: dict[str, str]) -> subprocess.Popen:
@@ -205,7 +207,7 @@ def real_roscore(ros_env: dict[str, str]) -> Iterator[subprocess.Popen]:
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True,
     )
     try:
-        wait_for_port(port, timeout=30, proc=proc)
+        wait_for_core(port, proc, timeout=60)
         yield proc
     finally:
         stop_process(proc)

@@ -98,7 +98,9 @@ async def ensure_master(master_uri: str | None = None) -> EmbeddedMaster | None:
         raise MasterUnavailableError(
             f"no master answers at {uri}, and {host} is not this machine, so none can be started here")
     addressing = resolve_addressing(uri)
-    master = Master(addressing.bind_host, port, advertise_host=host)
+    # A shutdown call must not terminate the program this master lives in; its owner may await
+    # master.wait_for_shutdown_request().
+    master = Master(addressing.bind_host, port, advertise_host=host, terminate_process=False)
     try:
         await master.start()
     except OSError as exc:

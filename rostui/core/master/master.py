@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import os
+import signal
 import socket
 import uuid
 
@@ -18,6 +20,19 @@ _log = logging.getLogger("rostui.master")
 #: Defaults for the parameters roslaunch sets when it starts a core.
 DEFAULT_ROSDISTRO = "noetic\n"
 DEFAULT_ROSVERSION = "1.16.0\n"
+
+#: Seconds between answering a ``shutdown`` call and acting on it, for the reply to reach the caller.
+_REPLY_GRACE = 0.05
+
+
+def _terminate_this_process(reason: str) -> None:
+    """Stop this process as ``kill`` would, if it handles SIGTERM; otherwise only log the request."""
+    handler = signal.getsignal(signal.SIGTERM)
+    if handler in (signal.SIG_DFL, signal.SIG_IGN, None):
+        _log.warning("shutdown requested (%s), but this process does not handle SIGTERM: still running", reason)
+        return
+    _log.info("shutdown requested: %s", reason)
+    os.kill(os.getpid(), signal.SIGTERM)
 
 
 class _WireHandler:
@@ -55,11 +70,20 @@ class Master:
     in :attr:`uri` (default: ``host``, or this machine's name when ``host`` is a
     wildcard address).  On :meth:`start` the parameters ``/run_id`` (a UUID1
     string, ``run_id`` if given), ``/rosdistro`` and ``/rosversion`` are set.
+
+    A ``shutdown`` call is answered ``[1, "shutdown", 0]``, as rosmaster does,
+    and then ends the master: an owner awaiting :meth:`wait_for_shutdown_request`
+    stops it; when none is, ``terminate_process`` (the default) sends this
+    process SIGTERM if the process handles SIGTERM (a command such as
+    ``rostui core`` that stops cleanly on ``kill``), so it exits as rosmaster
+    does.  ``terminate_process=False`` (a master inside a bigger program)
+    leaves the request to :meth:`wait_for_shutdown_request`.
     """
 
     def __init__(self, host: str, port: int, *, advertise_host: str | None = None,
                  run_id: str | None = None, rosdistro: str = DEFAULT_ROSDISTRO,
-                 rosversion: str = DEFAULT_ROSVERSION, notify_timeout: float = 10.0) -> None:
+                 rosversion: str = DEFAULT_ROSVERSION, notify_timeout: float = 10.0,
+                 terminate_process: bool = True) -> None:
         if advertise_host is None:
             advertise_host = socket.gethostname() if host in ("", "0.0.0.0", "::") else host
         self.host = host
@@ -68,6 +92,8 @@ class Master:
         self._rosdistro = rosdistro
         self._rosversion = rosversion
         self._shutdown_reason: asyncio.Future[str] | None = None
+        self._shutdown_waiters = 0
+        self._terminate_process = terminate_process
         self.handler = MasterHandler(Notifier(timeout=notify_timeout), on_shutdown=self._shutdown_requested)
         self._server = XmlRpcServer(_WireHandler(self.handler), host, port, advertise_host=advertise_host)
 
@@ -107,11 +133,23 @@ class Master:
 
     def _shutdown_requested(self, reason: str) -> None:
         fut = self._shutdown_reason
-        if fut is not None and not fut.done():
-            fut.set_result(reason)
+        if fut is None or fut.done():
+            return
+        fut.set_result(reason)
+        if self._shutdown_waiters == 0 and self._terminate_process:
+            # After the reply has gone out: the handler returns it once this callback is done.
+            fut.get_loop().call_later(_REPLY_GRACE, _terminate_this_process, reason)
 
     async def wait_for_shutdown_request(self) -> str:
-        """Return (with its message) once a client calls the ``shutdown`` API."""
+        """Return (with its message) once a client calls the ``shutdown`` API.
+
+        While a caller waits here, the master does not terminate its process
+        on a shutdown call: the caller decides what stopping means.
+        """
         if self._shutdown_reason is None:
             raise RuntimeError("Master not started")
-        return await asyncio.shield(self._shutdown_reason)
+        self._shutdown_waiters += 1
+        try:
+            return await asyncio.shield(self._shutdown_reason)
+        finally:
+            self._shutdown_waiters -= 1

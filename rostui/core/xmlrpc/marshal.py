@@ -2,8 +2,11 @@
 
 Values round-trip as built-in Python types (``bytes`` for base64,
 ``datetime`` for dateTime.iso8601) and ``None`` is allowed as ``<nil/>``.
-Documents with a DTD are refused: XML-RPC never needs one, and entity
-declarations are the usual way to attack an XML parser.
+Documents with a DTD are refused whatever their encoding (UTF-8, UTF-16,
+UTF-32, with or without a byte order mark): expat itself reports the
+``<!DOCTYPE`` and parsing stops there, before any entity is declared, let
+alone expanded.  XML-RPC never needs a DTD, and entity declarations are the
+usual way to make an XML parser allocate without bound.
 """
 
 from __future__ import annotations
@@ -11,17 +14,27 @@ from __future__ import annotations
 import re
 import xmlrpc.client as _xc
 from typing import Any
+from xml.parsers import expat
+
+from .safexml import UnsafeXmlError, forbid_dtd
+
+__all__ = ["EncodedResponse", "Fault", "UnsafeXmlError", "decode_call", "decode_response", "encode_call",
+           "encode_fault", "encode_response", "exception_fault_string"]
 
 Fault = _xc.Fault
 
 
-class UnsafeXmlError(ValueError):
-    """The document holds a DTD or entity declaration, which XML-RPC never needs."""
-
-
-def _check_safe(body: bytes) -> None:
-    if b"<!DOCTYPE" in body or b"<!ENTITY" in body:
-        raise UnsafeXmlError("DTD and entity declarations are not allowed")
+def _loads(body: bytes) -> tuple[tuple[Any, ...], str | None]:
+    """``xmlrpc.client.loads(body, use_builtin_types=True)`` on a parser that refuses DTDs."""
+    target = _xc.Unmarshaller(use_builtin_types=True)
+    parser = expat.ParserCreate()
+    parser.StartElementHandler = target.start
+    parser.EndElementHandler = target.end
+    parser.CharacterDataHandler = target.data
+    forbid_dtd(parser)
+    target.xml("", None)  # what xmlrpc.client.ExpatParser tells it: expat already hands out str
+    parser.Parse(body, True)
+    return target.close(), target.getmethodname()
 
 
 class EncodedResponse:
@@ -80,8 +93,7 @@ def decode_call(body: bytes) -> tuple[tuple[Any, ...], str]:
     fast = _decode_fast(body)
     if fast is not None:
         return fast
-    _check_safe(body)
-    params, method = _xc.loads(body, use_builtin_types=True)
+    params, method = _loads(body)
     if not isinstance(method, str) or not method:
         raise ValueError("methodCall without methodName")
     return params, method
@@ -99,8 +111,7 @@ def encode_fault(code: int, string: str) -> bytes:
 
 def decode_response(body: bytes) -> Any:
     """Parse a ``<methodResponse>``; a fault raises :class:`xmlrpc.client.Fault`."""
-    _check_safe(body)
-    (value,) = _xc.loads(body, use_builtin_types=True)[0]
+    (value,) = _loads(body)[0]
     return value
 
 

@@ -1,10 +1,13 @@
 """An asyncio XML-RPC server: HTTP/1.1 keep-alive, Content-Length framing.
 
 Each connection is served by its own task, so a slow or stalled client never
-holds up another.  A request must arrive completely within
-``request_timeout`` seconds of its first byte; a client that sends garbage,
-an oversized body or malformed XML gets an HTTP error or an XML-RPC fault,
-and never brings the server down.
+holds up another.  A connection may wait ``idle_timeout`` seconds for a request
+to begin (its first, or the next on a keep-alive connection); a request must
+then arrive completely within ``request_timeout`` seconds of its first byte.
+At most ``max_connections`` are served at once: one more closes the connection
+idle longest, else the oldest unfinished request (see :mod:`.limits`).  A
+client that sends garbage, an oversized body, malformed XML or a DTD gets an
+HTTP error or an XML-RPC fault and loses its connection, never the server.
 
 Faults follow Python's SimpleXMLRPCServer, which rosmaster and rospy use:
 code 1 and the string ``"<class 'X'>:message"``.
@@ -19,8 +22,11 @@ import logging
 import sys
 import zlib
 from typing import Any, AsyncIterator, Callable
+from xml.parsers.expat import ExpatError
 
+from .limits import idle_timeout_from_env, listen_backlog, max_connections_from_env, request_timeout_from_env
 from .marshal import EncodedResponse, Fault, decode_call, encode_fault, encode_response, exception_fault_string
+from .safexml import UnsafeXmlError
 
 __all__ = ["XmlRpcServer", "DEFAULT_MAX_BODY"]
 
@@ -33,7 +39,8 @@ _MAX_HEADER = 64 * 1024
 _REASONS = {
     200: "OK", 400: "Bad Request", 404: "Not Found", 408: "Request Timeout",
     411: "Length Required", 413: "Content Too Large", 415: "Unsupported Media Type",
-    431: "Request Header Fields Too Large", 501: "Not Implemented", 505: "HTTP Version Not Supported",
+    431: "Request Header Fields Too Large", 501: "Not Implemented", 503: "Service Unavailable",
+    505: "HTTP Version Not Supported",
 }
 
 if sys.version_info >= (3, 11):
@@ -65,6 +72,16 @@ def _fault_string(exc: BaseException) -> str:
     return exception_fault_string(exc)
 
 
+class _Conn:
+    """One accepted connection, as the connection cap sees it."""
+
+    __slots__ = ("transport", "open")
+
+    def __init__(self, transport: asyncio.WriteTransport) -> None:
+        self.transport = transport
+        self.open = True
+
+
 class XmlRpcServer:
     """Serve the public methods of ``handler`` over XML-RPC.
 
@@ -74,7 +91,9 @@ class XmlRpcServer:
     SimpleXMLRPCServer does for rosmaster and rospy.
 
     ``host`` is the interface to bind; ``advertise_host`` (default: ``host``)
-    is the host name put in :attr:`uri`.
+    is the host name put in :attr:`uri`.  ``request_timeout``,
+    ``idle_timeout`` and ``max_connections`` default to the environment's
+    (:mod:`rostui.core.xmlrpc.limits`).
     """
 
     def __init__(
@@ -85,19 +104,26 @@ class XmlRpcServer:
         *,
         advertise_host: str | None = None,
         max_body: int = DEFAULT_MAX_BODY,
-        request_timeout: float = 60.0,
+        request_timeout: float | None = None,
         idle_timeout: float | None = None,
+        max_connections: int | None = None,
     ) -> None:
         self.handler = handler
         self.host = host
         self.advertise_host = advertise_host or host
         self.max_body = max_body
-        self.request_timeout = request_timeout
-        self.idle_timeout = idle_timeout
+        self.request_timeout = request_timeout_from_env() if request_timeout is None else request_timeout
+        self.idle_timeout = idle_timeout_from_env() if idle_timeout is None else idle_timeout
+        self.max_connections = max_connections_from_env() if max_connections is None else max_connections
         self._requested_port = port
         self._port: int | None = None
         self._server: asyncio.AbstractServer | None = None
         self._connections: set[asyncio.Task[None]] = set()
+        self._open = 0  # connections counted against max_connections
+        # Connections waiting for a request, and those reading one, oldest first.
+        self._idle: dict[_Conn, None] = {}
+        self._reading: dict[_Conn, None] = {}
+        self._warned_full = False
         self._methods: dict[str, tuple[Callable[..., Any], bool] | None] = {}
 
     # -- lifecycle ---------------------------------------------------------
@@ -106,7 +132,7 @@ class XmlRpcServer:
         """Bind and start accepting connections (raises ``OSError`` if the port is taken)."""
         self._server = await asyncio.start_server(
             self._on_connection, self.host, self._requested_port,
-            limit=_MAX_HEADER, reuse_address=True, backlog=512,
+            limit=_MAX_HEADER, reuse_address=True, backlog=listen_backlog(),
         )
         self._port = self._server.sockets[0].getsockname()[1]
 
@@ -196,7 +222,9 @@ class XmlRpcServer:
     async def _respond_body(self, body: bytes) -> bytes:
         try:
             params, method = decode_call(body)
-        except Exception as exc:  # malformed XML, bad values, DTDs
+        except (UnsafeXmlError, ExpatError):
+            raise  # not XML, or a DTD: the caller answers a fault and closes the connection
+        except Exception as exc:  # well-formed XML with bad values
             return encode_fault(1, _fault_string(exc))
         try:
             result = await self._invoke(method, params)
@@ -218,14 +246,47 @@ class XmlRpcServer:
     # -- HTTP --------------------------------------------------------------
 
     def _on_connection(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
-        task = asyncio.get_running_loop().create_task(self._serve(reader, writer))
+        if self._open >= self.max_connections and not self._evict_one():
+            self._refuse(writer)
+            return
+        conn = _Conn(writer.transport)
+        self._open += 1
+        task = asyncio.get_running_loop().create_task(self._serve(reader, writer, conn))
         self._connections.add(task)
         task.add_done_callback(self._connections.discard)
 
-    async def _serve(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+    def _evict_one(self) -> bool:
+        """Close the connection idle longest, else the oldest unfinished request; False if all are busy."""
+        for pool in (self._idle, self._reading):
+            if pool:
+                victim = next(iter(pool))
+                self._forget(victim)
+                victim.transport.abort()
+                if not self._warned_full:
+                    self._warned_full = True
+                    _log.warning("XML-RPC port %s reached its limit of %d connections: closing the one idle "
+                                 "longest (ROSTUI_XMLRPC_MAX_CONNECTIONS sets the limit)",
+                                 self._port, self.max_connections)
+                return True
+        return False
+
+    def _refuse(self, writer: asyncio.StreamWriter) -> None:
+        body = b"503 Service Unavailable: too many connections\n"
+        writer.write(b"HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain\r\nContent-Length: %d\r\n"
+                     b"Connection: close\r\n\r\n" % len(body) + body)
+        writer.close()
+
+    def _forget(self, conn: _Conn) -> None:
+        if conn.open:
+            conn.open = False
+            self._open -= 1
+            self._idle.pop(conn, None)
+            self._reading.pop(conn, None)
+
+    async def _serve(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter, conn: _Conn) -> None:
         try:
-            while True:
-                if not await self._serve_one(reader, writer):
+            while conn.open:
+                if not await self._serve_one(reader, writer, conn):
                     break
         except (ConnectionError, asyncio.IncompleteReadError, TimeoutError, OSError):
             pass
@@ -234,6 +295,7 @@ class XmlRpcServer:
         except Exception:  # never let one client take the server down
             _log.exception("unexpected error serving an XML-RPC connection")
         finally:
+            self._forget(conn)
             writer.close()
             with contextlib.suppress(Exception):
                 await writer.wait_closed()
@@ -249,16 +311,15 @@ class XmlRpcServer:
             async with _timeout(5.0):
                 await writer.drain()
 
-    async def _serve_one(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> bool:
+    async def _serve_one(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter, conn: _Conn) -> bool:
         """Serve one request; return False when the connection must close."""
-        # Idle keep-alive wait: unbounded unless idle_timeout is set.
-        if self.idle_timeout is None:
+        self._idle[conn] = None
+        async with _timeout(self.idle_timeout):
             first = await reader.read(1)
-        else:
-            async with _timeout(self.idle_timeout):
-                first = await reader.read(1)
-        if not first:
+        if not first or not conn.open:
             return False
+        del self._idle[conn]
+        self._reading[conn] = None
         try:
             async with _timeout(self.request_timeout):
                 try:
@@ -277,13 +338,20 @@ class XmlRpcServer:
         except _HttpError as err:
             await self._send_error(writer, err.status, str(err))
             return False
+        if not conn.open:
+            return False
+        del self._reading[conn]
         if encoding:
             try:
                 body = self._decode_body(body, encoding)
             except _HttpError as err:
                 await self._send_error(writer, err.status, str(err))
                 return False
-        response = await self._respond_body(body)
+        try:
+            response = await self._respond_body(body)
+        except (UnsafeXmlError, ExpatError) as exc:  # garbage or a DTD: answer, then drop the peer
+            response = encode_fault(1, _fault_string(exc))
+            keep_alive = False
         writer.write(
             b"HTTP/1.1 200 OK\r\nServer: rostui-xmlrpc\r\nContent-Type: text/xml\r\n"
             b"Content-Length: %d\r\n%s\r\n" % (

@@ -36,6 +36,7 @@ FILES: dict[str, str] = {
     "/usr/lib/genpy/genmsg_py.py": "python3-genpy",
     "/usr/lib/genpy/gensrv_py.py": "python3-genpy",
     "/usr/sbin/sshd": "openssh-server",
+    "/usr/share/rosgraph_msgs/package.xml": "libros-rosgraph-msgs-dev",
 }
 
 #: Top-level modules a test imports under the system Python (/usr/bin/python3), and their packages.
@@ -60,7 +61,7 @@ MODULES: dict[str, str] = {
 BASE_COMMANDS: frozenset[str] = frozenset({
     "bash", "sh", "du", "stty", "dpkg", "env", "kill", "ps", "pgrep", "python3", "git", "cat", "true", "sleep",
 })
-BASE_FILES: frozenset[str] = frozenset({"/usr/bin/python3", "/bin/sh"})
+BASE_FILES: frozenset[str] = frozenset({"/usr/bin/python3", "/bin/sh", "/usr/share"})
 
 #: Modules the tests generate themselves (with genpy, from rostui's own .msg files) before importing.
 GENERATED_MODULES: frozenset[str] = frozenset({"turtlesim"})

@@ -11,6 +11,7 @@ from urllib.parse import urlparse
 
 from rostui.core.log import DISK_CHECK_NOTICE, DISK_OK_NOTICE, disk_usage_warning, log_root
 from rostui.core.master import DEFAULT_ROSDISTRO, DEFAULT_ROSVERSION, Master
+from rostui.core.msg import MessageError
 from rostui.core.network import resolve_addressing
 from rostui.core.node.engine import new_event_loop
 from rostui.core.rosout import RosoutNode
@@ -58,8 +59,14 @@ async def serve_core(port: int, stop: asyncio.Event) -> int:
     print(f"started master on port {port}")
     print(f"ROS_MASTER_URI={master.uri}\n")
     print(f"setting /run_id to {master.run_id}")
-    rosout = RosoutNode(master.uri, master.run_id)
-    await rosout.start()
+    try:
+        rosout = RosoutNode(master.uri, master.run_id)
+        await rosout.start()
+    except (MessageError, OSError) as exc:  # e.g. no rosgraph_msgs/Log definition on ROS_PACKAGE_PATH
+        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        print(f"ERROR: rostui core cannot start /rosout: {reason}", file=sys.stderr, flush=True)
+        await master.stop()
+        return 1
     print("started core service [/rosout]", flush=True)
     await stop.wait()
     await rosout.stop()

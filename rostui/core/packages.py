@@ -4,6 +4,10 @@ A package is a directory holding a ``package.xml``; each root is searched
 recursively (without descending into a package, like rospack) and the first
 package of a given name wins.  Results are cached and the cache is rebuilt
 whenever ROS_PACKAGE_PATH changes (or :func:`clear_cache` is called).
+
+:func:`find_package_dirs` also gives the later directories of the same name:
+a file a package should hold but does not (Debian's ``/usr/share/rosgraph_msgs``
+has no ``msg/``) is then looked for there, down to rostui's built-in copy.
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ __all__ = [
     "package_roots",
     "list_packages",
     "find_package",
+    "find_package_dirs",
     "get_package_path",
     "clear_cache",
     "package_of",
@@ -46,6 +51,7 @@ class PackageNotFoundError(LookupError):
 _lock = threading.Lock()
 _cache_key: tuple[str, ...] | None = None
 _cache: dict[str, Path] = {}
+_cache_all: dict[str, list[Path]] = {}
 
 
 def package_roots() -> list[Path]:
@@ -58,8 +64,8 @@ def package_roots() -> list[Path]:
     return roots
 
 
-def _scan_root(root: Path, found: dict[str, Path]) -> None:
-    """Add every package below *root* to *found* unless a name is already taken."""
+def _scan_root(root: Path, found: dict[str, list[Path]]) -> None:
+    """Add every package below *root* to *found*: each name's directories in precedence order."""
     if not root.is_dir():
         return
     stack = [root]
@@ -74,7 +80,9 @@ def _scan_root(root: Path, found: dict[str, Path]) -> None:
             continue
         seen.add(real)
         if (d / "package.xml").is_file():
-            found.setdefault(_package_name(d), d)
+            dirs = found.setdefault(_package_name(d), [])
+            if d not in dirs:
+                dirs.append(d)
             continue
         if (d / "CATKIN_IGNORE").exists() or (d / "rospack_nosubdirs").exists():
             continue
@@ -103,19 +111,24 @@ def _package_name(pkg_dir: Path) -> str:
     return pkg_dir.name
 
 
-def _packages() -> dict[str, Path]:
-    """The cached name -> directory map, rebuilt when ROS_PACKAGE_PATH changed."""
-    global _cache_key, _cache
+def _scan() -> tuple[dict[str, Path], dict[str, list[Path]]]:
+    """The cached maps name -> directory and name -> every directory, rebuilt when ROS_PACKAGE_PATH changed."""
+    global _cache_key, _cache, _cache_all
     key = (os.environ.get("ROS_PACKAGE_PATH", ""),)
     if _cache_key == key:
-        return _cache
+        return _cache, _cache_all
     with _lock:
         if _cache_key != key:
-            found: dict[str, Path] = {}
+            found: dict[str, list[Path]] = {}
             for root in package_roots():
                 _scan_root(root, found)
-            _cache, _cache_key = found, key
-        return _cache
+            _cache, _cache_all, _cache_key = {name: dirs[0] for name, dirs in found.items()}, found, key
+        return _cache, _cache_all
+
+
+def _packages() -> dict[str, Path]:
+    """The cached name -> directory map (the first directory of each name)."""
+    return _scan()[0]
 
 
 def list_packages() -> dict[str, Path]:
@@ -126,6 +139,11 @@ def list_packages() -> dict[str, Path]:
 def find_package(name: str) -> Path | None:
     """The directory of package *name*, or None when it is not found."""
     return _packages().get(name)
+
+
+def find_package_dirs(name: str) -> list[Path]:
+    """Every directory of package *name*, first (the one :func:`find_package` gives) to last; [] when none."""
+    return list(_scan()[1].get(name, ()))
 
 
 def get_package_path(name: str) -> Path:

@@ -1,4 +1,10 @@
-"""One node process under the supervisor: start, output routing, state, exit, and stopping its whole tree."""
+"""One node process under the supervisor: start, output routing, state, exit, and stopping its whole tree.
+
+Each node starts as the leader of its own session and process group (as
+roslaunch's ``setsid``), so a terminal's Ctrl-C reaches only the launcher and a
+stop signals the node's whole group at once: a wrapper script's children get
+the SIGINT too, then SIGTERM and SIGKILL after the same timeouts as the leader.
+"""
 
 from __future__ import annotations
 
@@ -164,8 +170,21 @@ class ManagedProcess:
             except ProcessLookupError:
                 pass
 
+    def signal_group(self, signum: int) -> None:
+        """Send ``signum`` to the node's process group (its leader and every child that stayed in it).
+
+        Only while the leader has not been reaped: its pid, which is the group's id, cannot be reused before.
+        """
+        if self.proc is None or self.proc.returncode is not None:
+            return
+        try:
+            os.killpg(self.proc.pid, signum)
+        except (ProcessLookupError, PermissionError):
+            self.signal_leader(signum)
+
     def signal_tree(self, signum: int) -> None:
-        """Send ``signum`` to every live process of the node's tree."""
+        """Send ``signum`` to the node's group and to every live process of its tree (children that left the group)."""
+        self.signal_group(signum)
         for process in self.alive_tree():
             try:
                 process.send_signal(signum)
@@ -183,11 +202,14 @@ class ManagedProcess:
         return True
 
     async def stop(self, sigint_timeout: float, sigterm_timeout: float) -> str:
-        """SIGINT, then SIGTERM, then SIGKILL (whole tree); returns which signal ended it."""
+        """SIGINT to the node's process group, then SIGTERM, then SIGKILL (group and whole tree), as roslaunch.
+
+        Returns which signal ended it.
+        """
         self.remember_tree()
         how = "exited"
         if self.proc is not None and self.proc.returncode is None:
-            self.signal_leader(signal.SIGINT)
+            self.signal_group(signal.SIGINT)
             how = "SIGINT"
             if not await self.wait(sigint_timeout):
                 self.signal_tree(signal.SIGTERM)

@@ -35,6 +35,8 @@ from urllib.parse import urlsplit, urlunsplit
 import yaml
 
 from rostui.core.log.files import ros_home, run_log_dir
+from rostui.core.msg import MessageError
+from rostui.core.network import resolve_addressing
 from rostui.core.master.embedded import EmbeddedMaster, MasterUnavailableError, ensure_master, is_local_host, \
     master_answers
 from rostui.core.xmlrpc import XmlRpcClient, XmlRpcError
@@ -138,6 +140,10 @@ class _LaunchApi:
     def getPid(self, *_: Any) -> list[Any]:  # noqa: N802 (XML-RPC name)
         return [1, "", os.getpid()]
 
+    def get_pid(self, *_: Any) -> list[Any]:
+        """roslaunch's name for :meth:`getPid` (its server takes no caller id)."""
+        return self.getPid()
+
     def list_processes(self, *_: Any) -> list[Any]:
         processes = [p for p in self._supervisor.processes if p.proc is not None]
         running = [[p.plan.label, p.starts] for p in processes if p.proc and p.proc.returncode is None]
@@ -213,6 +219,9 @@ class Supervisor:
             self.embedded = await ensure_master(self.master_uri)
         except MasterUnavailableError as exc:
             raise LaunchError(str(exc)) from None
+        except MessageError as exc:  # the in-process /rosout needs rosgraph_msgs/Log
+            reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            raise LaunchError(f"cannot start a master with /rosout: {reason}") from None
         if self.embedded is not None:
             self.say(f"started master (in this process) and /rosout at {self.embedded.uri}")
 
@@ -260,8 +269,10 @@ class Supervisor:
                 self.say(f"set parameter [{key}]")
 
     async def _advertise(self) -> None:
-        host = urlsplit(self.master_uri).hostname or "localhost"
-        self.server = XmlRpcServer(_LaunchApi(self), "0.0.0.0", 0, advertise_host=host)
+        # Like every server of a node: ROS_IP / ROS_HOSTNAME, else loopback only when the master is local.
+        addressing = resolve_addressing(self.master_uri)
+        self.server = XmlRpcServer(_LaunchApi(self), addressing.bind_host, 0,
+                                   advertise_host=addressing.advertise_host)
         await self.server.start()
         key_host = socket.gethostname().replace(".", "_").replace("-", "_")
         await self._call("setParam", f"/roslaunch/uris/host_{key_host}__{self.server.port}", self.server.uri)

@@ -46,14 +46,22 @@ def _type_dir(pkg_dir: Path, kind: Kind) -> Path:
     return pkg_dir / kind
 
 
+def _type_files(kind: Kind, package: str) -> dict[str, Path]:
+    """The .msg/.srv files of *package* by type name, from every directory of it on the path (the first wins):
+    a package found without its type files (Debian's /usr/share layout) does not hide rostui's built-in copy."""
+    files: dict[str, Path] = {}
+    for pkg_dir in reversed(packages.find_package_dirs(package)):
+        files.update((p.stem, p) for p in _type_dir(pkg_dir, kind).glob(f"*.{kind}") if p.is_file())
+    return files
+
+
 def package_types(kind: Kind, package: str) -> list[str]:
     """Types of *kind* in *package*, sorted; unknown package: rosmsg's ``Invalid package`` (exit 64)."""
-    pkg_dir = packages.find_package(package)
-    if pkg_dir is None:
+    if packages.find_package(package) is None:
         lines = [f"Invalid package: {package}"]
         lines += [f"ROS path [{i}]={root}" for i, root in enumerate(packages.package_roots())]
         raise TypeLookupError("\n".join(lines), EXIT_INVALID_PACKAGE)
-    return sorted(f"{package}/{p.stem}" for p in _type_dir(pkg_dir, kind).glob(f"*.{kind}") if p.is_file())
+    return sorted(f"{package}/{name}" for name in _type_files(kind, package))
 
 
 def list_types(kind: Kind) -> list[str]:
@@ -66,14 +74,12 @@ def list_types(kind: Kind) -> list[str]:
 
 def packages_with_types(kind: Kind) -> list[str]:
     """Packages that define at least one type of *kind*, sorted."""
-    return [name for name, d in sorted(packages.list_packages().items())
-            if any(p.is_file() for p in _type_dir(d, kind).glob(f"*.{kind}"))]
+    return [name for name in sorted(packages.list_packages()) if _type_files(kind, name)]
 
 
 def find_by_short_name(kind: Kind, name: str) -> list[str]:
     """Full names ``pkg/Name`` of the types called *name* in any package, sorted by package."""
-    return [f"{pkg}/{name}" for pkg, d in sorted(packages.list_packages().items())
-            if (_type_dir(d, kind) / f"{name}.{kind}").is_file()]
+    return [f"{pkg}/{name}" for pkg in sorted(packages.list_packages()) if name in _type_files(kind, pkg)]
 
 
 def _load_error(kind: Kind, type_name: str, detail: str) -> TypeLookupError:
@@ -87,8 +93,8 @@ def _locate(kind: Kind, type_name: str) -> Path:
     pkg_dir = packages.find_package(pkg)
     if pkg_dir is None:
         raise _load_error(kind, type_name, f"Cannot locate message [{name}]: unknown package [{pkg}]")
-    path = _type_dir(pkg_dir, kind) / f"{name}.{kind}"
-    if not name or "/" in name or not path.is_file():
+    path = _type_files(kind, pkg).get(name) if name and "/" not in name else None
+    if path is None:
         where = [str(_type_dir(pkg_dir, kind))]
         raise _load_error(kind, type_name, f"Cannot locate message [{name}] in package [{pkg}] with paths {[where]}")
     return path

@@ -5,6 +5,13 @@ nested (non-array) messages are inlined and runs of consecutive fixed-size
 fields share one precompiled :class:`struct.Struct`.  Strings, byte arrays and
 variable arrays are length-checked before slicing, so a truncated or hostile
 buffer raises :class:`DeserializationError` instead of over-allocating.
+
+Definitions may come from any peer (a publisher's ``message_definition``, a
+bag), so :func:`check_spec` refuses, before any code is written, every name
+that is not ROS's grammar (or that Python cannot use as an attribute) and
+every type whose generated code or default value would be unreasonably big;
+the source itself holds only those checked names, generated identifiers,
+numbers and ``repr()`` literals.
 """
 
 from __future__ import annotations
@@ -14,11 +21,12 @@ import struct
 from typing import Any, Callable
 
 from ..rostime import Duration, Time
-from .errors import DeserializationError, SerializationError
+from .errors import DeserializationError, MessageSpecError, SerializationError
 from .message import Message, hybridmethod
-from .spec import Field, MsgSpec
+from .spec import BUILTIN_TYPES, Field, MsgSpec, is_valid_name, is_valid_type_name, shown
 
-__all__ = ["build_message_class", "min_size", "PRIMITIVE_STRUCT"]
+__all__ = ["build_message_class", "check_spec", "min_size", "PRIMITIVE_STRUCT", "RESERVED_NAMES",
+           "MAX_INLINED_FIELDS", "MAX_DEFAULT_COST"]
 
 PRIMITIVE_STRUCT: dict[str, tuple[str, int]] = {
     "bool": ("B", 1), "int8": ("b", 1), "uint8": ("B", 1), "byte": ("b", 1), "char": ("B", 1),
@@ -30,13 +38,24 @@ PRIMITIVE_STRUCT: dict[str, tuple[str, int]] = {
 _FLOATS = ("float32", "float64")
 _MAX_EMPTY_ELEMENTS = 1 << 20  # cap for arrays whose elements may take zero bytes
 
+RESERVED_NAMES: frozenset[str] = frozenset({"serialize", "deserialize"})
+"""Field and constant names a generated class cannot have (its methods)."""
+MAX_INLINED_FIELDS = 1 << 14
+"""Most fields one class's (de)serializer may hold once nested messages are inlined."""
+MAX_DEFAULT_COST = 1 << 23
+"""Most machine words (roughly) a default-constructed message may take (fixed arrays are built whole)."""
+
 
 def _deser_char(t: str) -> str:
     return "?" if t == "bool" else PRIMITIVE_STRUCT[t][0]
 
 
-def min_size(spec: MsgSpec, get_spec: Callable[[str], MsgSpec]) -> int:
-    """The fewest bytes a serialized instance of *spec* can take."""
+def min_size(spec: MsgSpec, get_spec: Callable[[str], MsgSpec], memo: dict[str, int] | None = None) -> int:
+    """The fewest bytes a serialized instance of *spec* can take (*memo* keeps each nested type's size)."""
+    memo = {} if memo is None else memo
+    cached = memo.get(spec.type_name)
+    if cached is not None:
+        return cached
     total = 0
     for f in spec.fields:
         if f.is_array and f.array_len is None:
@@ -44,18 +63,89 @@ def min_size(spec: MsgSpec, get_spec: Callable[[str], MsgSpec]) -> int:
             continue
         n = f.array_len if f.is_array else 1
         assert n is not None
-        total += n * _elem_min_size(f.base_type, get_spec)
+        total += n * _elem_min_size(f.base_type, get_spec, memo)
+    memo[spec.type_name] = total
     return total
 
 
-def _elem_min_size(t: str, get_spec: Callable[[str], MsgSpec]) -> int:
+def _elem_min_size(t: str, get_spec: Callable[[str], MsgSpec], memo: dict[str, int] | None = None) -> int:
     if t in PRIMITIVE_STRUCT:
         return PRIMITIVE_STRUCT[t][1]
     if t == "string":
         return 4
     if t in ("time", "duration"):
         return 8
-    return min_size(get_spec(t), get_spec)
+    return min_size(get_spec(t), get_spec, memo)
+
+
+def _lit(text: str) -> str:
+    """A Python string literal for *text* (never pasted between quotes by hand)."""
+    return repr(text)
+
+
+def _check_names(spec: MsgSpec) -> None:
+    if not is_valid_type_name(spec.type_name):
+        raise MessageSpecError(f"{shown(spec.type_name)} is not a valid pkg/Type name", spec.source)
+    for f in spec.fields:
+        if not is_valid_name(f.name):
+            raise MessageSpecError(f"{spec.type_name}: {shown(f.name)} is not a legal field name", spec.source)
+        if keyword.iskeyword(f.name) or f.name in RESERVED_NAMES:
+            raise MessageSpecError(f"{spec.type_name}: field name {f.name} cannot be used (a Python keyword "
+                                   f"or a method of messages)", spec.source)
+        if f.base_type not in BUILTIN_TYPES and not is_valid_type_name(f.base_type):
+            raise MessageSpecError(f"{spec.type_name}: {shown(f.base_type)} is not a valid pkg/Type name "
+                                   f"(field {f.name})", spec.source)
+        if f.array_len is not None and (not isinstance(f.array_len, int) or f.array_len < 0):
+            raise MessageSpecError(f"{spec.type_name}: bad array length of field {f.name}", spec.source)
+    for c in spec.constants:
+        if not is_valid_name(c.name) or c.name in RESERVED_NAMES:
+            raise MessageSpecError(f"{spec.type_name}: {shown(c.name)} cannot be a constant's name", spec.source)
+
+
+def check_spec(spec: MsgSpec, get_spec: Callable[[str], MsgSpec]) -> None:
+    """Refuse (MessageSpecError) a type whose class must not be generated.
+
+    Every name must follow ROS's grammar (type ``pkg/Name``, fields and
+    constants ``[A-Za-z][A-Za-z0-9_]*``, fields neither Python keywords nor
+    ``serialize``/``deserialize``), in the type and in every type nested in it;
+    and the inlined (de)serializer (:data:`MAX_INLINED_FIELDS`) and the default
+    value (:data:`MAX_DEFAULT_COST`) must stay small.
+    """
+    inlined: dict[str, int] = {}
+    cost: dict[str, int] = {}
+
+    def walk(s: MsgSpec, depth: int) -> tuple[int, int]:
+        if s.type_name in inlined:
+            return inlined[s.type_name], cost[s.type_name]
+        if depth > 64:
+            raise MessageSpecError(f"{spec.type_name}: nesting too deep or recursive", spec.source)
+        _check_names(s)
+        n_inlined, n_cost = 0, 1
+        for f in s.fields:
+            t = f.base_type
+            sub: tuple[int, int] | None = None if t in BUILTIN_TYPES else walk(get_spec(t), depth + 1)
+            if not f.is_array:
+                n_inlined += 1 if sub is None else sub[0]
+                n_cost += (8 if t in ("time", "duration") else 1) if sub is None else sub[1]
+                continue
+            n_inlined += 1 + (0 if sub is None else sub[0])
+            n = f.array_len or 0
+            if t in ("uint8", "char"):
+                n_cost += 1 + n // 8
+            elif sub is not None:
+                n_cost += 1 + n * sub[1]
+            else:
+                n_cost += 1 + n * (8 if t in ("time", "duration") else 1)
+            n_cost = min(n_cost, MAX_DEFAULT_COST + 1)
+        inlined[s.type_name], cost[s.type_name] = n_inlined, n_cost
+        if n_inlined > MAX_INLINED_FIELDS:
+            raise MessageSpecError(f"{s.type_name}: too many fields once nested messages are inlined "
+                                   f"({n_inlined} > {MAX_INLINED_FIELDS})", s.source)
+        if n_cost > MAX_DEFAULT_COST:
+            raise MessageSpecError(f"{s.type_name}: fixed-size arrays too large for a message", s.source)
+        return n_inlined, n_cost
+
+    walk(spec, 0)
 
 
 def default_expr(f: Field, cls_var: Callable[[str], str]) -> str:
@@ -96,6 +186,7 @@ class _Gen:
         self.lines: list[str] = []
         self.counter = 0
         self.structs: dict[str, str] = {}
+        self.sizes: dict[str, int] = {}
 
     def var(self, prefix: str) -> str:
         self.counter += 1
@@ -168,7 +259,7 @@ class _SerWalker(_Gen):
                 self.flush(ind)
                 self.emit(ind, f"_w({x})")
             else:
-                self.emit(ind, f"if len({x}) != {n}: raise _SerErr('{f.name}: expected {n} bytes, got %d' % len({x}))")
+                self.emit(ind, f"if len({x}) != {n}: raise _SerErr({_lit(f'{f.name}: expected {n} bytes, got %d')} % len({x}))")
                 self.run.append((f"{n}s", x))
             return
         if t in PRIMITIVE_STRUCT:
@@ -182,7 +273,7 @@ class _SerWalker(_Gen):
             else:
                 x = self.var("_x")
                 self.emit(ind, f"{x} = {e}")
-                self.emit(ind, f"if len({x}) != {n}: raise _SerErr('{f.name}: expected {n} elements, got %d' % len({x}))")
+                self.emit(ind, f"if len({x}) != {n}: raise _SerErr({_lit(f'{f.name}: expected {n} elements, got %d')} % len({x}))")
                 self.run.append((f"{n}{ch}", f"*{x}"))
             return
         x = self.var("_x")
@@ -190,7 +281,7 @@ class _SerWalker(_Gen):
         if n is None:
             self.run.append(("I", f"len({x})"))
         else:
-            self.emit(ind, f"if len({x}) != {n}: raise _SerErr('{f.name}: expected {n} elements, got %d' % len({x}))")
+            self.emit(ind, f"if len({x}) != {n}: raise _SerErr({_lit(f'{f.name}: expected {n} elements, got %d')} % len({x}))")
         self.flush(ind)
         it = self.var("_i")
         self.emit(ind, f"for {it} in {x}:")
@@ -246,9 +337,9 @@ class _DeserWalker(_Gen):
         self.run.append(("I", c))
         self.flush(ind)
         if elem_min > 0:
-            self.emit(ind, f"if {c} * {elem_min} > _n - _o: raise _DeserErr('{f.name}: array length %d exceeds buffer' % {c})")
+            self.emit(ind, f"if {c} * {elem_min} > _n - _o: raise _DeserErr({_lit(f'{f.name}: array length %d exceeds buffer')} % {c})")
         else:
-            self.emit(ind, f"if {c} > {_MAX_EMPTY_ELEMENTS}: raise _DeserErr('{f.name}: implausible array length %d' % {c})")
+            self.emit(ind, f"if {c} > {_MAX_EMPTY_ELEMENTS}: raise _DeserErr({_lit(f'{f.name}: implausible array length %d')} % {c})")
         return c
 
     def field(self, f: Field, p: str, ind: int) -> None:
@@ -263,7 +354,7 @@ class _DeserWalker(_Gen):
                 self.flush(ind)
                 e = self.var("_e")
                 self.emit(ind, f"{e} = _o + {ln}")
-                self.emit(ind, f"if {e} > _n: raise _DeserErr('{f.name}: string runs past end of buffer')")
+                self.emit(ind, f"if {e} > _n: raise _DeserErr({_lit(f'{f.name}: string runs past end of buffer')})")
                 self.emit(ind, f"{target} = _buf[_o:{e}].decode('utf-8', 'replace') if {ln} < 65536 "
                                f"else _str(_memoryview(_buf)[_o:{e}], 'utf-8', 'replace')")
                 self.emit(ind, f"_o = {e}")
@@ -302,7 +393,7 @@ class _DeserWalker(_Gen):
                 self.emit(ind, f"{target} = list(_unpack_from('<%d{ch}' % {c}, _buf, _o))")
                 self.emit(ind, f"_o += {c} * {size}")
             return
-        elem_min = _elem_min_size(t, self.get_spec)
+        elem_min = _elem_min_size(t, self.get_spec, self.sizes)
         if n is not None:
             self.flush(ind)
         c = self.count(f, ind, elem_min)
@@ -316,7 +407,7 @@ class _DeserWalker(_Gen):
             self.emit(ind + 1, f"{ln}, = _unpack_I(_buf, _o)")
             self.emit(ind + 1, "_o += 4")
             self.emit(ind + 1, f"{e} = _o + {ln}")
-            self.emit(ind + 1, f"if {e} > _n: raise _DeserErr('{f.name}: string runs past end of buffer')")
+            self.emit(ind + 1, f"if {e} > _n: raise _DeserErr({_lit(f'{f.name}: string runs past end of buffer')})")
             self.emit(ind + 1, f"_ap{a}(_buf[_o:{e}].decode('utf-8', 'replace'))")
             self.emit(ind + 1, f"_o = {e}")
         elif t in ("time", "duration"):
@@ -357,8 +448,10 @@ def build_message_class(
     """Generate, compile and return the Python class for *spec*.
 
     *get_spec* and *get_class* resolve nested message types (their classes
-    must be buildable first; ROS types cannot be recursive).
+    must be buildable first; ROS types cannot be recursive).  Raises
+    :class:`MessageSpecError` for a type :func:`check_spec` refuses.
     """
+    check_spec(spec, get_spec)
     ns: dict[str, Any] = {
         "_Time": Time, "_Duration": Duration, "_new": object.__new__, "_range": range, "_str": str, "_memoryview": memoryview,
         "_pack": struct.pack, "_pack_I": struct.Struct("<I").pack,
@@ -371,7 +464,7 @@ def build_message_class(
     def cls_var(t: str) -> str:
         name = cls_vars.get(t)
         if name is None:
-            name = "_C_" + t.replace("/", "__")
+            name = f"_C{len(cls_vars)}"  # never the type's name: two names must not meet in one variable
             cls_vars[t] = name
             ns[name] = get_class(t)
         return name
@@ -407,7 +500,7 @@ def build_message_class(
     lines.append("    except _SerErr:")
     lines.append("        raise")
     lines.append("    except (_struct_error, TypeError, ValueError, AttributeError, OverflowError) as _exc:")
-    lines.append(f"        raise _SerErr('cannot serialize {spec.type_name}: %s' % (_exc,)) from _exc")
+    lines.append(f"        raise _SerErr({_lit(f'cannot serialize {spec.type_name}: %s')} % (_exc,)) from _exc")
     lines.append("    return b''.join(_b)")
 
     # deserialize
@@ -425,13 +518,16 @@ def build_message_class(
     lines.append("    try:")
     lines.extend(dw.lines or ["        pass"])
     lines.append("    except _DeserErr as _exc:")
-    lines.append(f"        raise _DeserErr('{spec.type_name}: %s' % (_exc,)) from None")
+    lines.append(f"        raise _DeserErr({_lit(f'{spec.type_name}: %s')} % (_exc,)) from None")
     lines.append("    except (_struct_error, ValueError, OverflowError, MemoryError) as _exc:")
-    lines.append(f"        raise _DeserErr('{spec.type_name}: buffer too short or corrupt (%s)' % (_exc,)) from None")
+    lines.append(f"        raise _DeserErr({_lit(f'{spec.type_name}: buffer too short or corrupt (%s)')} % (_exc,)) from None")
     lines.append("    return self")
 
     source = "\n".join(lines) + "\n"
-    code = compile(source, f"<rostui msg {spec.type_name}>", "exec")
+    try:
+        code = compile(source, f"<rostui msg {spec.type_name}>", "exec")
+    except (SyntaxError, ValueError, RecursionError, MemoryError) as exc:  # check_spec should make this unreachable
+        raise MessageSpecError(f"{spec.type_name}: cannot generate its class ({exc})", spec.source) from None
     exec(code, ns)
 
     attrs: dict[str, Any] = {

@@ -21,7 +21,9 @@ class UnknownMessageTypeError(MessageError, LookupError):
 
     def __init__(self, type_name: str, detail: str = "") -> None:
         """Record the unresolved *type_name* and an optional *detail*."""
-        msg = f"unknown message type [{type_name}]"
+        text = type_name if isinstance(type_name, str) else repr(type_name)
+        shown = text if text.isprintable() and len(text) <= 200 else repr(text[:200])
+        msg = f"unknown message type [{shown}]"
         if detail:
             msg += f": {detail}"
         super().__init__(msg)

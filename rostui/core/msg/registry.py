@@ -17,7 +17,7 @@ from .. import packages
 from .codegen import build_message_class
 from .errors import MessageSpecError, UnknownMessageTypeError
 from .message import Message, Service
-from .spec import HEADER_TYPE, MsgSpec, SrvSpec, is_valid_type_name, parse_msg_text, parse_srv_text
+from .spec import HEADER_TYPE, MsgSpec, SrvSpec, is_valid_type_name, parse_msg_text, parse_srv_text, shown
 
 __all__ = [
     "DEFINITION_SEPARATOR",
@@ -38,6 +38,12 @@ __all__ = [
 
 DEFINITION_SEPARATOR = "=" * 80
 """The line between types in a ``message_definition`` / ``_full_text``."""
+
+MAX_NESTING = 64
+"""Deepest nesting of message types accepted (ROS types cannot contain themselves)."""
+
+DYNAMIC_CACHE_SIZE = 256
+"""How many classes built from received definitions are kept (the oldest are forgotten first)."""
 
 
 def normalize_type_name(type_name: str) -> str:
@@ -71,7 +77,8 @@ class TypeStore:
 
     # -- specs -------------------------------------------------------------
     def add_spec(self, spec: MsgSpec) -> None:
-        """Register a message spec (replacing nothing already present)."""
+        """Register a message spec (replacing nothing already present); MessageSpecError for an illegal name."""
+        _check_type_name(spec.type_name, spec.source)
         with self._lock:
             self._specs.setdefault(spec.type_name, spec)
 
@@ -95,10 +102,10 @@ class TypeStore:
                 return spec
             pkg, _, name = type_name.partition("/")
             if self.load_from_packages:
-                pkg_dir = packages.find_package(pkg)
-                if pkg_dir is not None:
-                    path = pkg_dir / "msg" / f"{name}.msg"
-                    if path.is_file():
+                pkg_dirs = packages.find_package_dirs(pkg)
+                if pkg_dirs:
+                    path = _first_file(pkg_dirs, "msg", f"{name}.msg")
+                    if path is not None:
                         spec = parse_msg_text(_read(path), type_name, str(path))
                         self._specs[type_name] = spec
                         return spec
@@ -110,7 +117,7 @@ class TypeStore:
                             except UnknownMessageTypeError:
                                 break
                             return self._specs[type_name]
-                    raise UnknownMessageTypeError(type_name, f"no {name}.msg in package {pkg} ({pkg_dir})")
+                    raise UnknownMessageTypeError(type_name, f"no {name}.msg in package {pkg} ({_dirs_text(pkg_dirs)})")
                 raise UnknownMessageTypeError(type_name, f"package {pkg} not found")
             raise UnknownMessageTypeError(type_name)
 
@@ -126,12 +133,12 @@ class TypeStore:
             if spec is not None:
                 return spec
             pkg, _, name = type_name.partition("/")
-            pkg_dir = packages.find_package(pkg) if self.load_from_packages else None
-            if pkg_dir is None:
+            pkg_dirs = packages.find_package_dirs(pkg) if self.load_from_packages else []
+            if not pkg_dirs:
                 raise UnknownMessageTypeError(type_name, f"package {pkg} not found")
-            path = pkg_dir / "srv" / f"{name}.srv"
-            if not path.is_file():
-                raise UnknownMessageTypeError(type_name, f"no {name}.srv in package {pkg} ({pkg_dir})")
+            path = _first_file(pkg_dirs, "srv", f"{name}.srv")
+            if path is None:
+                raise UnknownMessageTypeError(type_name, f"no {name}.srv in package {pkg} ({_dirs_text(pkg_dirs)})")
             spec = parse_srv_text(_read(path), type_name, str(path))
             self._srv_specs[type_name] = spec
             self._specs.setdefault(spec.request.type_name, spec.request)
@@ -139,7 +146,9 @@ class TypeStore:
             return spec
 
     def add_srv_spec(self, spec: SrvSpec) -> None:
-        """Register a service spec and its request/response halves."""
+        """Register a service spec and its request/response halves; MessageSpecError for an illegal name."""
+        for name in (spec.type_name, spec.request.type_name, spec.response.type_name):
+            _check_type_name(name, spec.source)
         with self._lock:
             self._srv_specs.setdefault(spec.type_name, spec)
             self._specs.setdefault(spec.request.type_name, spec.request)
@@ -155,6 +164,8 @@ class TypeStore:
         type_name = spec.type_name
         if type_name in self._building:
             raise MessageSpecError(f"{type_name} contains itself", spec.source)
+        if len(self._building) >= MAX_NESTING:
+            raise MessageSpecError(f"{type_name}: nesting too deep (more than {MAX_NESTING} levels)", spec.source)
         self._building.add(type_name)
         try:
             lines = [f"{c.type} {c.md5_name}={c.val_text}" for c in spec.constants]
@@ -193,12 +204,16 @@ class TypeStore:
         """Nested message types of *type_name*, depth first, each once."""
         out: list[str] = []
 
+        seen: set[str] = set()
+
         def walk(t: str, depth: int) -> None:
-            if depth > 64:
+            if depth > MAX_NESTING:
                 raise MessageSpecError(f"{type_name}: nesting too deep or recursive")
             for d in self.get_spec(t).dependencies():
-                if d not in out:
-                    out.append(d)
+                if d in seen:  # its own dependencies are in already: walking it again adds nothing
+                    continue
+                seen.add(d)
+                out.append(d)
                 walk(d, depth + 1)
 
         walk(type_name, 0)
@@ -255,6 +270,24 @@ class TypeStore:
             return cls
 
 
+def _check_type_name(type_name: str, source: str | None) -> None:
+    if not is_valid_type_name(type_name):
+        raise MessageSpecError(f"{shown(type_name)} is not a valid pkg/Type name", source)
+
+
+def _first_file(pkg_dirs: list[Path], folder: str, file_name: str) -> Path | None:
+    """The first ``<dir>/<folder>/<file_name>`` that exists: a package dir without it does not hide later ones."""
+    for pkg_dir in pkg_dirs:
+        path = pkg_dir / folder / file_name
+        if path.is_file():
+            return path
+    return None
+
+
+def _dirs_text(pkg_dirs: list[Path]) -> str:
+    return ", ".join(str(d) for d in pkg_dirs)
+
+
 def _read(path: Path) -> str:
     try:
         return path.read_text(encoding="utf-8")
@@ -264,6 +297,7 @@ def _read(path: Path) -> str:
 
 _default = TypeStore(load_from_packages=True)
 _dynamic_cache: dict[tuple[str, str], type[Message]] = {}
+_dynamic_lock = threading.Lock()
 
 
 def default_store() -> TypeStore:
@@ -310,16 +344,26 @@ def full_text(type_name: str) -> str:
 
 
 def split_definition(type_name: str, definition: str) -> list[MsgSpec]:
-    """Parse a ``message_definition`` into specs: the main type first, then each ``MSG:`` section."""
+    """Parse a ``message_definition`` into specs: the main type first, then each ``MSG:`` section.
+
+    Every type name is checked against ROS's grammar before use (the text may
+    come from any peer or bag): a bad one raises MessageSpecError.
+    """
+    if not isinstance(definition, str):
+        raise MessageSpecError("message_definition is not text", "<message_definition>")
+    type_name = normalize_type_name(type_name)
+    where = f"<message_definition of {type_name}>"
     sections = definition.split("\n" + DEFINITION_SEPARATOR + "\n")
-    specs = [parse_msg_text(sections[0], type_name, "<message_definition>")]
+    specs = [parse_msg_text(sections[0], type_name, where)]
     for sec in sections[1:]:
         head, _, text = sec.partition("\n")
         if not head.startswith("MSG: "):
-            raise MessageSpecError(f"expected 'MSG: pkg/Type' after separator, got {head!r}", f"<message_definition of {type_name}>")
+            raise MessageSpecError(f"expected 'MSG: pkg/Type' after separator, got {shown(head)}", where)
         sub = head[5:].strip()
         if sub == "Header":
             sub = HEADER_TYPE
+        if not is_valid_type_name(sub):
+            raise MessageSpecError(f"{shown(sub)} after 'MSG:' is not a valid pkg/Type name", where)
         specs.append(parse_msg_text(text, sub, f"<message_definition of {type_name}: {sub}>"))
     return specs
 
@@ -335,6 +379,8 @@ def register_types_from_definition(type_name: str, definition: str) -> type[Mess
     cls = _dynamic_cache.get(key)
     if cls is not None:
         return cls
+    if not isinstance(type_name, str):
+        raise UnknownMessageTypeError(repr(type_name), "not a valid pkg/Type name")
     type_name = normalize_type_name(type_name)
     store = TypeStore(load_from_packages=False)
     for spec in split_definition(type_name, definition):
@@ -351,7 +397,10 @@ def register_types_from_definition(type_name: str, definition: str) -> type[Mess
         for t, spec in store._specs.items():
             if not _default.has_type(t):
                 _default.add_spec(spec)
-    _dynamic_cache[key] = cls
+    with _dynamic_lock:
+        while len(_dynamic_cache) >= DYNAMIC_CACHE_SIZE:
+            del _dynamic_cache[next(iter(_dynamic_cache))]
+        _dynamic_cache[key] = cls
     return cls
 
 
@@ -368,15 +417,15 @@ def _reconstruct(type_name: str, md5: str, definition: str) -> Message:
 
 def list_message_types(package: str) -> list[str]:
     """The message types (``pkg/Name``) defined by *package*, sorted."""
-    d = packages.find_package(package)
-    if d is None:
+    dirs = packages.find_package_dirs(package)
+    if not dirs:
         raise packages.PackageNotFoundError(package)
-    return sorted(f"{package}/{p.stem}" for p in (d / "msg").glob("*.msg"))
+    return sorted({f"{package}/{p.stem}" for d in dirs for p in (d / "msg").glob("*.msg")})
 
 
 def list_service_types(package: str) -> list[str]:
     """The service types (``pkg/Name``) defined by *package*, sorted."""
-    d = packages.find_package(package)
-    if d is None:
+    dirs = packages.find_package_dirs(package)
+    if not dirs:
         raise packages.PackageNotFoundError(package)
-    return sorted(f"{package}/{p.stem}" for p in (d / "srv").glob("*.srv"))
+    return sorted({f"{package}/{p.stem}" for d in dirs for p in (d / "srv").glob("*.srv")})

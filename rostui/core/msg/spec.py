@@ -26,6 +26,8 @@ __all__ = [
     "parse_msg_text",
     "parse_srv_text",
     "split_type_name",
+    "is_valid_name",
+    "shown",
     "is_valid_type_name",
 ]
 
@@ -49,8 +51,16 @@ _INT_BOUNDS: dict[str, tuple[int, int]] = {
     "byte": (-(2**7), 2**7 - 1), "char": (0, 2**8 - 1),
 }
 
-_NAME_RE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
-_TYPE_RE = re.compile(r"^([A-Za-z][A-Za-z0-9_]*(?:/[A-Za-z][A-Za-z0-9_]*)?)(?:\[(\d*)\])?$")
+# ``\Z``, not ``$``: ``$`` also matches before a trailing newline, and these names reach generated code.
+_NAME_RE = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
+_TYPE_RE = re.compile(r"([A-Za-z][A-Za-z0-9_]*(?:/[A-Za-z][A-Za-z0-9_]*)?)(?:\[([0-9]*)\])?\Z")
+
+
+def shown(text: str, limit: int = 80) -> str:
+    """*text* as an error message may show it: quoted when it holds control characters, cut at *limit*."""
+    if len(text) > limit:
+        text = text[:limit] + "..."
+    return text if text.isprintable() else repr(text)
 
 
 def split_type_name(type_name: str) -> tuple[str, str]:
@@ -61,8 +71,15 @@ def split_type_name(type_name: str) -> tuple[str, str]:
     return pkg, name
 
 
+def is_valid_name(name: str) -> bool:
+    """True for a legal ROS base name (package, message, field or constant): ``[A-Za-z][A-Za-z0-9_]*``."""
+    return isinstance(name, str) and _NAME_RE.match(name) is not None
+
+
 def is_valid_type_name(type_name: str) -> bool:
     """True for a syntactically legal ``pkg/Name`` (no array suffix)."""
+    if not isinstance(type_name, str):
+        return False
     m = _TYPE_RE.match(type_name)
     return m is not None and m.group(2) is None and "/" in type_name
 
@@ -180,7 +197,7 @@ def _convert_constant(ctype: str, val: str) -> bool | int | float | str:
 def _resolve_field_type(ftype: str, package: str) -> tuple[str, str, bool, int | None]:
     m = _TYPE_RE.match(ftype)
     if not m:
-        raise ValueError(f"{ftype} is not a legal message field type")
+        raise ValueError(f"{shown(ftype)} is not a legal message field type")
     base, arr = m.group(1), m.group(2)
     suffix = "" if arr is None else f"[{arr}]"
     if "/" not in base:
@@ -197,9 +214,12 @@ def parse_msg_text(text: str, type_name: str, source: str | None = None, first_l
     """Parse .msg *text* for type *type_name* (``pkg/Name``).
 
     *source* and *first_line* are used only for error locations.
-    Raises :class:`MessageSpecError`.
+    Raises :class:`MessageSpecError`, also when *type_name* is not a legal ``pkg/Name``
+    (it may come from a peer's ``message_definition``).
     """
-    package = type_name.partition("/")[0] if "/" in type_name else ""
+    if not is_valid_type_name(type_name):
+        raise MessageSpecError(f"{shown(type_name)} is not a valid pkg/Type name", source)
+    package = type_name.partition("/")[0]
     fields: list[Field] = []
     constants: list[Constant] = []
     names: set[str] = set()
@@ -217,10 +237,10 @@ def parse_msg_text(text: str, type_name: str, source: str | None = None, first_l
                 continue
             parts = clean.split()
             if len(parts) != 2:
-                raise ValueError(f"invalid declaration: {orig.strip()}")
+                raise ValueError(f"invalid declaration: {shown(orig.strip())}")
             ftype, fname = parts
             if not _NAME_RE.match(fname):
-                raise ValueError(f"{fname} is not a legal message field name")
+                raise ValueError(f"{shown(fname)} is not a legal message field name")
             full, base, is_arr, alen = _resolve_field_type(ftype, package)
             if fname in names:
                 raise ValueError(f"duplicate field name {fname}")
@@ -235,7 +255,7 @@ def _parse_constant(orig: str, clean: str) -> Constant:
     parts = clean.split()
     ctype = parts[0]
     if ctype not in PRIMITIVE_TYPES:
-        raise ValueError(f"{ctype} is not a legal constant type")
+        raise ValueError(f"{shown(ctype)} is not a legal constant type")
     if ctype == "string":
         idx = orig.find("=")
         raw_name = orig[orig.find(" ") + 1 : idx]
@@ -244,15 +264,15 @@ def _parse_constant(orig: str, clean: str) -> Constant:
     else:
         halves = [x.strip() for x in " ".join(parts[1:]).split("=")]
         if len(halves) != 2:
-            raise ValueError(f"invalid constant declaration: {orig.strip()}")
+            raise ValueError(f"invalid constant declaration: {shown(orig.strip())}")
         raw_name = name = halves[0]
         val = halves[1]
     if not _NAME_RE.match(name):
-        raise ValueError(f"{name!r} is not a legal constant name")
+        raise ValueError(f"{shown(name)} is not a legal constant name")
     try:
         value = _convert_constant(ctype, val)
-    except (ValueError, SyntaxError) as e:
-        raise ValueError(f"invalid constant value: {e}") from None
+    except (ValueError, SyntaxError, TypeError, RecursionError, MemoryError) as e:
+        raise ValueError(f"invalid constant value: {shown(str(e))}") from None
     return Constant(ctype, name, value, val.strip(), raw_name)
 
 

@@ -68,7 +68,13 @@ async def serve_core(port: int, stop: asyncio.Event) -> int:
         await master.stop()
         return 1
     print("started core service [/rosout]", flush=True)
-    await stop.wait()
+    stopped = asyncio.ensure_future(stop.wait())
+    shutdown = asyncio.ensure_future(master.wait_for_shutdown_request())
+    await asyncio.wait({stopped, shutdown}, return_when=asyncio.FIRST_COMPLETED)
+    if shutdown.done():
+        print(f"shutdown request: {shutdown.result()}", flush=True)
+    for waiter in (stopped, shutdown):
+        waiter.cancel()
     await rosout.stop()
     await master.stop()
     return 0

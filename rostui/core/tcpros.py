@@ -23,6 +23,18 @@ def max_frame_from_env() -> int:
     return int(raw) if raw and raw.isdigit() else DEFAULT_MAX_FRAME
 
 
+DEFAULT_MAX_BACKLOG = 64 << 20
+
+
+def max_backlog_from_env() -> int:
+    """Bytes a publisher queues for one subscriber that does not keep up before dropping it.
+
+    ROSTUI_TCPROS_MAX_BACKLOG bytes, default 64 MiB; one message always fits, however large.
+    """
+    raw = os.environ.get("ROSTUI_TCPROS_MAX_BACKLOG")
+    return int(raw) if raw and raw.isdigit() else DEFAULT_MAX_BACKLOG
+
+
 def stall_timeout_from_env() -> float:
     """Seconds a peer may stall mid-frame or mid-header before it is dropped."""
     raw = os.environ.get("ROSTUI_TCPROS_STALL_TIMEOUT")
@@ -106,8 +118,14 @@ class FrameReader:
 
     @property
     def pending(self) -> int:
-        """Bytes buffered that do not yet form a complete frame."""
+        """Bytes buffered: a partial frame, and whole frames not yet taken (``feed`` with a ``limit``)."""
         return len(self._buf)
+
+    def discard(self) -> int:
+        """Forget everything buffered; return how many bytes that was."""
+        size = len(self._buf)
+        self._buf = bytearray()  # a fresh buffer: the old one's memory goes back at once
+        return size
 
     def whole_frame(self, data: bytes) -> bytes | None:
         """The payload when nothing is buffered and ``data`` is exactly one frame within the cap, else None.

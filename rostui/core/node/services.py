@@ -10,6 +10,7 @@ an error string (ok=0).
 from __future__ import annotations
 
 import asyncio
+import collections
 import logging
 from typing import Any, Callable, Protocol
 from urllib.parse import urlparse
@@ -128,41 +129,76 @@ class ServiceServer:
             return b"\x00" + LEN.pack(len(data)) + data
 
 
+#: Requests of one connection waiting for an answer before the connection stops reading from the client.
+MAX_PENDING_REQUESTS = 32
+
+#: Once paused, reading resumes when this few requests are left waiting.
+RESUME_PENDING_REQUESTS = 8
+
+
 class ServiceConnection:
-    """One client connection to a ServiceServer; requests are answered in order."""
+    """One client connection to a ServiceServer; requests are answered in order.
+
+    A client may pipeline requests on a persistent connection.  They wait in
+    a short queue: past :data:`MAX_PENDING_REQUESTS` the connection stops
+    reading until the worker has caught up, and the worker stops answering
+    while the client does not read its answers (``pause_writing``), so a
+    client that sends faster than it is served is held back by TCP instead
+    of growing our memory.  Each connection has its own worker: others are
+    served meanwhile.
+    """
+
+    takes_frames = True
 
     def __init__(self, server: ServiceServer, conn: InboundConnection, *, persistent: bool) -> None:
         self.server = server
         self.conn = conn
         self.persistent = persistent
-        self.queue: asyncio.Queue[bytes] = asyncio.Queue()
+        self.pending: collections.deque[bytes] = collections.deque()
         self.task: asyncio.Task[None] | None = None
+        self._arrived = asyncio.Event()
+        self._writable = asyncio.Event()
+        self._writable.set()
 
     def frames_received(self, frames: list[bytes]) -> None:
-        """Queue requests; a worker answers them one at a time."""
-        for data in frames:
-            self.queue.put_nowait(data)
+        """Queue requests for the worker; stop reading while too many wait."""
+        self.pending.extend(frames)
+        if len(self.pending) >= MAX_PENDING_REQUESTS:
+            self.conn.pause_reading()
         if self.task is None:
             self.task = asyncio.get_running_loop().create_task(self._serve())
+        else:
+            self._arrived.set()
 
     async def _serve(self) -> None:
+        arrived, writable, pending = self._arrived, self._writable, self.pending
         while True:
-            body = await self.queue.get()
-            self.conn.write(await self.server.handle(body))
+            while not pending:
+                arrived.clear()
+                await arrived.wait()
+            response = await self.server.handle(pending.popleft())
+            await writable.wait()  # the client reads its answers before it gets more
+            self.conn.write(response)
             if not self.persistent:
+                self.pending.clear()
                 self.conn.close()
                 return
+            if len(pending) <= RESUME_PENDING_REQUESTS:
+                self.conn.resume_reading()
 
     def connection_lost(self) -> None:
-        """Stop the worker."""
+        """Stop the worker and forget the requests that wait."""
+        self.pending.clear()
         if self.task is not None:
             self.task.cancel()
 
     def pause_writing(self) -> None:
-        """Responses are small; nothing to do."""
+        """The client does not read its answers: answer no more until it does."""
+        self._writable.clear()
 
     def resume_writing(self) -> None:
-        """Responses are small; nothing to do."""
+        """The client reads again."""
+        self._writable.set()
 
 
 def parse_rosrpc_uri(uri: str) -> tuple[str, int]:

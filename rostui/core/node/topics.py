@@ -27,7 +27,7 @@ from rostui.core.localhost import connect_host
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.busypoll import BusyPoll
 from rostui.core.node.transport import InboundConnection, PublisherConnection, SubscriberConnection, set_nodelay
-from rostui.core.tcpros import LEN, encode_header
+from rostui.core.tcpros import LEN, encode_header, max_backlog_from_env
 
 log = logging.getLogger("rostui.topics")
 
@@ -100,15 +100,27 @@ class OutgoingLink:
 
     Writes happen under the publication's lock: on the engine thread through
     the transport, or, from a user thread while the transport has nothing
-    buffered, straight to the socket (no thread hand-off).
+    buffered, straight to the socket (no thread hand-off).  While the
+    subscriber does not keep up, messages queue for it: at most
+    ``queue_size`` of them, the oldest dropped, as in ROS.  A publication
+    without a queue size drops no message, so its queue is bounded in bytes
+    instead (``max_backlog``: ROSTUI_TCPROS_MAX_BACKLOG, 64 MiB by default):
+    a subscriber that lets more pile up is dropped (it may connect again).
     """
+
+    #: A subscriber sends nothing after its header: its connection discards stray bytes and drops a peer
+    #: that keeps sending (InboundConnection).
+    takes_frames = False
 
     def __init__(self, pub: "Publication", conn: InboundConnection, header: dict[str, str]) -> None:
         self.pub = pub
         self.conn = conn
         self.callerid = header.get("callerid", "")
         self.paused = False
-        self.backlog: collections.deque[bytes] = collections.deque(maxlen=pub.queue_limit)
+        self.backlog: collections.deque[bytes] = collections.deque()
+        self.backlog_bytes = 0
+        self.max_backlog = max_backlog_from_env()
+        self.gone = False
         self.messages_sent = 0
         self.bytes_sent = 0
         self.dropped = 0
@@ -119,13 +131,31 @@ class OutgoingLink:
     def send(self, data: bytes, count: int = 1) -> None:
         """Write framed bytes on the engine thread, or queue them while the peer is slow."""
         if self.paused:
-            if len(self.backlog) == self.backlog.maxlen:
-                self.dropped += 1
-            self.backlog.append(data)
+            self._queue(data)
             return
         self.conn.write(data)
         self.messages_sent += count
         self.bytes_sent += len(data)
+
+    def _queue(self, data: bytes) -> None:
+        """Keep a message for a subscriber that does not keep up: within the queue size, else the byte bound."""
+        backlog = self.backlog
+        if self.gone:
+            return
+        limit = self.pub.queue_limit
+        if limit is not None:
+            if len(backlog) >= limit:
+                self.backlog_bytes -= len(backlog.popleft())
+                self.dropped += 1
+        elif backlog and self.backlog_bytes + len(data) > self.max_backlog:
+            self.gone = True
+            backlog.clear()
+            self.backlog_bytes = 0
+            self.conn.drop(f"subscriber [{self.callerid}] of {self.pub.topic} does not keep up: over "
+                           f"{self.max_backlog} bytes queued for it")
+            return
+        backlog.append(data)
+        self.backlog_bytes += len(data)
 
     def can_send_direct(self) -> bool:
         """True when a user thread may write to the socket itself (nothing queued anywhere)."""
@@ -155,18 +185,22 @@ class OutgoingLink:
             self.remainder_pending = False
 
     def frames_received(self, frames: list[bytes]) -> None:
-        """Subscribers send nothing after their header; ignore stray bytes."""
+        """Never called: a subscriber sends nothing after its header (see ``takes_frames``)."""
 
     def pause_writing(self) -> None:
-        """Start queueing (bounded by queue_size, oldest dropped)."""
+        """Start queueing (bounded: see the class docstring)."""
         self.paused = True
 
     def resume_writing(self) -> None:
         """Flush what queued while paused."""
         with self.pub.lock:
+            if self.gone:
+                return
             self.paused = False
             while self.backlog and not self.paused:
-                self.send(self.backlog.popleft())
+                data = self.backlog.popleft()
+                self.backlog_bytes -= len(data)
+                self.send(data)
 
     def connection_lost(self) -> None:
         """Forget this subscriber."""
@@ -453,6 +487,17 @@ class Subscription:
                 continue
             self.connections[uri] = None
             self._retry[uri] = self.node.loop.create_task(self._connect_loop(uri))
+
+    def rejoin(self, uris: list[str]) -> None:
+        """After registering with a new master: connect to the publishers it lists, keep the live connections.
+
+        A new master may not know yet of publishers that are alive and
+        connected (they register again by themselves, if they can); dropping
+        them would lose messages for nothing.  Publishers not connected now
+        and not listed are forgotten.
+        """
+        live = [uri for uri, conn in self.connections.items() if conn is not None and conn.header is not None]
+        self.update_publishers(list(dict.fromkeys([*uris, *live, *self.local_pubs])))
 
     def _types_match(self, md5: str) -> bool:
         ours = self.msg_class._md5sum

@@ -85,11 +85,27 @@ class ConnectionRouter(Protocol):
         """Return a handler for the connection, or an error string to refuse it."""
 
 
+#: Bytes a peer whose handler takes no frames (a subscriber) may send after its header before it is dropped.
+MAX_UNEXPECTED_BYTES = 64 * 1024
+
+#: Frames an InboundConnection hands its handler at a time; the rest wait, unparsed, in its reader.
+FRAME_BATCH = 16
+
+
 class InboundHandler(Protocol):
     """The per-connection logic that takes over after the header exchange."""
 
+    @property
+    def takes_frames(self) -> bool:
+        """False when the peer has nothing to send after its header (a subscriber): its bytes are discarded
+        and, past :data:`MAX_UNEXPECTED_BYTES`, the peer is dropped."""
+
     def frames_received(self, frames: list[bytes]) -> None:
-        """Frames sent by the peer after its header."""
+        """Frames sent by the peer after its header (at most :data:`FRAME_BATCH` at a time).
+
+        A handler that cannot keep up calls the connection's ``pause_reading``; no more frames come
+        until it calls ``resume_reading``.
+        """
 
     def connection_lost(self) -> None:
         """The peer went away or was dropped."""
@@ -102,7 +118,15 @@ class InboundHandler(Protocol):
 
 
 class InboundConnection(asyncio.Protocol):
-    """A connection accepted by a node's TCPROS server."""
+    """A connection accepted by a node's TCPROS server.
+
+    Every byte the peer sends is bounded: its header by ``MAX_HEADER``; after
+    the header, a handler that takes frames gets at most :data:`FRAME_BATCH`
+    at a time and may pause reading (the rest stays unparsed, at most one read
+    of the socket, and the kernel's buffers push back on the peer); a handler
+    that takes none (a subscriber link) has the bytes discarded, and a peer
+    that sends more than :data:`MAX_UNEXPECTED_BYTES` is dropped.
+    """
 
     def __init__(self, router: ConnectionRouter) -> None:
         self.router = router
@@ -111,6 +135,9 @@ class InboundConnection(asyncio.Protocol):
         self.handler: InboundHandler | None = None
         self.peer: Any = None
         self.busy_poll = router.busy_poll
+        self.reading_paused = False
+        self.unexpected_bytes = 0
+        self._discard = False
         self._watch: StallWatch | None = None
 
     def connection_made(self, transport: asyncio.BaseTransport) -> None:
@@ -124,6 +151,9 @@ class InboundConnection(asyncio.Protocol):
         """Read the header, route, then pass frames to the handler."""
         if self.busy_poll is not None:
             self.busy_poll.traffic()
+        if self._discard:
+            self._unexpected(len(data))
+            return
         handler = self.handler
         if handler is not None:
             # One whole frame with nothing buffered: the stall watch is idle (see SubscriberConnection).
@@ -136,7 +166,10 @@ class InboundConnection(asyncio.Protocol):
                 if not self._read_header(data):
                     return
                 data = b""
-            frames = self.reader.feed(data)
+                if self._discard:
+                    self._unexpected(self.reader.discard())
+                    return
+            self._pump(data)
         except TcprosError as exc:
             if self.handler is None:
                 self.refuse(str(exc))
@@ -145,9 +178,26 @@ class InboundConnection(asyncio.Protocol):
             return
         finally:
             if self._watch is not None:
-                self._watch.progress(self.reader.pending)
-        if frames and self.handler is not None:
-            self.handler.frames_received(frames)
+                # While we hold the peer back, whatever waits in the reader is ours to take, not a stall.
+                self._watch.progress(0 if self.reading_paused or self._discard else self.reader.pending)
+
+    def _pump(self, data: bytes) -> None:
+        """Hand complete frames to the handler in small batches until it pauses or none are left."""
+        handler = self.handler
+        assert handler is not None
+        frames = self.reader.feed(data, limit=FRAME_BATCH)
+        while frames:
+            handler.frames_received(frames)
+            if self.reading_paused or self._discard or len(frames) < FRAME_BATCH:
+                return
+            frames = self.reader.feed(b"", limit=FRAME_BATCH)
+
+    def _unexpected(self, size: int) -> None:
+        """Discard bytes a peer had no business sending; drop it once they add up."""
+        self.unexpected_bytes += size
+        if self.unexpected_bytes > MAX_UNEXPECTED_BYTES and self.transport is not None \
+                and not self.transport.is_closing():
+            self.drop(f"peer sent {self.unexpected_bytes} bytes after its header, where none are expected")
 
     def _read_header(self, data: bytes) -> bool:
         """Take the peer's header and route the connection; True once routed."""
@@ -158,8 +208,36 @@ class InboundConnection(asyncio.Protocol):
         if isinstance(routed, str):
             raise TcprosError(routed)
         self.handler = routed
+        self._discard = self._discard or not routed.takes_frames
         self.reader.max_frame = max_frame_from_env()
         return self.transport is not None and not self.transport.is_closing()
+
+    def pause_reading(self) -> None:
+        """Stop reading from the peer until :meth:`resume_reading` (the handler is busy)."""
+        if not self.reading_paused:
+            self.reading_paused = True
+            if self._watch is not None:
+                self._watch.progress(0)
+            if self.transport is not None and not self.transport.is_closing():
+                self.transport.pause_reading()
+
+    def resume_reading(self) -> None:
+        """Hand over the frames that waited, then read from the peer again unless the handler paused anew."""
+        if not self.reading_paused:
+            return
+        self.reading_paused = False
+        transport = self.transport
+        if transport is None or transport.is_closing():
+            return
+        try:
+            self._pump(b"")
+        except TcprosError as exc:
+            self.drop(str(exc))
+            return
+        if not self.reading_paused and not transport.is_closing():
+            if self._watch is not None:
+                self._watch.progress(self.reader.pending)
+            transport.resume_reading()
 
     def write(self, data: bytes) -> None:
         """Send bytes unless the connection is closing."""
@@ -173,14 +251,20 @@ class InboundConnection(asyncio.Protocol):
         self.close()
 
     def drop(self, reason: str) -> None:
-        """Close the connection after logging why."""
+        """Close the connection at once after logging why: what waits to be sent to the peer is discarded too."""
         log.warning("dropping TCPROS connection from %s: %s", self.peer, reason)
-        self.close()
+        self.close(abort=True)
 
-    def close(self) -> None:
-        """Close the transport."""
+    def close(self, abort: bool = False) -> None:
+        """Close the transport (after sending what is buffered, unless ``abort``) and forget what the peer
+        sent: anything still arriving is dropped unread."""
+        self._discard = True
+        self.reader.discard()
         if self.transport is not None:
-            self.transport.close()
+            if abort:
+                self.transport.abort()
+            else:
+                self.transport.close()
 
     def pause_writing(self) -> None:
         """Forward back-pressure to the handler."""
@@ -196,6 +280,7 @@ class InboundConnection(asyncio.Protocol):
         """Tell the handler the peer is gone."""
         if self._watch is not None:
             self._watch.cancel()
+        self.reader.discard()
         if self.handler is not None:
             self.handler.connection_lost()
 
@@ -312,4 +397,5 @@ class SubscriberConnection(asyncio.Protocol, PublisherConnection):
         """Report the end of the connection once."""
         if self._watch is not None:
             self._watch.cancel()
+        self.reader.discard()  # a partial frame (up to the cap) goes back at once
         self.on_lost(self.error or (str(exc) if exc else None))

@@ -4,8 +4,12 @@ from __future__ import annotations
 
 import re
 import shutil
+import signal
 import subprocess
+import sys
 from pathlib import Path
+
+import psutil
 
 from cli_helpers import rostui
 from conftest import REPO
@@ -53,3 +57,36 @@ def corpus_file(name: str) -> Path:
         if path.exists():
             return path
     raise FileNotFoundError(name)
+
+
+class Launch:
+    """A running ``rostui launch`` whose output is collected in files."""
+
+    def __init__(self, args: list[str], env: dict[str, str], tmp: Path) -> None:
+        self.out_path, self.err_path = tmp / "launch.out", tmp / "launch.err"
+        self.proc = subprocess.Popen([sys.executable, "-m", "rostui", "launch", *args], env=env, cwd=REPO,
+                                     stdout=self.out_path.open("w"), stderr=self.err_path.open("w"),
+                                     stdin=subprocess.DEVNULL)
+
+    @property
+    def out(self) -> str:
+        """What the launcher printed on stdout so far."""
+        return self.out_path.read_text()
+
+    @property
+    def err(self) -> str:
+        """What the launcher printed on stderr so far."""
+        return self.err_path.read_text()
+
+    def interrupt(self, timeout: float = 90.0) -> int:
+        """Ctrl-C (SIGINT) and wait for the launcher to end."""
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGINT)
+        return self.proc.wait(timeout=timeout)
+
+    def descendants(self) -> list[psutil.Process]:
+        """The launcher's processes (nodes and their children), [] once it is gone."""
+        try:
+            return psutil.Process(self.proc.pid).children(recursive=True)
+        except psutil.Error:
+            return []

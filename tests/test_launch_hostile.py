@@ -8,7 +8,6 @@
 
 from __future__ import annotations
 
-import signal
 import socket
 import subprocess
 import sys
@@ -20,31 +19,7 @@ import psutil
 import pytest
 
 from conftest import REPO, master_port, wait_until
-from launch_helpers import launch_env
-
-
-class Launch:
-    """A running ``rostui launch`` whose output is collected in files."""
-
-    def __init__(self, args: list[str], env: dict[str, str], tmp: Path) -> None:
-        self.out_path, self.err_path = tmp / "launch.out", tmp / "launch.err"
-        self.proc = subprocess.Popen([sys.executable, "-m", "rostui", "launch", *args], env=env, cwd=REPO,
-                                     stdout=self.out_path.open("w"), stderr=self.err_path.open("w"),
-                                     stdin=subprocess.DEVNULL)
-
-    @property
-    def out(self) -> str:
-        return self.out_path.read_text()
-
-    @property
-    def err(self) -> str:
-        return self.err_path.read_text()
-
-    def interrupt(self, timeout: float = 90.0) -> int:
-        """Ctrl-C (SIGINT) and wait for the launcher to end."""
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-        return self.proc.wait(timeout=timeout)
+from launch_helpers import Launch, launch_env
 
 
 @pytest.fixture

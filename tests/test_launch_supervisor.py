@@ -13,40 +13,10 @@ from typing import Iterator
 import psutil
 import pytest
 
-from conftest import REPO, master_port, wait_for_port, wait_until
-from launch_helpers import CORPUS, launch_env, run_rostui
+from conftest import master_port, wait_for_port, wait_until
+from launch_helpers import CORPUS, Launch, launch_env, run_rostui
 
 RUN = CORPUS / "run"
-
-
-class Launch:
-    """A running ``rostui launch`` whose output is collected in files."""
-
-    def __init__(self, args: list[str], env: dict[str, str], tmp: Path) -> None:
-        self.out_path, self.err_path = tmp / "launch.out", tmp / "launch.err"
-        self.proc = subprocess.Popen([sys.executable, "-m", "rostui", "launch", *args], env=env, cwd=REPO,
-                                     stdout=self.out_path.open("w"), stderr=self.err_path.open("w"),
-                                     stdin=subprocess.DEVNULL)
-
-    @property
-    def out(self) -> str:
-        return self.out_path.read_text()
-
-    @property
-    def err(self) -> str:
-        return self.err_path.read_text()
-
-    def interrupt(self, timeout: float = 60.0) -> int:
-        """Ctrl-C (SIGINT) and wait for the launcher to end."""
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-        return self.proc.wait(timeout=timeout)
-
-    def descendants(self) -> list[psutil.Process]:
-        try:
-            return psutil.Process(self.proc.pid).children(recursive=True)
-        except psutil.Error:
-            return []
 
 
 @pytest.fixture

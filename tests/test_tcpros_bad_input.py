@@ -21,7 +21,7 @@ from rostui.core.node import AsyncNode
 from rostui.core.tcpros import FrameReader, FrameTooLargeError, HeaderError, decode_header, encode_header, frame
 from rostui.core.xmlrpc import XmlRpcServer, call_sync
 
-from conftest import stop_process
+from conftest import read_until_closed, stop_process
 from test_node import run, until
 
 String = get_message_class("std_msgs/String")
@@ -69,16 +69,7 @@ def exchange(port: int, data: bytes, pause: float = 0.0) -> bytes:
     """Send raw bytes to a TCPROS port; return all bytes until the peer closes."""
     with socket.create_connection(("127.0.0.1", port), timeout=15) as sock:
         sock.sendall(data)
-        chunks = []
-        while True:
-            try:
-                chunk = sock.recv(65536)
-            except ConnectionResetError:
-                break
-            if not chunk:
-                break
-            chunks.append(chunk)
-        return b"".join(chunks)
+        return read_until_closed(sock)
 
 
 def error_of(reply: bytes) -> str:

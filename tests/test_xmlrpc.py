@@ -42,10 +42,10 @@ class Handler:
         return "secret"
 
 
-def run_with_server(test: Callable[[XmlRpcServer], Awaitable[None]], **kwargs: Any) -> None:
-    """Start a server on 127.0.0.1, run ``test`` against it, close it."""
+def run_with_server(test: Callable[[XmlRpcServer], Awaitable[None]], handler: Any = None, **kwargs: Any) -> None:
+    """Start a server on 127.0.0.1 (serving ``handler``, by default a :class:`Handler`), run ``test``, close it."""
     async def main() -> None:
-        server = XmlRpcServer(Handler(), "127.0.0.1", **kwargs)
+        server = XmlRpcServer(handler if handler is not None else Handler(), "127.0.0.1", **kwargs)
         await server.start()
         try:
             await test(server)

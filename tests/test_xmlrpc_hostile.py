@@ -15,7 +15,8 @@ from xml.parsers import expat
 
 import pytest
 
-from conftest import REPO, master_port, wait_until
+from conftest import REPO, master_port, read_until_closed, wait_until
+from test_xmlrpc import run_with_server as serve
 from rostui.core.xmlrpc import XmlRpcClient, XmlRpcConnectionError, XmlRpcProtocolError, XmlRpcServer, call_sync
 from rostui.core.xmlrpc.limits import (
     DEFAULT_IDLE_TIMEOUT, DEFAULT_REQUEST_TIMEOUT, idle_timeout_from_env, max_connections_from_env,
@@ -76,35 +77,14 @@ class Handler:
 
 
 def run_with_server(test: Callable[[XmlRpcServer], Awaitable[None]], **kwargs: Any) -> None:
-    """Start a server on 127.0.0.1, run ``test`` against it, close it."""
-    async def main() -> None:
-        server = XmlRpcServer(Handler(), "127.0.0.1", **kwargs)
-        await server.start()
-        try:
-            await test(server)
-        finally:
-            await server.close()
-    asyncio.run(main())
+    """Start a server of this file's :class:`Handler` on 127.0.0.1, run ``test`` against it, close it."""
+    serve(test, Handler(), **kwargs)
 
 
 def post(body: bytes, keep_alive: bool = False) -> bytes:
     """A complete HTTP/1.1 POST carrying ``body``."""
     close = b"" if keep_alive else b"Connection: close\r\n"
     return b"POST / HTTP/1.1\r\nContent-Type: text/xml\r\nContent-Length: %d\r\n%s\r\n" % (len(body), close) + body
-
-
-def read_until_closed(sock: socket.socket) -> bytes:
-    """Everything the peer sends until it closes (socket.timeout if it does not)."""
-    chunks = []
-    while True:
-        try:
-            chunk = sock.recv(65536)
-        except ConnectionResetError:
-            break
-        if not chunk:
-            break
-        chunks.append(chunk)
-    return b"".join(chunks)
 
 
 # -- DTDs in every encoding -------------------------------------------------------------------------------------

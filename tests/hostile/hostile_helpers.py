@@ -13,22 +13,43 @@ import statistics
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable
 
 import psutil
+
+if TYPE_CHECKING:
+    from typing_extensions import Self
 
 MB = 1024 * 1024
 
 
-class RssSampler:
+class Background:
+    """Runs :meth:`_run` on a thread while in a ``with`` block; ``_run`` ends once ``_stop`` is set."""
+
+    def __init__(self) -> None:
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+
+    def _run(self) -> None:
+        raise NotImplementedError
+
+    def __enter__(self) -> Self:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop.set()
+        self._thread.join()
+
+
+class RssSampler(Background):
     """Samples a process's resident memory every 20 ms from a thread, while in a ``with`` block."""
 
     def __init__(self, pid: int) -> None:
         self.process = psutil.Process(pid)
         self.baseline = self.process.memory_info().rss
         self.peak = self.baseline
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run, daemon=True)
+        super().__init__()
 
     def _run(self) -> None:
         while not self._stop.wait(0.02):
@@ -37,14 +58,6 @@ class RssSampler:
             except psutil.Error:
                 return
 
-    def __enter__(self) -> "RssSampler":
-        self._thread.start()
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self._stop.set()
-        self._thread.join()
-
     @property
     def growth_mb(self) -> float:
         """How far the peak rose above the memory before the attack, in MiB."""
@@ -52,7 +65,7 @@ class RssSampler:
 
 
 @dataclass
-class LegitClient:
+class LegitClient(Background):
     """Runs ``call`` over and over from a thread while in a ``with`` block; keeps each latency and each failure."""
 
     call: Callable[[], Any]
@@ -61,8 +74,7 @@ class LegitClient:
     failures: list[str] = field(default_factory=list)
 
     def __post_init__(self) -> None:
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run, daemon=True)
+        super().__init__()
 
     def _run(self) -> None:
         while not self._stop.is_set():
@@ -73,14 +85,6 @@ class LegitClient:
             except Exception as exc:  # every failure is the finding, whatever its type
                 self.failures.append(f"{type(exc).__name__}: {exc}")
             self._stop.wait(self.pause)
-
-    def __enter__(self) -> "LegitClient":
-        self._thread.start()
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self._stop.set()
-        self._thread.join()
 
     @property
     def median_ms(self) -> float:

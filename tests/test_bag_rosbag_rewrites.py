@@ -111,3 +111,15 @@ def test_rosbag_reindex_of_a_rostui_bag_keeps_every_message(tmp_path: Path, stat
     r = subprocess.run(["rosbag", "reindex", str(in_place)], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stdout + r.stderr
     assert _our_counts(in_place) == expected
+
+
+def test_rosbag_append_refuses_a_killed_rostui_bag_and_leaves_it_whole(tmp_path: Path) -> None:
+    """rosbag will not append to a bag without an index (ROSBagUnindexedException); the bag is left as it was."""
+    _rosbag_python()
+    path = tmp_path / "killed.bag"
+    _killed_bag(path, 200, "lz4")
+    before = path.read_bytes()
+    r = subprocess.run([SYSTEM_PYTHON, "-c", APPEND, str(path)], capture_output=True, text=True, timeout=120)
+    assert r.returncode != 0 and "ROSBagUnindexedException: Unindexed bag" in r.stderr
+    assert path.read_bytes() == before
+    assert _our_counts(path) == {"/turtle1/pose": 200}

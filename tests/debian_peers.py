@@ -1,7 +1,7 @@
 """What the tests take from Debian: each program, file and system-Python module a test uses as a
 real peer, and the Debian package that installs it.
 
-``.ci/run`` installs the packages listed in ``.ci/debian-packages``; ``test_ci_peers.py`` checks
+``.ci/run`` installs the packages on its ``apt-get install`` line; ``test_ci_peers.py`` checks
 that every package named here is in that list, that every program, ``/usr`` file and module the
 tests name is here, and (where the package is installed) that ``dpkg -S`` agrees with this table.
 """

@@ -129,7 +129,8 @@ class MasterLink:
 
     async def _register(self) -> tuple[AsyncNode, int]:
         """Start a node with the master, set it up; returns it and the master's pid."""
-        node = AsyncNode(self.node_name, anonymous=True, argv=[], master_uri=self.master_uri)
+        # the link watches the master itself (and starts a fresh node on a new one): the node's own watch off
+        node = AsyncNode(self.node_name, anonymous=True, argv=[], master_uri=self.master_uri, watch_master=False)
         node.log.console = None  # library warnings must not write over the screen
         self.node = node
         await asyncio.wait_for(node.start(publish_rosout=False), self.call_timeout)

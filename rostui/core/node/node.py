@@ -35,13 +35,7 @@ from rostui.core.node.slave import SlaveApi
 from rostui.core.node.topics import Publication, Subscription, TopicType
 from rostui.core.node.transport import InboundConnection, InboundHandler
 from rostui.core.xmlrpc import (
-    RosApiError,
-    XmlRpcClient,
-    XmlRpcConnectionError,
-    XmlRpcError,
-    XmlRpcFault,
-    XmlRpcServer,
-    ros_result,
+    RosApiError, XmlRpcClient, XmlRpcConnectionError, XmlRpcError, XmlRpcFault, XmlRpcServer, ros_result,
 )
 
 log = logging.getLogger("rostui.node")

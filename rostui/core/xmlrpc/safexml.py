@@ -9,10 +9,10 @@ Light on purpose: :mod:`.quick` uses it without importing ``xmlrpc.client``.
 
 from __future__ import annotations
 
-from typing import NoReturn
-
 TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from typing import NoReturn
+
     from pyexpat import XMLParserType
 
 __all__ = ["UnsafeXmlError", "forbid_dtd", "refuse_dtd"]

@@ -186,14 +186,19 @@ def test_pipelined_requests_read(service_victim: Victim) -> None:
     check_user_view(service_victim, *attack("pipelined requests, answers read", service_victim, hit))
 
 
-def test_service_header_length_far_over_any_header(service_victim: Victim) -> None:
-    """A header length of 2 GiB, then junk streamed as if to fill it."""
+def huge_header_length(victim: Victim, name: str) -> None:
+    """A header length of 2 GiB on ``victim``'s port, then junk streamed as if to fill it."""
     def hit() -> dict[str, Any]:
-        with socket.create_connection(("127.0.0.1", service_victim.port), timeout=15) as sock:
+        with socket.create_connection(("127.0.0.1", victim.port), timeout=15) as sock:
             sock.sendall(struct.pack("<I", 0x7FFFFFFF))
             sent, how = stream(sock, RANDOM, limit=64 << 20, seconds=ATTACK_SECONDS)
         return {"tried": 1, "sent_mb": sent >> 20, "ended": how}
-    check_user_view(service_victim, *attack("service port: huge header length, then junk", service_victim, hit))
+    check_user_view(victim, *attack(name, victim, hit))
+
+
+def test_service_header_length_far_over_any_header(service_victim: Victim) -> None:
+    """A header length of 2 GiB, then junk streamed as if to fill it."""
+    huge_header_length(service_victim, "service port: huge header length, then junk")
 
 
 def test_junk_after_a_service_header(service_victim: Victim) -> None:
@@ -219,12 +224,7 @@ def test_bytes_streamed_after_a_subscriber_header(topic_victim: Victim) -> None:
 
 def test_topic_header_length_far_over_any_header(topic_victim: Victim) -> None:
     """A header length of 2 GiB on the publisher port, then junk streamed as if to fill it."""
-    def hit() -> dict[str, Any]:
-        with socket.create_connection(("127.0.0.1", topic_victim.port), timeout=15) as sock:
-            sock.sendall(struct.pack("<I", 0x7FFFFFFF))
-            sent, how = stream(sock, RANDOM, limit=64 << 20, seconds=ATTACK_SECONDS)
-        return {"tried": 1, "sent_mb": sent >> 20, "ended": how}
-    check_user_view(topic_victim, *attack("publisher port: huge header length, then junk", topic_victim, hit))
+    huge_header_length(topic_victim, "publisher port: huge header length, then junk")
 
 
 def test_many_connections_of_garbage(topic_victim: Victim) -> None:

@@ -7,8 +7,8 @@ The classic ROS talker, written against rostui's client API::
     python examples/talker.py --count 5            # five messages, then exit
     python examples/talker.py chatter:=greetings   # remap the topic
 
-With ``--count N`` the talker first waits until a subscriber is connected, so
-that all N messages are heard.
+With ``--count N`` the talker first waits until a subscriber is connected
+(``--subscribers K``: until K are), so that all N messages are heard.
 """
 
 import argparse
@@ -23,12 +23,14 @@ def main() -> None:
     parser = argparse.ArgumentParser(description="Publish std_msgs/String on chatter.")
     parser.add_argument("--count", type=int, default=0, help="exit after N messages (0: forever)")
     parser.add_argument("--rate", type=float, default=10.0, help="messages per second")
+    parser.add_argument("--subscribers", type=int, default=1,
+                        help="with --count: wait until this many subscribers are connected")
     args = parser.parse_args(ros.myargv()[1:])
 
     pub = ros.Publisher("chatter", String, queue_size=10)
     rate = ros.Rate(args.rate)
     if args.count:
-        while pub.get_num_connections() == 0 and not ros.is_shutdown():
+        while pub.get_num_connections() < args.subscribers and not ros.is_shutdown():
             rate.sleep()
     n = 0
     while not ros.is_shutdown() and (args.count == 0 or n < args.count):

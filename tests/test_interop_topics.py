@@ -43,12 +43,17 @@ def test_rostui_talker_to_rostui_listener(any_master, spawn, ros_env):
 
 
 def test_remapping_on_the_command_line(any_master, rospy_available, spawn, ros_env):
-    """`chatter:=other` moves both rostui examples to /other; a rospy node there hears it."""
+    """`chatter:=other` moves both rostui examples to /other; a rospy node there hears it.
+
+    The talker waits for both listeners: publishing once the faster one had
+    connected cost the rospy listener its first message (a CI failure).
+    """
     listener = spawn(rospy_peer("rospy_listener.py", "/other", str(COUNT)), label="rospy listener")
     listener.wait_for(r"^subscribed$")
     rostui_ears = spawn(example("listener.py", "chatter:=other", "__name:=ears"), label="rostui listener")
     wait_for_node(ros_env, "/ears")
-    talker = spawn(example("talker.py", "--count", str(COUNT), "chatter:=other"), label="rostui talker")
+    talker = spawn(example("talker.py", "--count", str(COUNT), "--subscribers", "2", "chatter:=other"),
+                   label="rostui talker")
     assert listener.wait_exit() == 0, listener.describe()
     assert [l for l in listener.lines if l.startswith("data: ")] == [
         f"data: hello world {n}" for n in range(COUNT)], listener.describe()

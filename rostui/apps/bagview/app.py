@@ -31,9 +31,10 @@ from rostui.apps.bagview.bars import PLAY_KEYS, header_text, play_status, wall_t
 from rostui.apps.bagview.timeline import TimelineView
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
+from rostui.core.bag.clock import DEFAULT_HZ, BagClock
 from rostui.core.bag.index import BagIndex, IndexSource, load_index, message_yaml
 from rostui.core.bag.model import BagError, Connection
-from rostui.core.bag.transport import Transport
+from rostui.core.bag.transport import TICK_PERIOD, Transport
 from rostui.core.node import AnyMsg
 
 __all__ = ["BagViewApp", "RATES", "parse_goto", "run_app"]
@@ -86,7 +87,8 @@ class GotoPrompt(Input):
 class BagViewApp(ReleasesOnExit, App[int]):
     """Play, pause, step, seek and inspect a bag; publish it on a live graph.
 
-    ``clock`` is the transport's wall clock (a snapshot test freezes it).
+    ``clock`` is the transport's wall clock (a snapshot test freezes it); ``publish_clock`` publishes the
+    bag time on ``/clock`` at ``clock_hz`` (``--clock``, ``--hz``).
     """
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
@@ -119,7 +121,8 @@ class BagViewApp(ReleasesOnExit, App[int]):
 
     def __init__(self, paths: Sequence[str], *, rate: float = 1.0, loop: bool = False, publish: bool = True,
                  topics: Sequence[str] = (), start_playing: bool = False, master_uri: str | None = None,
-                 queue_size: int = 100, clock: Callable[[], float] = time.perf_counter) -> None:
+                 queue_size: int = 100, clock: Callable[[], float] = time.perf_counter,
+                 publish_clock: bool = False, clock_hz: float = DEFAULT_HZ) -> None:
         super().__init__()
         self.paths = list(paths)
         self.names = [os.path.basename(p) for p in self.paths]
@@ -131,6 +134,7 @@ class BagViewApp(ReleasesOnExit, App[int]):
         self.master_uri = master_uri
         self.queue_size = queue_size
         self.clock = clock
+        self.bag_clock = BagClock(clock_hz) if publish_clock else None
         self.index: BagIndex | None = None
         self.transport: Transport | None = None
         self.node: Any = None
@@ -187,7 +191,10 @@ class BagViewApp(ReleasesOnExit, App[int]):
         self.index = index
         self.transport = Transport(IndexSource(index), self._publish, start_ns=index.start_ns, end_ns=index.end_ns,
                                    rate=self.rate, loop=self.loop_play, paused=not self.start_playing,
-                                   hold_at_end=True, accepts=self._accepts, clock=self.clock)
+                                   hold_at_end=True, accepts=self._accepts, clock=self.clock,
+                                   on_tick=self._on_tick if self.bag_clock else None,
+                                   tick_period=self.bag_clock.tick_period(TICK_PERIOD) if self.bag_clock
+                                   else TICK_PERIOD)
         for topic in index.topics:
             if self.only_topics and topic not in self.only_topics:
                 self.transport.set_topic_enabled(topic, False)
@@ -215,6 +222,8 @@ class BagViewApp(ReleasesOnExit, App[int]):
             await node.start(publish_rosout=False)
             await asyncio.wait_for(node.master_call("getPid"), 5.0)
             publishers = await advertise_connections(node, index.connections, self.queue_size)
+            if self.bag_clock is not None:
+                await self.bag_clock.advertise(node)
         except Exception:  # no master, or it refused us: browse without publishing
             try:
                 await asyncio.wait_for(node.shutdown("rostui bag view: no master"), SHUTDOWN_TIMEOUT)
@@ -224,17 +233,24 @@ class BagViewApp(ReleasesOnExit, App[int]):
             return False
         self.publishers = publishers
         self.node = node
-        self.link = f"publishing as {node.name}"
+        self.link = f"publishing as {node.name}" + (" with /clock" if self.bag_clock is not None else "")
         return True
 
     # -- publishing ------------------------------------------------------------------------------------
     def _accepts(self, conn: Connection) -> bool:
         return self.node is None or (conn.topic, conn.md5sum) in self.publishers
 
-    def _publish(self, conn: Connection, _t: int, data: bytes) -> None:
+    def _publish(self, conn: Connection, t: int, data: bytes) -> None:
         pub = self.publishers.get((conn.topic, conn.md5sum))
         if pub is not None:
+            if self.bag_clock is not None:
+                self.bag_clock.publish(t)
             pub.publish(AnyMsg(data))
+
+    def _on_tick(self, bag_ns: int) -> None:
+        """The transport's tick (playing, paused or held at the end): the bag time on /clock."""
+        if self.bag_clock is not None:
+            self.bag_clock.publish(bag_ns)
 
     # -- the screen ------------------------------------------------------------------------------------
     def refresh_view(self) -> None:

@@ -15,6 +15,7 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from rostui.core.bag.clock import DEFAULT_HZ, BagClock
 from rostui.core.bag.files import Reader, merged_messages, open_reader
 from rostui.core.bag.model import BagError, BagSummary, Connection
 from rostui.core.bag.transport import MessageItem, StreamSource, Transport
@@ -34,7 +35,7 @@ class PlayOptions:
     duration_s: float | None = None
     delay_s: float = 0.2
     clock: bool = False
-    clock_hz: float = 100.0
+    clock_hz: float = DEFAULT_HZ
     topics: list[str] = field(default_factory=list)
     queue_size: int = 100
 
@@ -103,11 +104,11 @@ class Player:
         # --topics names topics as recorded: resolved, but not remapped
         self.wanted = {resolve_name(t, node.namespace, node.name) for t in opts.topics} if opts.topics else None
         self.publishers: dict[tuple[str, str], Any] = {}
-        self.clock_pub: Any = None
+        self.clock = BagClock(opts.clock_hz) if opts.clock else None
         self.stop = asyncio.Event()
         self.stats = PlayStats()
         self._last_status = 0.0
-        tick = STATUS_PERIOD if not opts.clock else min(STATUS_PERIOD, 1 / opts.clock_hz)
+        tick = STATUS_PERIOD if self.clock is None else self.clock.tick_period(STATUS_PERIOD)
         self.transport = Transport(StreamSource(self._stream), self._publish, start_ns=self.bag_start,
                                    end_ns=self.bag_end, rate=opts.rate, loop=opts.loop, paused=opts.start_paused,
                                    play_from=play_from, play_until=play_until, accepts=self._accepts,
@@ -133,29 +134,21 @@ class Player:
         """Advertise every topic to play with its recorded type; latched when recorded latched."""
         conns = [c for conns in self._topics().values() for c in conns]
         self.publishers = await advertise_connections(self.node, conns, self.opts.queue_size)
-        if self.opts.clock:
-            from rostui.core.msg import get_message_class
-
-            self.clock_pub = await self.node.advertise("/clock", get_message_class("rosgraph_msgs/Clock"),
-                                                       queue_size=1)
+        if self.clock is not None:
+            await self.clock.advertise(self.node)
 
     def _accepts(self, conn: Connection) -> bool:
         return (conn.topic, conn.md5sum) in self.publishers
 
     def _publish(self, conn: Connection, t: int, data: bytes) -> None:
-        self._publish_clock(t)
+        if self.clock is not None:
+            self.clock.publish(t)
         self.publishers[(conn.topic, conn.md5sum)].publish(_raw(data))
         self._show()
 
-    def _publish_clock(self, bag_ns: int) -> None:
-        if self.clock_pub is not None:
-            msg = self.clock_pub.msg_class()
-            msg.clock.secs, msg.clock.nsecs = divmod(bag_ns, 1_000_000_000)
-            self.clock_pub.publish(msg)
-
     def _on_tick(self, bag_ns: int) -> None:
-        if self.clock_pub is not None and not self.transport.paused:
-            self._publish_clock(bag_ns)
+        if self.clock is not None:  # paused too: rosbag play keeps publishing the time it stands at
+            self.clock.publish(bag_ns)
         self._show()
 
     def toggle_pause(self) -> None:

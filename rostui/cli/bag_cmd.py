@@ -43,35 +43,22 @@ def _split_ros_args(items: list[str]) -> tuple[list[str], list[str]]:
     return [a for a in items if ":=" not in a], ros
 
 
-def run_record(args: list[str], *, all_topics: bool, regex: str | None, exclude: str | None, name: str | None,
+def run_record(args: list[str], *, all_topics: bool, regex: bool, exclude: str | None, name: str | None,
                prefix: str | None, bz2_flag: bool, lz4_flag: bool, compression: str | None, split: bool,
                size: float | None, duration: str | None, max_size: float | None) -> int:
     """Record until Ctrl-C or a limit; 1 with one line on error."""
     from rostui.core.bag.model import BagError
-    from rostui.core.bag.recorder import RecordOptions, parse_duration, record
+    from rostui.core.bag.record_options import record_options
+    from rostui.core.bag.recorder import record
     from rostui.core.node.engine import new_event_loop
 
     topics, ros_args = _split_ros_args(args)
-    if name and prefix:
-        fail("rostui bag record: use -O NAME or -o PREFIX, not both")
     try:
-        duration_s = parse_duration(duration) if duration is not None else None
+        opts = record_options(topics, all_topics=all_topics, regex=regex, exclude=exclude, name=name, prefix=prefix,
+                              bz2=bz2_flag, lz4=lz4_flag, compression=compression, split=split, size_mb=size,
+                              duration=duration, max_size_mb=max_size)
     except BagError as exc:
         fail(f"rostui bag record: {exc}")
-    for option, value in (("--size", size), ("--max-size", max_size)):
-        if value is not None and not value > 0:
-            fail(f"rostui bag record: {option} must be a positive number of MB, not {value:g}")
-    if split and size is None and duration_s is None:
-        fail("rostui bag record: --split needs --size MB or --duration DURATION to know where to split")
-    is_bag = (name or prefix or "").endswith(".bag")
-    kind = compression or (("bz2" if is_bag else "zstd") if bz2_flag else "lz4" if lz4_flag else "none")
-    if is_bag and kind == "zstd":
-        fail("rostui bag record: a .bag file cannot use zstd compression (none, bz2 or lz4)")
-    if kind == "bz2" and not is_bag:
-        fail("rostui bag record: MCAP files use lz4 or zstd compression, not bz2 (name the file .bag for bz2)")
-    opts = RecordOptions(topics=topics, all_topics=all_topics, regex=regex, exclude=exclude, output_name=name,
-                         output_prefix=prefix, compression=kind, split=split, size_mb=size, duration_s=duration_s,
-                         max_size_mb=max_size)
     status = _status_writer(sys.stderr) if sys.stderr.isatty() else None
     loop = new_event_loop()
     try:
@@ -187,10 +174,11 @@ def register(app: typer.Typer) -> None:
     def record_command(
         args: list[str] = typer.Argument(None, metavar="[TOPIC ...]", help="Topics to record (and name:=value)."),
         all_topics: bool = typer.Option(False, "-a", "--all", help="Record all topics, also those that appear later."),
-        regex: str | None = typer.Option(None, "-e", "--regex", metavar="REGEX",
-                                         help="Record topics matching the regular expression."),
+        regex: bool = typer.Option(False, "-e", "--regex",
+                                   help="The topics are regular expressions: record every topic whose whole name "
+                                        "matches one, also those that appear later."),
         exclude: str | None = typer.Option(None, "-x", "--exclude", metavar="REGEX",
-                                           help="Leave out topics matching the regular expression."),
+                                           help="Leave out topics whose whole name matches (from -a and -e)."),
         name: str | None = typer.Option(None, "-O", "--output-name", metavar="NAME",
                                         help="File name (.bag: rosbag v2.0, otherwise MCAP)."),
         prefix: str | None = typer.Option(None, "-o", "--output-prefix", metavar="PREFIX",
@@ -207,8 +195,6 @@ def register(app: typer.Typer) -> None:
                                               help="Stop when the recording reaches this many MB in all."),
     ) -> None:
         """Record topics into a bag until Ctrl-C (like `rosbag record`)."""
-        if compression is not None and compression not in ("none", "lz4", "zstd", "bz2"):
-            fail(f"rostui bag record: unknown compression '{compression}' (none, lz4, zstd or bz2)")
         raise typer.Exit(run_record(list(args or []), all_topics=all_topics, regex=regex, exclude=exclude,
                                     name=name, prefix=prefix, bz2_flag=bz2_flag, lz4_flag=lz4_flag,
                                     compression=compression, split=split, size=size, duration=duration,

@@ -35,7 +35,7 @@ class RecordOptions:
 
     topics: list[str] = field(default_factory=list)
     all_topics: bool = False
-    regex: str | None = None
+    regex: bool = False  # -e: the topics are regular expressions
     exclude: str | None = None
     output_name: str | None = None
     output_prefix: str | None = None
@@ -94,30 +94,36 @@ def split_file_name(base: str, index: int) -> str:
     return f"{root}_{index}{ext}"
 
 
+def _compile(pattern: str) -> re.Pattern[str]:
+    try:
+        return re.compile(pattern)
+    except re.error as exc:
+        raise BagError(f"invalid regular expression '{pattern}': {exc}") from None
+
+
 class TopicFilter:
-    """Which topics to record: the given ones, all (-a), or those matching -e; minus those matching -x."""
+    """Which topics to record, as rosbag record chooses them: the named ones; all (-a); with -e, those whose
+    whole name matches one of the topics taken as regular expressions; -x leaves out, from -a and -e, those
+    whose whole name matches its regular expression."""
 
     def __init__(self, opts: RecordOptions, resolve: Callable[[str], str]) -> None:
-        self.explicit = [resolve(t) for t in opts.topics]
         self.all = opts.all_topics
-        try:
-            self.regex = re.compile(opts.regex) if opts.regex else None
-            self.exclude = re.compile(opts.exclude) if opts.exclude else None
-        except re.error as exc:
-            raise BagError(f"invalid regular expression: {exc}") from None
-        if not (self.explicit or self.all or self.regex):
-            raise BagError("no topics given: name topics, or use -a (all) or -e REGEX")
+        self.patterns = [_compile(t) for t in opts.topics] if opts.regex else []
+        self.explicit = [] if opts.regex else [resolve(t) for t in opts.topics]
+        self.exclude = _compile(opts.exclude) if opts.exclude else None
+        if not (self.explicit or self.all or self.patterns):
+            raise BagError("no topics given: name topics, or use -a (all), or -e with regular expressions")
 
     @property
     def discovers(self) -> bool:
         """True when topics that appear later must be found by polling the master."""
-        return self.all or self.regex is not None
+        return self.all or bool(self.patterns)
 
     def wants(self, topic: str) -> bool:
-        """True when a published topic should be recorded."""
-        if self.exclude is not None and self.exclude.search(topic):
+        """True when a published topic found by polling should be recorded."""
+        if self.exclude is not None and self.exclude.fullmatch(topic):
             return False
-        return self.all or (self.regex is not None and self.regex.fullmatch(topic) is not None)
+        return self.all or any(p.fullmatch(topic) for p in self.patterns)
 
 
 class Recorder:
@@ -146,6 +152,7 @@ class Recorder:
         self.dropped = 0
         self.bytes_before = 0
         self.error: str | None = None
+        self.limit_reached: str | None = None  # which limit stopped the recording (``reached --size 1 MB``)
         self.stop = asyncio.Event()
         self._queue: queue.SimpleQueue[Any] = queue.SimpleQueue()
         self._pool = BufferPool()
@@ -240,12 +247,14 @@ class Recorder:
                     give(view)
             self._held = kept
 
-    def _limit_reached(self) -> None:
+    def _limit(self, why: str) -> None:
+        """A --size or --duration limit: the next file with --split, else stop (saying ``why``)."""
         if self.opts.split:
             self._close_writer()
             self._open_next()
             self._from_writer(self.report, f"Recording to '{self.files[-1]}'.")
         else:
+            self.limit_reached = why
             self._from_writer(self.stop.set)
 
     def _write(self, conn: Connection, stamp_ns: int, data: Any) -> bool:
@@ -267,11 +276,12 @@ class Recorder:
         self._written_bytes += len(data)
         opts = self.opts
         if opts.max_size_mb is not None and self.total_bytes >= opts.max_size_mb * 1e6:
+            self.limit_reached = f"reached --max-size {opts.max_size_mb:g} MB"
             self._from_writer(self.report, f"Reached the maximum size of {opts.max_size_mb:g} MB; stopping.")
             self._from_writer(self.stop.set)
             return False
         if opts.size_mb is not None and writer.size >= opts.size_mb * 1e6:
-            self._limit_reached()
+            self._limit(f"reached --size {opts.size_mb:g} MB")
         return True
 
     def _housekeeping(self) -> bool:
@@ -286,7 +296,7 @@ class Recorder:
         finally:
             self._release_held()
         if self.opts.duration_s is not None and time.monotonic() - self._file_started >= self.opts.duration_s:
-            self._limit_reached()
+            self._limit(f"reached --duration {self.opts.duration_s:g} s")
         return True
 
     def _writer_thread(self) -> None:

@@ -1,18 +1,43 @@
-"""`rostui bag view FILE ...` (play, step, seek, inspect) and `rostui bag view --record TOPIC ... | -a`.
+"""`rostui bag view FILE ...` (play, step, seek, inspect) and `rostui bag view --record TOPIC ... | -a | -e REGEX ...`.
 
 Bad input (a missing or unreadable file, a file with no messages, a bad
-rate or compression, no topics to record) is one line and exit status 1,
-before Textual is imported.
+rate, clock rate or compression, no topics to record, an option of the
+other mode) is one line and exit status 1, before Textual is imported.
+Recording flags mean what they mean for ``rostui bag record``: both commands
+build their options with :func:`rostui.core.bag.record_options.record_options`.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import typer
 
 from rostui.cli.common import fail
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "allow_interspersed_args": True}
-COMPRESSIONS = ("none", "lz4", "zstd", "bz2")
+
+
+@dataclass
+class RecordFlags:
+    """The recording flags of ``bag view`` as typed (None or False: not given)."""
+
+    exclude: str | None = None
+    name: str | None = None
+    prefix: str | None = None
+    bz2: bool = False
+    lz4: bool = False
+    compression: str | None = None
+    split: bool = False
+    size: float | None = None
+    duration: str | None = None
+
+    def given(self) -> list[str]:
+        """The flags given, as a user typed them."""
+        flags = {"-x": self.exclude, "-O": self.name, "-o": self.prefix, "-j": self.bz2, "--lz4": self.lz4,
+                 "--compression": self.compression, "--split": self.split, "--size": self.size,
+                 "--duration": self.duration}
+        return [flag for flag, value in flags.items() if value not in (None, False)]
 
 
 def _check_bags(files: list[str]) -> None:
@@ -34,36 +59,44 @@ def _check_bags(files: list[str]) -> None:
             fail(f"rostui bag view: {path} holds no messages{why}")
 
 
-def run_view(files: list[str], *, rate: float, loop: bool, pause: bool, topics: list[str], publish: bool) -> int:
+def run_view(files: list[str], *, rate: float, loop: bool, pause: bool, topics: list[str], publish: bool,
+             clock: bool = False, hz: float | None = None, record_flags: RecordFlags | None = None) -> int:
     """Open the bag view on ``files``."""
+    from rostui.core.bag.clock import DEFAULT_HZ, BagClock
+    from rostui.core.bag.model import BagError
+
+    stray = record_flags.given() if record_flags is not None else []
+    if stray:
+        what = "is a recording option" if len(stray) == 1 else "are recording options"
+        fail(f"rostui bag view: {', '.join(stray)} {what} (add --record)")
     if not files:
-        fail("rostui bag view: no bag file given (or --record TOPIC ... / -a to record)")
+        fail("rostui bag view: no bag file given (or --record TOPIC ... / -a / -e REGEX ... to record)")
     if not rate > 0:
         fail(f"rostui bag view: the rate must be greater than 0, not {rate:g}")
+    try:
+        BagClock(DEFAULT_HZ if hz is None else hz)
+    except BagError as exc:
+        fail(f"rostui bag view: {exc}")
+    if clock and not publish:
+        fail("rostui bag view: --clock publishes /clock; it cannot go with --no-publish")
     _check_bags(files)
     from rostui.apps.bagview.app import run_app
 
-    return run_app(files, rate=rate, loop=loop, start_playing=not pause, topics=topics, publish=publish)
+    return run_app(files, rate=rate, loop=loop, start_playing=not pause, topics=topics, publish=publish,
+                   publish_clock=clock, clock_hz=DEFAULT_HZ if hz is None else hz)
 
 
-def run_record_view(topics: list[str], *, all_topics: bool, name: str | None, prefix: str | None,
-                    compression: str) -> int:
+def run_record_view(topics: list[str], *, all_topics: bool, regex: bool, flags: RecordFlags) -> int:
     """Open the recording view."""
-    from rostui.core.bag.recorder import RecordOptions
+    from rostui.core.bag.model import BagError
+    from rostui.core.bag.record_options import record_options
 
-    if not topics and not all_topics:
-        fail("rostui bag view --record: name topics to record, or use -a (all)")
-    if name and prefix:
-        fail("rostui bag view --record: use -O NAME or -o PREFIX, not both")
-    if compression not in COMPRESSIONS:
-        fail(f"rostui bag view --record: unknown compression '{compression}' (none, lz4, zstd or bz2)")
-    is_bag = (name or prefix or "").endswith(".bag")
-    if is_bag and compression == "zstd":
-        fail("rostui bag view --record: a .bag file cannot use zstd compression (none, bz2 or lz4)")
-    if compression == "bz2" and not is_bag:
-        fail("rostui bag view --record: MCAP files use lz4 or zstd compression, not bz2 (name the file .bag)")
-    opts = RecordOptions(topics=topics, all_topics=all_topics, output_name=name, output_prefix=prefix,
-                         compression=compression)
+    try:
+        opts = record_options(topics, all_topics=all_topics, regex=regex, exclude=flags.exclude, name=flags.name,
+                              prefix=flags.prefix, bz2=flags.bz2, lz4=flags.lz4, compression=flags.compression,
+                              split=flags.split, size_mb=flags.size, duration=flags.duration)
+    except BagError as exc:
+        fail(f"rostui bag view --record: {exc}")
     from rostui.apps.bagview.record_app import run_record_app
 
     return run_record_app(opts)
@@ -78,14 +111,34 @@ def register(bag_app: typer.Typer) -> None:
                                          help="Bags to view, or with --record the topics to record."),
         record: bool = typer.Option(False, "--record", help="Record instead: live counts, sizes and rates per "
                                                             "topic; r start/stop, n split."),
-        all_topics: bool = typer.Option(False, "-a", "--all", help="With --record: record all topics."),
+        all_topics: bool = typer.Option(False, "-a", "--all", help="Record all topics, also those that appear "
+                                                                   "later (implies --record)."),
+        regex: bool = typer.Option(False, "-e", "--regex",
+                                   help="The topics are regular expressions: record every topic whose whole name "
+                                        "matches one, also those that appear later (implies --record)."),
+        exclude: str | None = typer.Option(None, "-x", "--exclude", metavar="REGEX",
+                                           help="With --record: leave out topics whose whole name matches "
+                                                "(from -a and -e)."),
         name: str | None = typer.Option(None, "-O", "--output-name", metavar="NAME",
                                         help="With --record: file name (.bag: rosbag v2.0, otherwise MCAP); "
                                              "files are NAME_0, NAME_1, ..."),
         prefix: str | None = typer.Option(None, "-o", "--output-prefix", metavar="PREFIX",
                                           help="With --record: prepend PREFIX to the date-and-time file name."),
-        compression: str = typer.Option("none", "--compression", metavar="none|lz4|zstd|bz2",
-                                        help="With --record: chunk compression."),
+        bz2_flag: bool = typer.Option(False, "-j", "--bz2", help="With --record: compress (bz2 in .bag files, "
+                                                                 "zstd in MCAP)."),
+        lz4_flag: bool = typer.Option(False, "--lz4", help="With --record: lz4 compression."),
+        compression: str | None = typer.Option(None, "--compression", metavar="none|lz4|zstd|bz2",
+                                               help="With --record: chunk compression."),
+        split: bool = typer.Option(False, "--split", help="With --record: at --size or --duration go on in the "
+                                                          "next file instead of stopping."),
+        size: float | None = typer.Option(None, "--size", metavar="MB",
+                                          help="With --record: stop (or split) when a file reaches MB."),
+        duration: str | None = typer.Option(None, "--duration", metavar="DURATION",
+                                            help="With --record: stop (or split) after DURATION: seconds, or with "
+                                                 "s, m or h (30, 30s, 5m, 2h)."),
+        clock: bool = typer.Option(False, "--clock", help="Publish the bag time on /clock while viewing "
+                                                          "(also while paused)."),
+        hz: float | None = typer.Option(None, "--hz", help="Rate of /clock messages (default 100)."),
         rate: float = typer.Option(1.0, "-r", "--rate", help="Playback rate factor (+/- change it in the app)."),
         loop: bool = typer.Option(False, "-l", "--loop", help="Loop playback."),
         pause: bool = typer.Option(True, "--pause/--play", help="Open paused (default) or playing."),
@@ -100,8 +153,11 @@ def register(bag_app: typer.Typer) -> None:
         (a all), i inspector, q quit.
         """
         items = list(args or [])
-        if record or all_topics:
-            raise typer.Exit(run_record_view(items, all_topics=all_topics, name=name, prefix=prefix,
-                                             compression=compression))
+        flags = RecordFlags(exclude=exclude, name=name, prefix=prefix, bz2=bz2_flag, lz4=lz4_flag,
+                            compression=compression, split=split, size=size, duration=duration)
+        if record or all_topics or regex:
+            if clock or hz is not None:
+                fail("rostui bag view --record: --clock and --hz are for viewing a bag, not recording")
+            raise typer.Exit(run_record_view(items, all_topics=all_topics, regex=regex, flags=flags))
         raise typer.Exit(run_view(items, rate=rate, loop=loop, pause=pause, topics=list(topics or []),
-                                  publish=not no_publish))
+                                  publish=not no_publish, clock=clock, hz=hz, record_flags=flags))

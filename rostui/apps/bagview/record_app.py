@@ -28,7 +28,7 @@ from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.bag.model import BagError
 from rostui.core.bag.recorder import RecordOptions
 
-__all__ = ["BagRecordApp", "run_record_app"]
+__all__ = ["BagRecordApp", "record_header", "record_status", "run_record_app", "topics_table"]
 
 #: Screen refreshes (and rate samples) per second.
 REFRESH_RATE = 4.0
@@ -54,7 +54,8 @@ def topics_table(session: RecordSession) -> Table:
 
 
 def record_status(session: RecordSession, problem: str) -> Text:
-    """``● REC 'name_0.mcap' │ 123 msgs │ 1.2 MB │ 3 topics │ 1 file`` (or STOPPED), then a problem."""
+    """``● REC 'name_0.mcap' │ 123 msgs │ 1.2 MB │ 3 topics │ 1 file`` (or STOPPED, and which limit stopped
+    it), then a problem."""
     text = Text(" ● REC " if session.recording else " ■ STOPPED ", style="bold reverse")
     if session.file:
         text.append(f" '{session.file}'")
@@ -63,9 +64,30 @@ def record_status(session: RecordSession, problem: str) -> Text:
                 f" │ {nfiles} file{'s' if nfiles != 1 else ''}")
     if session.dropped:
         text.append(f" │ {session.dropped} dropped", style="bold")
+    if session.notice and not session.recording:
+        text.append(f" │ {session.notice}", style="bold yellow")
     if problem:
         text.append(f" │ {problem}", style="bold red")
     return text
+
+
+def record_header(session: RecordSession) -> Text:
+    """``recording /a, topics matching /cam.*, not /cam/raw into rec_<n>.mcap · stops at 30 s · next file rec_0.mcap``."""
+    opts = session.opts
+    parts = []
+    if opts.all_topics:
+        parts.append("all topics")
+    if opts.topics:
+        parts.append(("topics matching " if opts.regex else "") + ", ".join(opts.topics))
+    what = " and ".join(parts)
+    if opts.exclude:
+        what += f" except those matching {opts.exclude}"
+    limits = [f"{opts.size_mb:g} MB" if opts.size_mb is not None else "",
+              f"{opts.duration_s:g} s" if opts.duration_s is not None else ""]
+    limit = " or ".join(x for x in limits if x)
+    until = (f" · {'splits every' if opts.split else 'stops at'} {limit}") if limit else ""
+    root, ext = os.path.splitext(session.base)
+    return Text(f"recording {what} into {root}_<n>{ext}{until} · next file {session.next_name()}")
 
 
 class BagRecordApp(ReleasesOnExit, App[int]):
@@ -122,11 +144,7 @@ class BagRecordApp(ReleasesOnExit, App[int]):
         """Timer: sample the rates and redraw."""
         self.session.sample()
         problem = self.problem or (self.session.errors[-1] if self.session.errors else "")
-        what = (", ".join(self.session.opts.topics) if self.session.opts.topics else "")
-        if self.session.opts.all_topics:
-            what = "all topics" + (f" and {what}" if what else "")
-        root, ext = os.path.splitext(self.session.base)
-        self.header.update(Text(f"recording {what} into {root}_<n>{ext} · next file {self.session.next_name()}"))
+        self.header.update(record_header(self.session))
         self.table.update(topics_table(self.session))
         self.status.update(record_status(self.session, problem))
 

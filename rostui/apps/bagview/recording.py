@@ -7,6 +7,11 @@ publishers as the current one, and then, in one step on the loop, closes the
 gate of the old one and opens the new one's: every message lands in exactly
 one of the two files. Files are named like ``rosbag record --split``:
 ``NAME_0.mcap``, ``NAME_1.mcap``, ...
+
+``--size`` and ``--duration`` without ``--split`` are the recorder's own
+limits (it stops at the message that reaches them; :attr:`RecordSession.notice`
+says which); with ``--split`` the session watches the file and splits as
+above, so no message is lost at the change of file.
 """
 
 from __future__ import annotations
@@ -29,6 +34,9 @@ HANDOVER_TIMEOUT = 3.0
 
 #: Seconds a recorder's node may take to shut down.
 NODE_TIMEOUT = 3.0
+
+#: Seconds between two looks at the file's size and age (``--split`` with ``--size`` or ``--duration``).
+LIMIT_CHECK = 0.05
 
 
 @dataclass
@@ -90,6 +98,8 @@ class _Running:
     node: Any
     recorder: MeteredRecorder
     task: asyncio.Task[int]
+    started: float = field(default_factory=time.monotonic)  # when its gate opened
+    retired: bool = False  # its counts have moved to the session's totals
 
 
 class RecordSession:
@@ -107,8 +117,10 @@ class RecordSession:
         self.finished_messages = 0
         self.finished_bytes = 0
         self.current: _Running | None = None
+        self.notice = ""  # why the recording stopped by itself (a limit)
         self._closing: set[asyncio.Task[None]] = set()
         self._busy = asyncio.Lock()
+        self._watcher: asyncio.Task[None] | None = None
 
     # -- state --------------------------------------------------------------------------------------
     @property
@@ -159,8 +171,9 @@ class RecordSession:
         from rostui.core.node import AsyncNode, MasterUnreachableError
 
         name = self.next_name()
-        opts = replace(self.opts, output_name=name, output_prefix=None, split=False, size_mb=None,
-                       duration_s=None)
+        opts = replace(self.opts, output_name=name, output_prefix=None, split=False)
+        if self.opts.split:  # the session starts the next file itself (see split)
+            opts = replace(opts, size_mb=None, duration_s=None)
         node = AsyncNode("record", anonymous=True, master_uri=self.master_uri)
         node.log.console = None  # library warnings must not write over the screen
         try:
@@ -178,7 +191,24 @@ class RecordSession:
             raise
         self.files.append(name)
         task = asyncio.ensure_future(recorder.run())
-        return _Running(node, recorder, task)
+        running = _Running(node, recorder, task)
+        task.add_done_callback(lambda _task: self._ended(running))
+        return running
+
+    def _ended(self, running: _Running) -> None:
+        """A recorder's run is over; when that was not our stop or split (a limit, an error), say why and
+        close its node."""
+        if self.current is not running:
+            return
+        self.current = None
+        self._retire(running)
+        self.notice = f"stopped: {running.recorder.limit_reached}" if running.recorder.limit_reached else ""
+        self._in_background(_shutdown(running.node))
+
+    def _in_background(self, coro: Any) -> None:
+        task = asyncio.ensure_future(coro)
+        self._closing.add(task)
+        task.add_done_callback(self._closing.discard)
 
     async def start(self) -> None:
         """Start recording into the next file (BagError when there is no master)."""
@@ -187,7 +217,10 @@ class RecordSession:
                 return
             for meter in self.meters.values():
                 meter.file_count = meter.file_size = 0
+            self.notice = ""
             self.current = await self._launch(gate_open=True)
+            if self.opts.split and (self.opts.size_mb or self.opts.duration_s) and self._watcher is None:
+                self._watcher = asyncio.ensure_future(self._split_at_limits())
 
     async def stop(self) -> None:
         """Finish the current file (index and statistics) and wait until it is closed."""
@@ -204,22 +237,48 @@ class RecordSession:
                 return
             new = await self._launch(gate_open=False)
             await self._wait_connected(old, new)
-            old.recorder.stop.set()  # these two lines run in one step of the loop: the handover
+            if self.current is not old:  # it stopped by itself meanwhile (an error)
+                await self._finish(new)
+                return
+            old.recorder.stop.set()  # these lines run in one step of the loop: the handover
             new.recorder.gate_open = True
+            new.started = time.monotonic()
             self.current = new
             for meter in self.meters.values():
                 meter.file_count = meter.file_size = 0
-            task = asyncio.ensure_future(self._finish(old))
-            self._closing.add(task)
-            task.add_done_callback(self._closing.discard)
+            self._in_background(self._finish(old))
 
     async def close(self) -> None:
         """Stop recording and wait for every file to be closed."""
+        if self._watcher is not None:
+            self._watcher.cancel()
+            self._watcher = None
         await self.stop()
         if self._closing:
             await asyncio.gather(*self._closing, return_exceptions=True)
 
     # -- helpers ------------------------------------------------------------------------------------
+    def limit_due(self, running: _Running, now: float) -> str:
+        """With --split: which limit the current file has reached (``""``: none)."""
+        opts = self.opts
+        if opts.size_mb is not None and running.recorder.total_bytes >= opts.size_mb * 1e6:
+            return f"--size {opts.size_mb:g} MB"
+        if opts.duration_s is not None and now - running.started >= opts.duration_s:
+            return f"--duration {opts.duration_s:g} s"
+        return ""
+
+    async def _split_at_limits(self) -> None:
+        """With --split: go on in the next file whenever the current one reaches --size or --duration."""
+        while True:
+            await asyncio.sleep(LIMIT_CHECK)
+            running = self.current
+            if running is not None and self.recording and self.limit_due(running, time.monotonic()):
+                try:
+                    await self.split()
+                except BagError as exc:
+                    if str(exc) not in self.errors:
+                        self.errors.append(str(exc))
+
     async def _wait_connected(self, old: _Running, new: _Running) -> None:
         """Until the new node has as many publishers on each topic as the old one (or a timeout)."""
         deadline = time.monotonic() + HANDOVER_TIMEOUT
@@ -236,10 +295,17 @@ class RecordSession:
             await running.task
         except Exception:
             pass
+        self._retire(running)
+        await _shutdown(running.node)
+
+    def _retire(self, running: _Running) -> None:
+        """Move a finished recorder's counts to the session's totals (once) and keep its error."""
+        if running.retired:
+            return
+        running.retired = True
         self._collect_error(running)
         self.finished_messages += running.recorder.messages
         self.finished_bytes += running.recorder.total_bytes
-        await _shutdown(running.node)
 
     def _collect_error(self, running: _Running) -> None:
         task = running.task

@@ -7,9 +7,11 @@ publisher connects on each topic, then ``TOPIC VALUE`` per message.
 
 from __future__ import annotations
 
+import asyncio
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any, Awaitable, Callable
 
 from rostui.core.bag.files import open_writer
 from rostui.core.bag.model import Connection
@@ -18,6 +20,9 @@ from rostui.core.msg import get_message_class
 from conftest import REPO, stop_process, wait_until
 
 Int32 = get_message_class("std_msgs/Int32")
+
+#: A pilot scenario: what a test does with the running app.
+Scenario = Callable[[Any, Any], Awaitable[None]]
 T0 = 1_700_000_000_000_000_000
 STEP_NS = 10_000_000
 
@@ -98,3 +103,14 @@ class Counter:
     def close(self) -> None:
         """Stop the process."""
         stop_process(self.proc)
+
+
+def run_pilot(app: Any, scenario: Scenario, size: tuple[int, int] = (120, 30)) -> None:
+    """Run ``app`` headless and play ``scenario``; then quit as q does."""
+    async def main() -> None:
+        async with app.run_test(size=size) as pilot:
+            await pilot.pause()
+            await scenario(pilot, app)
+            await app.action_quit()
+
+    asyncio.run(main())

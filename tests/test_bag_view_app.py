@@ -15,7 +15,7 @@ import subprocess
 import sys
 import time
 from pathlib import Path
-from typing import Any, Awaitable, Callable
+from typing import Any
 
 import pytest
 from rich.console import Console
@@ -27,10 +27,9 @@ from rostui.core.bag.files import open_reader
 from rostui.core.bag.recorder import RecordOptions
 
 from bag_view_helpers import STEP_NS, T0, Counter, Int32, write_counts
+from bag_view_helpers import run_pilot as run
 from cli_helpers import rostui
 from conftest import REPO, start_rostui_core, stop_process, until
-
-Scenario = Callable[[Pilot, Any], Awaitable[None]]
 
 
 @pytest.fixture(autouse=True)
@@ -44,17 +43,6 @@ def utc(monkeypatch: pytest.MonkeyPatch) -> None:
 def counts_bag(tmp_path: Path) -> Path:
     """The counts bag (MCAP)."""
     return write_counts(tmp_path / "counts.mcap")
-
-
-def run(app: Any, scenario: Scenario, size: tuple[int, int] = (120, 30)) -> None:
-    """Run ``app`` headless and play ``scenario``; then quit as q does."""
-    async def main() -> None:
-        async with app.run_test(size=size) as pilot:
-            await pilot.pause()
-            await scenario(pilot, app)
-            await app.action_quit()
-
-    asyncio.run(main())
 
 
 def status(app: BagViewApp) -> str:

@@ -18,6 +18,8 @@ from typing import Any, Iterator
 
 import pytest
 
+from rostui.core.bag.files import open_reader
+
 from bag_view_helpers import Counter, write_counts
 from conftest import REPO, stop_process, wait_until
 from tmux_helpers import Pane, shell_pane
@@ -137,5 +139,30 @@ def test_bag_view_record_splits_and_quits_in_tmux(pane: Pane, rostui_core: Any, 
         pane.wait_until(lambda: pane.shows(f"{EXIT_MARK}0"), "exit status 0 after q")
         assert "to rec_0.mcap, rec_1.mcap" in pane.screen()
         assert (tmp_path / "rec_0.mcap").stat().st_size > 0 and (tmp_path / "rec_1.mcap").stat().st_size > 0
+    finally:
+        stop_process(talker)
+
+
+def test_bag_view_record_regex_stops_at_duration_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str],
+                                                         tmp_path: Path) -> None:
+    """-e '/num.*' --duration 2: /numbers is found, the recording stops by itself and says so; q reports the file."""
+    script = tmp_path / "tmux_numbers.py"
+    script.write_text(TALKER)
+    talker = subprocess.Popen([sys.executable, str(script)], env=ros_env, cwd=REPO, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL)
+    try:
+        pane.type(view_line(ros_env, "-e", "/num.*", "--duration", "2", "-O", "rec.bag", cwd=tmp_path))
+        pane.wait_until(lambda: pane.shows("recording topics matching /num.* into rec_<n>.bag · stops at 2 s"),
+                        "the header naming the pattern and the limit")
+        pane.wait_until(lambda: pane.shows("● REC", "'rec_0.bag'", "/numbers", " Hz"), "recording /numbers")
+        pane.wait_until(lambda: pane.shows("■ STOPPED", "stopped: reached --duration 2 s"), "the stop at 2 s")
+        pane.keys("q")
+        pane.wait_until(lambda: pane.shows(f"{EXIT_MARK}0"), "exit status 0 after q")
+        assert " messages to rec_0.bag\n" in pane.screen()
+        reader = open_reader(str(tmp_path / "rec_0.bag"))
+        try:
+            assert reader.summary().closed and [c.topic for c in reader.summary().connections] == ["/numbers"]
+        finally:
+            reader.close()
     finally:
         stop_process(talker)

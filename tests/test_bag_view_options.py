@@ -29,7 +29,7 @@ from rostui.core.bag.recorder import RecordOptions, TopicFilter
 
 from bag_view_helpers import STEP_NS, T0, Int32, run_pilot, write_counts
 from cli_helpers import rostui
-from conftest import REPO, stop_process, until
+from conftest import REPO, rostui_cmd, stop_process, until, wait_until
 from interop_helpers import Spawn, rospy_peer, spawn  # noqa: F401  (spawn is a fixture)
 
 END = T0 + 99 * STEP_NS
@@ -86,6 +86,17 @@ def test_clock_follows_pause_seek_step_and_play_to_rospy(tmp_path: Path, real_ro
     run_pilot(BagViewApp([str(bag)], publish_clock=True, clock_hz=50.0), scenario)
     heard = clocks(peer)
     assert heard and all(T0 <= t <= END for t in heard)
+
+
+def test_bag_play_paused_keeps_publishing_the_clock_to_rospy(tmp_path: Path, real_roscore: Any, rospy_available: None,
+                                                            spawn: Spawn) -> None:
+    """`bag play --clock --pause -s 0.5`: the one BagClock publishes the paused time over and over, as rosbag does."""
+    bag = write_counts(tmp_path / "counts.mcap")
+    peer = spawn(rospy_peer("rospy_clock.py"), label="rospy /clock")
+    peer.wait_for("subscribed")
+    spawn(rostui_cmd("bag", "play", "--clock", "--hz", "20", "--pause", "-s", "0.5", "-q", str(bag)), label="play")
+    wait_until(lambda: len(clocks(peer)) >= 10, "ten /clock messages from a paused bag play")
+    assert set(clocks(peer)) == {T0 + 500_000_000}
 
 
 def test_without_clock_nothing_is_advertised_on_clock(counts_bag_path: Path, rostui_core: Any) -> None:

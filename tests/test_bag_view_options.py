@@ -260,14 +260,14 @@ def test_duration_stops_the_recording_and_the_app_says_so(tmp_path: Path, rostui
         await until(lambda: session.recording, f"recording to start ({app.problem})")
         await until(lambda: not session.recording, "--duration 1 to stop the recording")
         text = status_text(app)
-        assert "■ STOPPED" in text and "stopped: reached --duration 1 s" in text, text
+        assert "■ STOPPED" in text and "│ reached --duration 1 s" in text, text
         assert session.errors == [] and session.messages > 0
         recorded = session.messages
         await asyncio.sleep(0.5)
         assert session.messages == recorded, "messages were still counted after the limit"
         await pilot.press("r")  # again, into the next file, with the limit again
         await until(lambda: session.recording, "recording again")
-        assert "stopped:" not in status_text(app)
+        assert "reached" not in status_text(app)
         await until(lambda: not session.recording, "the second recording to stop at its limit")
         assert "reached --duration 1 s" in status_text(app)
 
@@ -286,7 +286,7 @@ def test_size_stops_the_recording_at_that_size(tmp_path: Path, rostui_core: Any,
         session = app.session
         await until(lambda: session.recording, f"recording to start ({app.problem})")
         await until(lambda: not session.recording, "--size to stop the recording")
-        assert "stopped: reached --size 0.004 MB" in status_text(app)
+        assert "│ reached --size 0.004 MB" in status_text(app)
 
     try:
         run_pilot(BagRecordApp(record_options(["/numbers"], name=str(tmp_path / "s.mcap"), size_mb=0.004)),
@@ -307,7 +307,7 @@ def test_split_with_duration_goes_on_in_the_next_file_losing_nothing(tmp_path: P
         await until(lambda: session.recording, f"recording to start ({app.problem})")
         await until(lambda: len(session.files) >= 3 and session.recording, "two splits at --duration 1")
         assert "splits every 1 s" in str(app.header.render())
-        assert "stopped:" not in status_text(app)
+        assert "reached" not in status_text(app)
 
     try:
         run_pilot(BagRecordApp(record_options(["/numbers"], name=str(tmp_path / "p.mcap"), split=True,

@@ -190,3 +190,35 @@ def test_record_mode(snap_compare, tmp_path: Path, monkeypatch: pytest.MonkeyPat
         assert snap_compare(app, run_before=run_before, terminal_size=(100, 20))
     finally:
         stop_process(burst)
+
+
+def test_record_mode_stopped_at_its_duration(snap_compare, tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                             rostui_core: Any, ros_env: dict[str, str]) -> None:
+    """--duration 6: the burst of 30 + 12 is recorded, then the recording stops by itself and says so."""
+    from rostui.core.bag.record_options import record_options
+
+    monkeypatch.chdir(tmp_path)
+    script = tmp_path / "burst.py"
+    script.write_text(BURST)
+    out = tmp_path / "burst.out"
+    with out.open("w") as sink:
+        burst = subprocess.Popen([sys.executable, str(script)], env=ros_env, cwd=REPO, stdout=sink,
+                                 stderr=subprocess.STDOUT)
+
+    async def run_before(pilot: Pilot) -> None:
+        app = pilot.app
+        assert isinstance(app, BagRecordApp)
+        session = app.session
+        await until(lambda: "sent" in out.read_text(), "the burst")
+        await until(lambda: session.current is None and session.files, "the stop at --duration 6, file closed")
+        assert session.messages == 42, "the burst did not fit in the 6 s"
+        await until(lambda: all(m.rates() == (0.0, 0.0) for m in session.meters.values()), "rates back to 0",
+                    timeout=20)
+        app.refresh_view()
+        await pilot.pause()
+
+    try:
+        app = BagRecordApp(record_options(["/chatter", "/turtle1/pose"], name="session.mcap", duration="6"))
+        assert snap_compare(app, run_before=run_before, terminal_size=(100, 20))
+    finally:
+        stop_process(burst)

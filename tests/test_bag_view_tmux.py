@@ -155,7 +155,7 @@ def test_bag_view_record_regex_stops_at_duration_in_tmux(pane: Pane, rostui_core
         pane.wait_until(lambda: pane.shows("recording topics matching /num.* into rec_<n>.bag · stops at 2 s"),
                         "the header naming the pattern and the limit")
         pane.wait_until(lambda: pane.shows("● REC", "'rec_0.bag'", "/numbers", " Hz"), "recording /numbers")
-        pane.wait_until(lambda: pane.shows("■ STOPPED", "stopped: reached --duration 2 s"), "the stop at 2 s")
+        pane.wait_until(lambda: pane.shows("■ STOPPED", "│ reached --duration 2 s"), "the stop at 2 s")
         pane.keys("q")
         pane.wait_until(lambda: pane.shows(f"{EXIT_MARK}0"), "exit status 0 after q")
         assert " messages to rec_0.bag\n" in pane.screen()

@@ -117,7 +117,7 @@ class RecordSession:
         self.finished_messages = 0
         self.finished_bytes = 0
         self.current: _Running | None = None
-        self.notice = ""  # why the recording stopped by itself (a limit)
+        self._notice = ""
         self._closing: set[asyncio.Task[None]] = set()
         self._busy = asyncio.Lock()
         self._watcher: asyncio.Task[None] | None = None
@@ -143,6 +143,14 @@ class RecordSession:
     def dropped(self) -> int:
         """Messages dropped because the disk could not keep up."""
         return self.current.recorder.dropped if self.current else 0
+
+    @property
+    def notice(self) -> str:
+        """Why the recording stopped by itself (``reached --duration 30 s``), from the moment it stops."""
+        running = self.current
+        if running is not None and running.recorder.limit_reached:
+            return running.recorder.limit_reached
+        return self._notice
 
     @property
     def file(self) -> str:
@@ -202,7 +210,7 @@ class RecordSession:
             return
         self.current = None
         self._retire(running)
-        self.notice = f"stopped: {running.recorder.limit_reached}" if running.recorder.limit_reached else ""
+        self._notice = running.recorder.limit_reached or ""
         self._in_background(_shutdown(running.node))
 
     def _in_background(self, coro: Any) -> None:
@@ -215,9 +223,12 @@ class RecordSession:
         async with self._busy:
             if self.recording:
                 return
+            stopped, self.current = self.current, None
+            if stopped is not None:  # it stopped by itself (a limit) and may still be closing its file
+                await self._finish(stopped)
             for meter in self.meters.values():
                 meter.file_count = meter.file_size = 0
-            self.notice = ""
+            self._notice = ""
             self.current = await self._launch(gate_open=True)
             if self.opts.split and (self.opts.size_mb or self.opts.duration_s) and self._watcher is None:
                 self._watcher = asyncio.ensure_future(self._split_at_limits())

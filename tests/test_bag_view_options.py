@@ -298,24 +298,32 @@ def test_size_stops_the_recording_at_that_size(tmp_path: Path, rostui_core: Any,
     assert 4000 <= path.stat().st_size < 4000 + 8192  # the last message, the index and the summary after it
 
 
-def test_split_with_duration_goes_on_in_the_next_file_losing_nothing(tmp_path: Path, rostui_core: Any,
-                                                                    ros_env: dict[str, str]) -> None:
+@pytest.mark.parametrize("limit,shown", [({"duration": "1"}, "splits every 1 s"),
+                                         ({"size_mb": 0.003}, "splits every 0.003 MB")])
+def test_split_at_a_limit_goes_on_in_the_next_file_losing_nothing(tmp_path: Path, rostui_core: Any,
+                                                                  ros_env: dict[str, str], limit: dict[str, Any],
+                                                                  shown: str) -> None:
     proc = talkers(tmp_path, ros_env, "/numbers")
 
     async def scenario(pilot: Pilot, app: BagRecordApp) -> None:
         session = app.session
         await until(lambda: session.recording, f"recording to start ({app.problem})")
-        await until(lambda: len(session.files) >= 3 and session.recording, "two splits at --duration 1")
-        assert "splits every 1 s" in str(app.header.render())
-        assert "reached" not in status_text(app)
+        await until(lambda: len(session.files) >= 3 and session.recording, "two splits at the limit")
+        assert shown in str(app.header.render())
+        assert "reached" not in status_text(app) and session.errors == [], (status_text(app), session.errors)
 
     try:
-        run_pilot(BagRecordApp(record_options(["/numbers"], name=str(tmp_path / "p.mcap"), split=True,
-                                              duration="1")), scenario)
+        run_pilot(BagRecordApp(record_options(["/numbers"], name=str(tmp_path / "p.mcap"), split=True, **limit)),
+                  scenario)
     finally:
         stop_process(proc)
-    pieces = [topic_values(p).get("/numbers", []) for p in sorted(tmp_path.glob("p_*.mcap"))]
-    assert len(pieces) >= 3 and all(pieces[:2])
+    files = sorted(tmp_path.glob("p_*.mcap"), key=lambda p: int(p.stem.split("_")[1]))
+    pieces = [topic_values(p).get("/numbers", []) for p in files]
+    ends = [(piece[0], piece[-1]) if piece else () for piece in pieces]
+    assert len(pieces) >= 3 and all(pieces[:2]), ends
     joined = [v for piece in pieces for v in piece]
-    assert joined == list(range(joined[0], joined[-1] + 1)), "the splits lost or doubled messages"
-    assert 50 <= len(pieces[1]) <= 250, "the middle file does not hold about a second"
+    assert joined == list(range(joined[0], joined[-1] + 1)), f"the splits lost or doubled messages: {ends}"
+    if "duration" in limit:
+        assert 50 <= len(pieces[1]) <= 250, "the middle file does not hold about a second"
+    else:
+        assert files[1].stat().st_size >= 3000, "the middle file was split before it reached --size"

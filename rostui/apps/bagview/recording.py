@@ -38,6 +38,9 @@ NODE_TIMEOUT = 3.0
 #: Seconds between two looks at the file's size and age (``--split`` with ``--size`` or ``--duration``).
 LIMIT_CHECK = 0.05
 
+#: Seconds before a split at a limit is tried again after it failed.
+RETRY_SPLIT = 1.0
+
 
 @dataclass
 class TopicMeter:
@@ -286,9 +289,10 @@ class RecordSession:
             if running is not None and self.recording and self.limit_due(running, time.monotonic()):
                 try:
                     await self.split()
-                except BagError as exc:
+                except BagError as exc:  # no master for the next node: go on in this file, try again later
                     if str(exc) not in self.errors:
                         self.errors.append(str(exc))
+                    await asyncio.sleep(RETRY_SPLIT)
 
     async def _wait_connected(self, old: _Running, new: _Running) -> None:
         """Until the new node has as many publishers on each topic as the old one (or a timeout)."""

@@ -15,7 +15,7 @@ from typing import Any
 
 import pytest
 
-from rostui.core.bag.files import merged_messages, open_reader, time_ordered, unordered_notice
+from rostui.core.bag.files import merged_messages, open_reader, open_writer, time_ordered, unordered_notice
 from rostui.core.bag.index import IndexSource, load_index
 from rostui.core.msg import get_message_class
 
@@ -69,14 +69,19 @@ def write_with_rosbag(path: Path, shape: str) -> Path:
 
 @pytest.fixture(params=["bag", "mcap"])
 def shaped(request: pytest.FixtureRequest, tmp_path: Path) -> Any:
-    """``make(shape)``: a rosbag-written bag of that shape, or the same converted to MCAP (file order kept)."""
+    """``make(shape)``: a rosbag-written bag of that shape, or the same copied to MCAP in file order."""
     def make(shape: str) -> Path:
         bag = write_with_rosbag(tmp_path / f"{shape}.bag", shape)
         if request.param == "bag":
             return bag
         mcap = tmp_path / f"{shape}.mcap"
-        r = rostui(["bag", "convert", str(bag), str(mcap)], {})
-        assert r.returncode == 0, r.stderr
+        reader, writer = open_reader(str(bag)), open_writer(str(mcap))
+        for conn in reader.summary().connections:
+            writer.add_connection(conn)
+        for conn, t, data in reader.messages():  # file order, unlike `rostui bag convert`
+            writer.write(conn.id, t, data)
+        writer.close()
+        reader.close()
         file_order = [Int32().deserialize(d).data for _c, _t, d in open_reader(str(mcap)).messages()]
         assert file_order != sorted(file_order), "the MCAP kept the bag's file order"
         return mcap
@@ -125,6 +130,19 @@ def test_bag_view_index_seeks_to_the_right_message(shaped: Any, shape: str) -> N
         assert item is not None and Int32().deserialize(item[2]).data == 2
     finally:
         index.close()
+
+
+def test_convert_writes_time_order(tmp_path: Path) -> None:
+    """`rostui bag convert` rewrites a bag in time order, as rosbag's own tools rewrite bags."""
+    bag = write_with_rosbag(tmp_path / "backwards.bag", "backwards")
+    out = tmp_path / "sorted.mcap"
+    r = rostui(["bag", "convert", str(bag), str(out)], {})
+    assert r.returncode == 0, r.stderr
+    reader = open_reader(str(out))
+    try:
+        assert [Int32().deserialize(d).data for _c, _t, d in reader.messages()] == list(range(COUNT))
+    finally:
+        reader.close()
 
 
 def test_a_file_without_an_index_plays_in_file_order_and_says_so(tmp_path: Path) -> None:

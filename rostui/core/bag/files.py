@@ -132,10 +132,11 @@ def merged_messages(readers: Iterable[Reader]) -> Iterator[tuple[Connection, int
 
 
 def copy_messages(reader: Reader, writer: Writer) -> int:
-    """Write every readable message of ``reader`` into ``writer``; returns how many."""
+    """Write every readable message of ``reader`` into ``writer``, in time order where the file has an index
+    (as rosbag's tools rewrite bags); returns how many."""
     ids: dict[int, int] = {}
     count = 0
-    for conn, t, data in reader.messages():
+    for conn, t, data in time_ordered(reader):
         new_id = ids.get(conn.id)
         if new_id is None:
             new_id = ids[conn.id] = len(ids)

@@ -21,7 +21,7 @@ import lz4.frame
 import pytest
 
 from rostui.core.bag import rosbag2_0
-from rostui.core.bag.files import open_reader
+from rostui.core.bag.files import convert, open_reader
 from rostui.core.bag.model import Connection
 from rostui.core.bag.rosbag2_0 import FILE_HEADER_RECORD_SIZE, MAGIC, OP_CHUNK, BagWriter, parse_header
 from rostui.core.msg import get_message_class
@@ -311,7 +311,7 @@ OLD_FRAMES: dict[str, Callable[[bytes], bytes]] = {
 
 
 @pytest.mark.parametrize("form", sorted(OLD_FRAMES))
-def test_rostui_reads_its_older_lz4_chunks(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, form: str) -> None:
+def test_rostui_reads_its_older_lz4_chunks_and_converts_them_for_rosbag(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, form: str) -> None:
     monkeypatch.setattr(rosbag2_0, "_roslz4_frame", OLD_FRAMES[form])
     messages = varied_messages(30, seed=7)
     path = tmp_path / "older.bag"
@@ -320,6 +320,10 @@ def test_rostui_reads_its_older_lz4_chunks(tmp_path: Path, monkeypatch: pytest.M
     frames = chunks(path)
     assert any(size > MiB and not data[4] & 0x20 for _, size, data in frames), "no chunk with linked blocks"
     assert read_ours(path) == messages
+    # what docs/bag.md tells a user whose old bag rosbag cannot read
+    _rosbag_python()
+    assert convert(str(path), str(tmp_path / "rewritten.bag"), "lz4") == len(messages)
+    assert rosbag_api_read(tmp_path / "rewritten.bag", tmp_path) == messages
 
 
 def test_rostui_bag_record_lz4_writes_chunks_rosbag_reads(tmp_path: Path, ros_env: dict[str, str],

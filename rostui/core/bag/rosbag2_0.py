@@ -84,13 +84,24 @@ def _compress(kind: str, data: bytes) -> bytes:
     if kind == "bz2":
         return bz2.compress(data)
     if kind == "lz4":
-        import lz4.frame
-
-        # roslz4 (rosbag's reader) takes no content-size field: frames as it writes them itself
-        packed: bytes = lz4.frame.compress(data, block_size=lz4.frame.BLOCKSIZE_MAX1MB, content_checksum=True,
-                                           store_size=False)
-        return packed
+        return _roslz4_frame(data)
     return data
+
+
+def _roslz4_frame(data: bytes) -> bytes:
+    """``data`` as one lz4 frame in the form roslz4 (rosbag's lz4 library) writes, the only form its reader
+    takes: independent 1 MiB blocks, no block checksums, no content size, a content checksum.
+
+    roslz4 refuses linked blocks, python-lz4's default, which a chunk over one block needs.  The streaming
+    compressor keeps the 1 MiB block size id for small chunks too (``lz4.frame.compress`` would lower it), and
+    one ``compress`` call cuts blocks at every 1 MiB of the chunk, as roslz4 does.
+    """
+    import lz4.frame
+
+    frame = lz4.frame.LZ4FrameCompressor(block_size=lz4.frame.BLOCKSIZE_MAX1MB, block_linked=False,
+                                         block_checksum=False, content_checksum=True, auto_flush=True)
+    packed: bytes = frame.begin() + frame.compress(data) + frame.flush()
+    return packed
 
 
 def _decompress(kind: str, data: bytes) -> bytes:

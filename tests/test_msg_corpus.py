@@ -9,7 +9,9 @@ files; every type must hash and print alike in rostui.
 from __future__ import annotations
 
 import json
+import os
 import re
+import shutil
 import subprocess
 from collections.abc import Iterator
 from pathlib import Path
@@ -17,10 +19,11 @@ from typing import Any
 
 import pytest
 
-from conftest import SYSTEM_PYTHON, need_peer
+from cli_helpers import rostui
+from conftest import SYSTEM_PYTHON, need_command, need_peer
 from rostui.core import packages
 from rostui.core.msg import MessageSpecError
-from rostui.core.msg.registry import TypeStore
+from rostui.core.msg.registry import TypeStore, split_definition
 from rostui.core.packages import BUILTIN_SHARE
 
 HERE = Path(__file__).resolve().parent
@@ -231,3 +234,67 @@ def test_the_popular_flight_stack_state_talks_to_real_nodes(oracle: dict[str, An
     """mavros_msgs/State writes ``string MODE_... = VALUE``: its md5 was off by the name's trailing space."""
     assert store.md5sum("mavros_msgs/State") == oracle["mavros_msgs/State"]["genpy_md5"]
     assert any(c.name == "MODE_APM_PLANE_MANUAL" for c in store.get_spec("mavros_msgs/State").constants)
+
+
+def test_md5sums_from_shipped_definitions_equal_genmsg(oracle: dict[str, Any]) -> None:
+    """A bag or MCAP without md5sums has the definition only: hashing genmsg's full text (roscpp's) and
+    genpy's (rospy's) alone, with nothing installed, gives the md5sum real nodes use."""
+    differ = []
+    for t, entry in sorted(oracle.items()):
+        halves = [(t, entry)] if entry["kind"] == "msg" else \
+                 [(t + "Request", entry["request"]), (t + "Response", entry["response"])]
+        for name, e in halves:
+            for key in ("full_text", "genpy_full_text"):
+                if key not in e:
+                    continue
+                alone = TypeStore(load_from_packages=False)
+                try:
+                    for spec in split_definition(name, e[key]):
+                        alone.add_spec(spec)
+                    got = alone.md5sum(name)
+                except Exception as ex:  # reported with the others
+                    got = f"{type(ex).__name__}: {ex}"
+                if got != e["md5"]:
+                    differ.append(f"{name} from {key}: {got}")
+    assert not differ, f"{len(differ)} definitions hash differently from genmsg:\n" + "\n".join(differ)
+
+
+CLI_SAME = [
+    ("rosmsg", ["show", "mavros_msgs/State"]),
+    ("rosmsg", ["show", "odd_msgs/Headers"]),
+    ("rosmsg", ["show", "odd_msgs/Constants"]),
+    ("rosmsg", ["show", "odd_msgs/StringConstants"]),
+    ("rossrv", ["show", "odd_msgs/Odd"]),
+    ("rossrv", ["show", "uuv_thruster_manager/SetThrusterManagerConfig"]),
+]
+CLI_MD5 = ["mavros_msgs/State", "odd_msgs/Headers", "odd_msgs/StringConstants", "odd_msgs/Odd",
+           "uuv_thruster_manager/SetThrusterManagerConfig"]
+
+
+@pytest.fixture(scope="module")
+def cli_env(tmp_path_factory: pytest.TempPathFactory) -> dict[str, str]:
+    """ROS_PACKAGE_PATH with the corpus and copies of the built-in packages it needs (Debian ships no .msg)."""
+    deps = tmp_path_factory.mktemp("deps")
+    for dep in ("std_msgs", "geometry_msgs", "sensor_msgs"):
+        shutil.copytree(BUILTIN_SHARE / dep, deps / dep)
+    return {**os.environ, "ROS_PACKAGE_PATH": f"{CORPUS}:{ODD}:{deps}",
+            "ROS_HOME": str(tmp_path_factory.mktemp("home"))}
+
+
+@pytest.mark.parametrize("tool,args", CLI_SAME, ids=[" ".join([t, *a]) for t, a in CLI_SAME])
+def test_msg_and_srv_commands_print_what_rosmsg_and_rossrv_print(
+        cli_env: dict[str, str], tool: str, args: list[str]) -> None:
+    need_command(tool)
+    want = subprocess.run([tool, *args], env=cli_env, capture_output=True, text=True, timeout=60,
+                          stdin=subprocess.DEVNULL)
+    assert want.returncode == 0, want.stderr
+    got = rostui([tool[3:], *args], cli_env)
+    assert (got.returncode, got.stdout) == (0, want.stdout)
+
+
+@pytest.mark.parametrize("type_name", CLI_MD5)
+def test_md5_commands_print_genmsgs_md5sum(oracle: dict[str, Any], cli_env: dict[str, str], type_name: str) -> None:
+    """(rosmsg md5 imports the package's generated Python, which these packages do not have here.)"""
+    kind = oracle[type_name]["kind"]
+    got = rostui([kind, "md5", type_name], cli_env)
+    assert (got.returncode, got.stdout) == (0, oracle[type_name]["md5"] + "\n")

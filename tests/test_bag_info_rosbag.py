@@ -20,7 +20,7 @@ from rostui.core.bag.files import open_writer
 from rostui.core.bag.model import Connection
 
 from cli_helpers import rostui
-from conftest import need_peer
+from conftest import need_command, need_peer, stop_process, wait_until
 
 #: The same time zone (a POSIX rule, so no tz database is needed: UTC+5:30, which shows the local time is
 #: used) and locale for both programs.
@@ -253,6 +253,27 @@ def test_unsorted_chunks_take_start_and_end_from_the_first_and_last_chunk(rosbag
     assert f"({info['start']:.2f})" != start.rsplit(" ", 1)[1] or f"({info['end']:.2f})" != end.rsplit(" ", 1)[1]
 
 
+def test_several_bags_print_as_rosbag_info_prints_them(rosbag_bags: Path, ros_env: dict[str, str]) -> None:
+    paths = [str(rosbag_bags / f"{name}.bag") for name in ("empty_none", "types_lz4", "mixed")]
+    env = {**ros_env, **TIME_ENV}
+    theirs = subprocess.run(["rosbag", "info", *paths], capture_output=True, text=True, env=env, timeout=120)
+    ours = rostui(["bag", "info", *paths], env, timeout=120)
+    assert theirs.returncode == ours.returncode == 0, theirs.stderr + ours.stderr
+    assert ours.stdout == theirs.stdout and theirs.stdout.count("---\n") == 2
+
+
+def test_a_bag_converted_through_mcap_still_infos_as_rosbag(rosbag_bags: Path, tmp_path: Path,
+                                                            ros_env: dict[str, str]) -> None:
+    """rostui's `.bag` writer (via `bag convert` from an MCAP of a rosbag-written bag) gives a file whose info
+    is rosbag's too."""
+    for source, target in ((rosbag_bags / "connections_bz2.bag", tmp_path / "c.mcap"),
+                           (tmp_path / "c.mcap", tmp_path / "c.bag")):
+        result = rostui(["bag", "convert", str(source), str(target)], ros_env, timeout=120)
+        assert result.returncode == 0, result.stderr
+    theirs, ours = _both(tmp_path / "c.bag", ros_env)
+    assert ours == theirs and "(3 connections)" in ours
+
+
 STRING_MD5 = "992ce8a1687cec8c8bd883ec73ca41d1"
 INT32_MD5 = "da5909fbe378aeaf85e547e830cc1bb7"
 T0 = 1795360262 * 10**9
@@ -290,3 +311,39 @@ def test_info_of_a_rostui_written_bag_is_rosbag_infos(tmp_path: Path, ros_env: d
     theirs, ours = _both(path, ros_env)
     assert ours == theirs
     assert ("(3 connections)" in ours) == (shape == "connections")
+
+
+def _publishers(ros_env: dict[str, str], topic: str) -> int:
+    import xmlrpc.client
+
+    master = xmlrpc.client.ServerProxy(ros_env["ROS_MASTER_URI"])
+    _code, _msg, (pubs, _subs, _srvs) = master.getSystemState("/info_test")
+    return next((len(nodes) for name, nodes in pubs if name == topic), 0)
+
+
+def test_info_of_a_bag_real_rosbag_record_wrote_is_rosbag_infos(tmp_path: Path, ros_env: dict[str, str],
+                                                                 real_roscore: subprocess.Popen) -> None:
+    """A bag as robots make them: C++ `rosbag record` with small lz4 chunks, two publishers on one topic (two
+    connections with their callerids) and a latched topic."""
+    need_command("rostopic")
+    need_command("rosbag")
+    path = tmp_path / "live.bag"
+    pubs = [subprocess.Popen(argv, env=ros_env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL)
+            for argv in (["rostopic", "pub", "-r", "40", "/chatter", "std_msgs/String", "data: from a",
+                          "__name:=talker_a"],
+                         ["rostopic", "pub", "-r", "30", "/chatter", "std_msgs/String", "data: from b",
+                          "__name:=talker_b"],
+                         ["rostopic", "pub", "-l", "/latched", "std_msgs/Int32", "data: 3", "__name:=latcher"])]
+    try:
+        wait_until(lambda: _publishers(ros_env, "/chatter") == 2 and _publishers(ros_env, "/latched") == 1,
+                   "the three publishers to register")
+        record = subprocess.run(["rosbag", "record", "-O", str(path), "--lz4", "--chunksize=1", "--duration=4",
+                                 "/chatter", "/latched"], env=ros_env, capture_output=True, text=True, timeout=120)
+        assert record.returncode == 0, record.stderr
+    finally:
+        for proc in pubs:
+            stop_process(proc)
+    theirs, ours = _both(path, ros_env)
+    assert ours == theirs
+    assert "(2 connections)" in theirs and "lz4 [" in theirs

@@ -10,8 +10,10 @@ whose hundredths round up, one message (`msg`), and sizes from kilobytes to mega
 
 from __future__ import annotations
 
+import os
 import shutil
 import subprocess
+import time
 from pathlib import Path
 
 import pytest
@@ -348,3 +350,46 @@ def test_info_of_a_bag_real_rosbag_record_wrote_is_rosbag_infos(tmp_path: Path, 
     theirs, ours = _both(path, ros_env)
     assert ours == theirs
     assert "(2 connections)" in theirs and "lz4 [" in theirs
+
+
+ROSBAG_FORMATTERS = r'''
+import json, sys
+from rosbag.bag import _human_readable_size, _time_to_str
+values = json.load(sys.stdin)
+print(json.dumps({"sizes": [_human_readable_size(v) for v in values["sizes"]],
+                  "times": ["%s (%.2f)" % (_time_to_str(v), v) for v in values["times"]]}))
+'''
+
+
+def test_sizes_and_times_format_as_rosbags_own_helpers(ros_env: dict[str, str]) -> None:
+    """rostui's size and time text against the helpers `rosbag info` uses, on edges: a unit's rounding
+    boundary (1023.95 KB prints ``1024.0 KB``), past yottabytes, hundredths that round up or sit on .xx5."""
+    import json
+    import random
+
+    from rostui.core.bag.info import human_size, human_time, seconds_of
+
+    need_peer(_rosbag_tools(), "rosbag and its Python API (Debian python3-rosbag, python3-roslz4)")
+    rng = random.Random(18)
+    sizes = [0, 1, 512, 1023, 1024, 4096 + 300, 1048524, 1048525, 1048576, 1024**3 - 1, 1024**4 * 1023.96, 1024**8,
+             1024**9, *(rng.randrange(1, 1 << 50) for _ in range(300))]
+    stamps = [(0, 1), (1795360262, 996000000), (1795360262, 4999999), (1795360262, 5000000), (1795360262, 994999999),
+              (2**32 - 1, 999999999), *((rng.randrange(0, 2**32), rng.randrange(0, 10**9)) for _ in range(300))]
+    times = [seconds_of(s * 10**9 + n) for s, n in stamps]
+    result = subprocess.run(["/usr/bin/python3", "-c", ROSBAG_FORMATTERS], input=json.dumps({"sizes": sizes,
+                            "times": times}), capture_output=True, text=True, env={**ros_env, **TIME_ENV}, timeout=60)
+    assert result.returncode == 0, result.stderr
+    theirs = json.loads(result.stdout)
+    old_tz = os.environ.get("TZ")
+    os.environ["TZ"] = TIME_ENV["TZ"]
+    time.tzset()
+    try:
+        ours = {"sizes": [human_size(v) for v in sizes], "times": [human_time(v) for v in times]}
+    finally:
+        if old_tz is None:
+            del os.environ["TZ"]
+        else:
+            os.environ["TZ"] = old_tz
+        time.tzset()
+    assert ours == theirs
+    assert "1024.0 KB" in ours["sizes"] and "-" in ours["sizes"]

@@ -393,3 +393,32 @@ def test_sizes_and_times_format_as_rosbags_own_helpers(ros_env: dict[str, str]) 
         time.tzset()
     assert ours == theirs
     assert "1024.0 KB" in ours["sizes"] and "-" in ours["sizes"]
+
+
+@pytest.mark.parametrize("compression", ["none", "lz4"])
+def test_a_killed_rostui_bag_reindexed_by_either_tool_infos_as_rosbag(tmp_path: Path, ros_env: dict[str, str],
+                                                                     compression: str) -> None:
+    """A recording cut short (chunks out of time order, the last one lost) reindexed by `rosbag reindex` and by
+    `rostui bag reindex`: both files' info is rosbag's."""
+    need_command("rosbag")
+    writer = open_writer(str(tmp_path / "killed.bag"), compression)
+    writer.add_connection(Connection(0, "/late", "std_msgs/Int32", INT32_MD5, "int32 data\n", "/p"))
+    writer.add_connection(Connection(1, "/early", "std_msgs/Int32", INT32_MD5, "int32 data\n", "/q"))
+    for i in range(400):
+        writer.write(i % 2, T0 + ((i * 53) % 400) * 250_000_000 + (i % 2) * 7_000_000_000, i.to_bytes(4, "little"))
+        if i % 50 == 49:
+            writer.flush()  # complete chunks, as the recorder's timer leaves them
+    size = writer.size
+    writer.out.close()  # killed: no close()
+    with open(tmp_path / "killed.bag", "r+b") as f:
+        f.truncate(size - 1200)  # into the last chunk
+    shutil.copy(tmp_path / "killed.bag", tmp_path / "theirs.bag")
+    reindexed = subprocess.run(["rosbag", "reindex", str(tmp_path / "theirs.bag")], capture_output=True, text=True,
+                               env=ros_env, timeout=120)
+    assert reindexed.returncode == 0, reindexed.stderr
+    ours_reindex = rostui(["bag", "reindex", str(tmp_path / "killed.bag")], ros_env, timeout=120)
+    assert ours_reindex.returncode == 0, ours_reindex.stderr
+    infos = [_both(tmp_path / name, ros_env) for name in ("theirs.bag", "killed.bag")]
+    for theirs, ours in infos:
+        assert ours == theirs
+    assert _rows(infos[0][0])["messages"] == _rows(infos[1][0])["messages"] == "350"

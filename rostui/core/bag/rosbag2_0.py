@@ -526,10 +526,15 @@ class BagReader(ChunkedFile):
                 yield conn, _time_ns(fields["time"]), data
 
     def summary(self) -> BagSummary:
-        """Counts and times from the index records, without decompressing any chunk."""
+        """Counts and times from the index records, without decompressing any chunk.
+
+        Counts and rosbag info's start and end come from the chunk info records when the file has them (as
+        rosbag reads them); a file without (not closed) takes them from the index records after each chunk.
+        """
         summary = BagSummary(self.path, "rosbag", "2.0", self.size, closed=self.closed_properly)
-        starts: list[int] = []
-        ends: list[int] = []
+        index_counts: dict[int, int] = {}
+        chunk_spans: list[list[int]] = []
+        chunk_infos: list[tuple[int, int, dict[int, int]]] = []
         for fields, data in self._records(with_chunk_data=False):
             op = fields.get("op")
             if op == bytes([OP_CONNECTION]):
@@ -539,20 +544,42 @@ class BagReader(ChunkedFile):
                 summary.add_chunk(fields.get("compression", b"none").decode(),
                                   _U32.unpack(size)[0] if len(size) == 4 else self.last_data_length,
                                   self.last_data_length)
+                chunk_spans.append([])
             elif op == bytes([OP_INDEX_DATA]):
                 conn_id = _U32.unpack(fields["conn"])[0]
                 count = _U32.unpack(fields["count"])[0]
-                summary.counts[conn_id] = summary.counts.get(conn_id, 0) + count
+                index_counts[conn_id] = index_counts.get(conn_id, 0) + count
                 stamps = [_time_ns(data[i:i + 8]) for i in range(0, count * 12, 12)]
-                if stamps:
-                    starts.append(min(stamps))
-                    ends.append(max(stamps))
+                if stamps and chunk_spans:
+                    chunk_spans[-1].extend((min(stamps), max(stamps)))
+            elif op == bytes([OP_CHUNK_INFO]):
+                try:
+                    chunk_infos.append(_chunk_info(fields, data))
+                except (KeyError, struct.error):
+                    self.truncated = "a chunk info record is malformed"
         if not self.closed_properly:
             # connection records live inside chunks: read them from the chunks' data
             for conn, _t, _d in self.messages():
                 pass
-        summary.connections = [self.connections[c] for c in sorted(self.connections)]
-        summary.start_ns = min(starts) if starts else 0
-        summary.end_ns = max(ends) if ends else 0
+        summary.connections = list(self.connections.values())
+        spans = [(min(s), max(s)) for s in chunk_spans if s]
+        if chunk_infos:
+            for _start, _end, counts in chunk_infos:
+                for conn_id, count in counts.items():
+                    summary.counts[conn_id] = summary.counts.get(conn_id, 0) + count
+            summary.info_span = (chunk_infos[0][0], chunk_infos[-1][1])
+            spans += [(start, end) for start, end, _counts in chunk_infos]
+        else:
+            summary.counts = index_counts
+            summary.info_span = (spans[0][0], spans[-1][1]) if spans else None
+        summary.start_ns = min((start for start, _ in spans), default=0)
+        summary.end_ns = max((end for _, end in spans), default=0)
         summary.problem = self.truncated
         return summary
+
+
+def _chunk_info(fields: dict[str, bytes], data: bytes) -> tuple[int, int, dict[int, int]]:
+    """A chunk info record's start and end time and its message count per connection."""
+    count = _U32.unpack(fields["count"])[0]
+    counts = {_U32.unpack_from(data, 8 * i)[0]: _U32.unpack_from(data, 8 * i + 4)[0] for i in range(count)}
+    return _time_ns(fields["start_time"]), _time_ns(fields["end_time"]), counts

@@ -12,6 +12,7 @@ from rostui.core.bag.mcapfile import COMPRESSIONS as MCAP_COMPRESSIONS
 from rostui.core.bag.mcapfile import MAGIC as MCAP_MAGIC
 from rostui.core.bag.mcapfile import McapBagReader, McapBagWriter
 from rostui.core.bag.model import BagError, BagSummary, Connection
+from rostui.core.bag.progress import Progress, counted
 from rostui.core.bag.rosbag2_0 import COMPRESSIONS as BAG_COMPRESSIONS
 from rostui.core.bag.rosbag2_0 import MAGIC as BAG_MAGIC
 from rostui.core.bag.rosbag2_0 import BagReader, BagWriter
@@ -131,12 +132,13 @@ def merged_messages(readers: Iterable[Reader]) -> Iterator[tuple[Connection, int
         yield conn, t, data, i
 
 
-def copy_messages(reader: Reader, writer: Writer) -> int:
+def copy_messages(reader: Reader, writer: Writer, progress: Progress | None = None) -> int:
     """Write every readable message of ``reader`` into ``writer``, in time order where the file has an index
-    (as rosbag's tools rewrite bags); returns how many."""
+    (as rosbag's tools rewrite bags); returns how many (``progress`` follows)."""
     ids: dict[int, int] = {}
     count = 0
-    for conn, t, data in time_ordered(reader):
+    total = reader.summary().message_count if progress is not None else 0
+    for conn, t, data in counted(time_ordered(reader), total, progress):
         new_id = ids.get(conn.id)
         if new_id is None:
             new_id = ids[conn.id] = len(ids)
@@ -147,7 +149,7 @@ def copy_messages(reader: Reader, writer: Writer) -> int:
     return count
 
 
-def convert(src: str, dst: str, compression: str = "none") -> int:
+def convert(src: str, dst: str, compression: str = "none", progress: Progress | None = None) -> int:
     """Copy a bag into a new file whose format follows its name; returns the message count."""
     if os.path.abspath(src) == os.path.abspath(dst):
         raise BagError("convert needs a different output file")
@@ -155,14 +157,14 @@ def convert(src: str, dst: str, compression: str = "none") -> int:
     try:
         writer = open_writer(dst, compression)
         try:
-            return copy_messages(reader, writer)
+            return copy_messages(reader, writer, progress)
         finally:
             writer.close()
     finally:
         reader.close()
 
 
-def reindex(path: str) -> tuple[int, str]:
+def reindex(path: str, progress: Progress | None = None) -> tuple[int, str]:
     """Rewrite a file cut short (or any file) in place with a full index.
 
     The original is kept as ``<name>.orig.<ext>`` like rosbag reindex does.
@@ -183,7 +185,7 @@ def reindex(path: str) -> tuple[int, str]:
         writer: Writer = (BagWriter(path, compression=compression) if rosbag
                           else McapBagWriter(path, compression=compression))
         try:
-            count = copy_messages(reader, writer)
+            count = copy_messages(reader, writer, progress)
         finally:
             writer.close()
         return count, reader.truncated

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from typing import Callable, TextIO
@@ -192,6 +193,11 @@ def run_filter(src: str, dst: str, expr: str, print_expr: str | None) -> int:
     try:
         with progress_bar(dst) as progress:
             filter_bag(src, dst, expr, print_expr=print_expr, printer=show, progress=progress)
+    except BrokenPipeError:  # --print's reader went away (`| head`): stop quietly, OUT not written
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
+    except KeyboardInterrupt:
+        fail(f"rostui bag filter: interrupted; {dst} not written")
     except BagError as exc:
         fail(f"rostui bag filter: {exc}")
     except OSError as exc:

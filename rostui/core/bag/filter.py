@@ -26,6 +26,13 @@ EXPRESSION_GLOBALS: dict[str, Any] = {"__builtins__": builtins, "Time": Time, "D
                                       "rospy": _TIME_NAMES, "genpy": _TIME_NAMES}
 
 
+class BagTime(Time):
+    """``t``: a message's time in the bag, shown as rosbag shows it (``rospy.Time[...]``)."""
+
+    def __repr__(self) -> str:
+        return f"rospy.Time[{self.to_nsec()}]"
+
+
 def compile_expression(expr: str, what: str = "expression") -> CodeType:
     """Compile one Python expression; BagError with a one-line reason when it is not one."""
     try:
@@ -90,7 +97,7 @@ def filter_bag(src: str, dst: str, expr: str, *, print_expr: str | None = None,
             for conn, time_ns, data, source in counted(merged_messages([reader]), total, progress):
                 read += 1
                 m = decode(conn, data)
-                t = Time.from_nsec(time_ns)
+                t = BagTime.from_nsec(time_ns)
                 try:
                     match = bool(evaluate(keep, conn.topic, m, t))
                 except Exception as exc:

@@ -12,14 +12,16 @@ from pathlib import Path
 
 import pytest
 
-from rostui.core.bag.files import open_reader
+from rostui.core.bag.files import open_reader, open_writer
 
 from cli_helpers import rostui
 from conftest import SYSTEM_PYTHON, need_command, need_peer
 from tmux_helpers import shell_pane
 
-#: A bag of several shapes written by real rosbag, in time order: strings, ints, a stamped pose, uint8[] (bytes
-#: in genpy), arrays of strings and floats, and a second publisher (its own callerid) on /chatter.
+#: A bag of several shapes written by real rosbag: strings, ints, a stamped pose, uint8[] (bytes in genpy), arrays
+#: of strings and floats, and a second, latched publisher (its own callerid) on /chatter; small chunks. With
+#: ``per-topic`` the messages are written one topic after another, so rosbag's tools (which read in time order)
+#: and the file's order differ.
 MAKE = """
 import sys, rosbag, rospy
 from std_msgs.msg import String, Int32, UInt8MultiArray
@@ -27,22 +29,27 @@ from geometry_msgs.msg import PoseStamped
 from sensor_msgs.msg import JointState
 other = {"callerid": "/talker2", "topic": "/chatter", "type": String._type, "md5sum": String._md5sum,
          "message_definition": String._full_text, "latching": "1"}
-with rosbag.Bag(sys.argv[1], "w") as bag:
-    for i in range(int(sys.argv[2])):
-        t = rospy.Time(100 + i, 250000000)
-        bag.write("/chatter", String(data="hello %d" % i), t)
-        bag.write("/count", Int32(data=i), t + rospy.Duration(0, 1000))
-        p = PoseStamped()
-        p.header.stamp = rospy.Time(50 + i, 7)
-        p.header.frame_id = "map"
-        p.pose.position.x = i * 1.5
-        bag.write("/pose", p, t + rospy.Duration(0, 2000))
-        bag.write("/bytes", UInt8MultiArray(data=bytes([i % 256, 2, 3])), t + rospy.Duration(0, 3000))
-        j = JointState(name=["a", "b"], position=[0.5 * i, 1.0])
-        j.header.stamp = rospy.Time(60 + i)
-        bag.write("/joints", j, t + rospy.Duration(0, 4000))
-        if i % 2:
-            bag.write("/chatter", String(data="other %d" % i), t + rospy.Duration(0, 5000), connection_header=other)
+rows = []
+for i in range(int(sys.argv[2])):
+    t = rospy.Time(100 + i, 250000000)
+    rows.append(("/chatter", String(data="hello %d" % i), t, None))
+    rows.append(("/count", Int32(data=i), t + rospy.Duration(0, 1000), None))
+    p = PoseStamped()
+    p.header.stamp = rospy.Time(50 + i, 7)
+    p.header.frame_id = "map"
+    p.pose.position.x = i * 1.5
+    rows.append(("/pose", p, t + rospy.Duration(0, 2000), None))
+    rows.append(("/bytes", UInt8MultiArray(data=bytes([i % 256, 2, 3])), t + rospy.Duration(0, 3000), None))
+    j = JointState(name=["a", "b"], position=[0.5 * i, 1.0])
+    j.header.stamp = rospy.Time(60 + i)
+    rows.append(("/joints", j, t + rospy.Duration(0, 4000), None))
+    if i % 2:
+        rows.append(("/chatter", String(data="other %d" % i), t + rospy.Duration(0, 5000), other))
+if sys.argv[3] == "per-topic":  # as a tool that writes one topic after another: file order is not time order
+    rows.sort(key=lambda row: (row[0], row[3] is not None))
+with rosbag.Bag(sys.argv[1], "w", chunk_threshold=4096) as bag:
+    for topic, msg, t, header in rows:
+        bag.write(topic, msg, t, connection_header=header)
 """
 
 #: Every message of a bag as rosbag's Python API reads it: topic, time, callerid, latching, type, bytes.
@@ -60,11 +67,11 @@ def _rosbag_api() -> None:
     need_peer(probe.returncode == 0, "rosbag Python API (Debian python3-rosbag) and the message packages")
 
 
-def make_bag(path: Path, rounds: int = 6) -> Path:
-    """``MAKE`` run by Debian's rosbag under the system Python."""
+def make_bag(path: Path, rounds: int = 6, order: str = "per-topic") -> Path:
+    """``MAKE`` run by Debian's rosbag under the system Python (``order``: ``per-topic`` or ``time``)."""
     _rosbag_api()
-    made = subprocess.run([SYSTEM_PYTHON, "-c", MAKE, str(path), str(rounds)], capture_output=True, text=True,
-                          timeout=120)
+    made = subprocess.run([SYSTEM_PYTHON, "-c", MAKE, str(path), str(rounds), order], capture_output=True,
+                          text=True, timeout=120)
     assert made.returncode == 0, made.stderr
     return path
 
@@ -88,11 +95,16 @@ def our_dump(path: Path) -> list[str]:
 
 @pytest.fixture(scope="module")
 def bag(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The ``MAKE`` bag, and an MCAP copy of it beside it (``shapes.mcap``)."""
+    """The ``MAKE`` bag (per topic), and an MCAP copy of it in the same file order beside it (``shapes.mcap``)."""
     path = make_bag(tmp_path_factory.mktemp("tools") / "shapes.bag")
-    converted = subprocess.run([sys.executable, "-m", "rostui", "bag", "convert", str(path),
-                                str(path.with_suffix(".mcap"))], capture_output=True, text=True, timeout=60)
-    assert converted.returncode == 0, converted.stderr
+    reader = open_reader(str(path))
+    writer = open_writer(str(path.with_suffix(".mcap")))
+    for conn, t, data in reader.messages():  # file order, not time order
+        if conn.id not in writer.connections:
+            writer.add_connection(conn)
+        writer.write(conn.id, t, data)
+    writer.close()
+    reader.close()
     return path
 
 
@@ -321,7 +333,7 @@ def test_no_progress_bar_when_stderr_is_no_terminal(bag: Path, tmp_path: Path, r
 
 @pytest.mark.parametrize("command", ["filter", "compress", "convert", "reindex"])
 def test_a_progress_bar_on_a_terminal(command: str, tmp_path: Path) -> None:
-    src = make_bag(tmp_path / "big.bag", rounds=3000)
+    src = make_bag(tmp_path / "big.bag", rounds=3000, order="time")
     args = {"filter": ["big.bag", "out.bag", "topic != '/pose'"], "compress": ["--lz4", "big.bag"],
             "convert": ["big.bag", "out.mcap"], "reindex": ["big.bag"]}[command]
     total = len(dump(src))

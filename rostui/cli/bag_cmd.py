@@ -216,6 +216,8 @@ def run_change_compression(command: str, files: list[str], kind: str, output_dir
         try:
             with progress_bar(path) as progress:
                 outcome = change_compression(path, kind, output_dir=output_dir, force=force, progress=progress)
+        except KeyboardInterrupt:
+            fail(f"rostui bag {command}: interrupted; {path} is as it was")
         except BagError as exc:
             print(f"rostui bag {command}: {exc}", file=sys.stderr)
             failed = True

@@ -353,3 +353,46 @@ def test_a_progress_bar_on_a_terminal(command: str, tmp_path: Path) -> None:
     assert "100%" in bar[-1], bar[-1]
     assert bar[-1].split()[0] == ("out.bag" if command == "filter" else "out.mcap" if command == "convert"
                                   else "big.bag"), bar[-1]
+
+
+# ----------------------------------------------------------------------------- Ctrl-C
+def _counts_bag(path: Path, count: int) -> None:
+    """``count`` Int32 messages on /count, written by rostui (a bag big enough to be interrupted mid-way)."""
+    from rostui.core.bag.model import Connection
+    from rostui.core.msg import get_message_class
+
+    Int32 = get_message_class("std_msgs/Int32")
+    writer = open_writer(str(path))
+    writer.add_connection(Connection(0, "/count", "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/counter"))
+    for i in range(count):
+        writer.write(0, 10**18 + i * 1000, Int32(data=i).serialize())
+    writer.close()
+
+
+@pytest.mark.parametrize("command", ["filter", "compress"])
+def test_ctrl_c_leaves_no_half_file_and_the_original_as_it_was(command: str, tmp_path: Path,
+                                                               ros_env: dict[str, str]) -> None:
+    import signal
+
+    from conftest import wait_until
+
+    src = tmp_path / "counts.bag"
+    _counts_bag(src, 400_000)
+    before = src.read_bytes()
+    args = {"filter": [str(src), str(tmp_path / "out.bag"), "m.data % 3 == 0"], "compress": [str(src)]}[command]
+    proc = subprocess.Popen([sys.executable, "-m", "rostui", "bag", command, *args], env=ros_env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    try:
+        wait_until(lambda: any(p.name.endswith(".partial") for p in tmp_path.iterdir()) or proc.poll() is not None,
+                   "the new file to be started")
+        assert proc.poll() is None, "finished before it could be interrupted"
+        proc.send_signal(signal.SIGINT)
+        _out, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 1
+    assert err.startswith(f"rostui bag {command}: interrupted; ") and err.count("\n") == 1, err
+    assert sorted(p.name for p in tmp_path.iterdir() if p.name != "ros_home") == ["counts.bag"]
+    assert src.read_bytes() == before

@@ -14,8 +14,9 @@ from collections.abc import Callable
 from types import CodeType, SimpleNamespace
 from typing import Any
 
+from rostui.core.bag.decode import Decoder
 from rostui.core.bag.files import merged_messages, open_reader
-from rostui.core.bag.model import BagError, Connection
+from rostui.core.bag.model import BagError
 from rostui.core.bag.progress import Progress, counted
 from rostui.core.bag.rewrite import ConnectionMap, new_file
 from rostui.core.rostime import Duration, Time
@@ -47,29 +48,6 @@ def compile_expression(expr: str, what: str = "expression") -> CodeType:
 def evaluate(code: CodeType, topic: str, m: Any, t: Time) -> Any:
     """The value of a compiled expression for one message."""
     return eval(code, EXPRESSION_GLOBALS, {"topic": topic, "m": m, "t": t})
-
-
-class Decoder:
-    """Deserialises the messages of each connection with the class its definition describes."""
-
-    def __init__(self) -> None:
-        self._classes: dict[tuple[str, str], Any] = {}
-
-    def __call__(self, conn: Connection, data: bytes) -> Any:
-        """The message ``data`` holds; BagError when its definition or its bytes are broken."""
-        from rostui.core.msg import get_message_class, register_types_from_definition
-
-        key = (conn.type, conn.definition)
-        cls = self._classes.get(key)
-        try:
-            if cls is None:
-                cls = self._classes[key] = (register_types_from_definition(conn.type, conn.definition)
-                                            if conn.definition else get_message_class(conn.type))
-            return cls().deserialize(data)
-        except BagError:
-            raise
-        except Exception as exc:  # a bad definition, or the generated deserialiser's errors on damaged data
-            raise BagError(f"cannot decode a {conn.type} message on {conn.topic}: {exc}") from None
 
 
 def _describe_failure(what: str, exc: Exception, topic: str, t: Time) -> BagError:

@@ -24,7 +24,7 @@ def echo_bag(path: str, topic: str | None, formatter: EchoFormatter, out: Out) -
     messages were printed; TopicToolError for a bag that cannot be read.
     """
     from rostui.core.bag.files import merged_messages, open_reader
-    from rostui.core.bag.filter import Decoder
+    from rostui.core.bag.decode import Decoder
     from rostui.core.bag.model import BagError
 
     if not os.path.exists(path):

@@ -325,8 +325,10 @@ def register(app: typer.Typer) -> None:
         print_expr: str | None = typer.Option(None, "-p", "--print", metavar="PRINT-EXPRESSION",
                                               help="Print MATCH or NO MATCH and this expression for each message."),
     ) -> None:
-        """Copy the messages for which EXPRESSION is true (like `rosbag filter`), e.g. "topic == '/chatter'",
-        "m.data > 5", "t.to_sec() > 1700000000.5"."""
+        """Copy the messages for which EXPRESSION is true (like `rosbag filter`).
+
+        For example "topic == '/chatter'", "m.data > 5" or "t.to_sec() > 1700000000.5".
+        """
         raise typer.Exit(run_filter(src, dst, expr, print_expr))
 
     @bag_app.command("compress")

@@ -276,7 +276,7 @@ def _odd_mcap(path: Path, schemas: list[tuple[str, str, str, bytes]]) -> None:
 
 BROKEN = [
     ("/bad", "pkg/Bad", "ros1msg", b"int32 x\nthis is not a field\n", "pkg/Bad: invalid declaration"),
-    ("/missing", "pkg/Missing", "ros1msg", b"other_pkg/Thing thing\n", "unknown message type [other_pkg/Thing]"),
+    ("/missing", "pkg/Missing", "ros1msg", b"other_pkg/Thing thing\n", "no 'MSG:' section for other_pkg/Thing"),
     ("/latin1", "pkg/Latin", "ros1msg", b"string s # caf\xe9\n", "definition is not UTF-8 text"),
 ]
 
@@ -293,7 +293,7 @@ def test_a_definition_that_does_not_parse_warns_once_and_gives_the_wildcard(
     assert len(lines) == len(BROKEN), result.stderr  # one line per schema, whatever the number of channels
     for line, (_topic, type_name, _enc, _def, why) in zip(lines, BROKEN):
         assert line.startswith(f"{path}: no md5sum for type {type_name} (") and why in line, line
-        assert line.endswith("using '*', which every subscriber accepts"), line
+        assert line.endswith("using the wildcard '*'"), line
     out = tmp_path / "broken.bag"
     converted = rostui(["bag", "convert", str(path), str(out)], ros_env)
     assert converted.returncode == 0 and len(converted.stderr.splitlines()) == len(BROKEN), converted.stderr
@@ -313,9 +313,8 @@ def test_channels_that_are_not_ros1_or_lack_a_schema_are_read_with_a_warning(
     assert {row["type"]: row["md5sum"] for row in json.loads(result.stdout)["types"]} == \
         {"pkg/Json": "*", "": "*", "std_msgs/String": string_md5}
     assert [line.split(": ", 1)[1] for line in result.stderr.splitlines()] == [
-        "no md5sum for type pkg/Json (schema encoding 'jsonschema' is not 'ros1msg'): using '*', "
-        "which every subscriber accepts",
-        "no md5sum for channel /none (it has no schema): using '*', which every subscriber accepts"]
+        "no md5sum for type pkg/Json (schema encoding 'jsonschema' is not 'ros1msg'): using the wildcard '*'",
+        "no md5sum for channel /none (it has no schema): using the wildcard '*'"]
 
 
 @pytest.fixture(autouse=True)
@@ -323,3 +322,37 @@ def _fresh_cache() -> Iterator[None]:
     """Each test starts with the md5 cache empty, so the warnings it expects are its own."""
     schema_md5.cache_clear()
     yield
+
+
+def test_the_wildcard_plays_to_rospy_and_real_rosbag_play_refuses_it(
+        standard: tuple[Path, dict[str, list[str]]], debian: dict[str, tuple[str, str]], tmp_path: Path,
+        ros_env: dict[str, str], real_roscore: Any, spawn: Any) -> None:
+    """A writer that keeps only the type's own text (no ``MSG:`` sections): no md5 can be computed from it."""
+    _standard, sent = standard
+    own_text = debian["geometry_msgs/PoseStamped"][1].split("\n" + "=" * 80 + "\n")[0]
+    path = tmp_path / "no_nested.mcap"
+    with path.open("wb") as f:
+        writer = McapWriter(f)
+        writer.start(profile="ros1", library="another writer")
+        channel = writer.register_channel("/pose", "ros1", writer.register_schema(
+            "geometry_msgs/PoseStamped", "ros1msg", own_text.encode()))
+        for i, hexed in enumerate(sent["/pose"]):
+            writer.add_message(channel, log_time=T0 + i * STEP, publish_time=T0 + i * STEP, data=bytes.fromhex(hexed))
+        writer.finish()
+    info = rostui(["bag", "info", str(path)], ros_env)
+    assert _types_in(info.stdout) == {"geometry_msgs/PoseStamped": UNKNOWN_MD5}, info.stdout
+    assert info.stderr == f"{path}: no md5sum for type geometry_msgs/PoseStamped (the definition has no 'MSG:' section " \
+        "for geometry_msgs/Pose, std_msgs/Header): using the wildcard '*'\n", info.stderr
+    listener = spawn(rospy_peer("rospy_typed_listener.py", "/pose=geometry_msgs/PoseStamped"),
+                     label="rospy typed listener")
+    listener.wait_for("subscribed")
+    play = spawn(rostui_cmd("bag", "play", "-q", "-l", "-d", "0.5", str(path)), label="rostui bag play")
+    wait_until(lambda: set(sent["/pose"]) <= set(_received(listener).get("/pose", [])),
+               "every pose at the rospy listener")
+    assert set(_received(listener)["/pose"]) == set(sent["/pose"]), listener.describe()
+    play.stop()
+    need_command("rosbag")
+    bag = tmp_path / "no_nested.bag"
+    assert rostui(["bag", "convert", str(path), str(bag)], ros_env).returncode == 0
+    refused = run_tool(["rosbag", "play", str(bag)], ros_env, timeout=60, check=False)
+    assert "Advertising with * as the md5sum is not allowed" in refused.stdout + refused.stderr

@@ -361,8 +361,7 @@ class McapBagReader:
             md5, problem = schema_md5(schema.name, schema.encoding, schema.data)
             what = f"type {schema.name or '(unnamed)'}"
         if problem:
-            _log.warning("%s: no md5sum for %s (%s): using '%s', which every subscriber accepts",
-                         self.path, what, problem, UNKNOWN_MD5)
+            _log.warning("%s: no md5sum for %s (%s): using the wildcard '%s'", self.path, what, problem, UNKNOWN_MD5)
         self._md5s[key] = md5
         return md5
 

@@ -11,11 +11,11 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from rostui.core.msg import MessageError, TypeStore
+from rostui.core.msg import MessageError, MessageSpecError, TypeStore
 from rostui.core.msg.registry import split_definition
 
 UNKNOWN_MD5 = "*"
-"""The md5sum given to a type whose definition cannot be read: ROS's wildcard, which every peer accepts."""
+"""The md5sum given to a type whose definition cannot be read: ROS's wildcard (see docs/bag.md)."""
 
 ROS1_SCHEMA_ENCODING = "ros1msg"
 
@@ -25,8 +25,12 @@ def definition_md5(type_name: str, definition: str) -> str:
 
     Raises :class:`MessageError` when the text does not parse or lacks a nested type.
     """
-    store = TypeStore(load_from_packages=False)
     specs = split_definition(type_name, definition)
+    known = {spec.type_name for spec in specs}
+    missing = sorted({dep for spec in specs for dep in spec.dependencies()} - known)
+    if missing:
+        raise MessageSpecError(f"the definition has no 'MSG:' section for {', '.join(missing)}")
+    store = TypeStore(load_from_packages=False)
     for spec in specs:
         store.add_spec(spec)
     return store.md5sum(specs[0].type_name)

@@ -12,7 +12,6 @@ import io
 import json
 import re
 import subprocess
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -182,11 +181,12 @@ def test_each_definition_is_parsed_once(standard: tuple[Path, dict[str, list[str
 def test_a_file_cut_short_gets_the_md5s_too(standard: tuple[Path, dict[str, list[str]]],
                                             debian: dict[str, tuple[str, str]], ros_env: dict[str, str]) -> None:
     path, sent = standard
-    data = path.read_bytes()
+    whole = path.read_bytes()
     with path.open("rb") as f:
         summary = make_reader(f).get_summary()
     assert summary is not None
-    path.write_bytes(data[:summary.chunk_indexes[-1].chunk_start_offset + summary.chunk_indexes[-1].chunk_length])
+    last = summary.chunk_indexes[-1]
+    path.write_bytes(whole[:last.chunk_start_offset + last.chunk_length])  # the chunks, no summary, no footer
     reader = open_reader(str(path))
     got = {(conn.topic, conn.md5sum, data.hex()) for conn, _t, data in reader.messages()}
     reader.close()
@@ -315,13 +315,6 @@ def test_channels_that_are_not_ros1_or_lack_a_schema_are_read_with_a_warning(
     assert [line.split(": ", 1)[1] for line in result.stderr.splitlines()] == [
         "no md5sum for type pkg/Json (schema encoding 'jsonschema' is not 'ros1msg'): using the wildcard '*'",
         "no md5sum for channel /none (it has no schema): using the wildcard '*'"]
-
-
-@pytest.fixture(autouse=True)
-def _fresh_cache() -> Iterator[None]:
-    """Each test starts with the md5 cache empty, so the warnings it expects are its own."""
-    schema_md5.cache_clear()
-    yield
 
 
 def test_the_wildcard_plays_to_rospy_and_real_rosbag_play_refuses_it(

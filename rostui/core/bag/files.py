@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import heapq
 import os
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from typing import Any, Protocol
 
+from rostui.core.bag.fileindex import FileIndex
 from rostui.core.bag.mcapfile import COMPRESSIONS as MCAP_COMPRESSIONS
 from rostui.core.bag.mcapfile import MAGIC as MCAP_MAGIC
 from rostui.core.bag.mcapfile import McapBagReader, McapBagWriter
@@ -24,10 +25,14 @@ class Reader(Protocol):
 
     path: str
     truncated: str
+    connections: dict[int, Connection]
 
     def messages(self) -> Iterator[tuple[Connection, int, bytes]]: ...
     def summary(self) -> BagSummary: ...
     def close(self) -> None: ...
+    def file_index(self) -> FileIndex | None: ...
+    def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex: ...
+    def payload(self, chunk: int, offset: int) -> bytes: ...
 
     @property
     def closed_properly(self) -> bool: ...
@@ -93,18 +98,45 @@ def open_writer(path: str, compression: str = "none", *, max_chunk_age: float = 
         raise BagError(f"cannot create {path}: {exc.strerror}") from None
 
 
+def unordered_notice(reader: Reader) -> str:
+    """Why ``reader`` plays in file order (it has no index to play it in time order), or ''."""
+    if reader.file_index() is not None:
+        return ""
+    return (f"{reader.path} has no index ({'cut short' if reader.truncated else 'not closed'}): its messages "
+            "play in file order; `rostui bag reindex` writes one")
+
+
+def indexed_messages(reader: Reader, index: FileIndex, start: int = 0) -> Iterator[tuple[Connection, int, bytes]]:
+    """``(connection, time_ns, data)`` of ``index``'s entries from position ``start`` on, payloads read
+    through the reader's chunk cache."""
+    conns = reader.connections
+    payload = reader.payload
+    for t, conn_id, chunk, offset in index.rows(start):
+        yield conns[conn_id], t, payload(chunk, offset)
+
+
+def time_ordered(reader: Reader) -> Iterator[tuple[Connection, int, bytes]]:
+    """One file's messages in time order through its index (ties in file order, as rosbag plays them);
+    in file order when it has none (:func:`unordered_notice` says so)."""
+    index = reader.file_index()
+    if index is None:
+        return reader.messages()
+    return indexed_messages(reader, index)
+
+
 def merged_messages(readers: Iterable[Reader]) -> Iterator[tuple[Connection, int, bytes, int]]:
     """Messages of several files in time order: ``(connection, time_ns, data, file_index)``."""
-    streams = [((t, i, conn, data) for conn, t, data in r.messages()) for i, r in enumerate(readers)]
+    streams = [((t, i, conn, data) for conn, t, data in time_ordered(r)) for i, r in enumerate(readers)]
     for t, i, conn, data in heapq.merge(*streams, key=lambda item: (item[0], item[1])):
         yield conn, t, data, i
 
 
 def copy_messages(reader: Reader, writer: Writer) -> int:
-    """Write every readable message of ``reader`` into ``writer``; returns how many."""
+    """Write every readable message of ``reader`` into ``writer``, in time order where the file has an index
+    (as rosbag's tools rewrite bags); returns how many."""
     ids: dict[int, int] = {}
     count = 0
-    for conn, t, data in reader.messages():
+    for conn, t, data in time_ordered(reader):
         new_id = ids.get(conn.id)
         if new_id is None:
             new_id = ids[conn.id] = len(ids)

@@ -2,7 +2,9 @@
 
 Each topic is advertised with the recorded type, md5sum and definition (so any
 subscriber of that type accepts it, known locally or not) and latched when it
-was latched while recording. The raw bytes are published unchanged.
+was latched while recording. The raw bytes are published unchanged. Messages
+play in time order through each file's index, whatever order the file keeps
+them in; a file without an index plays in file order, and a line on stderr says so.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from rostui.core.bag.files import Reader, merged_messages, open_reader
+from rostui.core.bag.files import Reader, merged_messages, open_reader, unordered_notice
 from rostui.core.bag.model import BagError, BagSummary, Connection
 from rostui.core.bag.transport import MessageItem, StreamSource, Transport
 
@@ -262,9 +264,14 @@ async def _drain(node: Any, timeout: float) -> None:
         await asyncio.sleep(0.02)
 
 
-async def play(opts: PlayOptions, argv: Sequence[str] = (), *,
-               status: Callable[[str], None] | None = None) -> PlayStats:
-    """Open the files, start a ``play_...`` node and play; Ctrl-C stops."""
+def _stderr_line(text: str) -> None:
+    print(text, file=sys.stderr, flush=True)
+
+
+async def play(opts: PlayOptions, argv: Sequence[str] = (), *, status: Callable[[str], None] | None = None,
+               warn: Callable[[str], None] = _stderr_line) -> PlayStats:
+    """Open the files, start a ``play_...`` node and play; Ctrl-C stops. ``warn`` gets one line per file
+    that cannot play in time order."""
     from rostui.core.node import AsyncNode, MasterUnreachableError
 
     if not opts.files:
@@ -280,6 +287,9 @@ async def play(opts: PlayOptions, argv: Sequence[str] = (), *,
             if not summary.message_count:
                 why = f" ({summary.problem})" if summary.problem else ""
                 raise BagError(f"{path} holds no messages{why}")
+            notice = unordered_notice(reader)
+            if notice:
+                warn(notice)
         node = AsyncNode("play", anonymous=True, argv=list(argv))
         try:
             await node.start()

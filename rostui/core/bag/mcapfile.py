@@ -10,6 +10,7 @@ file was closed and otherwise streams records up to the first incomplete one.
 from __future__ import annotations
 
 import io
+import logging
 import os
 import struct
 import time
@@ -336,11 +337,16 @@ class McapBagWriter:
             self._cut()
 
 
-def _connection_of(channel: Any, schema: Any) -> Connection:
+_log = logging.getLogger("rostui.bag")
+
+
+def _connection_of(channel: Any, schema: Any, md5sum: str) -> Connection:
+    """The bag connection of an MCAP channel; ``md5sum`` is used when the channel's metadata has none."""
     meta = dict(channel.metadata or {})
     definition = schema.data.decode("utf-8", "replace") if schema is not None else ""
     return Connection(channel.id, channel.topic, schema.name if schema is not None else "",
-                      meta.get("md5sum", ""), definition, meta.get("callerid", ""), meta.get("latching", "0") == "1")
+                      meta.get("md5sum") or md5sum, definition, meta.get("callerid", ""),
+                      meta.get("latching", "0") == "1")
 
 
 class McapBagReader(ChunkedFile):
@@ -361,11 +367,36 @@ class McapBagReader(ChunkedFile):
         self.file.seek(0)
         self.connections: dict[int, Connection] = {}
         self.truncated = ""
+        self._md5s: dict[int, str] = {}  # by schema id (0: no schema), for channels without md5sum metadata
         self._summary = self._read_summary()
 
     def close(self) -> None:
         """Close the file."""
         self.file.close()
+
+    def _connection(self, channel: Any, schema: Any) -> Connection:
+        """The connection of a channel, its md5sum computed from the schema when the metadata lacks one."""
+        if (channel.metadata or {}).get("md5sum"):
+            return _connection_of(channel, schema, "")
+        return _connection_of(channel, schema, self._schema_md5(channel, schema))
+
+    def _schema_md5(self, channel: Any, schema: Any) -> str:
+        """The md5sum of a schema's definition, once per schema; a one-line warning when it cannot be had."""
+        from rostui.core.bag.schema_md5 import UNKNOWN_MD5, schema_md5
+
+        key = schema.id if schema is not None else 0
+        md5 = self._md5s.get(key)
+        if md5 is not None:
+            return md5
+        if schema is None:
+            md5, problem, what = UNKNOWN_MD5, "it has no schema", f"channel {channel.topic}"
+        else:
+            md5, problem = schema_md5(schema.name, schema.encoding, schema.data)
+            what = f"type {schema.name or '(unnamed)'}"
+        if problem:
+            _log.warning("%s: no md5sum for %s (%s): using the wildcard '%s'", self.path, what, problem, UNKNOWN_MD5)
+        self._md5s[key] = md5
+        return md5
 
     def _read_summary(self) -> Any:
         from mcap.reader import SeekingReader
@@ -408,7 +439,7 @@ class McapBagReader(ChunkedFile):
         import numpy as np
 
         for cid, channel in summary.channels.items():
-            self.connections[cid] = _connection_of(channel, summary.schemas.get(channel.schema_id))
+            self.connections[cid] = self._connection(channel, summary.schemas.get(channel.schema_id))
         self.chunk_table = []
         parts: list[ChunkEntries] = []
         for number, index in enumerate(sorted(summary.chunk_indexes, key=lambda i: i.chunk_start_offset)):
@@ -469,7 +500,7 @@ class McapBagReader(ChunkedFile):
         elif opcode == Opcode.CHANNEL:
             channel = Channel.read(ReadDataStream(io.BytesIO(body)))
             if channel.id not in self.connections:
-                self.connections[channel.id] = _connection_of(channel, schemas.get(channel.schema_id))
+                self.connections[channel.id] = self._connection(channel, schemas.get(channel.schema_id))
 
     def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex:
         """Where every readable message lies, by reading every chunk once (payloads are not kept); a
@@ -556,7 +587,7 @@ class McapBagReader(ChunkedFile):
                 schemas[record.id] = record
             elif isinstance(record, Channel):
                 if record.id not in self.connections:
-                    self.connections[record.id] = _connection_of(record, schemas.get(record.schema_id))
+                    self.connections[record.id] = self._connection(record, schemas.get(record.schema_id))
 
     def summary(self) -> BagSummary:
         """Counts and times from the summary section, or from reading every record when there is none."""
@@ -564,7 +595,7 @@ class McapBagReader(ChunkedFile):
         summary = self._summary
         if summary is not None and summary.statistics is not None:
             for cid, channel in summary.channels.items():
-                self.connections[cid] = _connection_of(channel, summary.schemas.get(channel.schema_id))
+                self.connections[cid] = self._connection(channel, summary.schemas.get(channel.schema_id))
             stats = summary.statistics
             out.counts = {cid: n for cid, n in stats.channel_message_counts.items()}
             out.start_ns, out.end_ns = stats.message_start_time, stats.message_end_time

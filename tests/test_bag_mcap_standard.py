@@ -317,6 +317,18 @@ def test_channels_that_are_not_ros1_or_lack_a_schema_are_read_with_a_warning(
         "no md5sum for channel /none (it has no schema): using the wildcard '*'"]
 
 
+def test_a_channel_without_a_schema_is_not_played_and_play_says_so(
+        tmp_path: Path, debian: dict[str, tuple[str, str]], ros_env: dict[str, str], rostui_core: Any) -> None:
+    """The master refuses a publisher with no type: play skips that topic with one line and plays the rest."""
+    path = tmp_path / "untyped.mcap"
+    _odd_mcap(path, [("/none", "", "", b""), ("/chatter", "std_msgs/String", "ros1msg",
+                                              debian["std_msgs/String"][1].encode())])
+    result = rostui(["bag", "play", "-q", "-d", "0", str(path)], ros_env)
+    assert result.returncode == 0, result.stderr
+    assert "/none was recorded without a message type: it is not played" in result.stderr.splitlines()
+    assert "Traceback" not in result.stderr
+
+
 def test_the_wildcard_plays_to_rospy_and_real_rosbag_play_refuses_it(
         standard: tuple[Path, dict[str, list[str]]], debian: dict[str, tuple[str, str]], tmp_path: Path,
         ros_env: dict[str, str], real_roscore: Any, spawn: Any) -> None:

@@ -55,21 +55,28 @@ def status_text(state: str, bag_time_ns: int, elapsed_s: float, total_s: float) 
             "               ")
 
 
-async def advertise_connections(node: Any, conns: Sequence[Connection], queue_size: int = 100
-                                ) -> dict[tuple[str, str], Any]:
+async def advertise_connections(node: Any, conns: Sequence[Connection], queue_size: int = 100, *,
+                                warn: Callable[[str], None] | None = None) -> dict[tuple[str, str], Any]:
     """Advertise each connection's topic with its recorded type, md5sum and definition (latched when any
     connection of the topic was); returns the publishers by ``(topic, md5sum)``.
 
-    A topic recorded with two types is published with the first.
+    A topic recorded with two types is published with the first. A connection recorded without a type
+    (an MCAP channel with no schema) cannot be advertised: it is skipped, and ``warn`` says so once a topic.
     """
     from rostui.core.node import AnyMsg
     from rostui.core.node.topics import TopicType
 
     latched = {c.topic for c in conns if c.latching}
     publishers: dict[tuple[str, str], Any] = {}
+    untyped: set[str] = set()
     for conn in conns:
         key = (conn.topic, conn.md5sum)
         if key in publishers:
+            continue
+        if not conn.type:
+            if warn is not None and conn.topic not in untyped:
+                warn(f"{conn.topic} was recorded without a message type: it is not played")
+            untyped.add(conn.topic)
             continue
         ttype = TopicType(conn.type, conn.md5sum, conn.definition)
         try:
@@ -84,10 +91,12 @@ class Player:
     """Publishes the messages of one or more bags in time order, through one :class:`Transport`."""
 
     def __init__(self, node: Any, opts: PlayOptions, readers: list[Reader], *,
-                 status: Callable[[str], None] | None = None, summaries: list[BagSummary] | None = None) -> None:
+                 status: Callable[[str], None] | None = None, summaries: list[BagSummary] | None = None,
+                 warn: Callable[[str], None] | None = None) -> None:
         if opts.rate <= 0:
             raise BagError("the rate must be greater than 0")
         self.node = node
+        self.warn = warn
         self.opts = opts
         self.readers = readers
         self.status = status
@@ -134,7 +143,7 @@ class Player:
     async def advertise(self) -> None:
         """Advertise every topic to play with its recorded type; latched when recorded latched."""
         conns = [c for conns in self._topics().values() for c in conns]
-        self.publishers = await advertise_connections(self.node, conns, self.opts.queue_size)
+        self.publishers = await advertise_connections(self.node, conns, self.opts.queue_size, warn=self.warn)
         if self.opts.clock:
             from rostui.core.msg import get_message_class
 
@@ -296,7 +305,7 @@ async def play(opts: PlayOptions, argv: Sequence[str] = (), *, status: Callable[
         except MasterUnreachableError as exc:
             raise BagError(str(exc)) from None
         loop = asyncio.get_running_loop()
-        player = Player(node, opts, readers, status=status, summaries=summaries)
+        player = Player(node, opts, readers, status=status, summaries=summaries, warn=warn)
         keys = KeyReader(player)
         try:
             for sig in (signal.SIGINT, signal.SIGTERM):

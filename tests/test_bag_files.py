@@ -121,8 +121,9 @@ def test_damaged_files_give_one_clear_line(tmp_path: Path, ros_env: dict[str, st
     path.write_bytes(content)
     for command in (["info"], ["play"]):
         result = rostui(["bag", *command, str(path)], ros_env, timeout=30)
-        if result.returncode == 0:  # magic followed by garbage: readable, holds nothing
-            assert "messages:    0" in result.stdout or command == ["play"]
+        if result.returncode == 0:  # magic followed by garbage: readable, holds nothing (rosbag's empty layout)
+            assert command == ["play"] or ("size:" in result.stdout and "messages:" not in result.stdout
+                                           and "warning:" in result.stdout)
             continue
         assert "Traceback" not in result.stderr
         lines = result.stderr.strip().splitlines()

@@ -21,6 +21,12 @@ from rostui.core.bag.transport import StreamSource, Transport
 from bag_view_helpers import STEP_NS, T0, Int32, write_counts
 from conftest import until
 
+
+def _conn_and_data(index: BagIndex, position: int) -> tuple[Connection, bytes]:
+    conn, _t, data = index.item(position)
+    return conn, data
+
+
 @pytest.fixture
 def index(tmp_path: Path) -> BagIndex:
     """The counts bag, indexed."""
@@ -67,9 +73,9 @@ def test_index_counts_density_and_message_under_cursor(index: BagIndex) -> None:
     assert sum(index.density("/count", 10)) == 100
     assert index.density("/count", 10) == [10] * 10
     at = index.message_at("/count", T0 + 42 * STEP_NS + 5)
-    assert at is not None and message_yaml(index.conns[at], index.datas[at]) == "data: 42"
+    assert at is not None and message_yaml(*_conn_and_data(index, at)) == "data: 42"
     at = index.message_at("/odd", T0)  # before the first: the first
-    assert at is not None and message_yaml(index.conns[at], index.datas[at]) == "data: 1"
+    assert at is not None and message_yaml(*_conn_and_data(index, at)) == "data: 1"
 
 
 def test_seek_to_half_then_play_publishes_the_second_half_only(index: BagIndex) -> None:

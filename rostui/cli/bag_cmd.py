@@ -1,7 +1,9 @@
-"""`rostui bag record|play|info|reindex|convert`: rosbag's commands; MCAP by default, ``.bag`` by name."""
+"""`rostui bag record|play|info|reindex|convert|filter|compress|decompress`: rosbag's commands; MCAP by default,
+``.bag`` by name."""
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from typing import Callable, TextIO
@@ -9,6 +11,7 @@ from typing import Callable, TextIO
 import typer
 
 from rostui.cli import bag_view_cmd
+from rostui.cli.bag_progress import progress_bar
 from rostui.cli.common import fail
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "allow_interspersed_args": True}
@@ -139,7 +142,8 @@ def run_reindex(files: list[str]) -> int:
 
     for path in files:
         try:
-            count, problem = reindex(path)
+            with progress_bar(path) as progress:
+                count, problem = reindex(path, progress)
         except BagError as exc:
             fail(f"rostui bag reindex: {exc}")
         except OSError as exc:
@@ -155,13 +159,63 @@ def run_convert(src: str, dst: str, compression: str) -> int:
     from rostui.core.bag.model import BagError
 
     try:
-        count = convert(src, dst, compression)
+        with progress_bar(dst) as progress:
+            count = convert(src, dst, compression, progress)
     except BagError as exc:
         fail(f"rostui bag convert: {exc}")
     except OSError as exc:
         fail(f"rostui bag convert: {exc.strerror or exc}")
     print(f"{dst}: {count} messages", flush=True)
     return 0
+
+
+def run_filter(src: str, dst: str, expr: str, print_expr: str | None) -> int:
+    """Write the messages of SRC for which EXPR holds to DST; 1 with one line on error (DST untouched)."""
+    from rostui.core.bag.filter import filter_bag
+    from rostui.core.bag.model import BagError
+
+    def show(line: str) -> None:
+        print(line, flush=True)
+
+    try:
+        with progress_bar(dst) as progress:
+            filter_bag(src, dst, expr, print_expr=print_expr, printer=show, progress=progress)
+    except BrokenPipeError:  # --print's reader went away (`| head`): stop quietly, OUT not written
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
+    except KeyboardInterrupt:
+        fail(f"rostui bag filter: interrupted; {dst} not written")
+    except BagError as exc:
+        fail(f"rostui bag filter: {exc}")
+    except OSError as exc:
+        fail(f"rostui bag filter: {exc.filename or dst}: {exc.strerror or exc}")
+    return 0
+
+
+def run_change_compression(command: str, files: list[str], kind: str, output_dir: str | None, force: bool,
+                           quiet: bool) -> int:
+    """Rewrite each bag with ``kind`` chunks; 1 when any could not be (the others are still done)."""
+    from rostui.core.bag.compress import change_compression
+    from rostui.core.bag.model import BagError
+
+    failed = False
+    for path in files:
+        try:
+            with progress_bar(path) as progress:
+                outcome = change_compression(path, kind, output_dir=output_dir, force=force, progress=progress)
+        except KeyboardInterrupt:
+            fail(f"rostui bag {command}: interrupted; {path} is as it was")
+        except BagError as exc:
+            print(f"rostui bag {command}: {exc}", file=sys.stderr)
+            failed = True
+            continue
+        except OSError as exc:
+            print(f"rostui bag {command}: {exc.filename or path}: {exc.strerror or exc}", file=sys.stderr)
+            failed = True
+            continue
+        if outcome.skipped and not quiet:
+            print(outcome.skipped, file=sys.stderr)
+    return 1 if failed else 0
 
 
 def register(app: typer.Typer) -> None:
@@ -247,5 +301,43 @@ def register(app: typer.Typer) -> None:
     ) -> None:
         """Convert between MCAP and rosbag .bag."""
         raise typer.Exit(run_convert(src, dst, compression))
+
+    @bag_app.command("filter")
+    def filter_command(
+        src: str = typer.Argument(..., metavar="INBAG", help="The bag to read."),
+        dst: str = typer.Argument(..., metavar="OUTBAG", help="The file to write (.bag: rosbag v2.0, else MCAP)."),
+        expr: str = typer.Argument(..., metavar="EXPRESSION",
+                                   help="Python expression over topic, m (the message) and t (its time)."),
+        print_expr: str | None = typer.Option(None, "-p", "--print", metavar="PRINT-EXPRESSION",
+                                              help="Print MATCH or NO MATCH and this expression for each message."),
+    ) -> None:
+        """Copy the messages for which EXPRESSION is true (like `rosbag filter`).
+
+        For example "topic == '/chatter'", "m.data > 5" or "t.to_sec() > 1700000000.5".
+        """
+        raise typer.Exit(run_filter(src, dst, expr, print_expr))
+
+    @bag_app.command("compress")
+    def compress_command(
+        files: list[str] = typer.Argument(..., metavar="BAGFILE ...", help="Bags to compress."),
+        bz2_flag: bool = typer.Option(False, "-j", "--bz2", help="bz2 compression (the default; zstd in MCAP)."),
+        lz4_flag: bool = typer.Option(False, "--lz4", help="lz4 compression."),
+        output_dir: str | None = typer.Option(None, "--output-dir", metavar="DIR", help="Write to folder DIR."),
+        force: bool = typer.Option(False, "-f", "--force", help="Overwrite a backup file that exists."),
+        quiet: bool = typer.Option(False, "-q", "--quiet", help="Say nothing of skipped bags."),
+    ) -> None:
+        """Compress bags in place, keeping NAME.orig.EXT (like `rosbag compress`)."""
+        kind = "lz4" if lz4_flag and not bz2_flag else "strong"
+        raise typer.Exit(run_change_compression("compress", list(files), kind, output_dir, force, quiet))
+
+    @bag_app.command("decompress")
+    def decompress_command(
+        files: list[str] = typer.Argument(..., metavar="BAGFILE ...", help="Bags to decompress."),
+        output_dir: str | None = typer.Option(None, "--output-dir", metavar="DIR", help="Write to folder DIR."),
+        force: bool = typer.Option(False, "-f", "--force", help="Overwrite a backup file that exists."),
+        quiet: bool = typer.Option(False, "-q", "--quiet", help="Say nothing of skipped bags."),
+    ) -> None:
+        """Decompress bags in place, keeping NAME.orig.EXT (like `rosbag decompress`)."""
+        raise typer.Exit(run_change_compression("decompress", list(files), "none", output_dir, force, quiet))
 
     bag_view_cmd.register(bag_app)

@@ -176,7 +176,9 @@ def find_command(
 # ----------------------------------------------------------------------------- node commands
 @topic_app.command("echo")
 def echo_command(
-    topic: str = typer.Argument(..., help="Topic, or a field of it (/turtle1/pose/x, /a/b[0]).", autocompletion=_complete_topic),
+    topic: Optional[str] = typer.Argument(None, help="Topic, or a field of it (/turtle1/pose/x, /a/b[0]).", autocompletion=_complete_topic),
+    bag: Optional[str] = typer.Option(None, "-b", "--bag", metavar="BAGFILE", help="Echo messages from a bag file (.bag or MCAP), no master needed."),
+    all_topics: bool = typer.Option(False, "-a", "--all", help="Display all messages in the bag (only with -b)."),
     count: Optional[int] = typer.Option(None, "-n", metavar="COUNT", help="Number of messages to echo."),
     plot: bool = typer.Option(False, "-p", help="Echo in a plotting friendly format (CSV)."),
     noarr: bool = typer.Option(False, "--noarr", help="Exclude arrays."),
@@ -185,22 +187,47 @@ def echo_command(
     width: Optional[int] = typer.Option(None, "-w", metavar="NUM_WIDTH", help="Fixed width for numeric values."),
     clear: bool = typer.Option(False, "-c", "--clear", help="Clear screen before printing next message."),
 ) -> None:
-    """Print messages of a topic (like `rostopic echo`); waits until the topic is published."""
+    """Print messages of a topic (like `rostopic echo`); waits until the topic is published, or reads a bag (-b)."""
     if width is not None and width < 2:
         _fail("ERROR: Fixed width for numeric values must be at least 2")
     from rostui.tools.topic.common import UsageError
     from rostui.tools.topic.echo import field_evaluator
     from rostui.tools.topic.runners import run_echo
 
-    name = _resolve(topic)
+    if all_topics and not bag:
+        _fail("ERROR: Display all option is only valid when echoing from bag files")
+    if offset and bag:
+        _fail("ERROR: offset time option is not valid with bag files")
+    if topic is None and not all_topics:
+        _fail("ERROR: topic must be specified")
+    name = None if all_topics or topic is None else _resolve(topic)
     try:
-        field_evaluator(name)  # malformed [index] specs are reported before connecting
+        field_evaluator(name or "")  # malformed [index] specs are reported before connecting
     except UsageError as e:
         _fail(f"ERROR: {e}")
+    if bag:
+        _echo_bag(bag, name, plot=plot, noarr=noarr, nostr=nostr, count=count, fixed_width=width, clear=clear)
+    assert name is not None
     _check_master()
     raise typer.Exit(_run_async(run_echo(
         name, _out, plot=plot, noarr=noarr, nostr=nostr, offset=offset, count=count,
         fixed_width=width, clear=clear)))
+
+
+def _echo_bag(path: str, topic: Optional[str], **options: Any) -> NoReturn:
+    """``echo -b``: print the bag's messages and exit (1 with one line when it cannot be read)."""
+    from rostui.tools.topic.bag_echo import echo_bag
+    from rostui.tools.topic.common import TopicToolError
+    from rostui.tools.topic.echo import EchoFormatter
+
+    formatter = EchoFormatter("", from_bag=True, **options)
+    try:
+        echo_bag(path, topic, formatter, _out)
+    except TopicToolError as e:
+        _fail(f"ERROR: {e}")
+    except (BrokenPipeError, KeyboardInterrupt):
+        pass
+    raise typer.Exit(0)
 
 
 @topic_app.command("hz")

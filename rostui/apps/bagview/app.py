@@ -1,7 +1,7 @@
 """BagViewApp: a bag as a video player (rqt_bag in the terminal).
 
-The bag is read into a :class:`~rostui.core.bag.index.BagIndex` in a worker
-thread; a :class:`~rostui.core.bag.transport.Transport` (the same scheduler as
+The bag's index (where each message lies, no payload) is read into a
+:class:`~rostui.core.bag.index.BagIndex` in a worker thread; a :class:`~rostui.core.bag.transport.Transport` (the same scheduler as
 ``rostui bag play``) runs on Textual's loop and publishes through a node
 ``/bag_view_...`` that advertises every topic with its recorded type. Without
 a master (or with ``publish=False``) the app still browses the bag. The
@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import asyncio
 import os
-from bisect import bisect_left
 import sys
 import time
 from collections.abc import Callable, Sequence
@@ -176,8 +175,8 @@ class BagViewApp(ReleasesOnExit, App[int]):
 
     @work(thread=True, exit_on_error=False)
     def _read_bag(self) -> None:
-        def progress(count: int) -> None:
-            self.call_from_thread(self.header.update, header_text(self.names, None, f"{count} messages read"))
+        def progress(text: str) -> None:
+            self.call_from_thread(self.header.update, header_text(self.names, None, text))
 
         try:
             index = load_index(self.paths, progress)
@@ -284,7 +283,7 @@ class BagViewApp(ReleasesOnExit, App[int]):
             return
         conn, t, data = self.index.item(position)
         track = self.index.tracks[topic]
-        number = bisect_left(track.positions, position) + 1
+        number = self.index.number_in_track(topic, position)
         self.inspector_title.update(_escape(f"{topic}  {conn.type}  #{number} of {track.count}  bag {t / 1e9:.6f}  "
                                             f"{wall_text(t)}  {len(data)} B"))
         try:
@@ -427,6 +426,8 @@ class BagViewApp(ReleasesOnExit, App[int]):
                 await asyncio.wait_for(node.shutdown("rostui bag view closed"), SHUTDOWN_TIMEOUT)
             except Exception:
                 pass
+        if self.index is not None:
+            self.index.close()
 
 
 def _escape(text: str) -> str:

@@ -4,13 +4,15 @@ from __future__ import annotations
 
 import heapq
 import os
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from typing import Any, Protocol
 
+from rostui.core.bag.fileindex import FileIndex
 from rostui.core.bag.mcapfile import COMPRESSIONS as MCAP_COMPRESSIONS
 from rostui.core.bag.mcapfile import MAGIC as MCAP_MAGIC
 from rostui.core.bag.mcapfile import McapBagReader, McapBagWriter
 from rostui.core.bag.model import BagError, BagSummary, Connection
+from rostui.core.bag.progress import Progress, counted
 from rostui.core.bag.rosbag2_0 import COMPRESSIONS as BAG_COMPRESSIONS
 from rostui.core.bag.rosbag2_0 import MAGIC as BAG_MAGIC
 from rostui.core.bag.rosbag2_0 import BagReader, BagWriter
@@ -24,10 +26,14 @@ class Reader(Protocol):
 
     path: str
     truncated: str
+    connections: dict[int, Connection]
 
     def messages(self) -> Iterator[tuple[Connection, int, bytes]]: ...
     def summary(self) -> BagSummary: ...
     def close(self) -> None: ...
+    def file_index(self) -> FileIndex | None: ...
+    def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex: ...
+    def payload(self, chunk: int, offset: int) -> bytes: ...
 
     @property
     def closed_properly(self) -> bool: ...
@@ -93,18 +99,46 @@ def open_writer(path: str, compression: str = "none", *, max_chunk_age: float = 
         raise BagError(f"cannot create {path}: {exc.strerror}") from None
 
 
+def unordered_notice(reader: Reader) -> str:
+    """Why ``reader`` plays in file order (it has no index to play it in time order), or ''."""
+    if reader.file_index() is not None:
+        return ""
+    return (f"{reader.path} has no index ({'cut short' if reader.truncated else 'not closed'}): its messages "
+            "play in file order; `rostui bag reindex` writes one")
+
+
+def indexed_messages(reader: Reader, index: FileIndex, start: int = 0) -> Iterator[tuple[Connection, int, bytes]]:
+    """``(connection, time_ns, data)`` of ``index``'s entries from position ``start`` on, payloads read
+    through the reader's chunk cache."""
+    conns = reader.connections
+    payload = reader.payload
+    for t, conn_id, chunk, offset in index.rows(start):
+        yield conns[conn_id], t, payload(chunk, offset)
+
+
+def time_ordered(reader: Reader) -> Iterator[tuple[Connection, int, bytes]]:
+    """One file's messages in time order through its index (ties in file order, as rosbag plays them);
+    in file order when it has none (:func:`unordered_notice` says so)."""
+    index = reader.file_index()
+    if index is None:
+        return reader.messages()
+    return indexed_messages(reader, index)
+
+
 def merged_messages(readers: Iterable[Reader]) -> Iterator[tuple[Connection, int, bytes, int]]:
     """Messages of several files in time order: ``(connection, time_ns, data, file_index)``."""
-    streams = [((t, i, conn, data) for conn, t, data in r.messages()) for i, r in enumerate(readers)]
+    streams = [((t, i, conn, data) for conn, t, data in time_ordered(r)) for i, r in enumerate(readers)]
     for t, i, conn, data in heapq.merge(*streams, key=lambda item: (item[0], item[1])):
         yield conn, t, data, i
 
 
-def copy_messages(reader: Reader, writer: Writer) -> int:
-    """Write every readable message of ``reader`` into ``writer``; returns how many."""
+def copy_messages(reader: Reader, writer: Writer, progress: Progress | None = None) -> int:
+    """Write every readable message of ``reader`` into ``writer``, in time order where the file has an index
+    (as rosbag's tools rewrite bags); returns how many (``progress`` follows)."""
     ids: dict[int, int] = {}
     count = 0
-    for conn, t, data in reader.messages():
+    total = reader.summary().message_count if progress is not None else 0
+    for conn, t, data in counted(time_ordered(reader), total, progress):
         new_id = ids.get(conn.id)
         if new_id is None:
             new_id = ids[conn.id] = len(ids)
@@ -115,7 +149,7 @@ def copy_messages(reader: Reader, writer: Writer) -> int:
     return count
 
 
-def convert(src: str, dst: str, compression: str = "none") -> int:
+def convert(src: str, dst: str, compression: str = "none", progress: Progress | None = None) -> int:
     """Copy a bag into a new file whose format follows its name; returns the message count."""
     if os.path.abspath(src) == os.path.abspath(dst):
         raise BagError("convert needs a different output file")
@@ -123,14 +157,14 @@ def convert(src: str, dst: str, compression: str = "none") -> int:
     try:
         writer = open_writer(dst, compression)
         try:
-            return copy_messages(reader, writer)
+            return copy_messages(reader, writer, progress)
         finally:
             writer.close()
     finally:
         reader.close()
 
 
-def reindex(path: str) -> tuple[int, str]:
+def reindex(path: str, progress: Progress | None = None) -> tuple[int, str]:
     """Rewrite a file cut short (or any file) in place with a full index.
 
     The original is kept as ``<name>.orig.<ext>`` like rosbag reindex does.
@@ -151,7 +185,7 @@ def reindex(path: str) -> tuple[int, str]:
         writer: Writer = (BagWriter(path, compression=compression) if rosbag
                           else McapBagWriter(path, compression=compression))
         try:
-            count = copy_messages(reader, writer)
+            count = copy_messages(reader, writer, progress)
         finally:
             writer.close()
         return count, reader.truncated

@@ -1,155 +1,210 @@
-"""A bag read into memory for browsing: every message in time order, per-topic times, random access.
+"""A bag opened for browsing: where every message lies, in time order, with per-topic times and random access.
 
 ``rostui bag view`` needs what a stream cannot give: message density per
 topic, the message at any time, and seeking both ways. :func:`load_index`
-reads every readable message of one or more files once (a file cut short is
-read up to its last complete record, and says so in :attr:`BagIndex.notices`).
+reads each file's own index (no payload is read), or, for a file that has none
+(not closed, or cut short), reads its chunks once to find its messages, and
+says so in :attr:`BagIndex.notices`. Payloads stay on disk and are read
+through each reader's cache of decompressed chunks when a message is shown or
+published, so memory is bounded by the number of messages, not their size.
 """
 
 from __future__ import annotations
 
 import os
-from bisect import bisect_left, bisect_right
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
-from rostui.core.bag.files import merged_messages, open_reader
+from rostui.core.bag.files import Reader, open_reader
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.transport import MessageItem
 
 
 @dataclass
 class TopicTrack:
-    """One topic's messages: their times and their positions in the whole bag."""
+    """One topic's messages: their times and their positions in the whole bag (both sorted)."""
 
     topic: str
     type: str
-    times: list[int] = field(default_factory=list)
-    positions: list[int] = field(default_factory=list)
-    size: int = 0
+    times: Any = None
+    positions: Any = None
 
     @property
     def count(self) -> int:
         """Messages on this topic."""
-        return len(self.times)
+        return 0 if self.times is None else int(self.times.shape[0])
 
 
 @dataclass
 class BagIndex:
-    """Every message of the bag(s) in time order, with per-topic tracks and the connections in order of
-    their first message."""
+    """Every message of the bag(s) in time order (columns: time, file, connection id, chunk, offset), with
+    per-topic tracks and the connections in order of their first message. Holds its files open until
+    :meth:`close`."""
 
     paths: list[str]
-    times: list[int] = field(default_factory=list)
-    conns: list[Connection] = field(default_factory=list)
-    datas: list[bytes] = field(default_factory=list)
+    readers: list[Reader] = field(default_factory=list)
+    times: Any = None
+    files: Any = None
+    conn_ids: Any = None
+    chunks: Any = None
+    offsets: Any = None
     tracks: dict[str, TopicTrack] = field(default_factory=dict)
     connections: list[Connection] = field(default_factory=list)
     notices: list[str] = field(default_factory=list)
-    size: int = 0
 
     def __len__(self) -> int:
-        return len(self.times)
+        return 0 if self.times is None else int(self.times.shape[0])
+
+    def close(self) -> None:
+        """Close the files."""
+        for reader in self.readers:
+            reader.close()
 
     @property
     def file_size(self) -> int:
-        """Bytes of the files on disk (what `rosbag info` calls size); ``size`` counts message bytes only."""
+        """Bytes of the files on disk (what `rosbag info` calls size)."""
         return sum(os.path.getsize(path) for path in self.paths if os.path.exists(path))
 
     @property
     def start_ns(self) -> int:
         """Time of the first message (0 when empty)."""
-        return self.times[0] if self.times else 0
+        return int(self.times[0]) if len(self) else 0
 
     @property
     def end_ns(self) -> int:
         """Time of the last message (0 when empty)."""
-        return self.times[-1] if self.times else 0
+        return int(self.times[-1]) if len(self) else 0
 
     @property
     def topics(self) -> list[str]:
         """Topic names, sorted."""
         return sorted(self.tracks)
 
+    def connection(self, position: int) -> Connection:
+        """The connection of the message at ``position``."""
+        return self.readers[int(self.files[position])].connections[int(self.conn_ids[position])]
+
     def item(self, position: int) -> MessageItem:
-        """The message at ``position`` (0-based, time order)."""
-        return self.conns[position], self.times[position], self.datas[position]
+        """The message at ``position`` (0-based, time order), its payload read from the file."""
+        reader = self.readers[int(self.files[position])]
+        data = reader.payload(int(self.chunks[position]), int(self.offsets[position]))
+        return reader.connections[int(self.conn_ids[position])], int(self.times[position]), data
 
     def position_at(self, t_ns: int) -> int:
         """Position of the first message at ``t_ns`` or later (``len`` when none)."""
-        return bisect_left(self.times, t_ns)
+        return int(self.times.searchsorted(t_ns, side="left")) if len(self) else 0
+
+    def number_in_track(self, topic: str, position: int) -> int:
+        """1-based number of the message at ``position`` among ``topic``'s messages."""
+        return int(self.tracks[topic].positions.searchsorted(position, side="left")) + 1
 
     def density(self, topic: str, bins: int, t0: int | None = None, t1: int | None = None) -> list[int]:
         """How many messages of ``topic`` fall in each of ``bins`` equal slices of ``[t0, t1]``."""
         track = self.tracks.get(topic)
         if track is None or bins <= 0:
             return [0] * max(bins, 0)
+        import numpy as np
+
         t0 = self.start_ns if t0 is None else t0
         t1 = self.end_ns if t1 is None else t1
         span = max(t1 - t0, 1)
-        edges = [bisect_left(track.times, t0 + span * i // bins) for i in range(bins)]
-        edges.append(bisect_right(track.times, t1))
-        return [max(0, edges[i + 1] - edges[i]) for i in range(bins)]
+        bounds = [t0 + span * i // bins for i in range(bins)]
+        edges = np.append(track.times.searchsorted(bounds, side="left"), track.times.searchsorted(t1, side="right"))
+        return [max(0, int(n)) for n in np.diff(edges)]
 
     def neighbour_time(self, topic: str, t_ns: int, direction: int) -> int | None:
         """Time of ``topic``'s next message after ``t_ns`` (``direction`` > 0) or its last one before it
         (< 0); None when there is none."""
         track = self.tracks.get(topic)
-        if track is None:
+        if track is None or not track.count:
             return None
         if direction > 0:
-            i = bisect_right(track.times, t_ns)
-            return track.times[i] if i < len(track.times) else None
-        i = bisect_left(track.times, t_ns) - 1
-        return track.times[i] if i >= 0 else None
+            i = int(track.times.searchsorted(t_ns, side="right"))
+            return int(track.times[i]) if i < track.count else None
+        i = int(track.times.searchsorted(t_ns, side="left")) - 1
+        return int(track.times[i]) if i >= 0 else None
 
     def message_at(self, topic: str, t_ns: int) -> int | None:
         """Position of ``topic``'s message under a cursor at ``t_ns``: the last one at or before it,
         else its first; None when the topic has no messages."""
         track = self.tracks.get(topic)
-        if track is None or not track.times:
+        if track is None or not track.count:
             return None
-        i = bisect_right(track.times, t_ns) - 1
-        return track.positions[max(i, 0)]
+        i = int(track.times.searchsorted(t_ns, side="right")) - 1
+        return int(track.positions[max(i, 0)])
 
 
-def load_index(paths: Sequence[str], progress: Callable[[int], None] | None = None) -> BagIndex:
-    """Read every readable message of ``paths`` (merged in time order); BagError when a file cannot be opened.
+def _file_index(reader: Reader, progress: Callable[[str], None] | None, notices: list[str]) -> Any:
+    """The reader's own index, or one found by reading its chunks (with a notice saying why)."""
+    index = reader.file_index()
+    if index is not None:
+        return index
+    size = max(os.path.getsize(reader.path), 1)
+    name = os.path.basename(reader.path)
 
-    ``progress(count)`` is called every few thousand messages.
-    """
-    readers = []
+    def report(done: int) -> None:
+        if progress is not None:
+            progress(f"{name} has no index: {100 * done // size}% read")
+
+    index = reader.scan_index(report)
+    if reader.truncated:
+        notices.append(f"{reader.path} ends early ({reader.truncated}): showing what is readable")
+    else:
+        notices.append(f"{reader.path} was not closed (recording cut short?): showing what is readable")
+    return index
+
+
+def load_index(paths: Sequence[str], progress: Callable[[str], None] | None = None) -> BagIndex:
+    """Open ``paths`` and gather where each message lies, merged in time order (ties: earlier file, then
+    file order); BagError when a file cannot be opened. ``progress(text)`` tells how reading goes."""
+    import numpy as np
+
+    readers: list[Reader] = []
     try:
         for path in paths:
             readers.append(open_reader(path))
-        index = BagIndex(list(paths))
-        seen: set[Connection] = set()
-        for conn, t, data, _i in merged_messages(readers):
-            position = len(index.times)
-            index.times.append(t)
-            index.conns.append(conn)
-            index.datas.append(data)
-            if conn not in seen:
-                seen.add(conn)
-                index.connections.append(conn)
-            track = index.tracks.get(conn.topic)
-            if track is None:
-                track = index.tracks[conn.topic] = TopicTrack(conn.topic, conn.type)
-            track.times.append(t)
-            track.positions.append(position)
-            track.size += len(data)
-            index.size += len(data)
-            if progress is not None and position % 5000 == 4999:
-                progress(position + 1)
+        index = BagIndex(list(paths), readers)
+        per_file = []
         for reader in readers:
-            if reader.truncated:
-                index.notices.append(f"{reader.path} ends early ({reader.truncated}): showing what is readable")
-            elif not reader.closed_properly:
-                index.notices.append(f"{reader.path} was not closed (recording cut short?): showing what is readable")
+            if progress is not None:
+                progress(f"reading the index of {os.path.basename(reader.path)}")
+            per_file.append(_file_index(reader, progress, index.notices))
+        times = np.concatenate([f.times for f in per_file])
+        files = np.concatenate([np.full(len(f), i, dtype=np.uint16) for i, f in enumerate(per_file)])
+        order = np.argsort(times, kind="stable")
+        index.times = times[order]
+        index.files = files[order]
+        index.conn_ids = np.concatenate([f.conn_ids for f in per_file])[order]
+        index.chunks = np.concatenate([f.chunks for f in per_file])[order]
+        index.offsets = np.concatenate([f.offsets for f in per_file])[order]
+        _gather_tracks(index)
         return index
-    finally:
+    except BaseException:
         for reader in readers:
             reader.close()
+        raise
+
+
+def _gather_tracks(index: BagIndex) -> None:
+    """Per-topic tracks and the connections in order of their first message."""
+    import numpy as np
+
+    # one key per (file, connection): where its first message is, and which topic it belongs to
+    keys = index.files.astype(np.uint64) << np.uint64(32) | index.conn_ids.astype(np.uint64)
+    unique, first = np.unique(keys, return_index=True)
+    topic_of_key: dict[int, str] = {}
+    for key, at in sorted(zip(unique.tolist(), first.tolist()), key=lambda pair: pair[1]):
+        conn = index.readers[key >> 32].connections[key & 0xFFFFFFFF]
+        index.connections.append(conn)
+        topic_of_key[key] = conn.topic
+        if conn.topic not in index.tracks:
+            index.tracks[conn.topic] = TopicTrack(conn.topic, conn.type)
+    for topic, track in index.tracks.items():
+        wanted = np.array([k for k, t in topic_of_key.items() if t == topic], dtype=np.uint64)
+        positions = np.flatnonzero(np.isin(keys, wanted))
+        track.positions = positions
+        track.times = index.times[positions]
 
 
 class IndexSource:
@@ -158,10 +213,15 @@ class IndexSource:
     def __init__(self, index: BagIndex) -> None:
         self.index = index
         self.position = 0
+        self._read: tuple[int, MessageItem] | None = None
 
     def peek(self) -> MessageItem | None:
         """The message at the read position, or None at the end."""
-        return self.index.item(self.position) if self.position < len(self.index) else None
+        if self.position >= len(self.index):
+            return None
+        if self._read is None or self._read[0] != self.position:
+            self._read = (self.position, self.index.item(self.position))
+        return self._read[1]
 
     def advance(self) -> None:
         """Move past the message at the read position."""

@@ -9,17 +9,20 @@ file was closed and otherwise streams records up to the first incomplete one.
 
 from __future__ import annotations
 
+import io
+import logging
 import os
 import struct
 import time
 import zlib
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import Any
 
-from mcap.data_stream import RecordBuilder
+from mcap.data_stream import ReadDataStream, RecordBuilder
 from mcap.opcode import Opcode
 from mcap.records import Channel, ChunkIndex, DataEnd, Footer, Header, MessageIndex, Schema, Statistics, SummaryOffset
 
+from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, FileIndex
 from rostui.core.bag.iov import Parts
 from rostui.core.bag.model import BagError, BagSummary, Connection
 from rostui.core.bag.sink import open_append
@@ -34,6 +37,8 @@ _CHUNK_HEAD = struct.Struct("<BQQQQI")  # opcode, record length, start, end, unc
 _U32 = struct.Struct("<I")
 _U64 = struct.Struct("<Q")
 OP_CHUNK, OP_MESSAGE = 0x06, 0x05
+_MESSAGE_FIELDS = struct.Struct("<HIQ")  # channel, sequence, log time (publish time follows)
+_INDEX_ENTRY = [("time", "<u8"), ("offset", "<u8")]
 OP_PADDING = 0x80
 """A private record (the spec leaves 0x80-0xFF to applications; readers skip them): zeros before a chunk that
 put its big message on a block boundary, so the recorder's direct writes take it without a copy."""
@@ -53,6 +58,33 @@ def _compress(kind: str, data: bytes) -> bytes:
     import zstandard
 
     return zstandard.compress(data)
+
+
+def _decompress(kind: str, data: bytes) -> bytes:
+    if kind in ("", "none"):
+        return data
+    if kind == "lz4":
+        import lz4.frame
+
+        plain: bytes = lz4.frame.decompress(data)
+        return plain
+    if kind == "zstd":
+        import zstandard
+
+        return zstandard.ZstdDecompressor().decompressobj().decompress(data)
+    raise BagError(f"unsupported chunk compression '{kind}'")
+
+
+def _walk(records: bytes) -> Iterator[tuple[int, int, bytes]]:
+    """``(offset, opcode, body)`` of each record in a chunk's records."""
+    pos, end = 0, len(records)
+    while pos + 9 <= end:
+        opcode = records[pos]
+        (length,) = _U64.unpack_from(records, pos + 1)
+        if pos + 9 + length > end:
+            raise BagError("a record runs past the end of its chunk")
+        yield pos, opcode, records[pos + 9:pos + 9 + length]
+        pos += 9 + length
 
 
 def _built(builder: RecordBuilder) -> bytes:
@@ -305,17 +337,24 @@ class McapBagWriter:
             self._cut()
 
 
-def _connection_of(channel: Any, schema: Any) -> Connection:
+_log = logging.getLogger("rostui.bag")
+
+
+def _connection_of(channel: Any, schema: Any, md5sum: str) -> Connection:
+    """The bag connection of an MCAP channel; ``md5sum`` is used when the channel's metadata has none."""
     meta = dict(channel.metadata or {})
     definition = schema.data.decode("utf-8", "replace") if schema is not None else ""
     return Connection(channel.id, channel.topic, schema.name if schema is not None else "",
-                      meta.get("md5sum", ""), definition, meta.get("callerid", ""), meta.get("latching", "0") == "1")
+                      meta.get("md5sum") or md5sum, definition, meta.get("callerid", ""),
+                      meta.get("latching", "0") == "1")
 
 
-class McapBagReader:
-    """Reads an MCAP (ros1 profile) file; one cut short reads up to its last complete record."""
+class McapBagReader(ChunkedFile):
+    """Reads an MCAP (ros1 profile) file in file order, or through its index; one cut short reads up to its
+    last complete record."""
 
     def __init__(self, path: str) -> None:
+        super().__init__()
         self.path = path
         try:
             self.file = open(path, "rb")
@@ -328,11 +367,36 @@ class McapBagReader:
         self.file.seek(0)
         self.connections: dict[int, Connection] = {}
         self.truncated = ""
+        self._md5s: dict[int, str] = {}  # by schema id (0: no schema), for channels without md5sum metadata
         self._summary = self._read_summary()
 
     def close(self) -> None:
         """Close the file."""
         self.file.close()
+
+    def _connection(self, channel: Any, schema: Any) -> Connection:
+        """The connection of a channel, its md5sum computed from the schema when the metadata lacks one."""
+        if (channel.metadata or {}).get("md5sum"):
+            return _connection_of(channel, schema, "")
+        return _connection_of(channel, schema, self._schema_md5(channel, schema))
+
+    def _schema_md5(self, channel: Any, schema: Any) -> str:
+        """The md5sum of a schema's definition, once per schema; a one-line warning when it cannot be had."""
+        from rostui.core.bag.schema_md5 import UNKNOWN_MD5, schema_md5
+
+        key = schema.id if schema is not None else 0
+        md5 = self._md5s.get(key)
+        if md5 is not None:
+            return md5
+        if schema is None:
+            md5, problem, what = UNKNOWN_MD5, "it has no schema", f"channel {channel.topic}"
+        else:
+            md5, problem = schema_md5(schema.name, schema.encoding, schema.data)
+            what = f"type {schema.name or '(unnamed)'}"
+        if problem:
+            _log.warning("%s: no md5sum for %s (%s): using the wildcard '%s'", self.path, what, problem, UNKNOWN_MD5)
+        self._md5s[key] = md5
+        return md5
 
     def _read_summary(self) -> Any:
         from mcap.reader import SeekingReader
@@ -355,6 +419,149 @@ class McapBagReader:
     def closed_properly(self) -> bool:
         """True when the file ends with a summary section (the writer finished it)."""
         return self._summary is not None
+
+    def _read_index(self) -> FileIndex | None:
+        # the summary's chunk indexes and the message indexes after each chunk (a chunk without message
+        # indexes is read instead); None without a summary, or with messages outside chunks
+        summary = self._summary
+        if summary is None:
+            return None
+        stats = summary.statistics
+        if not summary.chunk_indexes and (stats is None or stats.message_count):
+            return None
+        try:
+            return self._read_file_index(summary)
+        except (BagError, EOFError, struct.error, KeyError, ValueError) as exc:
+            self.truncated = self.truncated or f"its index cannot be read ({exc})"
+            return None
+
+    def _read_file_index(self, summary: Any) -> FileIndex:
+        import numpy as np
+
+        for cid, channel in summary.channels.items():
+            self.connections[cid] = self._connection(channel, summary.schemas.get(channel.schema_id))
+        self.chunk_table = []
+        parts: list[ChunkEntries] = []
+        for number, index in enumerate(sorted(summary.chunk_indexes, key=lambda i: i.chunk_start_offset)):
+            self.chunk_table.append(self._chunk_location(index.chunk_start_offset))
+            if not index.message_index_offsets:
+                parts.append(self._chunk_part(number))
+                continue
+            self.file.seek(index.chunk_start_offset + index.chunk_length)
+            block = self.file.read(index.message_index_length)
+            pos = 0
+            while pos + 9 <= len(block):
+                opcode = block[pos]
+                (length,) = _U64.unpack_from(block, pos + 1)
+                body = block[pos + 9:pos + 9 + length]
+                pos += 9 + length
+                if opcode != Opcode.MESSAGE_INDEX or len(body) < 6:
+                    continue
+                channel_id = struct.unpack_from("<H", body)[0]
+                (records_length,) = _U32.unpack_from(body, 2)
+                entries = np.frombuffer(body, dtype=_INDEX_ENTRY, count=records_length // 16, offset=6)
+                if channel_id in self.connections:
+                    parts.append(ChunkEntries(entries["time"].astype(np.int64),
+                                              np.full(len(entries), channel_id, dtype=np.uint32),
+                                              entries["offset"], number))
+        return FileIndex.build(parts)
+
+    def _chunk_location(self, at: int) -> tuple[int, int, str]:
+        """(records' position, stored length, compression) of the chunk record at ``at``."""
+        self.file.seek(at)
+        head = self.file.read(_CHUNK_HEAD.size + 4)
+        if len(head) < _CHUNK_HEAD.size + 4 or head[0] != OP_CHUNK:
+            raise BagError(f"no chunk at byte {at}")
+        (name_length,) = _U32.unpack_from(head, _CHUNK_HEAD.size)
+        compression = self.file.read(name_length).decode()
+        (stored,) = _U64.unpack(self.file.read(8))
+        return self.file.tell(), stored, compression
+
+    def _chunk_part(self, number: int) -> ChunkEntries:
+        """The entries of chunk ``number`` found by reading its records (schemas and channels taken in)."""
+        times, conn_ids, offsets = [], [], []
+        schemas: dict[int, Any] = {}
+        for at, opcode, body in _walk(self.cache.get(number)):
+            if opcode == OP_MESSAGE:
+                channel_id, _seq, log_time = _MESSAGE_FIELDS.unpack_from(body)
+                if channel_id in self.connections:
+                    times.append(log_time)
+                    conn_ids.append(channel_id)
+                    offsets.append(at)
+            else:
+                self._take_definition(opcode, body, schemas)
+        return ChunkEntries(times, conn_ids, offsets, number)
+
+    def _take_definition(self, opcode: int, body: bytes, schemas: dict[int, Any]) -> None:
+        """Remember a schema record; turn a channel record into a connection."""
+        if opcode == Opcode.SCHEMA:
+            schema = Schema.read(ReadDataStream(io.BytesIO(body)))
+            schemas[schema.id] = schema
+        elif opcode == Opcode.CHANNEL:
+            channel = Channel.read(ReadDataStream(io.BytesIO(body)))
+            if channel.id not in self.connections:
+                self.connections[channel.id] = self._connection(channel, schemas.get(channel.schema_id))
+
+    def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex:
+        """Where every readable message lies, by reading every chunk once (payloads are not kept); a
+        file cut short is read up to its last complete record. ``progress(bytes_read)`` after each chunk."""
+        self.chunk_table = []
+        parts: list[ChunkEntries] = []
+        loose: tuple[list[int], list[int], list[int]] = ([], [], [])
+        schemas: dict[int, Any] = {}
+        self.file.seek(len(MAGIC))
+        pos = len(MAGIC)
+        while pos + 9 <= self.size:
+            self.file.seek(pos)
+            head = self.file.read(9)
+            opcode = head[0]
+            (length,) = _U64.unpack_from(head, 1)
+            if pos + 9 + length > self.size:
+                self.truncated = f"the file ends in an incomplete record at byte {pos}"
+                break
+            if opcode == OP_CHUNK:
+                location = self._chunk_location(pos)
+                number = len(self.chunk_table)
+                self.chunk_table.append(location)
+                try:
+                    parts.append(self._chunk_part(number))
+                except Exception as exc:  # bad compression or a damaged chunk: what came before stays
+                    self.chunk_table.pop()
+                    self.truncated = f"a chunk at byte {pos} cannot be read ({type(exc).__name__})"
+                    break
+                if progress is not None:
+                    progress(pos + 9 + length)
+            elif opcode == OP_MESSAGE:
+                body = self.file.read(_MESSAGE_FIELDS.size)
+                channel_id, _seq, log_time = _MESSAGE_FIELDS.unpack_from(body)
+                if channel_id in self.connections:
+                    loose[0].append(log_time)
+                    loose[1].append(channel_id)
+                    loose[2].append(pos)
+            elif opcode in (Opcode.SCHEMA, Opcode.CHANNEL):
+                self._take_definition(opcode, self.file.read(length), schemas)
+            elif opcode in (Opcode.DATA_END, Opcode.FOOTER):
+                break
+            pos += 9 + length
+        if loose[0]:
+            parts.append(ChunkEntries(*loose, NO_CHUNK))
+        return FileIndex.build(parts, from_file_index=False)
+
+    def _decompress_chunk(self, kind: str, data: bytes) -> bytes:
+        return _decompress(kind, data)
+
+    def payload(self, chunk: int, offset: int) -> bytes:
+        """The serialised message whose record starts at ``offset`` of chunk ``chunk``'s records (or of
+        the file, for a message outside any chunk), as a :class:`FileIndex` locates it."""
+        if chunk == NO_CHUNK:
+            self.file.seek(offset)
+            head = self.file.read(9)
+            (length,) = _U64.unpack_from(head, 1)
+            body: bytes = self.file.read(length)
+            return body[_MESSAGE_FIELDS.size + 8:]
+        records = self.cache.get(chunk)
+        (length,) = _U64.unpack_from(records, offset + 1)
+        return records[offset + 9 + _MESSAGE_FIELDS.size + 8:offset + 9 + length]
 
     def messages(self) -> Iterator[tuple[Connection, int, bytes]]:
         """``(connection, time_ns, data)`` in file order; stops at the first incomplete record."""
@@ -380,7 +587,7 @@ class McapBagReader:
                 schemas[record.id] = record
             elif isinstance(record, Channel):
                 if record.id not in self.connections:
-                    self.connections[record.id] = _connection_of(record, schemas.get(record.schema_id))
+                    self.connections[record.id] = self._connection(record, schemas.get(record.schema_id))
 
     def summary(self) -> BagSummary:
         """Counts and times from the summary section, or from reading every record when there is none."""
@@ -388,7 +595,7 @@ class McapBagReader:
         summary = self._summary
         if summary is not None and summary.statistics is not None:
             for cid, channel in summary.channels.items():
-                self.connections[cid] = _connection_of(channel, summary.schemas.get(channel.schema_id))
+                self.connections[cid] = self._connection(channel, summary.schemas.get(channel.schema_id))
             stats = summary.statistics
             out.counts = {cid: n for cid, n in stats.channel_message_counts.items()}
             out.start_ns, out.end_ns = stats.message_start_time, stats.message_end_time

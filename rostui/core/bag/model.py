@@ -49,6 +49,11 @@ class BagSummary:
     """Per compression kind: (uncompressed, stored) bytes of all its chunks."""
     closed: bool = True
     problem: str = ""
+    info_span: tuple[int, int] | None = None
+    """rosbag info's start and end: the first chunk's start time and the last chunk's end time, chunks in
+    file order (a ``.bag``'s chunk infos). Unlike ``start_ns``/``end_ns`` (the earliest and latest message)
+    they can be inside the bag's time range when chunks are out of time order; None where a format has no
+    such records."""
 
     def add_chunk(self, kind: str, uncompressed: int, stored: int) -> None:
         """Count one chunk of ``kind`` (``none``, ``lz4``, ...) and its sizes."""
@@ -60,6 +65,11 @@ class BagSummary:
     def message_count(self) -> int:
         """All messages in the file."""
         return sum(self.counts.values())
+
+    @property
+    def chunk_count(self) -> int:
+        """All chunks in the file."""
+        return sum(self.chunk_compression.values())
 
 
 def connection_key(topic: str, header: dict[str, str]) -> tuple[str, str, str, str, bool]:

@@ -2,7 +2,9 @@
 
 Each topic is advertised with the recorded type, md5sum and definition (so any
 subscriber of that type accepts it, known locally or not) and latched when it
-was latched while recording. The raw bytes are published unchanged.
+was latched while recording. The raw bytes are published unchanged. Messages
+play in time order through each file's index, whatever order the file keeps
+them in; a file without an index plays in file order, and a line on stderr says so.
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from rostui.core.bag.clock import DEFAULT_HZ, BagClock
-from rostui.core.bag.files import Reader, merged_messages, open_reader
+from rostui.core.bag.files import Reader, merged_messages, open_reader, unordered_notice
 from rostui.core.bag.model import BagError, BagSummary, Connection
 from rostui.core.bag.transport import MessageItem, StreamSource, Transport
 
@@ -54,21 +56,28 @@ def status_text(state: str, bag_time_ns: int, elapsed_s: float, total_s: float) 
             "               ")
 
 
-async def advertise_connections(node: Any, conns: Sequence[Connection], queue_size: int = 100
-                                ) -> dict[tuple[str, str], Any]:
+async def advertise_connections(node: Any, conns: Sequence[Connection], queue_size: int = 100, *,
+                                warn: Callable[[str], None] | None = None) -> dict[tuple[str, str], Any]:
     """Advertise each connection's topic with its recorded type, md5sum and definition (latched when any
     connection of the topic was); returns the publishers by ``(topic, md5sum)``.
 
-    A topic recorded with two types is published with the first.
+    A topic recorded with two types is published with the first. A connection recorded without a type
+    (an MCAP channel with no schema) cannot be advertised: it is skipped, and ``warn`` says so once a topic.
     """
     from rostui.core.node import AnyMsg
     from rostui.core.node.topics import TopicType
 
     latched = {c.topic for c in conns if c.latching}
     publishers: dict[tuple[str, str], Any] = {}
+    untyped: set[str] = set()
     for conn in conns:
         key = (conn.topic, conn.md5sum)
         if key in publishers:
+            continue
+        if not conn.type:
+            if warn is not None and conn.topic not in untyped:
+                warn(f"{conn.topic} was recorded without a message type: it is not played")
+            untyped.add(conn.topic)
             continue
         ttype = TopicType(conn.type, conn.md5sum, conn.definition)
         try:
@@ -83,10 +92,12 @@ class Player:
     """Publishes the messages of one or more bags in time order, through one :class:`Transport`."""
 
     def __init__(self, node: Any, opts: PlayOptions, readers: list[Reader], *,
-                 status: Callable[[str], None] | None = None, summaries: list[BagSummary] | None = None) -> None:
+                 status: Callable[[str], None] | None = None, summaries: list[BagSummary] | None = None,
+                 warn: Callable[[str], None] | None = None) -> None:
         if opts.rate <= 0:
             raise BagError("the rate must be greater than 0")
         self.node = node
+        self.warn = warn
         self.opts = opts
         self.readers = readers
         self.status = status
@@ -133,7 +144,7 @@ class Player:
     async def advertise(self) -> None:
         """Advertise every topic to play with its recorded type; latched when recorded latched."""
         conns = [c for conns in self._topics().values() for c in conns]
-        self.publishers = await advertise_connections(self.node, conns, self.opts.queue_size)
+        self.publishers = await advertise_connections(self.node, conns, self.opts.queue_size, warn=self.warn)
         if self.clock is not None:
             await self.clock.advertise(self.node)
 
@@ -255,9 +266,14 @@ async def _drain(node: Any, timeout: float) -> None:
         await asyncio.sleep(0.02)
 
 
-async def play(opts: PlayOptions, argv: Sequence[str] = (), *,
-               status: Callable[[str], None] | None = None) -> PlayStats:
-    """Open the files, start a ``play_...`` node and play; Ctrl-C stops."""
+def _stderr_line(text: str) -> None:
+    print(text, file=sys.stderr, flush=True)
+
+
+async def play(opts: PlayOptions, argv: Sequence[str] = (), *, status: Callable[[str], None] | None = None,
+               warn: Callable[[str], None] = _stderr_line) -> PlayStats:
+    """Open the files, start a ``play_...`` node and play; Ctrl-C stops. ``warn`` gets one line per file
+    that cannot play in time order."""
     from rostui.core.node import AsyncNode, MasterUnreachableError
 
     if not opts.files:
@@ -273,13 +289,16 @@ async def play(opts: PlayOptions, argv: Sequence[str] = (), *,
             if not summary.message_count:
                 why = f" ({summary.problem})" if summary.problem else ""
                 raise BagError(f"{path} holds no messages{why}")
+            notice = unordered_notice(reader)
+            if notice:
+                warn(notice)
         node = AsyncNode("play", anonymous=True, argv=list(argv))
         try:
             await node.start()
         except MasterUnreachableError as exc:
             raise BagError(str(exc)) from None
         loop = asyncio.get_running_loop()
-        player = Player(node, opts, readers, status=status, summaries=summaries)
+        player = Player(node, opts, readers, status=status, summaries=summaries, warn=warn)
         keys = KeyReader(player)
         try:
             for sig in (signal.SIGINT, signal.SIGTERM):

@@ -13,9 +13,10 @@ import bz2
 import os
 import struct
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import Any, BinaryIO
 
+from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, FileIndex
 from rostui.core.bag.iov import Parts
 from rostui.core.bag.model import BagError, BagSummary, Connection
 from rostui.core.bag.sink import open_append
@@ -32,6 +33,8 @@ PAD_FIELD = "pad"
 """A chunk header field of spaces that puts the chunk's big message on a block boundary, so the recorder's
 direct writes take it without a copy (see :mod:`rostui.core.bag.sink`)."""
 _TIME = struct.Struct("<II")
+_INDEX_ENTRY = [("sec", "<u4"), ("nsec", "<u4"), ("offset", "<u4")]
+"""An index-data entry (version 1): time and the message record's offset in its decompressed chunk."""
 
 
 def _field(name: str, value: bytes) -> bytes:
@@ -81,13 +84,24 @@ def _compress(kind: str, data: bytes) -> bytes:
     if kind == "bz2":
         return bz2.compress(data)
     if kind == "lz4":
-        import lz4.frame
-
-        # roslz4 (rosbag's reader) takes no content-size field: frames as it writes them itself
-        packed: bytes = lz4.frame.compress(data, block_size=lz4.frame.BLOCKSIZE_MAX1MB, content_checksum=True,
-                                           store_size=False)
-        return packed
+        return _roslz4_frame(data)
     return data
+
+
+def _roslz4_frame(data: bytes) -> bytes:
+    """``data`` as one lz4 frame in the form roslz4 (rosbag's lz4 library) writes, the only form its reader
+    takes: independent 1 MiB blocks, no block checksums, no content size, a content checksum.
+
+    roslz4 refuses linked blocks, python-lz4's default, which a chunk over one block needs.  The streaming
+    compressor keeps the 1 MiB block size id for small chunks too (``lz4.frame.compress`` would lower it), and
+    one ``compress`` call cuts blocks at every 1 MiB of the chunk, as roslz4 does.
+    """
+    import lz4.frame
+
+    frame = lz4.frame.LZ4FrameCompressor(block_size=lz4.frame.BLOCKSIZE_MAX1MB, block_linked=False,
+                                         block_checksum=False, content_checksum=True, auto_flush=True)
+    packed: bytes = frame.begin() + frame.compress(data) + frame.flush()
+    return packed
 
 
 def _decompress(kind: str, data: bytes) -> bytes:
@@ -262,10 +276,12 @@ class BagWriter:
             self.out.close()
 
 
-class BagReader:
-    """Reads a rosbag v2.0 file in file order; a file cut short reads up to its last complete chunk."""
+class BagReader(ChunkedFile):
+    """Reads a rosbag v2.0 file in file order, or through its index; a file cut short reads up to its last
+    complete chunk."""
 
     def __init__(self, path: str) -> None:
+        super().__init__()
         self.path = path
         try:
             self.file: BinaryIO = open(path, "rb")
@@ -288,10 +304,14 @@ class BagReader:
             self.file.close()
             raise BagError(f"{path}: the file header record is missing")
         self.index_pos: int = struct.unpack("<Q", fields["index_pos"])[0]
+        count = fields.get("chunk_count", b"")
+        self.chunk_count = _U32.unpack(count)[0] if len(count) == 4 else 0
         self.data_start = self.file.tell()
         self.connections: dict[int, Connection] = {}
         self.truncated = ""
         self.last_data_length = 0
+        self.record_at = 0
+        """Where the record :meth:`_records` yielded last starts."""
 
     def close(self) -> None:
         """Close the file."""
@@ -348,7 +368,124 @@ class BagReader:
                 return
             if fields.get("op") == bytes([OP_INDEX_DATA]) and with_chunk_data:
                 continue
+            self.record_at = at
             yield fields, data
+
+    def _read_index(self) -> FileIndex | None:
+        if not self.closed_properly:
+            return None
+        try:
+            return self._read_file_index()
+        except (BagError, EOFError, struct.error, KeyError, ValueError):
+            return None
+
+    def _read_file_index(self) -> FileIndex:
+        self.file.seek(self.index_pos)
+        chunk_positions: list[int] = []
+        while self.file.tell() < self.size:
+            fields, data = self._read_record()
+            op = fields.get("op")
+            if op == bytes([OP_CONNECTION]):
+                self._connection(fields, data)
+            elif op == bytes([OP_CHUNK_INFO]):
+                chunk_positions.append(struct.unpack("<Q", fields["chunk_pos"])[0])
+        if len(chunk_positions) != self.chunk_count:
+            raise BagError(f"the index lists {len(chunk_positions)} of {self.chunk_count} chunks")
+        self.chunk_table = []
+        parts: list[ChunkEntries] = []
+        for number, pos in enumerate(sorted(chunk_positions)):
+            self.file.seek(pos)
+            fields, _ = self._read_record(skip_chunk_data=True)
+            if fields.get("op") != bytes([OP_CHUNK]):
+                raise BagError(f"no chunk at byte {pos}")
+            end = self.file.tell()
+            self.chunk_table.append((end - self.last_data_length, self.last_data_length,
+                                      fields.get("compression", b"none").decode()))
+            while self.file.tell() < self.size:
+                at = self.file.tell()
+                fields, data = self._read_record(skip_chunk_data=True)
+                if fields.get("op") != bytes([OP_INDEX_DATA]):
+                    self.file.seek(at)
+                    break
+                import numpy as np
+
+                entries = np.frombuffer(data, dtype=_INDEX_ENTRY, count=_U32.unpack(fields["count"])[0])
+                times = entries["sec"].astype(np.int64) * 1_000_000_000 + entries["nsec"]
+                conn_id = _U32.unpack(fields["conn"])[0]
+                parts.append(ChunkEntries(times, np.full(len(entries), conn_id, dtype=np.uint32),
+                                          entries["offset"], number))
+        return FileIndex.build(parts)
+
+    def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex:
+        """Where every readable message lies, by reading every chunk once (payloads are not kept).
+
+        ``progress(bytes_read)`` is called after each chunk.
+        """
+        self.chunk_table = []
+        parts: list[ChunkEntries] = []
+        loose: list[tuple[int, int, int]] = []
+        for fields, data in self._records(with_chunk_data=True):
+            op = fields.get("op")
+            if op == bytes([OP_CONNECTION]):
+                self._connection(fields, data)
+            elif op == bytes([OP_CHUNK]):
+                kind = fields["compression"].decode()
+                try:
+                    plain = _decompress(kind, data)
+                except Exception as exc:
+                    self.truncated = f"a chunk does not decompress ({exc})"
+                    break
+                number = len(self.chunk_table)
+                self.chunk_table.append((self.file.tell() - len(data), len(data), kind))
+                times, conn_ids, offsets = [], [], []
+                for conn_id, t, offset in self._chunk_entries(plain):
+                    times.append(t)
+                    conn_ids.append(conn_id)
+                    offsets.append(offset)
+                parts.append(ChunkEntries(times, conn_ids, offsets, number))
+                if progress is not None:
+                    progress(self.file.tell())
+            elif op == bytes([OP_MSG_DATA]):
+                conn_id = _U32.unpack(fields["conn"])[0]
+                if conn_id in self.connections:
+                    loose.append((_time_ns(fields["time"]), conn_id, self.record_at))
+        if loose:
+            parts.append(ChunkEntries([t for t, _, _ in loose], [c for _, c, _ in loose],
+                                      [o for _, _, o in loose], NO_CHUNK))
+        return FileIndex.build(parts, from_file_index=False)
+
+    def _chunk_entries(self, plain: bytes) -> Iterator[tuple[int, int, int]]:
+        """``(conn_id, time_ns, offset)`` of each message record in a decompressed chunk; connection
+        records are taken in on the way."""
+        view = memoryview(plain)
+        pos, end = 0, len(plain)
+        while pos + 4 <= end:
+            at = pos
+            (hlen,) = _U32.unpack_from(view, pos)
+            fields = parse_header(view[pos + 4:pos + 4 + hlen])
+            pos += 4 + hlen
+            (dlen,) = _U32.unpack_from(view, pos)
+            pos += 4 + dlen
+            op = fields.get("op")
+            if op == bytes([OP_CONNECTION]):
+                self._connection(fields, plain[pos - dlen:pos])
+            elif op == bytes([OP_MSG_DATA]):
+                yield _U32.unpack(fields["conn"])[0], _time_ns(fields["time"]), at
+
+    def _decompress_chunk(self, kind: str, data: bytes) -> bytes:
+        return _decompress(kind, data)
+
+    def payload(self, chunk: int, offset: int) -> bytes:
+        """The serialised message whose record starts at ``offset`` of chunk ``chunk`` (or of the file,
+        for a message outside any chunk), as a :class:`FileIndex` locates it."""
+        if chunk == NO_CHUNK:
+            self.file.seek(offset)
+            return self._read_record()[1]
+        plain = self.cache.get(chunk)
+        (hlen,) = _U32.unpack_from(plain, offset)
+        pos = offset + 4 + hlen
+        (dlen,) = _U32.unpack_from(plain, pos)
+        return plain[pos + 4:pos + 4 + dlen]
 
     def messages(self) -> Iterator[tuple[Connection, int, bytes]]:
         """``(connection, time_ns, data)`` in file order, up to the last complete chunk."""
@@ -389,10 +526,15 @@ class BagReader:
                 yield conn, _time_ns(fields["time"]), data
 
     def summary(self) -> BagSummary:
-        """Counts and times from the index records, without decompressing any chunk."""
+        """Counts and times from the index records, without decompressing any chunk.
+
+        Counts and rosbag info's start and end come from the chunk info records when the file has them (as
+        rosbag reads them); a file without (not closed) takes them from the index records after each chunk.
+        """
         summary = BagSummary(self.path, "rosbag", "2.0", self.size, closed=self.closed_properly)
-        starts: list[int] = []
-        ends: list[int] = []
+        index_counts: dict[int, int] = {}
+        chunk_spans: list[list[int]] = []
+        chunk_infos: list[tuple[int, int, dict[int, int]]] = []
         for fields, data in self._records(with_chunk_data=False):
             op = fields.get("op")
             if op == bytes([OP_CONNECTION]):
@@ -402,20 +544,42 @@ class BagReader:
                 summary.add_chunk(fields.get("compression", b"none").decode(),
                                   _U32.unpack(size)[0] if len(size) == 4 else self.last_data_length,
                                   self.last_data_length)
+                chunk_spans.append([])
             elif op == bytes([OP_INDEX_DATA]):
                 conn_id = _U32.unpack(fields["conn"])[0]
                 count = _U32.unpack(fields["count"])[0]
-                summary.counts[conn_id] = summary.counts.get(conn_id, 0) + count
+                index_counts[conn_id] = index_counts.get(conn_id, 0) + count
                 stamps = [_time_ns(data[i:i + 8]) for i in range(0, count * 12, 12)]
-                if stamps:
-                    starts.append(min(stamps))
-                    ends.append(max(stamps))
+                if stamps and chunk_spans:
+                    chunk_spans[-1].extend((min(stamps), max(stamps)))
+            elif op == bytes([OP_CHUNK_INFO]):
+                try:
+                    chunk_infos.append(_chunk_info(fields, data))
+                except (KeyError, struct.error):
+                    self.truncated = "a chunk info record is malformed"
         if not self.closed_properly:
             # connection records live inside chunks: read them from the chunks' data
             for conn, _t, _d in self.messages():
                 pass
-        summary.connections = [self.connections[c] for c in sorted(self.connections)]
-        summary.start_ns = min(starts) if starts else 0
-        summary.end_ns = max(ends) if ends else 0
+        summary.connections = list(self.connections.values())
+        spans = [(min(s), max(s)) for s in chunk_spans if s]
+        if chunk_infos:
+            for _start, _end, counts in chunk_infos:
+                for conn_id, count in counts.items():
+                    summary.counts[conn_id] = summary.counts.get(conn_id, 0) + count
+            summary.info_span = (chunk_infos[0][0], chunk_infos[-1][1])
+            spans += [(start, end) for start, end, _counts in chunk_infos]
+        else:
+            summary.counts = index_counts
+            summary.info_span = (spans[0][0], spans[-1][1]) if spans else None
+        summary.start_ns = min((start for start, _ in spans), default=0)
+        summary.end_ns = max((end for _, end in spans), default=0)
         summary.problem = self.truncated
         return summary
+
+
+def _chunk_info(fields: dict[str, bytes], data: bytes) -> tuple[int, int, dict[int, int]]:
+    """A chunk info record's start and end time and its message count per connection."""
+    count = _U32.unpack(fields["count"])[0]
+    counts = {_U32.unpack_from(data, 8 * i)[0]: _U32.unpack_from(data, 8 * i + 4)[0] for i in range(count)}
+    return _time_ns(fields["start_time"]), _time_ns(fields["end_time"]), counts

@@ -97,9 +97,12 @@ def _check_names(spec: MsgSpec) -> None:
                                    f"(field {f.name})", spec.source)
         if f.array_len is not None and (not isinstance(f.array_len, int) or f.array_len < 0):
             raise MessageSpecError(f"{spec.type_name}: bad array length of field {f.name}", spec.source)
+    field_names = {f.name for f in spec.fields}
     for c in spec.constants:
         if not is_valid_name(c.name) or c.name in RESERVED_NAMES:
             raise MessageSpecError(f"{spec.type_name}: {shown(c.name)} cannot be a constant's name", spec.source)
+        if c.name in field_names:
+            raise MessageSpecError(f"{spec.type_name}: {c.name} is both a constant and a field", spec.source)
 
 
 def check_spec(spec: MsgSpec, get_spec: Callable[[str], MsgSpec]) -> None:

@@ -168,7 +168,7 @@ class TypeStore:
             raise MessageSpecError(f"{type_name}: nesting too deep (more than {MAX_NESTING} levels)", spec.source)
         self._building.add(type_name)
         try:
-            lines = [f"{c.type} {c.md5_name}={c.val_text}" for c in spec.constants]
+            lines = [f"{c.type} {c.name}={c.val_text}" for c in spec.constants]
             for f in spec.fields:
                 if f.is_builtin:
                     lines.append(f"{f.type} {f.name}")

@@ -2,9 +2,13 @@
 
 The grammar follows the ROS 1 msg format: one declaration per line, ``#`` starts
 a comment, ``TYPE NAME`` declares a field, ``TYPE NAME=VALUE`` a constant.
-``Header`` means ``std_msgs/Header``; any other bare non-builtin type name
-refers to the declaring package.  String constants keep everything right of
-``=`` (including ``#``), stripped, as genmsg does.
+``Header`` means ``std_msgs/Header`` (an array ``Header[]`` does not: like
+any other bare non-builtin type name it refers to the declaring package).
+String constants keep everything right of ``=`` (including ``#``), stripped,
+as genmsg does.  Constant names are stripped and, as in genmsg, not checked
+here: the md5 of a type whose constants no class can hold is still genmsg's,
+and :mod:`.codegen` refuses to build a class for it.  Field names must be
+unique; constants may repeat a name (genmsg and genpy allow it).
 """
 
 from __future__ import annotations
@@ -117,8 +121,6 @@ class Constant:
     """The value converted to Python."""
     val_text: str
     """The value exactly as written (stripped); used for the md5 text."""
-    md5_name: str = ""
-    """The name as genmsg hashes it (differs from *name* only for odd spacing in string constants)."""
 
 
 @dataclass
@@ -201,7 +203,7 @@ def _resolve_field_type(ftype: str, package: str) -> tuple[str, str, bool, int |
     base, arr = m.group(1), m.group(2)
     suffix = "" if arr is None else f"[{arr}]"
     if "/" not in base:
-        if base == "Header":
+        if ftype == "Header":  # genmsg maps the bare word only: ``Header[]`` is the package's own Header
             base = HEADER_TYPE
         elif base not in BUILTIN_TYPES:
             if not package:
@@ -230,10 +232,6 @@ def parse_msg_text(text: str, type_name: str, source: str | None = None, first_l
         try:
             if "=" in clean:
                 constants.append(_parse_constant(orig, clean))
-                cname = constants[-1].name
-                if cname in names:
-                    raise ValueError(f"duplicate name {cname}")
-                names.add(cname)
                 continue
             parts = clean.split()
             if len(parts) != 2:
@@ -252,28 +250,27 @@ def parse_msg_text(text: str, type_name: str, source: str | None = None, first_l
 
 
 def _parse_constant(orig: str, clean: str) -> Constant:
-    parts = clean.split()
+    # genmsg splits on spaces only: ``int32\tX=1`` has no legal type, as there
+    parts = [x.strip() for x in clean.split(" ") if x.strip()]
     ctype = parts[0]
     if ctype not in PRIMITIVE_TYPES:
         raise ValueError(f"{shown(ctype)} is not a legal constant type")
     if ctype == "string":
+        # everything right of the first "=" is the value, "#" included; the name is what lies
+        # between the line's first space and that "=" (genmsg's reading, odd lines too)
         idx = orig.find("=")
-        raw_name = orig[orig.find(" ") + 1 : idx]
-        name = raw_name.strip()
+        name = orig[orig.find(" ") + 1 : idx].strip()
         val = orig[idx + 1 :]
     else:
         halves = [x.strip() for x in " ".join(parts[1:]).split("=")]
         if len(halves) != 2:
             raise ValueError(f"invalid constant declaration: {shown(orig.strip())}")
-        raw_name = name = halves[0]
-        val = halves[1]
-    if not _NAME_RE.match(name):
-        raise ValueError(f"{shown(name)} is not a legal constant name")
+        name, val = halves
     try:
         value = _convert_constant(ctype, val)
     except (ValueError, SyntaxError, TypeError, RecursionError, MemoryError) as e:
         raise ValueError(f"invalid constant value: {shown(str(e))}") from None
-    return Constant(ctype, name, value, val.strip(), raw_name)
+    return Constant(ctype, name, value, val.strip())
 
 
 def parse_srv_text(text: str, type_name: str, source: str | None = None) -> SrvSpec:

@@ -184,9 +184,12 @@ class EchoFormatter:
 
     def __init__(self, field: str = "", *, plot: bool = False, noarr: bool = False, nostr: bool = False,
                  offset: bool = False, count: int | None = None, fixed_width: int | None = None,
-                 clear: bool = False) -> None:
+                 clear: bool = False, from_bag: bool = False) -> None:
         self.evaluate = field_evaluator(field)
         self.field = field
+        self.from_bag = from_bag
+        """As ``rostopic echo -b``: ``-p``'s time is the bag's, and a selected field is printed without its
+        declared type (raw ``bytes`` stay bytes, ``--noarr``/``--nostr`` leave it whole)."""
         self.plot = plot
         self.noarr = noarr
         self.nostr = nostr
@@ -198,6 +201,12 @@ class EchoFormatter:
         self.first = True
         self._field_type: str | None = None
         self._field_type_for: Any = None
+
+    def select(self, field: str) -> None:
+        """Print ``field`` (``/x``, ``/a[0]``; '' for the whole message) of the messages from now on."""
+        if field != self.field:
+            self.field = field
+            self.evaluate = field_evaluator(field)
 
     @property
     def done(self) -> bool:
@@ -238,7 +247,9 @@ class EchoFormatter:
                 self.first = False
             body = _plot_values(data, offset, keep) or ""
             off = offset.to_nsec() if offset is not None else 0
-            if getattr(data, "_has_header", False):
+            if self.from_bag and now_nsec is not None:
+                stamp = now_nsec
+            elif getattr(data, "_has_header", False):
                 stamp = data.header.stamp.to_nsec()
             else:
                 stamp = now_nsec if now_nsec is not None else time.time_ns()
@@ -251,6 +262,8 @@ class EchoFormatter:
         if is_message(data):
             return message_to_yaml(data, noarr=self.noarr, nostr=self.nostr,
                                    fixed_numeric_width=self.fixed_width, time_offset=offset)
+        if self.from_bag:
+            return _strify(data, "", "", self.fixed_width, offset, None)
         t = self._type_information(msg)
         if isinstance(data, (bytes, bytearray)):
             data = list(data)

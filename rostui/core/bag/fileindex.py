@@ -66,8 +66,11 @@ class FileIndex:
         offsets = np.concatenate([np.asarray(p.offsets, dtype=np.uint64) for p in parts])
         # np.lexsort sorts by its last key first: time, then the chunk's place in the file, then the offset
         order = np.lexsort((offsets, chunks, times))
-        if not np.array_equal(order, np.arange(order.shape[0])):
-            times, conn_ids, chunks, offsets = times[order], conn_ids[order], chunks[order], offsets[order]
+        if bool(np.any(order[1:] < order[:-1])):  # one column at a time, so only one is held twice
+            times = times[order]
+            conn_ids = conn_ids[order]
+            chunks = chunks[order]
+            offsets = offsets[order]
         return cls(times, conn_ids, chunks, offsets, from_file_index)
 
     def rows(self, start: int = 0, block: int = 8192) -> Iterator[tuple[int, int, int, int]]:

@@ -170,14 +170,20 @@ def load_index(paths: Sequence[str], progress: Callable[[str], None] | None = No
             if progress is not None:
                 progress(f"reading the index of {os.path.basename(reader.path)}")
             per_file.append(_file_index(reader, progress, index.notices))
-        times = np.concatenate([f.times for f in per_file])
-        files = np.concatenate([np.full(len(f), i, dtype=np.uint16) for i, f in enumerate(per_file)])
-        order = np.argsort(times, kind="stable")
-        index.times = times[order]
-        index.files = files[order]
-        index.conn_ids = np.concatenate([f.conn_ids for f in per_file])[order]
-        index.chunks = np.concatenate([f.chunks for f in per_file])[order]
-        index.offsets = np.concatenate([f.offsets for f in per_file])[order]
+        if len(per_file) == 1:  # already in time order: share the reader's columns instead of copying them
+            only = per_file[0]
+            index.times, index.conn_ids, index.chunks, index.offsets = (only.times, only.conn_ids, only.chunks,
+                                                                        only.offsets)
+            index.files = np.zeros(len(only), dtype=np.uint16)
+        else:
+            times = np.concatenate([f.times for f in per_file])
+            order = np.argsort(times, kind="stable")
+            index.times = times[order]
+            del times
+            index.files = np.concatenate([np.full(len(f), i, dtype=np.uint16) for i, f in enumerate(per_file)])[order]
+            index.conn_ids = np.concatenate([f.conn_ids for f in per_file])[order]
+            index.chunks = np.concatenate([f.chunks for f in per_file])[order]
+            index.offsets = np.concatenate([f.offsets for f in per_file])[order]
         _gather_tracks(index)
         return index
     except BaseException:
@@ -190,8 +196,12 @@ def _gather_tracks(index: BagIndex) -> None:
     """Per-topic tracks and the connections in order of their first message."""
     import numpy as np
 
-    # one key per (file, connection): where its first message is, and which topic it belongs to
-    keys = index.files.astype(np.uint64) << np.uint64(32) | index.conn_ids.astype(np.uint64)
+    # one key per (file, connection): where its first message is, and which topic it belongs to (one file:
+    # the connection ids themselves, with no 8-byte copy of them)
+    if len(index.readers) == 1:
+        keys = index.conn_ids
+    else:
+        keys = index.files.astype(np.uint64) << np.uint64(32) | index.conn_ids.astype(np.uint64)
     unique, first = np.unique(keys, return_index=True)
     topic_of_key: dict[int, str] = {}
     for key, at in sorted(zip(unique.tolist(), first.tolist()), key=lambda pair: pair[1]):
@@ -200,11 +210,13 @@ def _gather_tracks(index: BagIndex) -> None:
         topic_of_key[key] = conn.topic
         if conn.topic not in index.tracks:
             index.tracks[conn.topic] = TopicTrack(conn.topic, conn.type)
+    small = np.uint32 if len(index) < 1 << 32 else np.int64
     for topic, track in index.tracks.items():
-        wanted = np.array([k for k, t in topic_of_key.items() if t == topic], dtype=np.uint64)
-        positions = np.flatnonzero(np.isin(keys, wanted))
-        track.positions = positions
-        track.times = index.times[positions]
+        wanted = [k for k, t in topic_of_key.items() if t == topic]
+        found = keys == keys.dtype.type(wanted[0]) if len(wanted) == 1 else np.isin(keys, np.array(wanted, keys.dtype))
+        track.positions = np.flatnonzero(found).astype(small)
+        del found
+        track.times = index.times[track.positions]
 
 
 class IndexSource:

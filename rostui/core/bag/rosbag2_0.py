@@ -549,9 +549,12 @@ class BagReader(ChunkedFile):
                 conn_id = _U32.unpack(fields["conn"])[0]
                 count = _U32.unpack(fields["count"])[0]
                 index_counts[conn_id] = index_counts.get(conn_id, 0) + count
-                stamps = [_time_ns(data[i:i + 8]) for i in range(0, count * 12, 12)]
-                if stamps and chunk_spans:
-                    chunk_spans[-1].extend((min(stamps), max(stamps)))
+                if count and len(data) >= 12 and chunk_spans:
+                    import numpy as np
+
+                    entries = np.frombuffer(data, dtype=_INDEX_ENTRY, count=min(count, len(data) // 12))
+                    stamps = entries["sec"].astype(np.int64) * 1_000_000_000 + entries["nsec"]
+                    chunk_spans[-1].extend((int(stamps.min()), int(stamps.max())))
             elif op == bytes([OP_CHUNK_INFO]):
                 try:
                     chunk_infos.append(_chunk_info(fields, data))

@@ -25,7 +25,7 @@ from interop_helpers import Peer, rospy_peer, spawn  # noqa: F401
 
 Int32 = get_message_class("std_msgs/Int32")
 T0_NS = 1_700_000_000 * 1_000_000_000
-STEP_NS = 50_000_000
+STEP_NS = 100_000_000
 COUNT = 24
 
 #: Writes a bag with real rosbag: message i has data i and time T0 + i * STEP, in a file order that is not
@@ -179,15 +179,34 @@ def _heard(spawn: Any, player: list[str], topics: tuple[str, ...], label: str) -
     return [line for line in listener.lines if line.startswith("/")]
 
 
+def assert_heard_in_time_order(heard: list[str], topics: tuple[str, ...]) -> None:
+    """Every message heard once, on its topic, in time order.
+
+    One topic comes over one connection, so its order is exact. Two topics
+    come over two connections, and which of two messages one step apart
+    arrives first is the machine's scheduling, for rosbag play as for us (a
+    loaded CI machine swapped such pairs): there a message may be heard at most
+    one place from its own. File-order playback (all of /a, then all of /b)
+    moves half of them by up to COUNT / 2 places.
+    """
+    values = [int(line.split()[1]) for line in heard]
+    assert sorted(values) == list(range(COUNT)), heard
+    assert all(line.split()[0] == (topics[0] if len(topics) == 1 else topics[v % 2])
+               for line, v in zip(heard, values)), heard
+    if len(topics) == 1:
+        assert values == list(range(COUNT)), heard
+    else:
+        assert all(abs(v - place) <= 1 for place, v in enumerate(values)), heard
+
+
 @pytest.mark.parametrize("shape", sorted(SHAPES))
 def test_rostui_bag_play_delivers_rosbag_plays_order(real_roscore: Any, ros_env: dict[str, str], spawn: Any,
                                                       shaped: Any, shape: str) -> None:
     need_command("rosbag")
     path = shaped(shape)
     topics = SHAPES[shape]
-    expected = [f"{topics[0] if len(topics) == 1 else topics[i % 2]} {i}" for i in range(COUNT)]
     if path.suffix == ".bag":
         theirs = _heard(spawn, ["rosbag", "play", "-d", "1", str(path)], topics, "rosbag play")
-        assert theirs == expected
+        assert_heard_in_time_order(theirs, topics)
     ours = _heard(spawn, rostui_cmd("bag", "play", "-q", "-d", "1", str(path)), topics, "rostui bag play")
-    assert ours == expected
+    assert_heard_in_time_order(ours, topics)

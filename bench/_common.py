@@ -9,10 +9,12 @@ from __future__ import annotations
 import fcntl
 import os
 import pty
+import shutil
 import signal
 import socket
 import struct
 import subprocess
+import sys
 import termios
 import threading
 import time
@@ -22,6 +24,28 @@ from pathlib import Path
 from typing import Callable
 
 REPO = Path(__file__).resolve().parent.parent
+BUILD = REPO / "bench" / "_build"
+CPP_LIBS = ["-lroscpp", "-lrosconsole", "-lroscpp_serialization", "-lrostime", "-lxmlrpcpp", "-lcpp_common",
+            "-lboost_system"]
+"""What a roscpp peer links against (Debian's libroscpp-dev)."""
+
+
+def build_cpp(source: Path) -> Path | None:
+    """Compile a roscpp peer (``bench/NAME.cpp`` to ``bench/_build/NAME``) unless the binary is newer than
+    its source; None when it cannot be built here (no g++ or no roscpp headers)."""
+    binary = BUILD / source.stem
+    if binary.exists() and binary.stat().st_mtime >= source.stat().st_mtime:
+        return binary
+    if shutil.which("g++") is None or not Path("/usr/include/ros/ros.h").exists():
+        return None
+    BUILD.mkdir(exist_ok=True)
+    print("building", binary.relative_to(REPO), "...", flush=True)
+    done = subprocess.run(["g++", "-O2", str(source), "-o", str(binary), "-I/usr/include", *CPP_LIBS],
+                          capture_output=True, text=True, timeout=300)
+    if done.returncode != 0:
+        print(done.stderr[-2000:], file=sys.stderr)
+        return None
+    return binary
 APP_CPU = 0
 """The CPU the measured app is pinned to; everything else runs on the others."""
 

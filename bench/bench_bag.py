@@ -54,7 +54,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from _common import REPO, free_port, ros_env, wait_port
+from _common import REPO, build_cpp, free_port, ros_env, wait_port
 
 sys.path.insert(0, str(REPO))
 MB = 1_000_000
@@ -66,8 +66,6 @@ BENCH = Path(__file__).resolve().parent
 CPP_PEER_SRC = BENCH / "bag_peer.cpp"
 CPP_PEER = BENCH / "_build" / "bag_peer"
 RECEIVE_ONLY = "receive-only"
-CPP_LIBS = ["-lroscpp", "-lrosconsole", "-lroscpp_serialization", "-lrostime", "-lxmlrpcpp", "-lcpp_common",
-            "-lboost_system"]
 
 
 def stop(proc: subprocess.Popen, timeout: float = 20.0) -> None:
@@ -106,18 +104,7 @@ def tree_cpu_seconds(pid: int) -> float:
 # ----------------------------------------------------------------------------- the publishers
 def build_cpp_peer() -> Path | None:
     """Compile bench/bag_peer.cpp unless the binary is newer; None when it cannot be built."""
-    if CPP_PEER.exists() and CPP_PEER.stat().st_mtime >= CPP_PEER_SRC.stat().st_mtime:
-        return CPP_PEER
-    if shutil.which("g++") is None or not Path("/usr/include/ros/ros.h").exists():
-        return None
-    CPP_PEER.parent.mkdir(exist_ok=True)
-    cmd = ["g++", "-O2", str(CPP_PEER_SRC), "-o", str(CPP_PEER), "-I/usr/include", *CPP_LIBS]
-    print("building", CPP_PEER.relative_to(REPO), "...", flush=True)
-    done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
-    if done.returncode != 0:
-        print(done.stderr[-2000:], file=sys.stderr)
-        return None
-    return CPP_PEER
+    return build_cpp(CPP_PEER_SRC)
 
 
 async def _publish(rate: float, seconds: float) -> None:

@@ -60,7 +60,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable, Iterator
 
-from _common import REPO, free_port, ros_env, wait_port
+from _common import REPO, build_cpp, free_port, ros_env, wait_port
 
 sys.path.insert(0, str(REPO))
 GB = 1_000_000_000
@@ -68,8 +68,6 @@ MB = 1_000_000
 BENCH = Path(__file__).resolve().parent
 TALLY_SRC = BENCH / "bag_tally.cpp"
 TALLY = BENCH / "_build" / "bag_tally"
-CPP_LIBS = ["-lroscpp", "-lrosconsole", "-lroscpp_serialization", "-lrostime", "-lxmlrpcpp", "-lcpp_common",
-            "-lboost_system"]
 T0_NS = 1_700_000_000_000_000_000
 COLS, ROWS = 120, 30
 
@@ -432,17 +430,7 @@ def bench_view(files: dict[str, Path], old: Path | None, old_tree: Path | None, 
 # ----------------------------------------------------------------------------- (b) play
 def build_tally() -> Path | None:
     """Compile bench/bag_tally.cpp unless the binary is newer; None when it cannot be built."""
-    if TALLY.exists() and TALLY.stat().st_mtime >= TALLY_SRC.stat().st_mtime:
-        return TALLY
-    if shutil.which("g++") is None or not Path("/usr/include/ros/ros.h").exists():
-        return None
-    TALLY.parent.mkdir(exist_ok=True)
-    done = subprocess.run(["g++", "-O2", str(TALLY_SRC), "-o", str(TALLY), "-I/usr/include", *CPP_LIBS],
-                          capture_output=True, text=True, timeout=300)
-    if done.returncode != 0:
-        print(done.stderr[-2000:], file=sys.stderr)
-        return None
-    return TALLY
+    return build_cpp(TALLY_SRC)
 
 
 def subscribed(env: dict[str, str], topics: list[str]) -> bool:

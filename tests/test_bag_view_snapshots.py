@@ -161,16 +161,22 @@ while not ros.is_shutdown():
 '''
 
 
-def test_record_mode(snap_compare, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, rostui_core: Any,
-                     ros_env: dict[str, str]) -> None:
-    """Recording two topics after a burst of 30 + 12 messages: counts, sizes, rates back to 0."""
-    monkeypatch.chdir(tmp_path)
+def start_burst(tmp_path: Path, ros_env: dict[str, str]) -> tuple[subprocess.Popen, Path]:
+    """Start the burst of 30 + 12 messages (BURST); returns the process and the file its output goes to."""
     script = tmp_path / "burst.py"
     script.write_text(BURST)
     out = tmp_path / "burst.out"
     with out.open("w") as sink:
         burst = subprocess.Popen([sys.executable, str(script)], env=ros_env, cwd=REPO, stdout=sink,
                                  stderr=subprocess.STDOUT)
+    return burst, out
+
+
+def test_record_mode(snap_compare, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, rostui_core: Any,
+                     ros_env: dict[str, str]) -> None:
+    """Recording two topics after a burst of 30 + 12 messages: counts, sizes, rates back to 0."""
+    monkeypatch.chdir(tmp_path)
+    burst, out = start_burst(tmp_path, ros_env)
 
     async def run_before(pilot: Pilot) -> None:
         app = pilot.app
@@ -198,12 +204,7 @@ def test_record_mode_stopped_at_its_duration(snap_compare, tmp_path: Path, monke
     from rostui.core.bag.record_options import record_options
 
     monkeypatch.chdir(tmp_path)
-    script = tmp_path / "burst.py"
-    script.write_text(BURST)
-    out = tmp_path / "burst.out"
-    with out.open("w") as sink:
-        burst = subprocess.Popen([sys.executable, str(script)], env=ros_env, cwd=REPO, stdout=sink,
-                                 stderr=subprocess.STDOUT)
+    burst, out = start_burst(tmp_path, ros_env)
 
     async def run_before(pilot: Pilot) -> None:
         app = pilot.app

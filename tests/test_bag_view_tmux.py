@@ -123,13 +123,18 @@ while not ros.is_shutdown():
 '''
 
 
+def start_numbers_talker(tmp_path: Path, ros_env: dict[str, str]) -> subprocess.Popen:
+    """Start TALKER (std_msgs/Int32 on /numbers) as its own process."""
+    script = tmp_path / "tmux_numbers.py"
+    script.write_text(TALKER)
+    return subprocess.Popen([sys.executable, str(script)], env=ros_env, cwd=REPO, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL)
+
+
 def test_bag_view_record_splits_and_quits_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str],
                                                   tmp_path: Path) -> None:
     """--record: live counts; n splits into rec_1.mcap; q finishes and reports both files."""
-    script = tmp_path / "tmux_numbers.py"
-    script.write_text(TALKER)
-    talker = subprocess.Popen([sys.executable, str(script)], env=ros_env, cwd=REPO, stdout=subprocess.DEVNULL,
-                              stderr=subprocess.DEVNULL)
+    talker = start_numbers_talker(tmp_path, ros_env)
     try:
         pane.type(view_line(ros_env, "--record", "/numbers", "-O", "rec.mcap", cwd=tmp_path))
         pane.wait_until(lambda: pane.shows("● REC", "'rec_0.mcap'", "/numbers", " Hz"), "recording /numbers")
@@ -146,10 +151,7 @@ def test_bag_view_record_splits_and_quits_in_tmux(pane: Pane, rostui_core: Any, 
 def test_bag_view_record_regex_stops_at_duration_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str],
                                                          tmp_path: Path) -> None:
     """-e '/num.*' --duration 2: /numbers is found, the recording stops by itself and says so; q reports the file."""
-    script = tmp_path / "tmux_numbers.py"
-    script.write_text(TALKER)
-    talker = subprocess.Popen([sys.executable, str(script)], env=ros_env, cwd=REPO, stdout=subprocess.DEVNULL,
-                              stderr=subprocess.DEVNULL)
+    talker = start_numbers_talker(tmp_path, ros_env)
     try:
         pane.type(view_line(ros_env, "-e", "/num.*", "--duration", "2", "-O", "rec.bag", cwd=tmp_path))
         pane.wait_until(lambda: pane.shows("recording topics matching /num.* into rec_<n>.bag · stops at 2 s"),

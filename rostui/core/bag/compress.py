@@ -11,10 +11,10 @@ import contextlib
 import os
 from dataclasses import dataclass
 
-from rostui.core.bag.files import merged_messages, open_reader
+from rostui.core.bag.files import copy_messages, open_reader
 from rostui.core.bag.model import BagError
-from rostui.core.bag.progress import Progress, counted
-from rostui.core.bag.rewrite import new_file, rewrite_all
+from rostui.core.bag.progress import Progress
+from rostui.core.bag.rewrite import new_file
 from rostui.core.bag.rosbag2_0 import BagReader
 
 #: What ``--bz2`` (rosbag's default) means in each format: MCAP has no bz2, zstd is its strong compression.
@@ -62,9 +62,8 @@ def change_compression(path: str, kind: str, *, output_dir: str | None = None, f
     try:
         reader = open_reader(source)
         try:
-            total = reader.summary().message_count if progress is not None else 0
             with new_file(out, compression, rosbag=rosbag) as writer:
-                count = rewrite_all(counted(merged_messages([reader]), total, progress), writer)
+                count = copy_messages(reader, writer, progress)
         finally:
             reader.close()
     except BaseException:

@@ -132,19 +132,32 @@ def merged_messages(readers: Iterable[Reader]) -> Iterator[tuple[Connection, int
         yield conn, t, data, i
 
 
+class ConnectionMap:
+    """Gives each source connection an id in the new file the first time one of its messages is written."""
+
+    def __init__(self, writer: Writer) -> None:
+        self.writer = writer
+        self.ids: dict[tuple[int, int], int] = {}
+
+    def write(self, conn: Connection, time_ns: int, data: bytes, source: int = 0) -> None:
+        """Write one message of ``conn`` (of source file ``source``), adding the connection when it is new."""
+        key = (source, conn.id)
+        new_id = self.ids.get(key)
+        if new_id is None:
+            new_id = self.ids[key] = len(self.ids)
+            self.writer.add_connection(Connection(new_id, conn.topic, conn.type, conn.md5sum, conn.definition,
+                                                  conn.callerid, conn.latching))
+        self.writer.write(new_id, time_ns, data)
+
+
 def copy_messages(reader: Reader, writer: Writer, progress: Progress | None = None) -> int:
     """Write every readable message of ``reader`` into ``writer``, in time order where the file has an index
     (as rosbag's tools rewrite bags); returns how many (``progress`` follows)."""
-    ids: dict[int, int] = {}
+    conns = ConnectionMap(writer)
     count = 0
     total = reader.summary().message_count if progress is not None else 0
     for conn, t, data in counted(time_ordered(reader), total, progress):
-        new_id = ids.get(conn.id)
-        if new_id is None:
-            new_id = ids[conn.id] = len(ids)
-            writer.add_connection(Connection(new_id, conn.topic, conn.type, conn.md5sum, conn.definition,
-                                             conn.callerid, conn.latching))
-        writer.write(new_id, t, data)
+        conns.write(conn, t, data)
         count += 1
     return count
 

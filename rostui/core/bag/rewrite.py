@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import contextlib
 import os
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterator
 
 from rostui.core.bag.files import Writer, is_rosbag_name
 from rostui.core.bag.mcapfile import McapBagWriter
-from rostui.core.bag.model import BagError, Connection
+from rostui.core.bag.model import BagError
 from rostui.core.bag.rosbag2_0 import BagWriter
 
 
@@ -42,31 +42,3 @@ def new_file(dst: str, compression: str = "none", *, rosbag: bool | None = None)
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
-
-
-class ConnectionMap:
-    """Gives each source connection an id in the new file the first time one of its messages is written."""
-
-    def __init__(self, writer: Writer) -> None:
-        self.writer = writer
-        self.ids: dict[tuple[int, int], int] = {}
-
-    def write(self, conn: Connection, time_ns: int, data: bytes, source: int = 0) -> None:
-        """Write one message of ``conn`` (of source file ``source``), adding the connection when it is new."""
-        key = (source, conn.id)
-        new_id = self.ids.get(key)
-        if new_id is None:
-            new_id = self.ids[key] = len(self.ids)
-            self.writer.add_connection(Connection(new_id, conn.topic, conn.type, conn.md5sum, conn.definition,
-                                                  conn.callerid, conn.latching))
-        self.writer.write(new_id, time_ns, data)
-
-
-def rewrite_all(messages: Iterable[tuple[Connection, int, bytes, int]], writer: Writer) -> int:
-    """Copy every message of a merged stream into ``writer``; returns how many."""
-    conns = ConnectionMap(writer)
-    count = 0
-    for conn, t, data, source in messages:
-        conns.write(conn, t, data, source)
-        count += 1
-    return count

@@ -314,7 +314,7 @@ def test_record_counts_live_and_splits_without_losing_or_doubling(tmp_path: Path
         assert 30 < rate < 200 and bandwidth == pytest.approx(rate * 4)
         await pilot.press("n")
         await until(lambda: len(session.files) == 2 and session.current is not None
-                    and session.current.recorder.gate_open, "the split")
+                    and session.current.recorder.current_file[0] == session.files[-1], "the split")
         assert session.files == [str(tmp_path / "session_0.mcap"), str(tmp_path / "session_1.mcap")]
         first_file_count = session.meters["/numbers"].count - session.meters["/numbers"].file_count
         await until(lambda: session.meters["/numbers"].file_count >= 50, "50 messages in the second file")

@@ -1,11 +1,10 @@
 """Recording from the bag view: start, stop and split without leaving the app, with per-topic meters.
 
-Each file is written by its own :class:`~rostui.core.bag.recorder.Recorder` on
-its own node ``/record_...`` (what ``rostui bag record`` runs). A split starts
-the next recorder on a new node, waits until it is connected to the same
-publishers as the current one, and then, in one step on the loop, closes the
-gate of the old one and opens the new one's: every message lands in exactly
-one of the two files. Files are named like ``rosbag record --split``:
+Each recording (from ``r`` to ``r``) is one :class:`~rostui.core.bag.recorder.Recorder`
+on its own node ``/record_...`` (what ``rostui bag record`` runs). A split asks that
+recorder to go on in the next file: the request joins its writer's queue behind
+the messages already received, so every message lands in exactly one file, as
+with ``rosbag record --split``. Files are named like rosbag's:
 ``NAME_0.mcap``, ``NAME_1.mcap``, ...
 
 ``--size`` and ``--duration`` without ``--split`` are the recorder's own
@@ -29,17 +28,11 @@ from rostui.core.bag.recorder import Recorder, RecordOptions, base_file_name, sp
 #: Seconds of history behind a topic's rate and bandwidth.
 RATE_WINDOW = 3.0
 
-#: Seconds a split waits for the next recorder to reach the current one's publishers.
-HANDOVER_TIMEOUT = 3.0
-
 #: Seconds a recorder's node may take to shut down.
 NODE_TIMEOUT = 3.0
 
 #: Seconds between two looks at the file's size and age (``--split`` with ``--size`` or ``--duration``).
 LIMIT_CHECK = 0.05
-
-#: Seconds before a split at a limit is tried again after it failed.
-RETRY_SPLIT = 1.0
 
 
 @dataclass
@@ -77,17 +70,16 @@ class TopicMeter:
 
 
 class MeteredRecorder(Recorder):
-    """A Recorder that counts each topic's messages, and takes messages only while its gate is open."""
+    """A Recorder that counts each topic's messages."""
 
-    def __init__(self, node: Any, opts: RecordOptions, meters: dict[str, TopicMeter], *, gate_open: bool,
+    def __init__(self, node: Any, opts: RecordOptions, meters: dict[str, TopicMeter], *,
                  report: Callable[[str], None]) -> None:
         super().__init__(node, opts, report=report)
         self.meters = meters
-        self.gate_open = gate_open
 
     def on_frame(self, data: Any, header: dict[str, str], topic: str) -> None:
-        """Count and queue the message when the gate is open (the subscriber callback)."""
-        if not self.gate_open or self.stop.is_set():
+        """Count and queue the message (the subscriber callback)."""
+        if self.stop.is_set():
             return
         meter = self.meters.get(topic)
         if meter is None:
@@ -101,7 +93,7 @@ class _Running:
     node: Any
     recorder: MeteredRecorder
     task: asyncio.Task[int]
-    started: float = field(default_factory=time.monotonic)  # when its gate opened
+    started: float = field(default_factory=time.monotonic)  # when its current file began
     retired: bool = False  # its counts have moved to the session's totals
 
 
@@ -178,7 +170,7 @@ class RecordSession:
             self._collect_error(self.current)
 
     # -- control ------------------------------------------------------------------------------------
-    async def _launch(self, gate_open: bool) -> _Running:
+    async def _launch(self) -> _Running:
         from rostui.core.node import AsyncNode, MasterUnreachableError
 
         name = self.next_name()
@@ -190,7 +182,7 @@ class RecordSession:
         try:
             await node.start(publish_rosout=False)
             await asyncio.wait_for(node.master_call("getPid"), NODE_TIMEOUT)
-            recorder = MeteredRecorder(node, opts, self.meters, gate_open=gate_open, report=self.report)
+            recorder = MeteredRecorder(node, opts, self.meters, report=self.report)
         except MasterUnreachableError as exc:
             await _shutdown(node)
             raise BagError(str(exc)) from None
@@ -232,7 +224,7 @@ class RecordSession:
             for meter in self.meters.values():
                 meter.file_count = meter.file_size = 0
             self._notice = ""
-            self.current = await self._launch(gate_open=True)
+            self.current = await self._launch()
             if self.opts.split and (self.opts.size_mb or self.opts.duration_s) and self._watcher is None:
                 self._watcher = asyncio.ensure_future(self._split_at_limits())
 
@@ -246,21 +238,15 @@ class RecordSession:
     async def split(self) -> None:
         """Close the current file and go on in the next one, losing no message and doubling none."""
         async with self._busy:
-            old = self.current
-            if old is None or old.recorder.stop.is_set():
+            running = self.current
+            if running is None or running.recorder.stop.is_set():
                 return
-            new = await self._launch(gate_open=False)
-            await self._wait_connected(old, new)
-            if self.current is not old:  # it stopped by itself meanwhile (an error)
-                await self._finish(new)
-                return
-            old.recorder.stop.set()  # these lines run in one step of the loop: the handover
-            new.recorder.gate_open = True
-            new.started = time.monotonic()
-            self.current = new
+            name = self.next_name()
+            running.recorder.next_file(name)  # these lines run in one step of the loop, between two messages
+            self.files.append(name)
+            running.started = time.monotonic()
             for meter in self.meters.values():
                 meter.file_count = meter.file_size = 0
-            self._in_background(self._finish(old))
 
     async def close(self) -> None:
         """Stop recording and wait for every file to be closed."""
@@ -275,8 +261,10 @@ class RecordSession:
     def limit_due(self, running: _Running, now: float) -> str:
         """With --split: which limit the current file has reached (``""``: none)."""
         opts = self.opts
-        if opts.size_mb is not None and running.recorder.total_bytes >= opts.size_mb * 1e6:
-            return f"--size {opts.size_mb:g} MB"
+        if opts.size_mb is not None:
+            name, size = running.recorder.current_file
+            if name == self.file and size >= opts.size_mb * 1e6:  # not before the writer has begun that file
+                return f"--size {opts.size_mb:g} MB"
         if opts.duration_s is not None and now - running.started >= opts.duration_s:
             return f"--duration {opts.duration_s:g} s"
         return ""
@@ -287,22 +275,7 @@ class RecordSession:
             await asyncio.sleep(LIMIT_CHECK)
             running = self.current
             if running is not None and self.recording and self.limit_due(running, time.monotonic()):
-                try:
-                    await self.split()
-                except BagError as exc:  # no master for the next node: go on in this file, try again later
-                    if str(exc) not in self.errors:
-                        self.errors.append(str(exc))
-                    await asyncio.sleep(RETRY_SPLIT)
-
-    async def _wait_connected(self, old: _Running, new: _Running) -> None:
-        """Until the new node has as many publishers on each topic as the old one (or a timeout)."""
-        deadline = time.monotonic() + HANDOVER_TIMEOUT
-        while time.monotonic() < deadline:
-            if old.recorder.subscribed <= new.recorder.subscribed and all(
-                    _connections(new.node, topic) >= _connections(old.node, topic)
-                    for topic in old.recorder.subscribed):
-                return
-            await asyncio.sleep(0.01)
+                await self.split()
 
     async def _finish(self, running: _Running) -> None:
         running.recorder.stop.set()
@@ -329,14 +302,6 @@ class RecordSession:
             problem = str(task.exception())
         if problem and problem not in self.errors:
             self.errors.append(problem)
-
-
-def _connections(node: Any, topic: str) -> int:
-    """Publishers connected to ``node``'s subscription of ``topic``."""
-    from rostui.core.node.node import Subscriber
-
-    sub = node.subscriptions.get(topic)
-    return 0 if sub is None else Subscriber(node, sub, None, None).get_num_connections()
 
 
 async def _shutdown(node: Any) -> None:

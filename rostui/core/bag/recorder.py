@@ -126,6 +126,13 @@ class TopicFilter:
         return self.all or any(p.fullmatch(topic) for p in self.patterns)
 
 
+@dataclass(frozen=True)
+class NextFile:
+    """A marker in the writer's queue: close the file and go on in ``name`` (a split asked for from outside)."""
+
+    name: str
+
+
 class Recorder:
     """Records subscribed topics into one file, or a series of files with ``--split``.
 
@@ -189,6 +196,12 @@ class Recorder:
         self._queued_bytes += len(data)
         self._queue.put((self._connection(topic, header), time.time_ns(), data))
 
+    def next_file(self, name: str) -> None:
+        """Go on in file ``name``: messages received before this call go to the current file, the rest to
+        ``name``. One subscriber feeds both files, so none is lost or doubled."""
+        if not self.stop.is_set():
+            self._queue.put(NextFile(name))
+
     def on_message(self, raw: Any, topic: str) -> None:
         """Queue a message of a publisher in this process (delivered as an AnyMsg)."""
         self.on_frame(raw._buff, raw._connection_header or {}, topic)
@@ -204,6 +217,12 @@ class Recorder:
         self._loop.call_soon_threadsafe(fn, *args)
 
     @property
+    def current_file(self) -> tuple[str, int]:
+        """The file being written and its size so far (``("", 0)`` between two files)."""
+        writer = self.writer
+        return (writer.path, writer.size) if writer is not None else ("", 0)
+
+    @property
     def total_bytes(self) -> int:
         """Bytes written across all files of this recording."""
         writer = self.writer
@@ -211,7 +230,9 @@ class Recorder:
 
     # -- on the writer thread -----------------------------------------------------------------
     def _open_next(self) -> None:
-        name = split_file_name(self.base, len(self.files)) if self.opts.split else self.base
+        self._open(split_file_name(self.base, len(self.files)) if self.opts.split else self.base)
+
+    def _open(self, name: str) -> None:
         folder = os.path.dirname(name)
         if folder and not os.path.isdir(folder):
             raise BagError(f"cannot record to {name}: folder {folder} does not exist")
@@ -246,6 +267,12 @@ class Recorder:
                 else:
                     give(view)
             self._held = kept
+
+    def _go_on_in(self, name: str) -> None:
+        """Close the file and open ``name`` at this message boundary (a :class:`NextFile` from the queue)."""
+        self._close_writer()
+        self._open(name)
+        self._from_writer(self.report, f"Recording to '{name}'.")
 
     def _limit(self, why: str) -> None:
         """A --size or --duration limit: the next file with --split, else stop (saying ``why``)."""
@@ -312,6 +339,10 @@ class Recorder:
                     item = ()
                 if item is None:
                     break
+                if isinstance(item, NextFile):
+                    if writing:
+                        self._go_on_in(item.name)
+                    continue
                 if item and writing:
                     writing = self._write(*item)
                 elif item:

@@ -1,8 +1,10 @@
-"""MonitorApp: every topic live in one table, expanded topics as message trees, sparklines, publishing.
+"""MonitorApp: every topic live in one table, expanded topics as message trees, a plot of fields, publishing.
 
 A :class:`~rostui.models.monitor.source.MonitorSource` runs on Textual's loop:
 it polls the master and subscribes only to the topics whose rows are on
-screen (plus the expanded and plotted ones).  A timer repaints the table,
+screen (plus the expanded and plotted ones).  Fields named on the command
+line as rqt_plot takes them (``/turtle1/pose/x``, ``/turtle1/pose/x:y``) are
+told apart from topics once the master lists the topics.  A timer repaints the table,
 the trees and the charts a few times a second; a second timer samples rates
 and bandwidths once a second (the sparklines' step).  Keys act at once:
 sorting, filtering, expanding and publishing repaint in the same handler.
@@ -23,26 +25,30 @@ from textual.widgets import Input, Static
 
 from rostui.apps.monitor.detail import Charts, Line, MessageTree
 from rostui.apps.monitor.editor import PublishEditor
+from rostui.apps.monitor.plot import FieldChooser, PlotPanel
 from rostui.apps.monitor.table import TopicTable
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.msg import Message
 from rostui.core.network import master_uri_from_env
 from rostui.models.master_link import LinkStatus, SourceState
+from rostui.models.monitor.plot import PlotFieldError, check_numeric, expand_spec, numeric_fields, split_spec
 from rostui.models.monitor.publish import (
     PublishError, Repeater, check_topic, message_from_text, message_template, parse_rate,
 )
 from rostui.models.monitor.rows import Column, Liveness, TopicRow, filter_rows, sort_rows
 from rostui.models.monitor.source import MonitorSource
-from rostui.models.monitor.tree import PathError, message_tree, value_at
+from rostui.models.monitor.tree import message_tree
 
 __all__ = ["MonitorApp", "run_app", "KEYS"]
 
 #: Key help at the bottom.
-KEYS = "s sort  S rev  Enter expand  Tab tree  f plot  p publish  q quit"
+KEYS = "s sort  Enter expand  Tab tree  f plot  v plot panel  space pause  q quit"
 #: What the filter line says while it waits for "/", and while it has the keyboard.
 FILTER_IDLE = "/ filter"
 FILTER_TYPING = "name or type; Enter keeps, Esc clears"
+#: Actions of the plot's keys.
+PLOT_ACTIONS = frozenset({"plot", "toggle_plot", "window_longer", "window_shorter", "pause_plot"})
 #: Seconds between repaints of the table, trees and charts.
 REFRESH = 0.25
 #: Seconds between rate/bandwidth samples (one sparkline step).
@@ -72,6 +78,10 @@ class FilterInput(Input):
 class MonitorApp(ReleasesOnExit, App[int]):
     """The topics of the master at ``master_uri`` (ROS_MASTER_URI by default); ``topics`` start expanded.
 
+    An entry of ``topics`` that turns out to be a field of a topic the master
+    knows (``/turtle1/pose/x``), or that holds rqt_plot's ``:`` shorthand
+    (``/turtle1/pose/x:y:theta``), is plotted instead.
+
     The master is polled every ``period`` seconds; the screen is repainted
     every ``refresh`` seconds and rates are sampled every ``sample_every``
     seconds, on ``clock`` (wall time; tests step their own).
@@ -87,6 +97,10 @@ class MonitorApp(ReleasesOnExit, App[int]):
         Binding("s", "sort_next", "sort"),
         Binding("S", "sort_reverse", "reverse sort"),
         Binding("f", "plot", "plot field"),
+        Binding("v", "toggle_plot", "show/hide plot"),
+        Binding("plus,equals_sign", "window_longer", "longer plot window"),
+        Binding("minus", "window_shorter", "shorter plot window"),
+        Binding("space", "pause_plot", "pause/resume plot"),
         Binding("p", "publish", "publish"),
         Binding("x", "collapse", "collapse topic", show=False),
     ]
@@ -100,7 +114,11 @@ class MonitorApp(ReleasesOnExit, App[int]):
         self.source = MonitorSource(self.master_uri, period=period, on_state=self._on_state, clock=clock)
         self.refresh_period = refresh
         self.sample_period = sample_every
-        self.expanded: list[str] = list(dict.fromkeys(topics))
+        names = list(dict.fromkeys(topics))
+        self.expanded: list[str] = [name for name in names if ":" not in name]
+        #: Command-line names not yet known as a topic or as a field of one.
+        self.pending: list[str] = names
+        self.plot_open = any(":" in name for name in names)
         self.sort_column = Column.TOPIC
         self.sort_reverse = False
         self.filter_text = ""
@@ -117,6 +135,7 @@ class MonitorApp(ReleasesOnExit, App[int]):
         yield Line(id="status")
         yield Static(id="banner")
         yield TopicTable(id="topics")
+        yield PlotPanel(id="plot")
         with Horizontal(id="detail"):
             yield MessageTree(id="tree")
             yield Charts(id="charts")
@@ -129,6 +148,7 @@ class MonitorApp(ReleasesOnExit, App[int]):
         quit_on_signals(self)
         self.query_one("#banner").display = False
         self.table.focus()
+        self.query_one("#plot").display = self.plot_open
         self.message_trees.set_topics(self.expanded)
         self.run_worker(self.source.run(), group="source", exit_on_error=False)
         self.set_interval(self.refresh_period, self.repaint)
@@ -159,20 +179,55 @@ class MonitorApp(ReleasesOnExit, App[int]):
         if self.released:
             return
         self.rows = self.source.rows(self.clock())
+        if self.pending:
+            self.resolve_pending()
         self.shown = sort_rows(filter_rows(self.rows, self.filter_text), self.sort_column, self.sort_reverse)
         table = self.table
         table.show(self.shown)
         self.source.want(self.wanted_topics())
+        self.paint_plot()
         self.paint_detail()
         self.update_status()
         self.repaints += 1
 
     def wanted_topics(self) -> set[str]:
-        """What the monitor subscribes to: the rows on screen, the expanded topics and the plotted one."""
-        wanted = set(self.table.visible_topics()) | set(self.expanded)
-        if self.source.plot is not None:
-            wanted.add(self.source.plot.topic)
-        return wanted
+        """What the monitor subscribes to: the rows on screen, the expanded topics and the plotted ones."""
+        return set(self.table.visible_topics()) | set(self.expanded) | self.source.plot.topics
+
+    def resolve_pending(self) -> None:
+        """Command-line names the master's topics now explain: a topic stays expanded, a field is plotted."""
+        known = set(self.source.topics)
+        for name in list(self.pending):
+            if name in known:
+                self.pending.remove(name)
+                continue
+            specs = expand_spec(name)
+            fields = [split_spec(spec, known) for spec in specs]
+            if any(f is None for f in fields):
+                continue
+            self.pending.remove(name)
+            if name in self.expanded:
+                self.expanded.remove(name)
+                self.message_trees.set_topics(self.expanded)
+            for topic, path in (f for f in fields if f is not None):
+                try:
+                    self.source.plot_field(topic, path)
+                except PlotFieldError as exc:
+                    self.say(str(exc))
+            self.show_plot(True)
+
+    def show_plot(self, show: bool) -> None:
+        """Show or hide the plot panel."""
+        self.plot_open = show
+        panel = self.query_one("#plot", PlotPanel)
+        if panel.display != show:
+            panel.display = show
+        self.paint_plot()
+
+    def paint_plot(self) -> None:
+        """Draw the plotted fields (when the panel is shown)."""
+        if self.plot_open:
+            self.query_one("#plot", PlotPanel).show(self.source.plot, self.clock())
 
     def row_of(self, topic: str) -> TopicRow | None:
         """The latest row of ``topic``."""
@@ -208,7 +263,7 @@ class MonitorApp(ReleasesOnExit, App[int]):
             tree.show_message(topic, heading, message_tree(msg) if msg is not None else None, note)
         focus = self.focus_topic()
         rates, bandwidths = self.source.history(focus) if focus else ([], [])
-        self.query_one("#charts", Charts).show(focus, rates, bandwidths, self.source.plot)
+        self.query_one("#charts", Charts).show(focus, rates, bandwidths)
 
     def focus_topic(self) -> str | None:
         """The topic the charts are about: the tree's under its cursor when the tree has focus, else the table's."""
@@ -250,6 +305,12 @@ class MonitorApp(ReleasesOnExit, App[int]):
         self.update_status()
 
     # -- keys ------------------------------------------------------------------------
+    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        """The plot's keys act on the main screen only (in the field chooser, letters are not the app's)."""
+        if action in PLOT_ACTIONS and len(self.screen_stack) > 1:
+            return False
+        return True
+
     def action_sort_next(self) -> None:
         """s: sort by the next column."""
         self.sort_column = self.sort_column.next()
@@ -302,22 +363,86 @@ class MonitorApp(ReleasesOnExit, App[int]):
             self.toggle_expanded(topic)
 
     def action_plot(self) -> None:
-        """f: plot the number under the tree's cursor over time (in the charts)."""
+        """f: on a number in the tree, plot it (again: stop); elsewhere choose the topic's numeric fields."""
         where = self.message_trees.cursor_topic_and_path() if self.focused is self.message_trees else None
-        if where is None or not where[1]:
-            self.say("f plots a number: Tab to the tree, pick a numeric field")
+        if where is not None and where[1]:
+            self.toggle_field(*where)
             return
-        topic, path = where
-        msg = self.source.latest(topic)
-        try:
-            if msg is not None:
-                value_at(msg, path)
-        except PathError as exc:
-            self.say(str(exc))
+        topic = where[0] if where is not None else self.table.current_topic
+        if topic is None:
+            self.say("f plots a field: select a topic first")
             return
-        self.source.plot_field(topic, path)
-        self.say(f"plotting {topic}/{path}")
+        self.choose_fields(topic)
+
+    def toggle_field(self, topic: str, path: str) -> None:
+        """Plot ``topic``'s field ``path``, or stop plotting it when it is plotted."""
+        if self.source.plot.remove_field(topic, path):
+            self.say(f"stopped plotting {topic}/{path}")
+        else:
+            try:
+                self.source.plot_field(topic, path)
+            except PlotFieldError as exc:
+                self.say(str(exc))
+                return
+            self.say(f"plotting {topic}/{path}")
+            self.plot_open = True
+        self.show_plot(self.plot_open)
         self.repaint()
+
+    def choose_fields(self, topic: str) -> None:
+        """Open the chooser of ``topic``'s numeric fields (known from its newest message)."""
+        try:
+            msg = self.source.latest(topic)
+        except Exception as exc:  # an undecodable message has no fields to offer
+            self.say(f"cannot decode {topic}: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}")
+            return
+        if msg is None:
+            self.say(f"no message on {topic} yet: its fields are read from one (is it published?)")
+            self.source.want(self.wanted_topics() | {topic})
+            return
+        fields = [(path, f"{check_numeric(msg, topic, path):.6g}") for path in numeric_fields(msg)]
+        if not fields:
+            self.say(f"{topic} ({getattr(msg, '_type', '?')}) has no numeric fields to plot")
+            return
+        plotted = [s.path for s in self.source.plot.series if s.topic == topic]
+
+        def chosen(paths: list[str] | None) -> None:
+            if paths is None:
+                return
+            plot = self.source.plot
+            for series in [s for s in plot.series if s.topic == topic and s.path not in paths]:
+                plot.remove_field(topic, series.path)
+            for path in paths:
+                try:
+                    self.source.plot_field(topic, path)
+                except PlotFieldError as exc:  # a newer message with a shorter array
+                    self.say(str(exc))
+                    return
+            self.say(f"plotting {len(paths)} field{'s' if len(paths) != 1 else ''} of {topic}")
+            self.show_plot(self.plot_open or bool(paths))
+            self.repaint()
+
+        self.push_screen(FieldChooser(topic, fields, plotted), chosen)
+
+    def action_toggle_plot(self) -> None:
+        """v: show or hide the plot panel."""
+        self.show_plot(not self.plot_open)
+
+    def action_window_longer(self) -> None:
+        """+: show a longer time window."""
+        self.say(f"plot window {self.source.plot.longer():g} s")
+        self.show_plot(True)
+
+    def action_window_shorter(self) -> None:
+        """-: show a shorter time window."""
+        self.say(f"plot window {self.source.plot.shorter():g} s")
+        self.show_plot(True)
+
+    def action_pause_plot(self) -> None:
+        """space: freeze the plot (points keep being received and counted), or follow them again."""
+        paused = self.source.plot.toggle_pause(self.clock())
+        self.say("plot paused (space resumes)" if paused else "plot resumed")
+        self.show_plot(True)
 
     def action_publish(self) -> None:
         """p: open the publish editor for the topic in focus."""

@@ -1,4 +1,4 @@
-"""The expanded view: live message trees of the expanded topics, and sparklines of rate, bandwidth and a field."""
+"""The expanded view: live message trees of the expanded topics, and sparklines of rate and bandwidth."""
 
 from __future__ import annotations
 
@@ -12,7 +12,6 @@ from textual.widgets import Static, Tree
 from textual.widgets.tree import TreeNode
 
 from rostui.models.monitor.rows import bandwidth_text, rate_text
-from rostui.models.monitor.source import FieldPlot
 from rostui.models.monitor.tree import FieldItem
 
 __all__ = ["MessageTree", "Charts", "TopicKey", "Line"]
@@ -137,7 +136,7 @@ def sparkline(values: Sequence[float], width: int, height: int, *, floor: float 
 
 
 class Charts(Vertical):
-    """Sparklines of the rate and bandwidth of one topic, and of the plotted field."""
+    """Sparklines of the rate and bandwidth of one topic (fields are plotted in the plot panel)."""
 
     DEFAULT_CSS = """
     Charts > Line {
@@ -154,17 +153,15 @@ class Charts(Vertical):
     CHART_ROWS = 2
 
     def compose(self) -> ComposeResult:
-        """Title, rate, bandwidth and field plot lines, each above its sparkline."""
+        """Title, rate and bandwidth lines, each above its sparkline."""
         yield Line(id="chart-title")
         yield Line(id="rate-label")
         yield Line(id="rate-spark", classes="chart")
         yield Line(id="bw-label")
         yield Line(id="bw-spark", classes="chart")
-        yield Line(id="plot-label")
-        yield Line(id="plot-spark", classes="chart")
 
-    def show(self, topic: str | None, rates: list[float], bandwidths: list[float], plot: FieldPlot | None) -> None:
-        """Draw the history of ``topic`` and the plotted field."""
+    def show(self, topic: str | None, rates: list[float], bandwidths: list[float]) -> None:
+        """Draw the rate and bandwidth history of ``topic``."""
         title = self.query_one("#chart-title", Line)
         if topic is None:
             title.set("no topic selected")
@@ -178,20 +175,6 @@ class Charts(Vertical):
             f"bandwidth {bandwidth_text(last_bw)}  (max {bandwidth_text(max(bandwidths)) if bandwidths else '-'})")
         self._draw("#rate-spark", rates, floor=0.0)
         self._draw("#bw-spark", bandwidths, floor=0.0)
-        label = self.query_one("#plot-label", Line)
-        if plot is None:
-            label.set("field plot: f on a number in the tree")
-            self._draw("#plot-spark", [], floor=0.0)
-            return
-        values = list(plot.values)
-        if plot.error and not values:
-            label.set(escape(f"{plot.topic}/{plot.path}: {plot.error}"))
-        elif not values:
-            label.set(escape(f"{plot.topic}/{plot.path}: waiting for a message"))
-        else:
-            label.set(escape(f"{plot.topic}/{plot.path} = {values[-1]:.6g}  "
-                                f"[{min(values):.6g} … {max(values):.6g}]"))
-        self._draw("#plot-spark", values, floor=None)
 
     def _draw(self, selector: str, values: Sequence[float], *, floor: float | None) -> None:
         line = self.query_one(selector, Line)

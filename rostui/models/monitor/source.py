@@ -7,7 +7,8 @@ and ``getTopicTypes``; whenever the wanted set changes (the app says which
 topics are on screen or expanded) it subscribes to the new ones with md5
 ``*`` (no decoding: arrivals and sizes are all the table needs) and
 unsubscribes from those no longer wanted.  Messages are decoded only for a
-tree or a field plot.  When the master stops answering (or another one
+tree or for the fields the :class:`~rostui.models.monitor.plot.PlotModel`
+plots.  When the master stops answering (or another one
 answers) the link drops the node and registers again once a master answers.
 """
 
@@ -15,8 +16,7 @@ from __future__ import annotations
 
 import asyncio
 import time
-from collections import deque
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any, Callable, Iterable
 
 from rostui.core.msg import MessageError
@@ -25,14 +25,12 @@ from rostui.core.xmlrpc import XmlRpcProtocolError
 from rostui.models.master_link import CALL_TIMEOUT, LinkedSource, MasterLink, SourceState, failure_reason
 from rostui.models.monitor.rows import Liveness, TopicRow
 from rostui.models.monitor.stats import TopicStats
-from rostui.models.monitor.tree import PathError, value_at
+from rostui.models.monitor.plot import PlotModel, Series
 
-__all__ = ["MonitorSource", "TopicInfo", "FieldPlot", "NODE_NAME", "topics_from_wire"]
+__all__ = ["MonitorSource", "TopicInfo", "NODE_NAME", "topics_from_wire"]
 
 #: The monitor's node name (made anonymous).
 NODE_NAME = "rostui_monitor"
-#: Values kept per plotted field.
-PLOT_POINTS = 600
 
 
 @dataclass(frozen=True)
@@ -45,33 +43,16 @@ class TopicInfo:
     subscribers: tuple[str, ...]
 
 
-@dataclass
-class FieldPlot:
-    """The values of one numeric field of a topic over time."""
-
-    topic: str
-    path: str
-    values: deque[float] = field(default_factory=lambda: deque(maxlen=PLOT_POINTS))
-    error: str = ""
-
-    def add(self, msg: Any) -> None:
-        """Append the field's value in ``msg`` (or remember why there is none)."""
-        try:
-            self.values.append(value_at(msg, self.path))
-            self.error = ""
-        except PathError as exc:
-            self.error = str(exc)
-
-
 class _Watch:
     """One subscription: its handle, statistics and the newest raw message."""
 
-    __slots__ = ("handle", "stats", "latest", "decoded", "decoded_from")
+    __slots__ = ("handle", "stats", "latest", "arrived", "decoded", "decoded_from")
 
     def __init__(self) -> None:
         self.handle: Subscriber | None = None
         self.stats = TopicStats()
         self.latest: AnyMsg | None = None
+        self.arrived = 0.0
         self.decoded: Any = None
         self.decoded_from: Any = None
 
@@ -93,7 +74,7 @@ class MonitorSource(LinkedSource):
         self.on_topics = on_topics or (lambda: None)
         self.topics: dict[str, TopicInfo] = {}
         self.polls = 0
-        self.plot: FieldPlot | None = None
+        self.plot = PlotModel()
         self.publishers: dict[str, Publisher] = {}
         self._wanted: frozenset[str] = frozenset()
         self._watches: dict[str, _Watch] = {}
@@ -133,15 +114,18 @@ class MonitorSource(LinkedSource):
             watch.decoded_from = raw
         return watch.decoded
 
-    def plot_field(self, topic: str, path: str) -> FieldPlot:
-        """Record ``path`` of every message of ``topic`` from now on (one field at a time)."""
-        self.plot = FieldPlot(topic, path)
-        watch = self._watches.get(topic)
-        if watch is not None and watch.latest is not None:
-            from rostui.tools.topic.echo import decode
+    def plot_field(self, topic: str, path: str) -> Series:
+        """Plot ``topic``'s field ``path`` too, from its newest message on.
 
-            self.plot.add(decode(watch.latest))
-        return self.plot
+        Raises :class:`~rostui.models.monitor.plot.PlotFieldError` (nothing
+        plotted) when the newest message of ``topic`` has no number there.
+        """
+        watch = self._watches.get(topic)
+        msg = self.latest(topic)
+        series = self.plot.add_field(topic, path, msg)
+        if msg is not None and watch is not None and not series.count:
+            series.add(watch.arrived, msg)
+        return series
 
     def sample(self, now: float | None = None) -> None:
         """Compute every subscribed topic's rate and bandwidth (once a second: the sparklines' step)."""
@@ -255,16 +239,16 @@ class MonitorSource(LinkedSource):
         clock = self.clock
 
         def on_message(raw: Any) -> None:
-            add(clock(), len(raw._buff))
+            now = clock()
+            add(now, len(raw._buff))
             watch.latest = raw
+            watch.arrived = now
             plot = self.plot
-            if plot is not None and plot.topic == topic:
-                from rostui.tools.topic.echo import decode
-
+            if topic in plot.topics:
                 try:
-                    plot.add(decode(raw))
+                    plot.add_message(topic, now, self.latest(topic))
                 except MessageError as exc:  # an undecodable message is a note on the plot, not a crash
-                    plot.error = f"cannot decode: {failure_reason(exc)}"
+                    plot.note_error(topic, f"cannot decode: {failure_reason(exc)}")
 
         return on_message
 

@@ -25,6 +25,7 @@ from textual.widgets import Input, Static, TextArea
 
 from rostui.apps.monitor.app import MonitorApp
 from rostui.apps.monitor.editor import PublishEditor
+from rostui.apps.monitor.plot import FieldChooser
 from rostui.models.monitor.rows import Column, Liveness, TopicRow
 
 Scenario = Callable[[Pilot, MonitorApp], Awaitable[None]]
@@ -181,7 +182,10 @@ def test_dead_publisher_marks_topic_stale(rostui_core: Any, ros_env: dict[str, s
 
 
 def test_expand_tree_constants_and_plot(rostui_core: Any, ros_env: dict[str, str], tmp_path: Path) -> None:
-    """Enter expands a Log topic: level 2 shows as INFO, 12 topics show 8 and a count; f plots a number."""
+    """Enter expands a Log topic: level 2 shows as INFO, 12 topics show 8 and a count; f plots a number.
+
+    f on the table's row opens the chooser of its numeric fields (nothing chosen: nothing plotted).
+    """
     pubs = start_publishers(ros_env, tmp_path, [
         ("/log", "rosgraph_msgs/Log", "{level: 2, msg: ready, line: 42, topics: [a,b,c,d,e,f,g,h,i,j,k,l]}", 5),
     ])
@@ -201,15 +205,15 @@ def test_expand_tree_constants_and_plot(rostui_core: Any, ros_env: dict[str, str
         topics = next(c for c in tree.topic_node("/log").children if str(c.label).startswith("topics"))
         assert [str(c.label) for c in topics.children][-1] == "… 4 more"
         await pilot.press("f")
-        assert "Tab to the tree" in screen_text(app, "#status")
+        await until(lambda: isinstance(app.screen, FieldChooser), "the chooser of /log's numeric fields", DEADLINE)
+        await pilot.press("escape")
         await pilot.press("tab")
         assert app.focused is tree
         line = next(c for c in tree.topic_node("/log").children if str(c.label).startswith("line"))
         tree.move_cursor(line)
         await pilot.press("f")
-        assert app.source.plot is not None and (app.source.plot.topic, app.source.plot.path) == ("/log", "line")
-        await until(lambda: "/log/line = 42" in str(app.query_one("#plot-label", Static).render()),
-                    "the plotted value", DEADLINE)
+        assert [s.name for s in app.source.plot.series] == ["/log/line"] and app.query_one("#plot").display
+        await until(lambda: "range 42 … 42" in screen_text(app, "#plot-heading"), "the plotted value", DEADLINE)
         assert "/log" in str(app.query_one("#chart-title", Static).render())
         await pilot.press("shift+tab", "enter")
         assert app.expanded == [] and not app.query_one("#detail").display

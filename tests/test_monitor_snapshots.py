@@ -150,3 +150,86 @@ def test_publish_editor(snap_compare, talkers: Talkers) -> None:
         await pilot.pause()
 
     assert snap_compare(stepped_app(clock), run_before=run_before, terminal_size=(100, 30))
+
+
+class PoseTalker:
+    """A turtle's /turtle1/pose as turtlesim publishes it, on a fixed circle: one message per :meth:`step`."""
+
+    def __init__(self) -> None:
+        self.watcher = Watcher("snapshot_turtle")
+        self.pub = self.watcher.publisher("/turtle1/pose", "turtlesim/Pose")
+        self.pose_class = get_message_class("turtlesim/Pose")
+        self.k = 0
+
+    def step(self) -> None:
+        """The next pose: 2 m/s along a circle of radius 2 around the window's centre (0.1 s later)."""
+        import math
+
+        angle = 0.1 * self.k
+        self.pub.publish(self.pose_class(x=5.544 + 2 * math.sin(angle), y=5.544 - 2 * math.cos(angle) + 2,
+                                         theta=math.remainder(angle, 2 * math.pi), linear_velocity=2.0,
+                                         angular_velocity=1.0))
+        self.k += 1
+
+    def close(self) -> None:
+        """Leave the master."""
+        self.watcher.close()
+
+
+@pytest.fixture
+def turtle(rostui_core: Any, ros_env: dict[str, str]) -> Iterator[PoseTalker]:
+    """The publishing turtle."""
+    talker = PoseTalker()
+    yield talker
+    talker.close()
+
+
+async def feed_pose(pilot: Pilot, turtle: PoseTalker, clock: SteppedClock, messages: int = 80) -> None:
+    """Once the plotted fields are resolved and subscribed, publish ``messages`` poses 0.1 s apart on the clock."""
+    app = pilot.app
+    assert isinstance(app, MonitorApp)
+
+    def connected() -> bool:
+        app.repaint()
+        watch = app.source._watches.get("/turtle1/pose")
+        return not app.pending and watch is not None and watch.handle is not None \
+            and watch.handle.get_num_connections() > 0
+    await until(connected, "the monitor plotting /turtle1/pose", DEADLINE)
+    start = clock.now
+    for k in range(messages):
+        clock.now = start + k * 0.1
+        turtle.step()
+        await until(lambda: app.source.stats("/turtle1/pose").messages == k + 1, f"pose {k + 1}", DEADLINE)
+        if k and k % 10 == 0:
+            app.source.sample()
+    clock.now += 0.05
+    app.repaint()
+    await pilot.pause()
+
+
+def test_plot_turtle_pose_80x24(snap_compare, turtle: PoseTalker) -> None:
+    """`rostui monitor /turtle1/pose/x:y` at 80x24: the plot with axes, ticks, legend and the last 10 s."""
+    clock = SteppedClock()
+
+    async def run_before(pilot: Pilot) -> None:
+        await feed_pose(pilot, turtle, clock)
+
+    assert snap_compare(stepped_app(clock, ("/turtle1/pose/x:y",)), run_before=run_before, terminal_size=(80, 24))
+
+
+def test_plot_turtle_pose_100x32(snap_compare, turtle: PoseTalker) -> None:
+    """`rostui monitor /turtle1/pose/x /turtle1/pose/y /turtle1/pose/theta` at 100x32, paused after 8 s."""
+    clock = SteppedClock()
+
+    async def run_before(pilot: Pilot) -> None:
+        await feed_pose(pilot, turtle, clock)
+        await pilot.press("space")
+        for _ in range(5):
+            clock.now += 0.1
+            turtle.step()
+        await until(lambda: pilot.app.source.plot.since_pause == 15, "15 points counted while paused", DEADLINE)
+        pilot.app.repaint()
+        await pilot.pause()
+
+    app = stepped_app(clock, ("/turtle1/pose/x", "/turtle1/pose/y", "/turtle1/pose/theta"))
+    assert snap_compare(app, run_before=run_before, terminal_size=(100, 32))

@@ -43,7 +43,7 @@ from rostui.models.monitor.tree import message_tree
 __all__ = ["MonitorApp", "run_app", "KEYS"]
 
 #: Key help at the bottom.
-KEYS = "s sort  Enter expand  Tab tree  f plot  v plot panel  space pause  q quit"
+KEYS = "s sort  S rev  Enter expand  Tab tree  f plot  p publish  q quit"
 #: What the filter line says while it waits for "/", and while it has the keyboard.
 FILTER_IDLE = "/ filter"
 FILTER_TYPING = "name or type; Enter keeps, Esc clears"

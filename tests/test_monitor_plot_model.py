@@ -7,7 +7,7 @@ import pytest
 from rostui.core.msg import get_message_class
 from rostui.models.monitor.plot import (
     CAPACITY, DEFAULT_WINDOW, WINDOWS, PlotFieldError, PlotModel, check_numeric, expand_spec, normal_path,
-    numeric_fields, split_spec,
+    numeric_fields, split_spec, thin,
 )
 
 Pose = get_message_class("turtlesim/Pose")
@@ -137,3 +137,23 @@ def test_ring_buffer_drops_the_oldest_points() -> None:
     assert len(series.values) == CAPACITY and series.values[0] == 11.0 and series.count == CAPACITY + 10
     model.add_message("/turtle1/pose", 10_000.0, pose(0))
     assert list(series.times) == [10_000.0]
+
+
+def test_thinning_keeps_each_slices_extremes() -> None:
+    """Many points: at most two per slice (its lowest and highest, in time order); few points: all of them."""
+    times = [k * 0.01 for k in range(1000)]
+    values = [float((k * 37) % 101) for k in range(1000)]
+    kept_t, kept_v = thin(times, values, 0.0, 10.0, 10)
+    assert len(kept_t) == 20 and kept_t == sorted(kept_t)
+    for bucket in range(10):
+        inside = [v for t, v in zip(times, values) if bucket <= t < bucket + 1]
+        shown = [v for t, v in zip(kept_t, kept_v) if bucket <= t < bucket + 1]
+        assert sorted(shown) == [min(inside), max(inside)]
+    assert thin(times[:15], values[:15], 0.0, 10.0, 10) == (times[:15], values[:15])
+    model = PlotModel()
+    model.add_field("/turtle1/pose", "x")
+    for k in range(300):
+        model.add_message("/turtle1/pose", k * 0.02, pose(k % 7))
+    (view,) = model.view(6.0, buckets=25)
+    assert len(view.values) == 30, "6 s of points fill 15 of the 10 s window's 25 slices"
+    assert min(view.values) == 1.0 and max(view.values) == 7.0

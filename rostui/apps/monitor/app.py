@@ -304,6 +304,11 @@ class MonitorApp(ReleasesOnExit, App[int]):
         self.notice = text
         self.update_status()
 
+    def refuse(self, text: str) -> None:
+        """Why a key did nothing: in the status line, and whole in a toast (a long line is cut in the status)."""
+        self.say(text)
+        self.notify(text, severity="warning", timeout=6)
+
     # -- keys ------------------------------------------------------------------------
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         """The plot's keys act on the main screen only (in the field chooser, letters are not the app's)."""
@@ -382,7 +387,7 @@ class MonitorApp(ReleasesOnExit, App[int]):
             try:
                 self.source.plot_field(topic, path)
             except PlotFieldError as exc:
-                self.say(str(exc))
+                self.refuse(str(exc))
                 return
             self.say(f"plotting {topic}/{path}")
             self.plot_open = True
@@ -397,12 +402,12 @@ class MonitorApp(ReleasesOnExit, App[int]):
             self.say(f"cannot decode {topic}: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}")
             return
         if msg is None:
-            self.say(f"no message on {topic} yet: its fields are read from one (is it published?)")
+            self.refuse(f"no message on {topic} yet: its fields are read from one (is it published?)")
             self.source.want(self.wanted_topics() | {topic})
             return
         fields = [(path, f"{check_numeric(msg, topic, path):.6g}") for path in numeric_fields(msg)]
         if not fields:
-            self.say(f"{topic} ({getattr(msg, '_type', '?')}) has no numeric fields to plot")
+            self.refuse(f"{topic} ({getattr(msg, '_type', '?')}) has no numeric fields to plot")
             return
         plotted = [s.path for s in self.source.plot.series if s.topic == topic]
 

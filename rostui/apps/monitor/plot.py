@@ -115,6 +115,9 @@ class PlotPanel(Vertical):
             if view.last is not None:  # plotext cannot draw the legend of a line without points
                 plt.plot(list(view.times), list(view.values), label=f"{view.name} = {_number(view.last)}")
         plt.xlim(-model.window, 0.0)
+        # round seconds (-10, -8 … 0), about one tick per 12 columns
+        seconds = nice_ticks(-model.window, 0.0, most=min(11, max(2, canvas.size.width // 12)))
+        plt.xticks(seconds, [f"{t:g}" for t in seconds])
         span = model.value_range(views)
         if span is not None:
             # a tick every other row at most: the frame, the x ticks and their label take 3 rows
@@ -140,13 +143,15 @@ class FieldChooser(ModalScreen[list[str] | None]):
     FieldChooser > Vertical {
         width: 70%;
         max-width: 70;
-        height: 80%;
+        height: auto;
+        max-height: 90%;
         border: round $accent;
         background: $surface;
         padding: 0 1;
     }
     FieldChooser SelectionList {
-        height: 1fr;
+        height: auto;
+        max-height: 24;
     }
     FieldChooser .hint {
         height: auto;

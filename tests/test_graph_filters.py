@@ -224,3 +224,18 @@ def test_a_new_topic_between_the_same_nodes_changes_the_signature() -> None:
     one = build_view(RosGraph.build({"/a": ["/n1"]}, {"/a": ["/n2"]}), GraphOptions())
     two = build_view(RosGraph.build({"/a": ["/n1"], "/b": ["/n1"]}, {"/a": ["/n2"], "/b": ["/n2"]}), GraphOptions())
     assert one.signature() != two.signature()
+
+
+def test_a_cycle_keeps_each_label_between_its_nodes() -> None:
+    """/a -> /ping -> /b and /b -> /pong -> /a: /pong is drawn backwards with ◀ on its label and at /a."""
+    graph = RosGraph.build({"/ping": ["/a"], "/pong": ["/b"]}, {"/ping": ["/b"], "/pong": ["/a"]})
+    view = build_view(graph, GraphOptions())
+    canvas = lay_out(view, None, 200)[1]
+    a, b = canvas.boxes["n:/a"], canvas.boxes["n:/b"]
+    for topic in ("/ping", "/pong"):
+        row = next(y for y in range(canvas.height) if topic in canvas.line(y))
+        assert a.x + a.w < canvas.line(row).index(topic) < b.x, f"{topic} is not between /a and /b"
+    assert "◀ /pong" in canvas.text() and "◀ /ping" not in canvas.text()
+    assert canvas.line(a.center_row)[a.x + a.w] == "◀"
+    assert canvas.line(b.center_row)[b.x - 1] == "▶"
+    assert canvas.text().count("◀") == 2 and canvas.text().count("▶") == 1

@@ -17,7 +17,7 @@ from __future__ import annotations
 from typing import Mapping
 
 from rostui.models.graph.labels import EdgeLabels
-from rostui.models.graph.layout import Box, Layout, LayoutHint, layered_layout
+from rostui.models.graph.layout import Box, Layout, LayoutHint, back_edges, layered_layout
 from rostui.models.graph.view import Kind, ViewGraph
 
 __all__ = ["Canvas", "draw", "label_text", "box_size", "layout_view", "label_id", "MAX_LABEL", "LEGEND_TITLE"]
@@ -71,17 +71,25 @@ def layout_view(view: ViewGraph, hint: LayoutHint | None = None,
 
     Each edge in ``labels`` goes through a place of its own for its lines
     (as wide as the longest line plus a space each side, one row a line).
+    An edge that closes a cycle goes through its label backwards, target
+    first, so the label stays between its two nodes; its label starts with
+    ``◀`` (two columns more) to say which way the messages go.
     """
     sizes = {vid: box_size(v.label) for vid, v in view.vertices.items()}
+    if not labels:
+        return layered_layout(sizes, view.edges, hint)
+    backwards = back_edges(list(sizes), view.edges, hint)
     edges: list[tuple[str, str]] = []
     for edge in view.edges:
-        lines = labels.get(edge) if labels else None
+        lines = labels.get(edge)
         if not lines:
             edges.append(edge)
             continue
         lid = label_id(edge)
-        sizes[lid] = (max(len(line) for line in lines) + 2, len(lines))
-        edges += [(edge[0], lid), (lid, edge[1])]
+        back = edge in backwards
+        sizes[lid] = (max(len(line) for line in lines) + 2 + 2 * back, len(lines))
+        a, b = edge
+        edges += [(b, lid), (lid, a)] if back else [(a, lid), (lid, b)]
     return layered_layout(sizes, edges, hint)
 
 
@@ -136,16 +144,24 @@ class Canvas:
             vertex = view.vertices[vid]
             for dy, text in enumerate(_box_lines(box, vertex.kind, label_text(vertex.label))):
                 self._box_rows.setdefault(box.y + dy, []).append((box.x, text, number))
+        hops = set(layout.edges)
         for lid, edge in labelled.items():
             box = layout.boxes[lid]
             assert labels is not None
             owner = -2 - len(self.edges) - index[edge]
-            for dy, text in enumerate(_label_lines(box, labels.lines[edge])):
+            backwards = (edge[1], lid) in hops
+            for dy, text in enumerate(_label_lines(box, labels.lines[edge], backwards)):
                 self._box_rows.setdefault(box.y + dy, []).append((box.x, text, owner))
         for arrow in layout.arrows:
-            if layout.edges[arrow.edge][1] in labelled and not arrow.left:
-                continue  # the head goes on the node after the label
+            tail, head = layout.edges[arrow.edge]
             owner = -2 - view_edge[arrow.edge]
+            if head in labelled and not arrow.left:
+                continue  # the head goes on the node after the label
+            if tail in labelled and head == labelled[tail][0]:
+                # a backwards edge (label, then its source): the head goes on its target, to the left
+                target = self.boxes[labelled[tail][1]]
+                self._arrows.setdefault(target.center_row, []).append((target.x + target.w, "◀", owner))
+                continue
             self._arrows.setdefault(arrow.y, []).append((arrow.x, "◀" if arrow.left else "▶", owner))
         if self.legend:
             column = max(len(short) for short, _ in self.legend)
@@ -229,12 +245,15 @@ def draw(view: ViewGraph, layout: Layout, labels: EdgeLabels | None = None) -> C
     return Canvas(view, layout, labels)
 
 
-def _label_lines(box: Box, lines: tuple[str, ...]) -> list[str]:
-    """The rows of an edge label: one line each, the middle one continuing the edge's line to its right."""
+def _label_lines(box: Box, lines: tuple[str, ...], backwards: bool = False) -> list[str]:
+    """The rows of an edge label: one line each, the middle one continuing the edge's line to its right.
+
+    A backwards edge's label has ``◀`` before its middle line.
+    """
     middle = box.h // 2
     out = []
     for dy, line in enumerate(lines):
-        text = " " + line + " "
+        text = " " + ("◀ " if backwards and dy == middle else "  " if backwards else "") + line + " "
         out.append(text + ("─" if dy == middle else " ") * (box.w - len(text)))
     return out
 

@@ -564,13 +564,17 @@ def lay_out(view: ViewGraph, hint: LayoutHint | None, width: int, *,
 
     The widest labels that fit in ``width`` columns: full topic names
     first, then abbreviations, then numbered keys; when none fits, the
-    narrowest drawing (the graph scrolls).
+    narrowest drawing (the graph scrolls).  A graph too wide without any
+    label (a big one) goes straight to numbered keys: one layout, not three.
     """
     if not labelled or not view.edge_topics:
         layout = layout_view(view, hint)
         return layout, draw(view, layout)
+    styles = list(LabelStyle)
+    if layout_view(view, hint).width > width:  # too wide even bare: only the narrowest labels can help
+        styles = [LabelStyle.KEYS]
     best: tuple[Layout, EdgeLabels] | None = None
-    for style in LabelStyle:
+    for style in styles:
         labels = edge_labels(view, style)
         layout = layout_view(view, hint, labels.lines)
         if best is None or layout.width < best[0].width:

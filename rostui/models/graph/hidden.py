@@ -68,17 +68,6 @@ class Explanation:
                        f"(for example `{START_HINT}`) and it appears here.")
         return out
 
-    def summary(self) -> str:
-        """One line for narrow places: the first filter and its key."""
-        if self.nodes == 0:
-            return "the master has no nodes yet"
-        if self.hidden:
-            first = self.hidden[0]
-            return f"{_what(first)} hidden: {first.filter} (press {first.key})"
-        if self.together:
-            return f"everything is hidden by {_together(self.together)} together"
-        return "nothing to draw"
-
 
 def explain_empty(graph: RosGraph, options: GraphOptions) -> Explanation:
     """Why ``options`` draw nothing of ``graph``: what each filter that is on hides by itself."""

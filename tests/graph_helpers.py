@@ -88,6 +88,12 @@ def banner(app: GraphApp) -> str:
     return str(widget.render()) if widget.display else ""
 
 
+def empty_screen(app: GraphApp) -> str:
+    """The explanation shown in place of an empty drawing ("" when hidden)."""
+    widget = app.query_one("#empty")
+    return str(widget.render()) if widget.display else ""
+
+
 def details(app: GraphApp) -> str:
     """The details pane's text ("" when hidden)."""
     if not app.query_one("#details-pane").display:

@@ -9,19 +9,22 @@ from __future__ import annotations
 
 import re
 import subprocess
+import sys
 from pathlib import Path
 from typing import Any, Iterator
 
 import pytest
 from conftest import master_port, start_rostui_core, stop_process, until
 from graph_helpers import (
-    banner, book_system, details, has_edges, run_graph, screen_text, settled, shown_names, status, stop_programs,
+    banner, book_system, details, empty_screen, has_edges, master_graph, run_graph, screen_text, settled, shown_names,
+    status, stop_programs,
 )
 from live_helpers import Program, wait_until
 from textual.pilot import Pilot
 
 from rostui.apps.graph.app import GraphApp
 from rostui.models.graph.live import Mark
+from rostui.models.graph.model import RosGraph
 from rostui.models.graph.view import GraphOptions, ViewMode, book_setup
 
 FIGURE_2_4 = {"/teleop_turtle", "/turtlesim", "/turtle1/command_velocity", "/turtle1/cmd_vel", "/turtle1/pose",
@@ -48,7 +51,7 @@ def test_views_switch_with_v_and_number_keys(book: list[Program]) -> None:
     """Nodes only (Figure 2.2) -> v -> Nodes/Topics (active) -> v -> (all) (Figure 2.4) -> 1 -> nodes only."""
     async def scenario(pilot: Pilot, app: GraphApp) -> None:
         assert shown_names(app) == {"/teleop_turtle", "/turtlesim"}
-        assert re.search(r"│ /teleop_turtle │─*▶│ /turtlesim │", screen_text(app))
+        assert re.search(r"│ /teleop_turtle │─+ /turtle1/command_velocity ─+▶│ /turtlesim │", screen_text(app))
         assert "Nodes only · hide debug" in status(app)
         await pilot.press("v")
         await settled(app)
@@ -341,12 +344,49 @@ def test_master_going_away_and_coming_back(ros_env: dict[str, str], tmp_path: Pa
 
 
 def test_empty_filter_result_says_so(book: list[Program]) -> None:
-    """An include pattern nothing matches: an empty drawing and a line saying everything is filtered out."""
+    """An include pattern nothing matches: the screen names what it hides and how to clear it; i clears it."""
     async def scenario(pilot: Pilot, app: GraphApp) -> None:
         assert shown_names(app) == set()
-        assert "nothing to show" in banner(app)
+        assert banner(app) == ""
+        text = empty_screen(app)
+        assert "Nothing drawn, but the master has" in text
+        assert "(/teleop_turtle, /turtlesim) and" in text
+        assert "the include filter /^/no_such_node$/ matches none of them. Press i, clear the pattern" in text
+        assert not app.graph_view.display
+        await pilot.press("i")
+        await pilot.press(*["backspace"] * len("^/no_such_node$"))
+        await pilot.press("enter")
+        await settled(app)
+        assert shown_names(app) == {"/teleop_turtle", "/turtlesim"} and empty_screen(app) == ""
+        assert app.graph_view.display and app.focused is app.graph_view
 
     run_graph(GraphApp(GraphOptions(include="^/no_such_node$"), period=0.5), scenario)
+
+
+def test_only_tool_nodes_running_explains_hide_debug(rostui_core: Any, ros_env: dict[str, str],
+                                                    tmp_path: Path) -> None:
+    """Only `rostui topic pub` runs: the first screen names its tool node and topic, hidden by hide debug; d shows them."""
+    pub = subprocess.Popen([sys.executable, "-m", "rostui", "topic", "pub", "/greeting", "std_msgs/String",
+                            "data: hello", "-r", "1"], env=ros_env, stdout=subprocess.DEVNULL,
+                           stderr=subprocess.DEVNULL)
+    try:
+        wait_until(lambda: (master_graph(ros_env) or RosGraph()).publishers.get("/greeting"),
+                   "rostui topic pub to register")
+        tool = master_graph(ros_env).publishers["/greeting"][0]
+
+        async def scenario(pilot: Pilot, app: GraphApp) -> None:
+            assert shown_names(app) == set()
+            text = empty_screen(app)
+            assert f"1 tool node ({tool})" in text and "/greeting" in text
+            assert "hidden: hide debug is on. Press d to show them." in text
+            assert "start one of yours" in text
+            await pilot.press("d")
+            await settled(app)
+            assert {tool, "/rosout"} <= shown_names(app) and empty_screen(app) == ""
+
+        run_graph(GraphApp(period=0.5), scenario)
+    finally:
+        stop_process(pub)
 
 
 def test_real_rospy_node_with_its_topics(real_roscore: Any, rospy_available: None, ros_env: dict[str, str],
@@ -380,3 +420,69 @@ def test_real_rospy_node_with_its_topics(real_roscore: Any, rospy_available: Non
     finally:
         stop_process(listener)
         stop_process(talker)
+
+
+def test_user_rostui_listener_shown_with_its_edges(real_roscore: Any, rospy_available: None,
+                                                   ros_env: dict[str, str]) -> None:
+    """Real roscore: a rospy node the user named rostui_listener is drawn with its /chatter edge, labelled;
+    the anonymous nodes of the real `rostopic echo` and of `rostui topic echo` on the same topic are hidden."""
+    from conftest import REPO, SYSTEM_PYTHON
+
+    quiet = {"env": ros_env, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
+    procs = [
+        subprocess.Popen([SYSTEM_PYTHON, str(REPO / "tests/peers/rospy_talker.py"), "/chatter", "1000", "5",
+                          "__name:=talker"], **quiet),
+        subprocess.Popen([SYSTEM_PYTHON, str(REPO / "tests/peers/rospy_listener.py"), "/chatter", "100000",
+                          "__name:=rostui_listener"], **quiet),
+        subprocess.Popen(["rostopic", "echo", "/chatter"], **quiet),
+        subprocess.Popen([sys.executable, "-m", "rostui", "topic", "echo", "/chatter"], **quiet),
+    ]
+
+    def tools() -> list[str]:
+        graph = master_graph(ros_env) or RosGraph()
+        return [n for n in graph.subscribers.get("/chatter", ()) if n.startswith("/rostopic_")]
+
+    try:
+        wait_until(lambda: has_edges(ros_env, (("/talker", "/chatter", "/rostui_listener"),)) and len(tools()) == 2,
+                   "the talker, /rostui_listener and both echo tools on /chatter")
+
+        async def scenario(pilot: Pilot, app: GraphApp) -> None:
+            assert shown_names(app) == {"/talker", "/rostui_listener"}
+            assert app.shown.edge_topics[("n:/talker", "n:/rostui_listener")] == ("/chatter",)
+            assert re.search(r"│ /talker │─+ /chatter ─+▶│ /rostui_listener │", screen_text(app))
+            await pilot.press("d")
+            await settled(app)
+            assert set(tools()) | {"/talker", "/rostui_listener", "/rosout"} <= shown_names(app)
+
+        run_graph(GraphApp(period=0.5), scenario)
+    finally:
+        for proc in reversed(procs):
+            stop_process(proc)
+
+
+def test_edge_labels_fit_the_terminal_as_it_is_resized(book: list[Program], ros_env: dict[str, str],
+                                                       tmp_path: Path) -> None:
+    """teleop -> turtlesim -> subscribe_to_pose: full topic names at 120 columns, abbreviations at 100,
+    numbered keys with a legend at 80 (the drawing always fits the screen)."""
+    sub = Program(ros_env, tmp_path, "agitr", "subpose", label="subpose")
+    try:
+        wait_until(lambda: has_edges(ros_env, (("/turtlesim", "/turtle1/pose", "/subscribe_to_pose"),)),
+                   "subpose to register")
+
+        async def scenario(pilot: Pilot, app: GraphApp) -> None:
+            await until(lambda: "/subscribe_to_pose" in shown_names(app), "subpose on screen")
+            await settled(app)
+            text = screen_text(app)
+            assert "─ /turtle1/command_velocity ─" in text and "─ /turtle1/pose ─" in text
+            await pilot.resize_terminal(100, 32)
+            await until(lambda: "─ …/pose ─" in screen_text(app), "abbreviated labels at 100 columns")
+            assert "  …/command_velocity  /turtle1/command_velocity" in screen_text(app).splitlines()
+            assert app.graph_view.canvas.width <= 99
+            await pilot.resize_terminal(80, 24)
+            await until(lambda: "─ [1] ─" in screen_text(app), "numbered labels at 80 columns")
+            assert "  [2]  /turtle1/pose" in screen_text(app).splitlines()
+            assert app.graph_view.canvas.width <= 79
+
+        run_graph(GraphApp(period=0.5), scenario, size=(120, 32))
+    finally:
+        sub.stop()

@@ -111,7 +111,8 @@ def test_debug_names() -> None:
     for name in ("/rosout", "/rostopic_12_1700000000000", "/rosnode_1_2", "/rostui_graph_3_4",
                  "/rostui_console_5_6", "/rqt_gui_py_node_22924", "/rosservice_9_9"):
         assert is_debug_node(name), name
-    for name in ("/rospy_talker_12_1700000000000", "/record_1234_5678", "/turtlesim", "/rosout_helper"):
+    for name in ("/rospy_talker_12_1700000000000", "/record_1234_5678", "/turtlesim", "/rosout_helper",
+                 "/rostui_listener"):
         assert not is_debug_node(name), name
 
 

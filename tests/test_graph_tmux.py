@@ -47,7 +47,7 @@ def test_graph_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str], tm
         assert "│ /teleop_turtle │──▶│ /turtle1/command_velocity │" in row
         pane.keys("1")
         wait_until(lambda: "/turtle1/pose" not in pane.screen(), "the nodes-only view")
-        assert "│ /teleop_turtle │──▶│ /turtlesim │" in pane.screen()
+        assert "│ /teleop_turtle │─── /turtle1/command_velocity ──▶│ /turtlesim │" in pane.screen()
         pane.keys("/")
         wait_until(lambda: "search:" in pane.screen(), "the search prompt")  # letters typed before it are keys
         pane.keys("-l", "turtlesim")

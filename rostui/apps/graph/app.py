@@ -17,6 +17,7 @@ from collections import OrderedDict
 from pathlib import Path
 from typing import Any
 
+from rich.text import Text
 from textual import on
 from textual.app import App, ComposeResult
 from textual.binding import Binding
@@ -28,6 +29,8 @@ from rostui.apps.graph.widget import GraphView
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.lifecycle import ReleasesOnExit
 from rostui.core.network import master_uri_from_env
+from rostui.models.graph.hidden import explain_empty
+from rostui.models.graph.labels import EdgeLabels, LabelStyle, edge_labels
 from rostui.models.graph.layout import Layout, LayoutHint
 from rostui.models.graph.live import KEEP_REFRESHES, LiveGraph, Mark
 from rostui.models.graph.model import RosGraph
@@ -103,6 +106,7 @@ class GraphApp(ReleasesOnExit, App[int]):
         self.master_error = ""
         self.filter_error = ""
         self.notice = ""
+        self._empty_text = ""
         self.focus_center: str | None = None
         self.hops = 1
         self.selected: str | None = None
@@ -123,6 +127,7 @@ class GraphApp(ReleasesOnExit, App[int]):
         yield Static(id="status")
         yield Static(id="banner")
         with Horizontal(id="main"):
+            yield Static(id="empty")
             yield GraphView(id="graph")
             with VerticalScroll(id="details-pane"):
                 yield Static(id="details")
@@ -134,10 +139,16 @@ class GraphApp(ReleasesOnExit, App[int]):
         self.query_one("#details-pane").display = False
         self.query_one("#prompt", Input).display = False
         self.query_one("#banner").display = False
+        self.query_one("#empty").display = False
         self.graph_view.focus()
         self.update_status()
         self.set_interval(self.period, self.poll)
         self.poll()
+
+    def on_resize(self) -> None:
+        """A new width may fit longer (or need shorter) edge labels: draw again."""
+        if self.view_graph is not None:
+            self.recompute()
 
     @property
     def graph_view(self) -> GraphView:
@@ -189,7 +200,7 @@ class GraphApp(ReleasesOnExit, App[int]):
         if self.focus_center is not None:
             view = focus_view(view, self.focus_center, self.hops)
         self.view_graph = view
-        signature = view.signature()
+        signature = (view.signature(), self.drawing_width())
         cached = self._layouts.get(signature)
         if cached is not None:
             self._layouts.move_to_end(signature)
@@ -199,12 +210,17 @@ class GraphApp(ReleasesOnExit, App[int]):
             self.run_worker(self._lay_out(view, signature, self._layout_seq), group="layout", exit_on_error=False)
         self.update_status()
 
+    def drawing_width(self) -> int:
+        """Columns the drawing has on screen with the details pane closed (edge labels are abbreviated past it)."""
+        return max(self.size.width - 1, 20)
+
     async def _lay_out(self, view: ViewGraph, signature: tuple, seq: int) -> None:
         hint = self._hint[1] if self._hint is not None and self._hint[0] is self.options.view else None
+        width = signature[1]
+        labelled = self.options.view is ViewMode.NODES
 
         def compute() -> tuple[Layout, Canvas]:
-            layout = layout_view(view, hint)
-            return layout, draw(view, layout)
+            return lay_out(view, hint, width, labelled=labelled)
 
         layout, canvas = await asyncio.to_thread(compute)
         self._layouts[signature] = (layout, canvas)
@@ -254,7 +270,10 @@ class GraphApp(ReleasesOnExit, App[int]):
         counts = ""
         if view is not None:
             kinds = [v.kind for v in view.vertices.values()]
-            counts = f"{_count(kinds.count(Kind.NODE), 'node')} · {_count(kinds.count(Kind.TOPIC), 'topic')}"
+            topics = kinds.count(Kind.TOPIC)
+            if self.options.view is ViewMode.NODES:  # the topics written on the edges
+                topics = len({t for ts in view.edge_topics.values() for t in ts})
+            counts = f"{_count(kinds.count(Kind.NODE), 'node')} · {_count(topics, 'topic')}"
             if Kind.GROUP in kinds:
                 counts += f" · {_count(kinds.count(Kind.GROUP), 'group')}"
         parts = [self.options.describe()]
@@ -268,11 +287,33 @@ class GraphApp(ReleasesOnExit, App[int]):
             parts.append(self.notice)
         self.query_one("#status", Static).update(" │ ".join(parts))
         problem = self.master_error or self.filter_error
-        if not problem and view is not None and not view.vertices and self.master_ok:
-            problem = "nothing to show: every node and topic is filtered out"
         banner = self.query_one("#banner", Static)
         banner.update(problem)
         banner.display = bool(problem)
+        self.update_empty()
+
+    def update_empty(self) -> None:
+        """In place of an empty drawing: what the master has, which filter hides it, and the key that shows it."""
+        view = self.view_graph
+        empty = self.query_one("#empty", Static)
+        explain = bool(self.master_ok) and view is not None and not view.vertices
+        if explain:
+            lines = explain_empty(self.live.current, self.options).lines()
+            if self.focus_center is not None:
+                lines.append(f"Focus on {name_of(self.focus_center)} is on: press f to leave it.")
+            text = "\n\n".join(lines)
+            if text != self._empty_text:
+                self._empty_text = text
+                shown = Text(text)  # names and patterns are shown as typed, never read as markup
+                shown.highlight_regex(r"(?:Press|press) \S+|\([a-z]\)", "bold")
+                empty.update(shown)
+        else:
+            self._empty_text = ""
+        if empty.display != explain:
+            empty.display = explain
+            self.graph_view.display = not explain
+            if not explain and self.focused is None:
+                self.graph_view.focus()
 
     # -- selection and details -----------------------------------------------------------
     def select(self, vertex: str | None, *, scroll: bool = True) -> None:
@@ -515,6 +556,33 @@ class GraphApp(ReleasesOnExit, App[int]):
     async def release(self) -> None:
         """Close the connection to the master."""
         await self.source.close()
+
+
+def lay_out(view: ViewGraph, hint: LayoutHint | None, width: int, *,
+            labelled: bool = True) -> tuple[Layout, Canvas]:
+    """Lay ``view`` out and draw it; ``labelled`` (the nodes-only view): with topic names on its edges.
+
+    The widest labels that fit in ``width`` columns: full topic names
+    first, then abbreviations, then numbered keys; when none fits, the
+    narrowest drawing (the graph scrolls).  A graph too wide without any
+    label (a big one) goes straight to numbered keys: one layout, not three.
+    """
+    if not labelled or not view.edge_topics:
+        layout = layout_view(view, hint)
+        return layout, draw(view, layout)
+    styles = list(LabelStyle)
+    if layout_view(view, hint).width > width:  # too wide even bare: only the narrowest labels can help
+        styles = [LabelStyle.KEYS]
+    best: tuple[Layout, EdgeLabels] | None = None
+    for style in styles:
+        labels = edge_labels(view, style)
+        layout = layout_view(view, hint, labels.lines)
+        if best is None or layout.width < best[0].width:
+            best = (layout, labels)
+        if layout.width <= width:
+            break
+    assert best is not None
+    return best[0], draw(view, best[0], best[1])
 
 
 def _count(number: int, noun: str) -> str:

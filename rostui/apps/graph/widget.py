@@ -1,7 +1,7 @@
 """GraphView: a scrollable Line API widget that shows a :class:`~rostui.apps.graph.canvas.Canvas`.
 
 Only the visible rows are built and styled.  Colours come from component
-classes (see ``app.tcss``): nodes, topics, groups, edges, the selection,
+classes (see ``app.tcss``): nodes, topics, groups, edges, edge labels, the selection,
 its neighbours and edges, and the "new" / "gone" marks of live changes.  A
 new vertex gets a ``+`` in its top border, a vanished one an ``×``.
 """
@@ -31,7 +31,7 @@ class GraphView(ScrollView, can_focus=True):
     """The graph: boxes and arrows on a canvas larger than the screen; click a box to select it."""
 
     COMPONENT_CLASSES = {
-        "graph--node", "graph--topic", "graph--group", "graph--edge", "graph--edge-hot",
+        "graph--node", "graph--topic", "graph--group", "graph--edge", "graph--edge-hot", "graph--label",
         "graph--selected", "graph--neighbour", "graph--new", "graph--gone",
     }
 
@@ -135,13 +135,14 @@ class GraphView(ScrollView, can_focus=True):
         assert canvas is not None
         if owner == EMPTY:
             return "blank"
-        if owner <= -2:
-            a, b = canvas.edges[-2 - owner]
+        found = canvas.edge_of(owner)
+        if found is not None:
+            a, b = canvas.edges[found[0]]
             if self.selected is not None and self.selected in (a, b):
                 return "edge-hot"
             if self.marks.get(a) is Mark.GONE or self.marks.get(b) is Mark.GONE:
                 return "gone"
-            return "edge"
+            return "label" if found[1] else "edge"
         vid = canvas.vertex_ids[owner]
         if vid == self.selected:
             return "selected"
@@ -153,7 +154,7 @@ class GraphView(ScrollView, can_focus=True):
         return {Kind.NODE: "node", Kind.TOPIC: "topic", Kind.GROUP: "group"}[kind_of(vid)]
 
     def _styles(self, base: Style) -> dict[str, Style]:
-        names = ("node", "topic", "group", "edge", "edge-hot", "selected", "neighbour", "new", "gone")
+        names = ("node", "topic", "group", "edge", "edge-hot", "label", "selected", "neighbour", "new", "gone")
         styles = {name: base + self.get_component_rich_style(f"graph--{name}", partial=True) for name in names}
         styles["blank"] = base
         return styles

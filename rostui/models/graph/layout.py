@@ -18,7 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Mapping, NamedTuple, Sequence
 
-__all__ = ["Box", "Segment", "Arrow", "Layout", "LayoutHint", "layered_layout", "count_crossings"]
+__all__ = ["Box", "Segment", "Arrow", "Layout", "LayoutHint", "layered_layout", "back_edges", "count_crossings"]
 
 #: Rows between two boxes of one layer.
 ROW_GAP = 1
@@ -96,19 +96,8 @@ def layered_layout(sizes: Mapping[str, tuple[int, int]], edges: Sequence[tuple[s
                    hint: LayoutHint | None = None, *, sweeps: int = 6) -> Layout:
     """Lay out vertices of ``sizes`` (id -> (width, height)) with directed ``edges`` left to right."""
     hint = hint or LayoutHint()
-    ids = sorted(sizes, key=lambda v: (hint.rank.get(v, 1 << 30), hint.position.get(v, 0.0), v))
-    index = {v: i for i, v in enumerate(ids)}
+    ids, index, unique = _ordered(sizes, edges, hint)
     n = len(ids)
-    unique: list[tuple[str, str]] = []
-    seen: set[tuple[int, int]] = set()
-    for a, b in edges:
-        if a == b or a not in index or b not in index:
-            continue
-        key = (index[a], index[b])
-        if key not in seen:
-            seen.add(key)
-            unique.append((a, b))
-    unique.sort(key=lambda e: (index[e[0]], index[e[1]]))
     pairs = [(index[a], index[b]) for a, b in unique]
 
     reversed_flags = _break_cycles(n, pairs)
@@ -147,6 +136,32 @@ def layered_layout(sizes: Mapping[str, tuple[int, int]], edges: Sequence[tuple[s
 
     ys = _place_rows(layers, heights, succ, pred)
     return _route(ids, layers, ys, widths, heights, rank, chains, unique, reversed_flags, crossings)
+
+
+def back_edges(vertices: Sequence[str], edges: Sequence[tuple[str, str]],
+               hint: LayoutHint | None = None) -> set[tuple[str, str]]:
+    """The edges :func:`layered_layout` would draw backwards to break cycles, for the same vertices and hint."""
+    ids, index, unique = _ordered(dict.fromkeys(vertices, (0, 0)), edges, hint or LayoutHint())
+    flags = _break_cycles(len(ids), [(index[a], index[b]) for a, b in unique])
+    return {edge for edge, flipped in zip(unique, flags) if flipped}
+
+
+def _ordered(sizes: Mapping[str, tuple[int, int]], edges: Sequence[tuple[str, str]],
+             hint: LayoutHint) -> tuple[list[str], dict[str, int], list[tuple[str, str]]]:
+    """Vertex ids in the hint's order, their indices, and the edges deduplicated in that order (no loops)."""
+    ids = sorted(sizes, key=lambda v: (hint.rank.get(v, 1 << 30), hint.position.get(v, 0.0), v))
+    index = {v: i for i, v in enumerate(ids)}
+    unique: list[tuple[str, str]] = []
+    seen: set[tuple[int, int]] = set()
+    for a, b in edges:
+        if a == b or a not in index or b not in index:
+            continue
+        key = (index[a], index[b])
+        if key not in seen:
+            seen.add(key)
+            unique.append((a, b))
+    unique.sort(key=lambda e: (index[e[0]], index[e[1]]))
+    return ids, index, unique
 
 
 # ----------------------------------------------------------------------------- cycles and layers

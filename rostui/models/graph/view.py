@@ -17,7 +17,7 @@ from rostui.models.graph.model import RosGraph
 
 __all__ = [
     "Kind", "ViewMode", "Vertex", "ViewGraph", "GraphOptions", "FilterError", "book_setup",
-    "is_debug_node", "is_debug_topic", "node_id", "topic_id", "group_id", "name_of", "kind_of",
+    "is_debug_node", "is_debug_topic", "is_tool_node", "TOOL_NODES", "node_id", "topic_id", "group_id", "name_of", "kind_of",
     "compile_pattern", "build_view", "focus_view", "namespace_of",
 ]
 
@@ -77,17 +77,37 @@ def kind_of(vertex: str) -> Kind:
     return _KINDS[vertex[0]]
 
 
-#: Tool nodes with anonymous names (``/rostopic_<pid>_<ms>``...): ROS's own, rqt's and rostui's.
-_DEBUG_NODE = re.compile(r"^/(rostopic|rosnode|rosservice|rosparam|roswtf|rostui|rqt_gui_py_node|rqt_gui_cpp_node)_")
+#: Base names of the introspection tools whose nodes "Hide debug" hides: ROS's command-line tools, rqt's
+#: plugin hosts and rostui's own apps.  Data sources and sinks a user runs on purpose (rosbag's and
+#: rostui's recorders and players, the bag view) are not tools in this sense: their edges are data flow.
+TOOL_NODES = frozenset({
+    "rostopic", "rosnode", "rosservice", "rosparam", "roswtf", "rqt_gui_py_node", "rqt_gui_cpp_node",
+    "rostui_graph", "rostui_console", "rostui_monitor", "rostui_loggers",
+})
+#: ``base_<pid>_<ms>`` (rospy's and rostui's anonymous names), ``base_<ns>`` (roscpp's) or
+#: ``base_<pid>`` (rqt's plugin hosts): a base name followed by one or two numbers.
+_NUMBERED = re.compile(r"^(?P<base>.+?)(?:_\d+){1,2}$")
 #: Nodes that exist for logging and introspection only.
 DEBUG_NODES = frozenset({"/rosout"})
 #: Topics that carry logging and introspection only.
 DEBUG_TOPICS = frozenset({"/rosout", "/rosout_agg", "/statistics"})
 
 
+def is_tool_node(name: str) -> bool:
+    """True for an introspection tool's anonymous node: ``/rostopic_1234_1700000000000``, in any namespace.
+
+    Only a :data:`TOOL_NODES` base with the numbers an anonymous name gets
+    counts: a user's ``/rostui_listener`` is not a tool, nor is a user's
+    anonymous ``/talker_1234_1700000000000`` (rospy's tutorial listener is
+    anonymous, and it is part of the user's system).
+    """
+    match = _NUMBERED.match(name[name.rfind("/") + 1:])
+    return match is not None and match.group("base") in TOOL_NODES
+
+
 def is_debug_node(name: str) -> bool:
-    """True for nodes that "Hide debug" hides: /rosout and the anonymous tool nodes (rostopic, rostui...)."""
-    return name in DEBUG_NODES or _DEBUG_NODE.match(name) is not None
+    """True for nodes that "Hide debug" hides: /rosout and the anonymous tool nodes (:func:`is_tool_node`)."""
+    return name in DEBUG_NODES or is_tool_node(name)
 
 
 def is_debug_topic(name: str) -> bool:
@@ -196,8 +216,9 @@ class ViewGraph:
         return adj
 
     def signature(self) -> tuple:
-        """A value equal for two views with the same vertices (and labels) and edges."""
-        return (tuple((v.id, v.label) for v in self.vertices.values()), self.edges)
+        """A value equal for two views with the same vertices (and labels), edges and edge topics."""
+        return (tuple((v.id, v.label) for v in self.vertices.values()), self.edges,
+                tuple(sorted(self.edge_topics.items())))
 
 
 def _matches(pattern: re.Pattern[str] | None, name: str) -> bool:

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from textual import work
-from textual.app import App, ComposeResult
+from textual.app import ComposeResult
 from textual.binding import Binding, BindingType
 from textual.containers import VerticalScroll
 from textual.widgets import Input, Static
@@ -29,6 +29,7 @@ from textual.widgets import Input, Static
 from rostui.apps.bagview.bars import PLAY_KEYS, header_text, play_status, wall_text
 from rostui.apps.bagview.timeline import TimelineView
 from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.bag.clock import DEFAULT_HZ, BagClock
 from rostui.core.bag.index import BagIndex, IndexSource, load_index, message_yaml
@@ -83,7 +84,7 @@ class GotoPrompt(Input):
         self.app.query_one(TimelineView).focus()
 
 
-class BagViewApp(ReleasesOnExit, App[int]):
+class BagViewApp(ReleasesOnExit, KeysApp):
     """Play, pause, step, seek and inspect a bag; publish it on a live graph.
 
     ``clock`` is the transport's wall clock (a snapshot test freezes it); ``publish_clock`` publishes the
@@ -92,7 +93,7 @@ class BagViewApp(ReleasesOnExit, App[int]):
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "rostui bag view"
-    ENABLE_COMMAND_PALETTE = False
+    KEY_NOTES = (("click", "seek there (in the strips) or select the topic (on its name)"),)
 
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("q", "quit", "quit"),

@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from textual import on
-from textual.app import App, ComposeResult
+from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, VerticalScroll
 from textual.widgets import Input, Static
@@ -26,6 +26,8 @@ from textual.widgets import Input, Static
 from rostui.apps.graph.canvas import Canvas, draw, layout_view
 from rostui.apps.graph.widget import GraphView
 from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit
 from rostui.core.network import master_uri_from_env
 from rostui.models.graph.layout import Layout, LayoutHint
@@ -42,8 +44,8 @@ from rostui.tools.node import NodeInfo
 __all__ = ["GraphApp", "run_app", "KEYS"]
 
 #: Key help shown under the graph.
-KEYS = ("v view  d debug  s sinks  l leaves  g group  i/x filter  b book  / search  f focus ±  "
-        "Tab next  Enter info  r rate  q quit")
+KEYS = key_line("v view  d debug  s sinks  l leaves  g group  i/x filter  b book  / search  f focus ±  "
+                "Tab next  Enter info  r rate")
 #: Layouts kept for views seen lately (switching back redraws them exactly, at once).
 CACHE_SIZE = 8
 #: Seconds a topic is listened to when its rate is measured.
@@ -52,7 +54,7 @@ RATE_SECONDS = 3.0
 PROMPTS = {"search": "search: ", "include": "include regex: ", "exclude": "exclude regex: "}
 
 
-class GraphApp(ReleasesOnExit, App[int]):
+class GraphApp(ReleasesOnExit, KeysApp):
     """The ROS graph of the master at ``master_uri`` (ROS_MASTER_URI by default), refreshed every ``period`` s.
 
     A topic's rate is measured over ``rate_seconds``; "new" and "gone" marks
@@ -61,7 +63,7 @@ class GraphApp(ReleasesOnExit, App[int]):
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "rostui graph"
-    ENABLE_COMMAND_PALETTE = False
+    KEY_NOTES = (("click", "select a node or topic"),)
 
     BINDINGS = [
         Binding("q", "quit", "quit"),

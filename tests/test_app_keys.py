@@ -56,13 +56,13 @@ def _launch(tmp: Path) -> LaunchMonitorApp:
 
 CASES: dict[str, Case] = {
     "graph": Case(lambda tmp: GraphApp(GraphOptions(), period=0.2), "1  nodes only", lambda app: app.polls >= 1),
-    "console": Case(lambda tmp: ConsoleApp(), "1  DEBUG",
+    "console": Case(lambda tmp: ConsoleApp(), "1  DEBUG on/off",
                     lambda app: app.source is not None and app.source.state.status.name == "CONNECTED"),
     "loggers": Case(lambda tmp: LoggersApp(node_period=0.3, ping_period=0.5, timeout=2.0), "d  DEBUG",
                     lambda app: app.started.is_set()),
     "monitor": Case(lambda tmp: MonitorApp(period=0.3), "x  collapse topic",
                     lambda app: app.source.state.status.name == "CONNECTED"),
-    "bag view": Case(lambda tmp: BagViewApp([str(write_counts(tmp / "counts.mcap", 20))]), "0  0%",
+    "bag view": Case(lambda tmp: BagViewApp([str(write_counts(tmp / "counts.mcap", 20))]), "0  go to 0%",
                      lambda app: app.node is not None),
     "bag record": Case(lambda tmp: BagRecordApp(RecordOptions(topics=["/counts"],
                                                               output_name=str(tmp / "rec.mcap"))),

@@ -74,3 +74,8 @@ def test_grouped_namespace(snap_compare, book: list[Program]) -> None:
     """The book's setup grouped by namespace: /turtle1's four topics in one double box."""
     options = book_setup().with_(group_namespaces=True)
     assert snap_compare(GraphApp(options, period=0.2), run_before=drawn, terminal_size=(80, 10))
+
+
+def test_book_setup_at_80x24(snap_compare, book: list[Program]) -> None:
+    """The book's setup in an 80x24 terminal: the key line starts with `? help  q quit`, never cut."""
+    assert snap_compare(GraphApp(book_setup(), period=0.2), run_before=drawn, terminal_size=(80, 24))

@@ -81,7 +81,7 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
 
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("q", "quit", "quit"),
-        *(Binding(key, f"toggle_level({int(level)})", level.name, show=False) for level, key in LEVEL_KEYS.items()),
+        *(Binding(key, f"toggle_level({int(level)})", f"{level.name} on/off", show=False) for level, key in LEVEL_KEYS.items()),
         Binding("slash", "open_prompt('search')", "search"),
         Binding("r", "toggle_regex", "regex"),
         Binding("escape", "clear_search", "clear search", show=False),

@@ -42,17 +42,17 @@ class HelpScreen(ModalScreen[None]):
         align: center middle;
     }
     HelpScreen > #help {
-        width: auto;
-        max-width: 100%;
+        width: 90%;
+        max-width: 100;
         height: auto;
-        max-height: 100%;
+        max-height: 90%;
         border: round $accent;
         border-title-color: $accent;
         padding: 0 1;
         background: $surface;
     }
     HelpScreen #help-text {
-        width: auto;
+        width: 100%;
     }
     """
 

@@ -242,3 +242,24 @@ def test_loggers_enter_works_without_an_arrow_key(master: dict[str, str], tmp_pa
         assert isinstance(app.focused, LevelList)
 
     run("loggers", tmp_path, scenario)
+
+
+def test_help_and_ctrl_c_over_the_publish_editor(master: dict[str, str], tmp_path: Path) -> None:
+    """Over the monitor's publish editor: F1 lists the editor's keys, Escape closes only the help, Ctrl-C quits."""
+    from rostui.apps.monitor.editor import PublishEditor
+
+    async def scenario(pilot: Pilot, app: Any) -> None:
+        await pilot.press("p")
+        await until(lambda: isinstance(app.screen, PublishEditor), "the publish editor")
+        await pilot.press("f1")
+        await until(lambda: isinstance(app.screen, HelpScreen), "the help over the editor")
+        text = app.screen.text
+        quit_line = next(line for line in text.splitlines() if line.endswith("  quit"))
+        assert "^s  send once" in text and "^c" in quit_line.split("  ")[0], text
+        await pilot.press("escape")
+        await until(lambda: isinstance(app.screen, PublishEditor), "Escape to close only the help")
+        await pilot.press("ctrl+c")
+        await until(lambda: not app.is_running, "the app to end after ctrl+c in the editor")
+
+    app = run("monitor", tmp_path, scenario)
+    assert app.return_code == 0 and app.released

@@ -80,12 +80,15 @@ def key_sections(screen: Screen[object], notes: Iterable[tuple[str, str]] = (),
     ``notes`` are (keys, description) pairs the app handles without a binding
     (turtlesim's arrow keys), added to the app's section; ``extra`` are
     bindings that work although the screen does not list them (the app's
-    priority keys over a modal screen).  Keys bound to the same action and
+    priority keys over a modal screen; they win over the screen's own binding
+    of the same key, as they do when pressed).  Keys bound to the same action and
     description share a row.
     """
     app = screen.app
     groups: dict[DOMNode, dict[tuple[str, str], list[str]]] = {}
-    chain = [(active.node, active.binding) for active in screen.active_bindings.values()]
+    overriding = {binding.key for _, binding in extra if binding.priority}
+    chain = [(active.node, active.binding) for active in screen.active_bindings.values()
+             if active.binding.key not in overriding or active.binding.priority]
     seen = {binding.key for _, binding in chain}
     chain += [(node, binding) for node, binding in extra if binding.key not in seen]
     for node, binding in chain:

@@ -7,7 +7,7 @@ app, or the focused widget), exactly as pressing the key would.
 from __future__ import annotations
 
 from functools import partial
-from typing import Protocol, runtime_checkable
+from typing import Awaitable, Callable, Protocol, runtime_checkable
 
 from textual.command import DiscoveryHit, Hit, Hits, Provider
 from textual.screen import Screen
@@ -44,7 +44,7 @@ class KeysProvider(Provider):
             return []
         return palette_rows(app.keys_for(self.screen))
 
-    def _command(self, row: KeyRow) -> partial[object]:
+    def _command(self, row: KeyRow) -> Callable[[], Awaitable[bool]]:
         assert row.action is not None
         return partial(self.screen.app.run_action, row.action, row.namespace)
 

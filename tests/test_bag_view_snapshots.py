@@ -223,3 +223,27 @@ def test_record_mode_stopped_at_its_duration(snap_compare, tmp_path: Path, monke
         assert snap_compare(app, run_before=run_before, terminal_size=(100, 20))
     finally:
         stop_process(burst)
+
+
+def test_record_mode_at_80x24(snap_compare, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, rostui_core: Any,
+                              ros_env: dict[str, str]) -> None:
+    """Record mode in an 80x24 terminal after the burst: the key line starts with `? help  q quit`."""
+    monkeypatch.chdir(tmp_path)
+    burst, out = start_burst(tmp_path, ros_env)
+
+    async def run_before(pilot: Pilot) -> None:
+        app = pilot.app
+        assert isinstance(app, BagRecordApp)
+        session = app.session
+        await until(lambda: "sent" in out.read_text(), "the burst")
+        await until(lambda: session.messages == 42, "42 messages written")
+        await until(lambda: all(m.rates() == (0.0, 0.0) for m in session.meters.values()), "rates back to 0",
+                    timeout=20)
+        app.refresh_view()
+        await pilot.pause()
+
+    try:
+        app = BagRecordApp(RecordOptions(topics=["/chatter", "/turtle1/pose"], output_name="session.mcap"))
+        assert snap_compare(app, run_before=run_before, terminal_size=(80, 24))
+    finally:
+        stop_process(burst)

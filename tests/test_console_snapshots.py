@@ -74,3 +74,17 @@ def test_paused_small_terminal_with_drops(snap_compare, tmp_path: Path) -> None:
         await pilot.pause()
 
     assert snap_compare(sample_app(tmp_path, max_messages=30), run_before=run_before, terminal_size=(80, 24))
+
+
+def test_key_line_at_80x24(snap_compare, tmp_path: Path) -> None:
+    """80x24: the key line starts with `? help  q quit`; the rest is cut with an ellipsis."""
+    assert snap_compare(sample_app(tmp_path), terminal_size=(80, 24))
+
+
+def test_help_panel(snap_compare, tmp_path: Path) -> None:
+    """? at 80x24: the help panel lists the app's keys (hidden ones too), then the table's, over the app."""
+    async def run_before(pilot: Pilot) -> None:
+        await pilot.press("question_mark")
+        await pilot.pause()
+
+    assert snap_compare(sample_app(tmp_path), run_before=run_before, terminal_size=(80, 24))

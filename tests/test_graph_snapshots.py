@@ -144,3 +144,8 @@ def _fixed_tool_name(graph: RosGraph) -> RosGraph:
 
     return RosGraph.build(rename(graph.publishers), rename(graph.subscribers), rename(graph.services),
                           graph.topic_types)
+
+
+def test_book_setup_at_80x24(snap_compare, book: list[Program]) -> None:
+    """The book's setup in an 80x24 terminal: the key line starts with `? help  q quit`, never cut."""
+    assert snap_compare(GraphApp(book_setup(), period=0.2), run_before=drawn, terminal_size=(80, 24))

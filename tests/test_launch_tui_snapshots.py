@@ -92,3 +92,18 @@ def test_died_node(snap_compare, tui_env: dict[str, str], tmp_path: Path) -> Non
         await pilot.pause(0.3)
 
     assert snap_compare(fixed_monitor(launch, tmp_path, tui_env), run_before=run_before, terminal_size=(110, 20))
+
+
+def test_running_launch_at_80x24(snap_compare, tui_env: dict[str, str], tmp_path: Path) -> None:
+    """One running node in an 80x24 terminal: the key line starts with `? help  q quit`."""
+    launch = write_launch(tmp_path / "one.launch", '  <node pkg="tuitest" type="chatty" name="talker" args="3"/>')
+
+    async def run_before(pilot: Pilot) -> None:
+        app = pilot.app
+        assert isinstance(app, LaunchMonitorApp)
+        await until(lambda: len(app.rows) == 1 and all(r.state == "running" for r in app.rows.values()),
+                    "the running node")
+        await until(lambda: "a warning from chatty" in log_text(app), "the talker's output")
+        await pilot.pause(0.3)
+
+    assert snap_compare(fixed_monitor(launch, tmp_path, tui_env), run_before=run_before, terminal_size=(80, 24))

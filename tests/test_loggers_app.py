@@ -139,12 +139,13 @@ def test_mouse_selects_node_logger_and_level(rostui_core: Any) -> None:
     run_app(quick_app(), scenario)
 
 
-def test_level_key_without_selection_says_what_to_do(rostui_core: Any) -> None:
-    """d before any node is selected changes nothing and says why, under the level list."""
+def test_first_node_selected_at_start(rostui_core: Any) -> None:
+    """Without any key, the first listed node is selected and its loggers shown (d without one: see below)."""
     async def scenario(pilot: Pilot, app: LoggersApp) -> None:
         await until(lambda: "/rosout" in listed_nodes(app), "/rosout listed")
-        await pilot.press("d")
-        assert notice(app, "levels") == ("select a node and a logger first", "error")
+        await until(lambda: app.node == listed_nodes(app)[0] and bool(app.loggers), "the first node's loggers")
+        assert app.query_one(NodeList).highlighted_name == app.node
+        assert app.logger and notice(app, "levels")[0] == "d i w e f or Enter: set level"
 
     run_app(quick_app(), scenario)
 

@@ -1,8 +1,8 @@
 """`rostui loggers` end to end in a real terminal (tmux, 80x24).
 
 The book's count_and_log runs under `rostui core`.  A shell in a detached
-tmux pane starts `rostui loggers`; the test waits for the node list, selects
-/count_and_log with Down, presses d, and reads the level back through the
+tmux pane starts `rostui loggers`; the test waits for the node list, where
+/count_and_log (the first node) is selected without any arrow key, presses d, and reads the level back through the
 node's get_loggers service (ros.agitr at debug), as `rosservice call
 /count_and_log/get_loggers` would.  q returns to the shell with status 0.
 """
@@ -44,13 +44,12 @@ def agitr_level(watcher: Watcher) -> str:
 
 
 def test_loggers_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str], tmp_path: Path) -> None:
-    """Down selects count_and_log, d sets ros.agitr to DEBUG (read back from the node), q quits with 0."""
+    """count_and_log (the first node) is selected at start, d sets ros.agitr to DEBUG (read back), q quits with 0."""
     count = Program(ros_env, tmp_path, "agitr", "count")
     watcher = None
     try:
         pane.type(f"{loggers_command(ros_env)}; echo {EXIT_MARK}$?")
         pane.wait_until(lambda: pane.shows("/count_and_log", "/rosout", "2 nodes serve"), "the node list")
-        pane.keys("Down")
         pane.wait_until(lambda: pane.shows("Loggers · /count_and_log", "ros.agitr", "2 loggers"),
                         "count_and_log's loggers")
         watcher = Watcher()

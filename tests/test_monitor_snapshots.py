@@ -233,3 +233,13 @@ def test_plot_turtle_pose_100x32(snap_compare, turtle: PoseTalker) -> None:
 
     app = stepped_app(clock, ("/turtle1/pose/x", "/turtle1/pose/y", "/turtle1/pose/theta"))
     assert snap_compare(app, run_before=run_before, terminal_size=(100, 32))
+
+
+def test_table_at_80x24(snap_compare, talkers: Talkers) -> None:
+    """The table in an 80x24 terminal: the filter line and the key line starting with `? help  q quit`."""
+    clock = SteppedClock()
+
+    async def run_before(pilot: Pilot) -> None:
+        await feed(pilot, talkers, clock, messages=2)
+
+    assert snap_compare(stepped_app(clock), run_before=run_before, terminal_size=(80, 24))

@@ -19,11 +19,13 @@ from pathlib import Path
 from typing import Sequence
 
 from textual import events
-from textual.app import App, ComposeResult
+from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.widgets import Static
 
 from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core import names
 from rostui.core.log import Level, LogRecord
@@ -48,8 +50,8 @@ NOTICE_SECONDS = 3.0
 _SHARED_SPECIALS = ("__ns", "__master", "__ip", "__hostname")
 
 #: Key help: the first part ends the pose line, the second the master line.
-TELEOP_KEYS = ("↑↓←→ drive  Tab next  q quit", "s spawn  c clear  r reset")
-VIEW_KEYS = ("Tab next  q quit", "")
+TELEOP_KEYS = (key_line("↑↓←→ drive  Tab next"), "s spawn  c clear  r reset")
+VIEW_KEYS = (key_line("Tab next"), "")
 
 
 @dataclass(frozen=True)
@@ -92,7 +94,7 @@ class StatusLine(Static):
             self.update(text)
 
 
-class TurtlesimApp(ReleasesOnExit, App[int]):
+class TurtlesimApp(ReleasesOnExit, KeysApp):
     """turtlesim in the terminal: the simulator node, its view and (with ``teleop``) arrow-key driving.
 
     ``argv`` holds ROS arguments for the turtlesim node (``__name:=``,
@@ -101,7 +103,6 @@ class TurtlesimApp(ReleasesOnExit, App[int]):
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "turtlesim"
-    ENABLE_COMMAND_PALETTE = False
 
     BINDINGS = [
         Binding("q", "quit", "quit"),
@@ -270,6 +271,12 @@ class TurtlesimApp(ReleasesOnExit, App[int]):
             status.show(self.status_info())
 
     # -- keys ---------------------------------------------------------------------------
+    def key_notes(self) -> tuple[tuple[str, str], ...]:
+        """The arrow keys drive (teleop mode); they are read in :meth:`on_key`, not bound."""
+        if not self.teleop:
+            return ()
+        return (("↑ / ↓", "drive forward / backward"), ("← / →", "turn left / right"))
+
     def on_key(self, event: events.Key) -> None:
         """Arrow keys drive the selected turtle (teleop mode)."""
         command = key_to_command(event.key)

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from textual import work
-from textual.app import App, ComposeResult
+from textual.app import ComposeResult
 from textual.binding import Binding, BindingType
 from textual.containers import VerticalScroll
 from textual.widgets import Input, Static
@@ -29,6 +29,7 @@ from textual.widgets import Input, Static
 from rostui.apps.bagview.bars import PLAY_KEYS, header_text, play_status, wall_text
 from rostui.apps.bagview.timeline import TimelineView
 from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.bag.clock import DEFAULT_HZ, BagClock
 from rostui.core.bag.index import BagIndex, IndexSource, load_index, message_yaml
@@ -83,7 +84,7 @@ class GotoPrompt(Input):
         self.app.query_one(TimelineView).focus()
 
 
-class BagViewApp(ReleasesOnExit, App[int]):
+class BagViewApp(ReleasesOnExit, KeysApp):
     """Play, pause, step, seek and inspect a bag; publish it on a live graph.
 
     ``clock`` is the transport's wall clock (a snapshot test freezes it); ``publish_clock`` publishes the
@@ -92,19 +93,19 @@ class BagViewApp(ReleasesOnExit, App[int]):
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "rostui bag view"
-    ENABLE_COMMAND_PALETTE = False
+    KEY_NOTES = (("click", "seek there (in the strips) or select the topic (on its name)"),)
 
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("q", "quit", "quit"),
         Binding("space,p", "toggle_play", "play/pause"),
         Binding("s", "step", "step"),
-        Binding("left", "seek_by(-1)", "-1 s", show=False),
-        Binding("right", "seek_by(1)", "+1 s", show=False),
-        Binding("pageup,shift+left", "seek_fraction_by(-0.1)", "-10%", show=False),
-        Binding("pagedown,shift+right", "seek_fraction_by(0.1)", "+10%", show=False),
-        Binding("home", "seek_fraction(0)", "start", show=False),
-        Binding("end", "seek_fraction(1)", "end", show=False),
-        *[Binding(str(d), f"seek_fraction({d / 10})", f"{d * 10}%", show=False) for d in range(10)],
+        Binding("left", "seek_by(-1)", "back 1 s", show=False),
+        Binding("right", "seek_by(1)", "forward 1 s", show=False),
+        Binding("pageup,shift+left", "seek_fraction_by(-0.1)", "back 10%", show=False),
+        Binding("pagedown,shift+right", "seek_fraction_by(0.1)", "forward 10%", show=False),
+        Binding("home", "seek_fraction(0)", "go to the start", show=False),
+        Binding("end", "seek_fraction(1)", "go to the end", show=False),
+        *[Binding(str(d), f"seek_fraction({d / 10})", f"go to {d * 10}%", show=False) for d in range(10)],
         Binding("comma", "message(-1)", "previous message of the topic", show=False),
         Binding("full_stop", "message(1)", "next message of the topic", show=False),
         Binding("g,percent_sign", "goto", "go to"),

@@ -7,14 +7,15 @@ import time
 from rich.text import Text
 
 from rostui.core.bag.index import BagIndex
+from rostui.apps.widgets.keys import key_line
 from rostui.core.bag.info import status_size
 
 #: Key help in play mode.
-PLAY_KEYS = ("space play  s step  ←→ ±1s  PgUp/Dn ±10%  Home/End  0-9 %  g go to  +- rate  l loop  "
-             "↑↓t topics  i inspect  q quit")
+PLAY_KEYS = key_line("space play  s step  ←→ ±1s  PgUp/Dn ±10%  Home/End  0-9 %  g go to  +- rate  l loop  "
+                     "↑↓t topics  i inspect")
 
 #: Key help in record mode.
-RECORD_KEYS = "r start/stop  n split (new file)  q stop and quit"
+RECORD_KEYS = key_line("r start/stop  n split (new file)")
 
 
 def wall_text(t_ns: int) -> str:

@@ -15,7 +15,7 @@ from typing import Any, ClassVar
 
 from rich.table import Table
 from rich.text import Text
-from textual.app import App, ComposeResult
+from textual.app import ComposeResult
 from textual.binding import Binding, BindingType
 from textual.containers import VerticalScroll
 from textual.widgets import Static
@@ -24,6 +24,7 @@ from rostui.apps.bagview.bars import RECORD_KEYS
 from rostui.core.bag.info import status_size
 from rostui.apps.bagview.recording import RecordSession
 from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.bag.model import BagError
 from rostui.core.bag.recorder import RecordOptions
@@ -90,12 +91,11 @@ def record_header(session: RecordSession) -> Text:
     return Text(f"recording {what} into {root}_<n>{ext}{until} · next file {session.next_name()}")
 
 
-class BagRecordApp(ReleasesOnExit, App[int]):
+class BagRecordApp(ReleasesOnExit, KeysApp):
     """Record topics with a live table of what arrives; start, stop and split from the keyboard."""
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "rostui bag view --record"
-    ENABLE_COMMAND_PALETTE = False
 
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("q", "quit", "quit"),

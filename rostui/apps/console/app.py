@@ -16,7 +16,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any, ClassVar, Iterable
 
-from textual.app import App, ComposeResult
+from textual.app import ComposeResult
 from textual.binding import Binding, BindingType
 from textual.containers import VerticalScroll
 from textual.timer import Timer
@@ -25,6 +25,7 @@ from textual.widgets import Input, Static
 from rostui.apps.console.bars import KEY_HELP, LEVEL_KEYS, Bar, StatusInfo, detail_markup, filter_markup, status_markup
 from rostui.apps.console.table import LogTable
 from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.log.levels import Level
 from rostui.core.log.rosout_read import RosoutEntry, RosoutLog, entries_text
@@ -62,7 +63,7 @@ class Prompt(Input):
         app.close_prompt(cancelled=True)
 
 
-class ConsoleApp(ReleasesOnExit, App[int]):
+class ConsoleApp(ReleasesOnExit, KeysApp):
     """Browse ROS log messages: live from /rosout_agg, or a rosout.log (``log``).
 
     ``master_uri`` defaults to ROS_MASTER_URI.  ``log_name`` is how the file
@@ -76,11 +77,11 @@ class ConsoleApp(ReleasesOnExit, App[int]):
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "rostui console"
-    ENABLE_COMMAND_PALETTE = False
+    KEY_NOTES = (("click a level", "show or hide that level"),)
 
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("q", "quit", "quit"),
-        *(Binding(key, f"toggle_level({int(level)})", level.name, show=False) for level, key in LEVEL_KEYS.items()),
+        *(Binding(key, f"toggle_level({int(level)})", f"{level.name} on/off", show=False) for level, key in LEVEL_KEYS.items()),
         Binding("slash", "open_prompt('search')", "search"),
         Binding("r", "toggle_regex", "regex"),
         Binding("escape", "clear_search", "clear search", show=False),

@@ -15,6 +15,7 @@ from textual.widget import Widget
 
 from rostui.apps.console.columns import printable
 from rostui.apps.console.table import HIGHLIGHT_COLOURS
+from rostui.apps.widgets.keys import key_line
 from rostui.core.log.levels import Level
 from rostui.core.log.rosout_read import RosoutEntry
 from rostui.models.console.filters import FilterSpec, HighlightRule
@@ -31,8 +32,8 @@ _LEVEL_COLOURS: dict[int, str] = {Level.DEBUG: "$text-success", Level.INFO: "$fo
 _HIGHLIGHT_COLOURS = ["$accent 30%", "$success 30%", "$secondary 80%", "$error 25%"]
 
 #: The key help line.
-KEY_HELP = ("1-5 levels  / search  r regex  h highlight  n/x node  p pause  c clear  "
-            "⏎ detail  s save  F follow  q quit")
+KEY_HELP = key_line("1-5 levels  / search  r regex  h highlight  n/x node  p pause  c clear  "
+                    "⏎ detail  s save  F follow")
 
 
 class Bar(Widget):

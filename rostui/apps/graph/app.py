@@ -19,7 +19,7 @@ from typing import Any
 
 from rich.text import Text
 from textual import on
-from textual.app import App, ComposeResult
+from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, VerticalScroll
 from textual.widgets import Input, Static
@@ -27,6 +27,8 @@ from textual.widgets import Input, Static
 from rostui.apps.graph.canvas import Canvas, draw, layout_view
 from rostui.apps.graph.widget import GraphView
 from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit
 from rostui.core.network import master_uri_from_env
 from rostui.models.graph.hidden import explain_empty
@@ -45,8 +47,8 @@ from rostui.tools.node import NodeInfo
 __all__ = ["GraphApp", "run_app", "KEYS"]
 
 #: Key help shown under the graph.
-KEYS = ("v view  d debug  s sinks  l leaves  g group  i/x filter  b book  / search  f focus ±  "
-        "Tab next  Enter info  r rate  q quit")
+KEYS = key_line("v view  d debug  s sinks  l leaves  g group  i/x filter  b book  / search  f focus ±  "
+                "Tab next  Enter info  r rate")
 #: Layouts kept for views seen lately (switching back redraws them exactly, at once).
 CACHE_SIZE = 8
 #: Seconds a topic is listened to when its rate is measured.
@@ -55,7 +57,7 @@ RATE_SECONDS = 3.0
 PROMPTS = {"search": "search: ", "include": "include regex: ", "exclude": "exclude regex: "}
 
 
-class GraphApp(ReleasesOnExit, App[int]):
+class GraphApp(ReleasesOnExit, KeysApp):
     """The ROS graph of the master at ``master_uri`` (ROS_MASTER_URI by default), refreshed every ``period`` s.
 
     A topic's rate is measured over ``rate_seconds``; "new" and "gone" marks
@@ -64,11 +66,11 @@ class GraphApp(ReleasesOnExit, App[int]):
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "rostui graph"
-    ENABLE_COMMAND_PALETTE = False
+    KEY_NOTES = (("click", "select a node or topic"),)
 
     BINDINGS = [
         Binding("q", "quit", "quit"),
-        Binding("v", "next_view", "view"),
+        Binding("v", "next_view", "next view"),
         Binding("1", "set_view('nodes')", "nodes only", show=False),
         Binding("2", "set_view('active')", "nodes/topics (active)", show=False),
         Binding("3", "set_view('all')", "nodes/topics (all)", show=False),
@@ -77,18 +79,18 @@ class GraphApp(ReleasesOnExit, App[int]):
         Binding("l", "toggle_option('hide_leaf_topics')", "hide leaf topics"),
         Binding("g", "toggle_option('group_namespaces')", "group namespaces"),
         Binding("b", "book", "book's setup"),
-        Binding("i", "prompt('include')", "include"),
-        Binding("x", "prompt('exclude')", "exclude"),
+        Binding("i", "prompt('include')", "include regex"),
+        Binding("x", "prompt('exclude')", "exclude regex"),
         Binding("slash", "prompt('search')", "search"),
-        Binding("f", "focus_mode", "focus"),
+        Binding("f", "focus_mode", "focus on the selection"),
         Binding("plus,equals_sign", "hops(1)", "more hops", show=False),
         Binding("minus", "hops(-1)", "fewer hops", show=False),
-        Binding("tab", "step(1)", "next", priority=True),
-        Binding("shift+tab", "step(-1)", "previous", priority=True),
+        Binding("tab", "step(1)", "select next", priority=True),
+        Binding("shift+tab", "step(-1)", "select previous", priority=True),
         Binding("enter", "activate", "details / expand"),
         Binding("space", "expand", "expand/collapse", show=False),
-        Binding("r", "rate", "rate"),
-        Binding("escape", "escape", "back", priority=True),
+        Binding("r", "rate", "measure the topic's rate"),
+        Binding("escape", "escape", "back: close prompt, leave focus, unselect", priority=True),
     ]
 
     def __init__(self, options: GraphOptions | None = None, *, master_uri: str | None = None,

@@ -22,12 +22,14 @@ from typing import Awaitable, Callable, ClassVar
 
 from rich.text import Text
 from textual import events
-from textual.app import App, ComposeResult
+from textual.app import ComposeResult
 from textual.binding import Binding, BindingType
 from textual.timer import Timer
 from textual.widgets import DataTable, RichLog, Static
 
 from rostui.apps.launchmon.rows import COLUMNS, NodeRow, measure, node_row
+from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import quit_on_signals
 from rostui.launch.errors import LaunchError
 from rostui.launch.output import OutputBuffer
@@ -38,7 +40,7 @@ from rostui.launch.usage import Usage, UsageSampler, children_map
 __all__ = ["LaunchMonitorApp", "KEYS", "run_app"]
 
 #: Key help under the log pane.
-KEYS = "↑↓ node  s start  k stop  r restart  l launcher's output  f follow  Tab log/table  q quit"
+KEYS = key_line("↑↓ node  s start  k stop  r restart  l launcher's output  f follow  Tab log/table")
 #: Most output lines added to the log pane per refresh: a node flooding its output shows its newest lines.
 MAX_LINES_PER_REFRESH = 500
 #: Lines the log pane holds (the newest of the node's kept lines; drawing each costs time when a node is selected).
@@ -96,7 +98,7 @@ class OutputLog(RichLog):
         self._stop_following()
 
 
-class LaunchMonitorApp(App[int]):
+class LaunchMonitorApp(KeysApp):
     """Run ``supervisor``'s launch and show its nodes; ``title`` names the launch in the status line.
 
     ``period`` is the refresh interval in seconds.  ``row_hook`` may rewrite
@@ -107,11 +109,9 @@ class LaunchMonitorApp(App[int]):
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "rostui launch"
-    ENABLE_COMMAND_PALETTE = False
 
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("q", "quit", "quit"),
-        Binding("ctrl+c", "quit", "quit", priority=True, show=False),
         Binding("s", "control('start')", "start"),
         Binding("k", "control('stop')", "stop"),
         Binding("r", "control('restart')", "restart"),

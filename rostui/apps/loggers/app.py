@@ -22,7 +22,7 @@ from __future__ import annotations
 import asyncio
 from pathlib import Path
 
-from textual.app import App, ComposeResult
+from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
 from textual.widgets import DataTable, Footer, OptionList
@@ -30,6 +30,7 @@ from textual.worker import Worker
 
 from rostui.apps.loggers.panels import LevelList, LoggerTable, NodeList, Notice
 from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.models.loggers import (
     DEFAULT_TIMEOUT, LoggerLevel, LoggerLevels, LoggerNode, LoggerToolError, MasterGoneError, NodeGoneError,
@@ -45,7 +46,7 @@ PING_PERIOD = 2.0
 SET_HINT = "d i w e f or Enter: set level"
 
 
-class LoggersApp(ReleasesOnExit, App[int]):
+class LoggersApp(ReleasesOnExit, KeysApp):
     """Lists nodes, their loggers and levels; sets a logger's level with a key or a click.
 
     ``master_uri`` defaults to ROS_MASTER_URI; ``timeout`` bounds every master
@@ -54,7 +55,6 @@ class LoggersApp(ReleasesOnExit, App[int]):
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "rostui loggers"
-    ENABLE_COMMAND_PALETTE = False
 
     BINDINGS = [
         Binding("q", "quit", "quit"),
@@ -81,6 +81,7 @@ class LoggersApp(ReleasesOnExit, App[int]):
         self._nodes_worker: Worker[None] | None = None
         self._loggers_worker: Worker[None] | None = None
         self._ping_failed = False
+        self._picked_first = False
 
     # -- composition -----------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -160,11 +161,23 @@ class LoggersApp(ReleasesOnExit, App[int]):
         self.nodes = {node.name: node for node in nodes}
         node_list = self.query_one(NodeList)
         node_list.show_nodes(nodes, node_list.highlighted_name or self.node)
+        if nodes and not self._picked_first:
+            self._pick_first(node_list)
         count = len(nodes)
         serve = "1 node serves" if count == 1 else f"{count} nodes serve"
         self.notice("nodes").say(f"{serve} get_loggers" if count else "no node serves get_loggers")
         if self.node and self.node not in self.nodes:
             self._drop_node(f"node {self.node} is gone: the master no longer lists it", "error")
+
+    def _pick_first(self, node_list: NodeList) -> None:
+        """The first time nodes are listed, select the first one, so Enter works before any arrow key."""
+        self._picked_first = True
+        if self.node or node_list.highlighted is not None:
+            return
+        with node_list.prevent(OptionList.OptionHighlighted):
+            node_list.highlighted = 0
+        if node_list.highlighted_name:
+            self.select_node(node_list.highlighted_name)
 
     def on_option_list_option_highlighted(self, event: OptionList.OptionHighlighted) -> None:
         """Highlighting a node selects it."""

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Callable, ClassVar, Sequence
 
 from textual import on
-from textual.app import App, ComposeResult
+from textual.app import ComposeResult
 from textual.binding import Binding, BindingType
 from textual.containers import Horizontal
 from textual.markup import escape
@@ -28,6 +28,8 @@ from rostui.apps.monitor.editor import PublishEditor
 from rostui.apps.monitor.plot import FieldChooser, PlotPanel
 from rostui.apps.monitor.table import TopicTable
 from rostui.apps.terminal import terminal_missing
+from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.msg import Message
 from rostui.core.network import master_uri_from_env
@@ -43,7 +45,7 @@ from rostui.models.monitor.tree import message_tree
 __all__ = ["MonitorApp", "run_app", "KEYS"]
 
 #: Key help at the bottom.
-KEYS = "s sort  S rev  Enter expand  Tab tree  f plot  p publish  q quit"
+KEYS = key_line("s sort  S rev  Enter expand  Tab tree  f plot  p publish")
 #: What the filter line says while it waits for "/", and while it has the keyboard.
 FILTER_IDLE = "/ filter"
 FILTER_TYPING = "name or type; Enter keeps, Esc clears"
@@ -75,7 +77,7 @@ class FilterInput(Input):
         self.placeholder = FILTER_IDLE
 
 
-class MonitorApp(ReleasesOnExit, App[int]):
+class MonitorApp(ReleasesOnExit, KeysApp):
     """The topics of the master at ``master_uri`` (ROS_MASTER_URI by default); ``topics`` start expanded.
 
     An entry of ``topics`` that turns out to be a field of a topic the master
@@ -89,7 +91,6 @@ class MonitorApp(ReleasesOnExit, App[int]):
 
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "rostui monitor"
-    ENABLE_COMMAND_PALETTE = False
 
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("q", "quit", "quit"),

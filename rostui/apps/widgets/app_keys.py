@@ -1,0 +1,81 @@
+"""KeysApp: the keys every rostui app shares: ``?``/F1 help, Ctrl-C quits, ctrl+p command palette.
+
+Textual binds ctrl+c to a notice ("Do you want to quit? Press ctrl+q") and
+ctrl+q to quit; here both run the app's own ``quit`` action, so Ctrl-C leaves
+at once with the same clean shutdown as ``q`` (nodes unregistered, files
+finished, exit status 0).  These keys are priority bindings: they work over
+any screen (the publish editor, the palette, the help itself) and whatever
+widget has the focus, except that ``?`` still types a ``?`` into a text field.
+While a modal screen is up, the app's other priority keys (graph's Escape
+and Tab, turtlesim's Tab) stay out of its way.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+from textual.app import App
+from textual.binding import Binding, BindingType
+from textual.dom import DOMNode
+from textual.screen import ModalScreen, Screen
+
+from rostui.apps.widgets.help import HelpScreen
+from rostui.apps.widgets.keys import KeySection, key_sections
+from rostui.apps.widgets.palette import KeysProvider
+
+__all__ = ["KeysApp"]
+
+#: App actions that stay live over modal screens.
+SHARED_ACTIONS = frozenset({"help", "quit", "command_palette"})
+
+
+class KeysApp(App[int]):
+    """Base of every rostui app: help panel, Ctrl-C as ``q``, and a palette of the app's own actions.
+
+    :attr:`KEY_NOTES` lists keys an app reads without a binding (keys, description).
+    """
+
+    ENABLE_COMMAND_PALETTE = True
+    COMMANDS = {KeysProvider}
+    COMMAND_PALETTE_BINDING = "ctrl+p"
+
+    BINDINGS: ClassVar[list[BindingType]] = [
+        Binding("question_mark", "help", "help", priority=True),
+        Binding("f1", "help", "help", show=False, priority=True),
+        Binding("ctrl+c", "quit", "quit", show=False, priority=True),
+        Binding("ctrl+q", "quit", "quit", show=False, priority=True),
+    ]
+
+    KEY_NOTES: ClassVar[tuple[tuple[str, str], ...]] = ()
+
+    _listing_keys = False
+
+    def key_notes(self) -> tuple[tuple[str, str], ...]:
+        """Keys this app reads without a binding, as (keys, description); :attr:`KEY_NOTES` by default."""
+        return self.KEY_NOTES
+
+    def keys_for(self, screen: Screen[object]) -> list[KeySection]:
+        """The keys ``screen`` answers to now (over a modal screen, the shared app keys too)."""
+        extra: list[tuple[DOMNode, Binding]] = []
+        if screen.is_modal:
+            extra = [(self, binding) for _key, binding in self._bindings
+                     if binding.priority and binding.action in SHARED_ACTIONS]
+        self._listing_keys = True  # list what the screen's keys do, whatever screen is on top now
+        try:
+            return key_sections(screen, self.key_notes(), extra)
+        finally:
+            self._listing_keys = False
+
+    def action_help(self) -> None:
+        """?/F1: open the help panel over the current screen (again: close it)."""
+        if isinstance(self.screen, HelpScreen):
+            self.screen.dismiss(None)
+            return
+        self.push_screen(HelpScreen(self.keys_for(self.screen)))
+
+    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        """Over a modal screen only the shared keys act here; the modal screen has the rest."""
+        stack = self.screen_stack
+        if not self._listing_keys and stack and isinstance(stack[-1], ModalScreen) and action not in SHARED_ACTIONS:
+            return False
+        return True

@@ -24,6 +24,9 @@ from textual.widget import Widget
 from rostui.apps.bagview.app import BagViewApp
 from rostui.apps.bagview.timeline import TimelineView
 from rostui.apps.console.app import ConsoleApp
+from rostui.apps.graph.app import GraphApp
+from rostui.apps.monitor.app import MonitorApp
+from rostui.models.monitor.rows import Liveness
 from rostui.core.log.rosout_read import read_rosout_log
 from rostui.models.console.model import ConsoleOptions
 from rostui.models.contrast import MINIMUM, RGB, contrast_ratio
@@ -31,6 +34,8 @@ from rostui.models.contrast import MINIMUM, RGB, contrast_ratio
 from bag_view_helpers import write_counts
 from conftest import until
 from console_helpers import write_sample_log
+from graph_helpers import book_system, run_graph, settled, stop_programs
+from monitor_helpers import start_publishers, stop_all
 
 #: How each colour mode is forced (TERM, COLORTERM) and the name the app's console then reports.
 MODES = {
@@ -124,3 +129,51 @@ def test_bag_view_selected_topic_and_cursor_keep_contrast(mode: ColorSystem, tmp
         await app.action_quit()
 
     run(app, scenario)
+
+
+def test_graph_selection_and_its_neighbours_keep_contrast(
+        mode: ColorSystem, rostui_core: Any, ros_env: dict[str, str], tmp_path: Path) -> None:
+    """rostui graph with the book's turtlesim system: the selected box (Tab) and its highlighted neighbours."""
+    programs = book_system(ros_env, tmp_path)
+
+    async def scenario(pilot: Pilot, app: GraphApp) -> None:
+        assert app.console.color_system == MODES[mode][2]
+        await pilot.press("v", "v")
+        await settled(app)
+        for _ in range(3):
+            await pilot.press("tab")
+            await pilot.pause()
+            assert app.selected is not None
+            assert faint_text(app.graph_view, mode) == [], f"with {app.selected} selected"
+        await pilot.press("q")
+
+    try:
+        run_graph(GraphApp(period=0.5), scenario)
+    finally:
+        stop_programs(programs)
+
+
+def test_monitor_cursor_on_a_live_and_a_quiet_topic_keeps_contrast(
+        mode: ColorSystem, rostui_core: Any, ros_env: dict[str, str], tmp_path: Path) -> None:
+    """rostui monitor: the cursor row on a live topic (green text) and on a topic nobody publishes (muted text)."""
+    publishers = start_publishers(ros_env, tmp_path, [("/fast", "std_msgs/String", "data: hi", 10)])
+
+    async def scenario(pilot: Pilot, app: MonitorApp) -> None:
+        assert app.console.color_system == MODES[mode][2]
+
+        def fast_is_live() -> bool:
+            return any(r.name == "/fast" and r.liveness is Liveness.LIVE for r in app.shown)
+
+        await until(fast_is_live, "/fast live in the table")
+        table = app.table
+        quiet = next(r.name for r in app.shown if r.liveness is not Liveness.LIVE)
+        for topic in ("/fast", quiet):
+            assert table.select_topic(topic)
+            await pilot.pause()
+            assert faint_text(table, mode) == [], f"cursor on {topic}"
+        await pilot.press("q")
+
+    try:
+        run(MonitorApp(), scenario)
+    finally:
+        stop_all(publishers)

@@ -78,7 +78,7 @@ def test_keep_hue_moves_only_lightness_and_only_as_far_as_needed() -> None:
 
 
 def test_shown_colours_in_each_mode() -> None:
-    """truecolor shows a colour as it is; 256 colours the nearest of xterm's cube; 16 colours the theme's ANSI colour."""
+    """truecolor shows a colour as it is; 256 colours the nearest of xterm's cube; 16 the theme's ANSI colour."""
     gold = (255, 221, 0)
     assert shown_rgb(gold, ColorSystem.TRUECOLOR) == gold
     assert shown_rgb(gold, ColorSystem.EIGHT_BIT) == (255, 215, 0)

@@ -348,7 +348,8 @@ def test_trails_and_turtles_stay_visible_in_few_colours(
     colour that both would become the same terminal colour."""
     force_mode(monkeypatch, system)
     close_to_pen = (170, 178, 250)
-    assert Color.from_rgb(*close_to_pen).downgrade(system).number == Color.from_rgb(*DEFAULT_PEN.rgb).downgrade(system).number
+    number = Color.from_rgb(*DEFAULT_PEN.rgb).downgrade(system).number
+    assert Color.from_rgb(*close_to_pen).downgrade(system).number == number
 
     async def scenario(pilot: Pilot, app: TurtlesimApp) -> None:
         view = app.query_one(TurtleView)

@@ -44,8 +44,8 @@ UPPER_HALF = "▀"
 EMPTY: Cell = (" ", None, None, False)
 
 #: Sprite colours, most wanted first: the first that keeps a contrast of 3 against the
-#: background (as the terminal shows both) is used.  White and black end the lists, so
-#: one always does.
+#: background (as the terminal shows both) is used.  White and black are in both lists:
+#: one of them always reaches 3 against a single colour.
 SELECTED_COLORS: tuple[RGB, ...] = ((255, 221, 0), (0, 0, 0), (255, 255, 255))
 TURTLE_COLORS: tuple[RGB, ...] = ((120, 230, 120), (0, 110, 0), (255, 255, 255), (0, 0, 0))
 

@@ -46,7 +46,7 @@ def style_rgb(color: Color | None, *, foreground: bool = True) -> RGB | None:
 
 
 def readable(style: Style, system: ColorSystem, minimum: float = MINIMUM) -> Style:
-    """``style``, its text colour lightened or darkened if it would have less than ``minimum`` contrast on its background.
+    """``style``, its text colour lightened or darkened if it had less than ``minimum`` contrast on its background.
 
     Both colours are compared as ``system`` shows them; a style without a
     text or background colour is returned unchanged.

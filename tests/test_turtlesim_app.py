@@ -14,13 +14,17 @@ import sys
 from typing import Any, Awaitable, Callable
 
 import pytest
-from rich.color import ColorSystem
+from rich.color import Color, ColorSystem
+from rich.style import Style
+from rich.terminal_theme import DEFAULT_TERMINAL_THEME
+from textual.geometry import Region
 from textual.pilot import Pilot
 
 from rostui.core.msg import get_message_class, get_service_class
 from rostui.core.node.node import AsyncNode
+from rostui.models.contrast import MINIMUM, RGB, contrast_ratio
 from rostui.turtlesim.app import TurtlesimApp
-from rostui.turtlesim.render import TurtleView, terminal_color
+from rostui.turtlesim.render import TurtleView, ViewLayout
 from rostui.turtlesim.world import DEFAULT_PEN, UPDATE_PERIOD
 
 from cli_helpers import rostui
@@ -236,40 +240,124 @@ def drive_model(app: TurtlesimApp, linear: float, angular: float, steps: int) ->
     world.command("turtle1", 0.0, 0.0, 0.0)
 
 
-def distinct_on_terminal(view: TurtleView, system: ColorSystem) -> None:
-    """Trail cells and turtle glyphs differ from the background once reduced to ``system``."""
-    background = view.world.background
-    shown_bg = terminal_color(view.shown_color(background), system)
-    trail = terminal_color(view.shown_color(DEFAULT_PEN.rgb), system)
-    assert trail != shown_bg
-    cells = [cell for y in range(view.size.height) for cell in view.cells(y)]
-    half_blocks = [c for c in cells if c[0] == "▀"]
-    assert half_blocks, "no trail drawn"
-    for _, fg, bg, _ in half_blocks:
-        colors = {terminal_color(view.shown_color(c), system) for c in (fg, bg) if c is not None}
-        assert trail in colors
-    glyphs = [c for c in cells if c[0] in "@()"]
-    assert glyphs
-    for _, fg, bg, _ in glyphs:
-        assert terminal_color(view.shown_color(fg), system) != terminal_color(view.shown_color(bg), system)
+#: Glyphs of the turtle sprites (shell, legs, heads).
+SPRITE_GLYPHS = frozenset("@()/\\" + "→↗↑↖←↙↓↘")
+#: How each colour mode is forced: TERM and COLORTERM, and the name the app's console reports.
+MODES = {
+    ColorSystem.STANDARD: ("xterm", None, "standard"),
+    ColorSystem.EIGHT_BIT: ("xterm-256color", None, "256"),
+    ColorSystem.TRUECOLOR: ("xterm-256color", "truecolor", "truecolor"),
+}
 
 
-@pytest.mark.parametrize("term,system", [("xterm", ColorSystem.STANDARD), ("xterm-256color", ColorSystem.EIGHT_BIT)])
-def test_trails_and_turtles_stay_visible_in_few_colours(
-        rostui_core: Any, monkeypatch: pytest.MonkeyPatch, term: str, system: ColorSystem) -> None:
-    """On 16- and 256-colour terminals trails and turtles differ from the background, even when the
-    background is set so close to the pen colour that both would become the same terminal colour."""
+def force_mode(monkeypatch: pytest.MonkeyPatch, system: ColorSystem) -> str:
+    """Make the next app's console detect ``system`` as a terminal would; return the name it will report."""
+    term, colorterm, name = MODES[system]
     monkeypatch.setenv("TERM", term)
-    monkeypatch.delenv("COLORTERM", raising=False)
-    close_to_pen = (170, 178, 250)
-    assert terminal_color(close_to_pen, system) == terminal_color(DEFAULT_PEN.rgb, system)
+    if colorterm is None:
+        monkeypatch.delenv("COLORTERM", raising=False)
+    else:
+        monkeypatch.setenv("COLORTERM", colorterm)
+    monkeypatch.delenv("NO_COLOR", raising=False)
+    return name
+
+
+def shown(color: Color | None, system: ColorSystem, foreground: bool) -> RGB | None:
+    """What a terminal in ``system`` shows for a rendered Rich colour: Rich reduces it, the default theme paints it."""
+    if color is None or color.is_default:
+        return None
+    triplet = color.downgrade(system).get_truecolor(DEFAULT_TERMINAL_THEME, foreground)
+    return triplet.red, triplet.green, triplet.blue
+
+
+def rendered_world(view: TurtleView, system: ColorSystem) -> list[tuple[str, RGB | None, RGB | None, bool]]:
+    """Every cell of the square world as the widget renders it: glyph, shown text colour, shown background, bold."""
+    width, height = view.size
+    layout = ViewLayout.fit(width, height)
+    cells = []
+    for y, line in enumerate(view.render_lines(Region(0, 0, width, height))):
+        x = 0
+        for segment in line:
+            style = segment.style or Style.null()
+            fg, bg = shown(style.color, system, True), shown(style.bgcolor, system, False)
+            for char in segment.text:
+                if layout.left <= x < layout.left + layout.size and layout.top <= y < layout.top + layout.rows:
+                    cells.append((char, fg, bg, bool(style.bold)))
+                x += 1
+    return cells
+
+
+def assert_contrast_on_screen(view: TurtleView, system: ColorSystem) -> None:
+    """On the rendered cells: every turtle glyph (the selected one bold) and every trail colour keeps contrast >= 3
+    against the background under it, as the terminal in ``system`` shows them."""
+    background = shown(Color.from_rgb(*view.world.background), system, False)
+    assert background is not None
+    cells = rendered_world(view, system)
+    glyphs = [c for c in cells if c[0] in SPRITE_GLYPHS]
+    assert any(bold for *_, bold in glyphs), "no selected turtle drawn"
+    assert any(not bold for *_, bold in glyphs), "no other turtle drawn"
+    for glyph, fg, bg, bold in glyphs:
+        assert fg is not None and bg == background
+        assert contrast_ratio(fg, bg) >= MINIMUM, (glyph, fg, bg, bold)
+    trails: set[RGB | None] = set()
+    for glyph, fg, bg, _ in cells:
+        trails |= {fg, bg} if glyph == "▀" else {bg} if glyph == " " else set()
+    trails -= {None, background}
+    assert trails, "no trail drawn"
+    for trail in trails:
+        assert trail is not None and contrast_ratio(trail, background) >= MINIMUM, (trail, background)
+
+
+#: The book's backgrounds: turtlesim's default blue, chapter 7's yellow, white and black.
+BOOK_BACKGROUNDS = [(69, 86, 255), (255, 255, 0), (255, 255, 255), (0, 0, 0)]
+
+
+@pytest.mark.parametrize("system", list(MODES), ids=lambda m: m.name.lower())
+def test_turtles_and_trails_keep_contrast_on_the_books_backgrounds(
+        rostui_core: Any, monkeypatch: pytest.MonkeyPatch, system: ColorSystem) -> None:
+    """In 16, 256 and truecolor mode, on each of the book's backgrounds, the rendered cells of the selected turtle,
+    another turtle and their trails (default pen, and a red pen) have contrast >= 3 against the background; each
+    turtle stands on its own trail."""
+    name = force_mode(monkeypatch, system)
 
     async def scenario(pilot: Pilot, app: TurtlesimApp) -> None:
-        assert app.console.color_system == {ColorSystem.STANDARD: "standard", ColorSystem.EIGHT_BIT: "256"}[system]
+        assert app.console.color_system == name
         view = app.query_one(TurtleView)
+        world = app.sim.world
+        await app.sim.spawn("turtle2", 2.5, 2.5, 0.0)
+        world.set_pen("turtle2", 255, 0, 0, 3, False)
+        app.select("turtle1")
+        for background in BOOK_BACKGROUNDS:
+            world.clear(background)
+            for turtle in ("turtle1", "turtle2"):
+                for _ in range(60):
+                    world.command(turtle, 1.5, 0.0, 0.6)
+                    world.update(UPDATE_PERIOD)
+                world.command(turtle, 0.0, 0.0, 0.0)
+                assert world.color_under(turtle) == world.turtles[turtle].pen.rgb  # standing on its trail
+            view.draw_frame()
+            assert_contrast_on_screen(view, system)
+
+    run_app(TurtlesimApp(), scenario)
+
+
+@pytest.mark.parametrize("system", [ColorSystem.STANDARD, ColorSystem.EIGHT_BIT], ids=["standard", "256"])
+def test_trails_and_turtles_stay_visible_in_few_colours(
+        rostui_core: Any, monkeypatch: pytest.MonkeyPatch, system: ColorSystem) -> None:
+    """On 16- and 256-colour terminals trails keep contrast even when the background is set so close to the pen
+    colour that both would become the same terminal colour."""
+    force_mode(monkeypatch, system)
+    close_to_pen = (170, 178, 250)
+    number = Color.from_rgb(*DEFAULT_PEN.rgb).downgrade(system).number
+    assert Color.from_rgb(*close_to_pen).downgrade(system).number == number
+
+    async def scenario(pilot: Pilot, app: TurtlesimApp) -> None:
+        view = app.query_one(TurtleView)
+        await app.sim.spawn("turtle2", 2.5, 2.5, 0.0)
+        app.select("turtle1")
         drive_model(app, 2.0, 0.0, 60)
         view.draw_frame()
-        distinct_on_terminal(view, system)
+        assert_contrast_on_screen(view, system)
         node = app.sim.node
         for channel, value in zip("rgb", close_to_pen):
             await node.set_param(f"/background_{channel}", value)
@@ -278,7 +366,7 @@ def test_trails_and_turtles_stay_visible_in_few_colours(
         drive_model(app, 0.0, 0.0, 1)
         drive_model(app, 2.0, 0.0, 40)
         view.draw_frame()
-        distinct_on_terminal(view, system)
+        assert_contrast_on_screen(view, system)
 
     run_app(TurtlesimApp(), scenario)
 

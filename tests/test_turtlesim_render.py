@@ -1,15 +1,14 @@
-"""The renderer's pure parts: shrinking the path image to cell-pixels, turtle sprites, colour fallbacks."""
+"""The renderer's pure parts: shrinking the path image to cell-pixels, turtle sprites (colours: test_contrast.py)."""
 
 from __future__ import annotations
 
 import math
 
 import pytest
-from rich.color import ColorSystem
 
 from rostui.turtlesim.canvas import PIXELS, PathImage
 from rostui.turtlesim.raster import Raster, block_edges
-from rostui.turtlesim.render import ViewLayout, legible, terminal_color
+from rostui.turtlesim.render import ViewLayout
 from rostui.turtlesim.sprites import ARROWS, heading_index, sprite_size, turtle_sprite
 from rostui.turtlesim.world import DEFAULT_BACKGROUND, DEFAULT_PEN
 
@@ -95,14 +94,3 @@ def test_large_sprite_puts_the_head_on_the_heading_side() -> None:
     assert [glyph for _, _, glyph in turtle_sprite(math.pi / 2, "compact").cells] == ["(", "↑", ")"]
     assert [glyph for _, _, glyph in turtle_sprite(math.pi, "tiny").cells] == ["←"]
     assert (sprite_size(44), sprite_size(20), sprite_size(8)) == ("large", "compact", "tiny")
-
-
-@pytest.mark.parametrize("system", [ColorSystem.STANDARD, ColorSystem.EIGHT_BIT])
-def test_legible_swaps_a_colour_that_would_vanish(system: ColorSystem) -> None:
-    """A pen the terminal would show in the background's palette colour gets a contrasting one."""
-    background = (170, 178, 250)
-    assert terminal_color(PEN, system) == terminal_color(background, system)
-    shown = legible(PEN, background, system)
-    assert terminal_color(shown, system) != terminal_color(background, system)
-    assert legible(PEN, DEFAULT_BACKGROUND, system) == PEN
-    assert legible(PEN, background, ColorSystem.TRUECOLOR) == PEN

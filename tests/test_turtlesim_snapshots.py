@@ -115,3 +115,19 @@ def test_small_terminal(snap_compare) -> None:
         await show(pilot)
 
     assert snap_compare(StillStatusApp(), run_before=run_before, terminal_size=(40, 12))
+
+
+def test_yellow_background(snap_compare) -> None:
+    """Chapter 7's yellow background (255, 255, 0) after a clear: the selected turtle1 and turtle2 keep contrast
+    (black and dark green instead of gold and light green), the default pen's trail is darkened to stay visible."""
+    async def run_before(pilot: Pilot) -> None:
+        app = await started(pilot)
+        world = app.sim.world
+        world.clear((255, 255, 0))
+        await app.sim.spawn("turtle2", 2.0, 2.0, math.pi / 4)
+        drive(world, "turtle2", 2.0, 0.0, 1.0)
+        square_path(world)
+        app.select("turtle1")
+        await show(pilot)
+
+    assert snap_compare(StillStatusApp(), run_before=run_before)

@@ -315,6 +315,33 @@ def test_colour_sensor_reads_trails_and_background() -> None:
     assert (200, 10, 10) in readings
 
 
+
+def test_colour_sensor_reads_the_own_trail_unless_the_turtle_outruns_it() -> None:
+    """As in ROS turtlesim: the pixel under the turtle's centre, read after each move and before that move's stroke.
+
+    The previous stroke's square end reaches half a pen width (1.5 px) past where the turtle was, so a turtle
+    with its pen down mostly reads its own trail (chapter 7's fast_yellow: the pen colour, not the yellow): always
+    at 1 m/s and after it stops; never at 3 m/s, which moves it 2.2 px per update; with the pen off, the background.
+    """
+    def readings(speed: float, pen_off: bool = False) -> list[tuple[int, int, int]]:
+        world, _ = world_with_turtle1()
+        world.clear((255, 255, 0))
+        world.set_pen("turtle1", 179, 184, 255, 3, pen_off)
+        seen = []
+        for _ in range(40):
+            world.command("turtle1", speed, 0.0, 0.0)
+            world.update()
+            seen.append(world.color_under("turtle1"))
+        world.command("turtle1", 0.0, 0.0, 0.0)
+        world.update()
+        return seen[1:] + [world.color_under("turtle1")]
+
+    assert set(readings(1.0)) == {DEFAULT_PEN.rgb}
+    fast = readings(3.0)
+    assert set(fast[:-1]) == {(255, 255, 0)} and fast[-1] == DEFAULT_PEN.rgb  # stopped on the end of its trail
+    assert set(readings(1.0, pen_off=True)) == {(255, 255, 0)}
+
+
 # --------------------------------------------------------------------------- contacts
 def _head_on(contacts: bool) -> float:
     clock = FakeClock()

@@ -8,6 +8,10 @@ lower half block), which are about square on screen, so the world takes
 rebuilds only the rows where the image changed or a sprite moved, and asks
 Textual to repaint only the cells that differ, at most :attr:`TurtleView.FRAME_RATE`
 times a second and only when the world changed.
+
+Colours are chosen by contrast (:mod:`rostui.models.contrast`) as the terminal
+will show them in its colour mode: turtles and trails keep a contrast ratio of
+at least 3 against the background; a trail keeps its pen's hue.
 """
 
 from __future__ import annotations
@@ -16,13 +20,15 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Iterable
 
-from rich.color import Color, ColorSystem
+from rich.color import Color
 from rich.segment import Segment
 from rich.style import Style
 from textual.geometry import Region
 from textual.strip import Strip
 from textual.widget import Widget
 
+from rostui.apps.widgets.terminal_colors import color_system, shown_in
+from rostui.models.contrast import Shown, keep_hue, pick
 from rostui.turtlesim.canvas import PIXELS
 from rostui.turtlesim.raster import RGB, Raster
 from rostui.turtlesim.sprites import sprite_size, turtle_sprite
@@ -37,41 +43,31 @@ Cell = tuple[str, "RGB | None", "RGB | None", bool]
 UPPER_HALF = "▀"
 EMPTY: Cell = (" ", None, None, False)
 
-#: Sprite colours: the selected turtle, then the others.
-SELECTED_COLOR: RGB = (255, 221, 0)
-TURTLE_COLOR: RGB = (120, 230, 120)
-
-#: Colours tried, in order, when a colour would vanish into the background after
-#: the terminal reduces it to 256 or 16 colours.
-FALLBACK_COLORS: tuple[RGB, ...] = ((255, 255, 255), (0, 0, 0), (255, 255, 0), (0, 255, 255), (255, 0, 255))
-
-_SYSTEMS = {"256": ColorSystem.EIGHT_BIT, "standard": ColorSystem.STANDARD, "windows": ColorSystem.WINDOWS}
+#: Sprite colours, most wanted first: the first that keeps a contrast of 3 against the
+#: background (as the terminal shows both) is used.  White and black are in both lists:
+#: one of them always reaches 3 against a single colour.
+SELECTED_COLORS: tuple[RGB, ...] = ((255, 221, 0), (0, 0, 0), (255, 255, 255))
+TURTLE_COLORS: tuple[RGB, ...] = ((120, 230, 120), (0, 110, 0), (255, 255, 255), (0, 0, 0))
 
 
-def terminal_color(rgb: RGB, system: ColorSystem | None) -> int | RGB:
-    """What the terminal gets for ``rgb`` under ``system``: a palette number, or the RGB itself."""
-    if system is None or system == ColorSystem.TRUECOLOR:
-        return rgb
-    number = Color.from_rgb(*rgb).downgrade(system).number
-    assert number is not None
-    return number
+def turtle_colors(background: RGB, shown: Shown) -> tuple[RGB, RGB]:
+    """The colours of the selected turtle and of the others on ``background``, as ``shown`` by the terminal.
+
+    Each is the first of its list (:data:`SELECTED_COLORS`, :data:`TURTLE_COLORS`)
+    with a contrast of at least 3 against the background; the others never take
+    the selected turtle's shown colour, so the selected one stands out.
+    """
+    selected = pick(SELECTED_COLORS, [background], shown)
+    others = [c for c in TURTLE_COLORS if shown(c) != shown(selected)] or list(TURTLE_COLORS)
+    return selected, pick(others, [background], shown)
 
 
-def legible(rgb: RGB, background: RGB, system: ColorSystem | None) -> RGB:
-    """``rgb``, or a substitute that stays distinct from ``background`` once reduced to ``system``."""
-    if system is None or system == ColorSystem.TRUECOLOR:
-        return rgb
-    bg = terminal_color(background, system)
-    if terminal_color(rgb, system) != bg:
-        return rgb
-    for candidate in sorted(FALLBACK_COLORS, key=lambda c: -_distance(c, background)):
-        if terminal_color(candidate, system) != bg:
-            return candidate
-    return rgb
+def trail_color(pen: RGB, background: RGB, shown: Shown) -> RGB:
+    """The colour a trail drawn with ``pen`` is shown in: the pen, or its nearest shade with contrast 3.
 
-
-def _distance(a: RGB, b: RGB) -> int:
-    return sum((x - y) ** 2 for x, y in zip(a, b))
+    A pen of the background's own colour (an eraser) stays invisible.
+    """
+    return pen if pen == background else keep_hue(pen, [background], shown)
 
 
 @dataclass(frozen=True)
@@ -141,7 +137,7 @@ class TurtleView(Widget):
         self._seen_generation = -1
         self._styles: dict[tuple[RGB | None, RGB | None, bool], Style] = {}
         self._palette: dict[RGB, RGB] = {}
-        self._color_system: ColorSystem | None = None
+        self._shown: Shown = shown_in(color_system(None))
         self._stale = True
         self.frames = 0
 
@@ -210,7 +206,7 @@ class TurtleView(Widget):
         return list(self._cells[y]) if 0 <= y < len(self._cells) else []
 
     def shown_color(self, rgb: RGB) -> RGB:
-        """The colour actually used for a world colour ``rgb`` on this terminal."""
+        """The colour the view draws for a world colour ``rgb`` (before the terminal reduces it to its mode)."""
         return self._display(rgb)
 
     # -- Textual hooks -------------------------------------------------------------
@@ -241,7 +237,7 @@ class TurtleView(Widget):
         self._stale = False
         width, height = self.size.width, self.size.height
         self._layout = ViewLayout.fit(width, height)
-        self._color_system = _SYSTEMS.get(self.app.console.color_system or "")
+        self._shown = shown_in(color_system(self.app.console.color_system))
         self._palette.clear()
         self._styles.clear()
         world = self._world
@@ -302,6 +298,7 @@ class TurtleView(Widget):
         if world is None or layout is None or layout.size == 0:
             return {}
         kind = sprite_size(layout.size)
+        selected_color, other_color = turtle_colors(world.background, self._shown)
         turtles: Iterable[Turtle] = list(world.turtles.values())
         ordered = sorted(turtles, key=lambda t: t.name == self._selected)
         placed: dict[str, PlacedSprite] = {}
@@ -313,7 +310,7 @@ class TurtleView(Widget):
                 if layout.left <= col + dx < layout.left + layout.size
                 and layout.top <= row + dy < layout.top + layout.rows
             )
-            placed[turtle.name] = PlacedSprite(cells, SELECTED_COLOR if selected else TURTLE_COLOR, selected)
+            placed[turtle.name] = PlacedSprite(cells, selected_color if selected else other_color, selected)
         return placed
 
     def _cell_of(self, turtle: "Turtle") -> tuple[int, int]:
@@ -330,7 +327,7 @@ class TurtleView(Widget):
         shown = self._palette.get(rgb)
         if shown is None:
             background = self._raster.image.background if self._raster is not None else rgb
-            shown = rgb if rgb == background else legible(rgb, background, self._color_system)
+            shown = trail_color(rgb, background, self._shown)
             self._palette[rgb] = shown
         return shown
 

@@ -16,6 +16,7 @@ from textual import events
 from textual.message import Message
 from textual.widget import Widget
 
+from rostui.apps.widgets.terminal_colors import color_system, readable
 from rostui.core.bag.index import BagIndex
 
 GLYPHS = " ▁▂▃▄▅▆▇█"
@@ -166,7 +167,8 @@ class TimelineView(Widget, can_focus=True):
         column = self._cursor_column()
         self._scroll_to_selection()
         name_width = self._name_width()
-        cursor_style = self.get_component_rich_style("timeline--cursor")
+        system = color_system(self.app.console.color_system)
+        cursor_style = readable(self.get_component_rich_style("timeline--cursor"), system)
         lines = [self._ruler(width, column)]
         for row in range(self._top, min(len(self.topics), self._top + self._rows_shown())):
             topic = self.topics[row]
@@ -186,7 +188,8 @@ class TimelineView(Widget, can_focus=True):
             if not on:
                 line.stylize(self.get_component_rich_style("timeline--off"))
             if row == self.selected:
-                line.stylize(self.get_component_rich_style("timeline--selected"), 0, MARK_WIDTH + name_width)
+                line.stylize(readable(self.get_component_rich_style("timeline--selected"), system),
+                             0, MARK_WIDTH + name_width)
             lines.append(line)
         return Text("\n").join(lines)
 

@@ -23,6 +23,7 @@ from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
 from rostui.apps.console.columns import GAP, Layout, cell, layout_for, row_texts
+from rostui.apps.widgets.terminal_colors import color_system, readable
 from rostui.core.log.levels import Level
 from rostui.models.console.filters import HighlightRule, first_highlight
 from rostui.models.console.model import ConsoleModel
@@ -328,6 +329,7 @@ class LogTable(ScrollView, can_focus=True):
             style += self._overlay(f"log-table--highlight-{mark % HIGHLIGHT_COLOURS}")
         if selected:
             style += self._overlay("log-table--cursor")
+        style = readable(style, color_system(self.app.console.color_system))
         texts = row_texts(seq, entry)
         gap = " " * GAP
         text = gap.join(cell(texts[c.key], c.width) for c in layout.columns)

@@ -19,6 +19,7 @@ from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
 from rostui.apps.graph.canvas import EMPTY, Canvas
+from rostui.apps.widgets.terminal_colors import color_system, readable
 from rostui.models.graph.live import Mark
 from rostui.models.graph.view import Kind, kind_of
 
@@ -155,7 +156,9 @@ class GraphView(ScrollView, can_focus=True):
 
     def _styles(self, base: Style) -> dict[str, Style]:
         names = ("node", "topic", "group", "edge", "edge-hot", "label", "selected", "neighbour", "new", "gone")
-        styles = {name: base + self.get_component_rich_style(f"graph--{name}", partial=True) for name in names}
+        system = color_system(self.app.console.color_system)
+        styles = {name: readable(base + self.get_component_rich_style(f"graph--{name}", partial=True), system)
+                  for name in names}
         styles["blank"] = base
         return styles
 

@@ -19,6 +19,7 @@ from textual.message import Message
 from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
+from rostui.apps.widgets.terminal_colors import color_system, readable
 from rostui.models.monitor.rows import COLUMNS, Liveness, TopicRow
 
 __all__ = ["TopicTable"]
@@ -203,6 +204,7 @@ class TopicTable(ScrollView, can_focus=True):
             if topic.name == self.cursor_topic:
                 cursor = self.get_component_rich_style("topic-table--cursor")
                 style += Style(bgcolor=cursor.bgcolor, bold=cursor.bold)
+            style = readable(style, color_system(self.app.console.color_system))
         strip = Strip([Segment(text.ljust(width), style)], width)
         return strip.crop(scroll_x, scroll_x + self.scrollable_content_region.width)
 

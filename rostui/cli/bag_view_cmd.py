@@ -107,7 +107,7 @@ def register(bag_app: typer.Typer) -> None:
 
     @bag_app.command("view", context_settings=CONTEXT)
     def view_command(
-        args: list[str] = typer.Argument(None, metavar="FILE ... | --record TOPIC ...",
+        args: list[str] = typer.Argument(None, metavar="FILE... | --record TOPIC...",
                                          help="Bags to view, or with --record the topics to record."),
         record: bool = typer.Option(False, "--record", help="Record instead: live counts, sizes and rates per "
                                                             "topic; r start/stop, n split."),

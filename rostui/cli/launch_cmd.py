@@ -6,6 +6,8 @@ from typing import List, Optional
 
 import typer
 
+from rostui.cli.common import examples
+
 LAUNCH_CONTEXT = {
     "help_option_names": ["-h", "--help"],
     "allow_extra_args": True,
@@ -15,6 +17,9 @@ LAUNCH_CONTEXT = {
 
 def launch_command(
     ctx: typer.Context,
+    arguments: Optional[List[str]] = typer.Argument(
+        None, metavar="[PACKAGE] FILE [ARG:=VALUE]...",
+        help="A launch file (a path, or a file name found below PACKAGE), then the file's args as name:=value."),
     nodes: bool = typer.Option(False, "--nodes", help="Print the names of the nodes the files would start."),
     node_args: Optional[str] = typer.Option(None, "--args", metavar="NODE",
                                             help="Print the command line that would start NODE."),
@@ -47,7 +52,7 @@ def launch_command(
     from rostui.launch.errors import LaunchError
     from rostui.launch.files import resolve_request
 
-    words: List[str] = list(ctx.args)
+    words: List[str] = [*(arguments or []), *ctx.args]
     unknown = [w for w in words if w.startswith("-") and ":=" not in w]
     if unknown:
         print(f"rostui launch: unknown option {unknown[0]}", file=sys.stderr)
@@ -100,6 +105,14 @@ def launch_command(
         raise typer.Exit(1)
 
 
+LAUNCH_EXAMPLES = examples(
+    ("a launch file of a package; Ctrl-C stops its nodes (chapter 6)", "rostui launch agitr example.launch"),
+    ("set the file's arg use_sim3", "rostui launch agitr triplesim.launch use_sim3:=1"),
+    ("a file by its path, every node's output on the terminal", "rostui launch --screen ./my.launch"),
+    ("the nodes in a live monitor (start, stop, restart, output)", "rostui launch --tui agitr doublesim.launch"),
+)
+
+
 def register(app: typer.Typer) -> None:
     """Add the command to the rostui app."""
-    app.command("launch", context_settings=LAUNCH_CONTEXT)(launch_command)
+    app.command("launch", context_settings=LAUNCH_CONTEXT, epilog=LAUNCH_EXAMPLES)(launch_command)

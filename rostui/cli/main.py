@@ -57,5 +57,11 @@ for _module in (run_cmd, node_cmd, topic_cmd, msg_cmd, service_cmd, param_cmd, p
 
 
 def main() -> None:
-    """Console-script entry point."""
+    """Console-script entry point: a bare negative number is refused with one line before Typer parses."""
+    import sys
+
+    from rostui.cli.negative import looks_negative, refuse_bare_negatives
+
+    if any(looks_negative(word) for word in sys.argv[1:]):
+        refuse_bare_negatives(typer.main.get_command(app), sys.argv[1:])
     app()

@@ -13,6 +13,7 @@ from typing import Any, Callable, Coroutine, Iterable, List, NoReturn, Optional
 import typer
 
 from rostui.cli.common import JSON_OPTION_HELP as _JSON_HELP
+from rostui.cli.common import examples
 from rostui.cli.complete import complete_msg_types as _complete_type
 from rostui.cli.complete import complete_topics as _complete_topic
 
@@ -87,7 +88,7 @@ def _check_master() -> None:
 # ----------------------------------------------------------------------------- master-only commands
 @topic_app.command("list")
 def list_command(
-    namespace: Optional[str] = typer.Argument(None, help="Only topics in this namespace.", autocompletion=_complete_topic),
+    namespace: Optional[str] = typer.Argument(None, metavar="NAMESPACE", help="Only topics in this namespace.", autocompletion=_complete_topic),
     verbose: bool = typer.Option(False, "-v", "--verbose", help="List full details about each topic."),
     publishers: bool = typer.Option(False, "-p", help="List only publishers."),
     subscribers: bool = typer.Option(False, "-s", help="List only subscribers."),
@@ -111,7 +112,7 @@ def list_command(
 
 @topic_app.command("info")
 def info_command(
-    topic: str = typer.Argument(..., help="Topic name.", autocompletion=_complete_topic),
+    topic: str = typer.Argument(..., metavar="TOPIC", help="Topic name.", autocompletion=_complete_topic),
     as_json: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """Print type, publishers and subscribers of a topic (like `rostopic info`)."""
@@ -132,7 +133,7 @@ def info_command(
 
 @topic_app.command("type")
 def type_command(
-    topic: str = typer.Argument(..., help="Topic or field name (/topic/field).", autocompletion=_complete_topic),
+    topic: str = typer.Argument(..., metavar="TOPIC", help="Topic or field name (/topic/field).", autocompletion=_complete_topic),
     as_json: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """Print the message type of a topic or field (like `rostopic type`)."""
@@ -174,9 +175,17 @@ def find_command(
 
 
 # ----------------------------------------------------------------------------- node commands
-@topic_app.command("echo")
+ECHO_EXAMPLES = examples(
+    ("print each command the turtle gets (chapter 2)", "rostui topic echo /turtle1/command_velocity"),
+    ("one field, five messages, then exit", "rostui topic echo -n 5 /turtle1/pose/x"),
+    ("JSON Lines, one message a line, for jq", "rostui topic echo --json /turtle1/pose | jq .theta"),
+    ("from a bag file, no master needed", "rostui topic echo -b square.bag /turtle1/pose"),
+)
+
+
+@topic_app.command("echo", epilog=ECHO_EXAMPLES)
 def echo_command(
-    topic: Optional[str] = typer.Argument(None, help="Topic, or a field of it (/turtle1/pose/x, /a/b[0]).", autocompletion=_complete_topic),
+    topic: Optional[str] = typer.Argument(None, metavar="TOPIC", help="Topic, or a field of it (/turtle1/pose/x, /a/b[0]).", autocompletion=_complete_topic),
     bag: Optional[str] = typer.Option(None, "-b", "--bag", metavar="BAGFILE", help="Echo messages from a bag file (.bag or MCAP), no master needed."),
     all_topics: bool = typer.Option(False, "-a", "--all", help="Display all messages in the bag (only with -b)."),
     count: Optional[int] = typer.Option(None, "-n", metavar="COUNT", help="Number of messages to echo."),
@@ -232,7 +241,7 @@ def _echo_bag(path: str, topic: Optional[str], **options: Any) -> NoReturn:
 
 @topic_app.command("hz")
 def hz_command(
-    topics: List[str] = typer.Argument(..., help="Topic names.", autocompletion=_complete_topic),
+    topics: List[str] = typer.Argument(..., metavar="TOPIC...", help="Topic names.", autocompletion=_complete_topic),
     window: int = typer.Option(-1, "-w", "--window", metavar="WINDOW", help="Window size, in # of messages, for calculating rate."),
 ) -> None:
     """Print the publishing rate of topics every second (like `rostopic hz`)."""
@@ -245,7 +254,7 @@ def hz_command(
 
 @topic_app.command("bw")
 def bw_command(
-    topic: str = typer.Argument(..., help="Topic name.", autocompletion=_complete_topic),
+    topic: str = typer.Argument(..., metavar="TOPIC", help="Topic name.", autocompletion=_complete_topic),
     window: Optional[int] = typer.Option(None, "-w", "--window", metavar="WINDOW", help="Window size, in # of messages, for calculating rate."),
 ) -> None:
     """Print the bandwidth used by a topic every second (like `rostopic bw`)."""
@@ -256,9 +265,21 @@ def bw_command(
     raise typer.Exit(_run_async(run_bw(name, window, _out)))
 
 
-@topic_app.command("pub", context_settings={"ignore_unknown_options": True})
+PUB_EXAMPLES = examples(
+    ("1 Hz, values in `rostui msg show` order (chapter 2)",
+     "rostui topic pub -r 1 /turtle1/command_velocity turtlesim/Velocity 1 0"),
+    ("one YAML dictionary, latched (the default without -r)",
+     "rostui topic pub /turtle1/command_velocity turtlesim/Velocity \\\n    '{linear: 0.1, angular: 0.0}'"),
+    ("publish once (-1); negative numbers after --, or they read as options",
+     "rostui topic pub -1 /turtle1/command_velocity turtlesim/Velocity -- -1 0.5"),
+    ("messages from a file in `topic echo` format, at 10 Hz",
+     "rostui topic pub -f poses.yaml /turtle1/pose turtlesim/Pose"),
+)
+
+
+@topic_app.command("pub", context_settings={"ignore_unknown_options": True}, epilog=PUB_EXAMPLES)
 def pub_command(
-    topic: str = typer.Argument(..., help="Topic name.", autocompletion=_complete_topic),
+    topic: str = typer.Argument(..., metavar="TOPIC", help="Topic name.", autocompletion=_complete_topic),
     msg_type: str = typer.Argument(..., metavar="TYPE", help="Message type (pkg/Type).", autocompletion=_complete_type),
     values: Optional[List[str]] = typer.Argument(None, metavar="[ARGS]...", help="Field values in `msg show` order, or one YAML dict."),
     rate: Optional[float] = typer.Option(None, "-r", "--rate", help="Publishing rate (Hz). For -f and stdin input, this defaults to 10."),

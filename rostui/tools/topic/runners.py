@@ -82,7 +82,11 @@ async def _wait_for_topic(run: _Run, topic: str) -> tuple[str, str, str] | None:
         if type_name is not None and real_topic is not None:
             return type_name, real_topic, path
         if not warned:
-            sys.stderr.write(f"WARNING: topic [{topic}] does not appear to be published yet\n")
+            from rostui.tools.suggest import did_you_mean
+
+            hint = did_you_mean(topic, (name for name, _type in types))
+            sys.stderr.write(f"WARNING: topic [{topic}] does not appear to be published yet\n"
+                             + (f"{hint}\n" if hint else ""))
             sys.stderr.flush()
             warned = True
         if await run.sleep(0.1):

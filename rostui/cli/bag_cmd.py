@@ -275,19 +275,19 @@ def register(app: typer.Typer) -> None:
     @bag_app.command("play", context_settings=CONTEXT, epilog=PLAY_EXAMPLES)
     def play_command(
         args: list[str] = typer.Argument(..., metavar="FILE...", help="Bags to play (and topic:=newtopic)."),
-        rate: float = typer.Option(1.0, "-r", "--rate", help="Multiply the publish rate by this factor."),
+        rate: float = typer.Option(1.0, "-r", "--rate", metavar="FACTOR", help="Multiply the publish rate by this factor."),
         loop_play: bool = typer.Option(False, "-l", "--loop", help="Loop playback."),
         pause: bool = typer.Option(False, "--pause", help="Start paused."),
-        start: float = typer.Option(0.0, "-s", "--start", metavar="SEC", help="Start SEC seconds into the bag."),
-        duration: float | None = typer.Option(None, "-u", "--duration", metavar="SEC",
-                                              help="Play only SEC seconds."),
-        delay: float = typer.Option(0.2, "-d", "--delay", metavar="SEC",
-                                    help="Wait SEC seconds after advertising each topic."),
+        start: float = typer.Option(0.0, "-s", "--start", metavar="SECONDS", help="Start SECONDS into the bag."),
+        duration: float | None = typer.Option(None, "-u", "--duration", metavar="SECONDS",
+                                              help="Play only SECONDS of the bag."),
+        delay: float = typer.Option(0.2, "-d", "--delay", metavar="SECONDS",
+                                    help="Wait SECONDS after advertising each topic."),
         clock: bool = typer.Option(False, "--clock", help="Publish the bag time on /clock."),
-        hz: float = typer.Option(100.0, "--hz", help="Rate of /clock messages."),
+        hz: float = typer.Option(100.0, "--hz", metavar="HZ", help="Rate of /clock messages."),
         topics: list[str] | None = typer.Option(None, "--topics", metavar="TOPIC",
                                                 help="Play only these topics (repeat the option)."),
-        queue: int = typer.Option(100, "--queue", help="Outgoing queue size of each publisher."),
+        queue: int = typer.Option(100, "--queue", metavar="SIZE", help="Outgoing queue size of each publisher."),
         quiet: bool = typer.Option(False, "-q", "--quiet", help="No status line."),
     ) -> None:
         """Play bags back with their original timing (like `rosbag play`)."""

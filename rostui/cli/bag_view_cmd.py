@@ -138,8 +138,8 @@ def register(bag_app: typer.Typer) -> None:
                                                  "s, m or h (30, 30s, 5m, 2h)."),
         clock: bool = typer.Option(False, "--clock", help="Publish the bag time on /clock while viewing "
                                                           "(also while paused)."),
-        hz: float | None = typer.Option(None, "--hz", help="Rate of /clock messages (default 100)."),
-        rate: float = typer.Option(1.0, "-r", "--rate", help="Playback rate factor (+/- change it in the app)."),
+        hz: float | None = typer.Option(None, "--hz", metavar="HZ", help="Rate of /clock messages (default 100)."),
+        rate: float = typer.Option(1.0, "-r", "--rate", metavar="FACTOR", help="Playback rate factor (+/- change it in the app)."),
         loop: bool = typer.Option(False, "-l", "--loop", help="Loop playback."),
         pause: bool = typer.Option(True, "--pause/--play", help="Open paused (default) or playing."),
         topics: list[str] | None = typer.Option(None, "--topics", metavar="TOPIC",

@@ -43,7 +43,7 @@ def root(
 
 @app.command("core")
 def core_command(
-    port: int = typer.Option(11311, "-p", "--port", help="Port the master listens on."),
+    port: int = typer.Option(11311, "-p", "--port", metavar="PORT", help="Port the master listens on."),
 ) -> None:
     """Start a ROS master, parameter server and rosout (like `roscore`)."""
     from rostui.cli.core_cmd import run_core

@@ -87,7 +87,7 @@ def info_command(
 @node_app.command("ping")
 def ping_command(
     node: Optional[str] = typer.Argument(None, metavar="NODE", help="Node to ping.", autocompletion=complete_nodes),
-    count: Optional[int] = typer.Option(None, "-c", help="Number of pings to send (not with --all)."),
+    count: Optional[int] = typer.Option(None, "-c", metavar="COUNT", help="Number of pings to send (not with --all)."),
     all_: bool = typer.Option(False, "-a", "--all", help="Ping all nodes once."),
 ) -> None:
     """Test connectivity to a node over XML-RPC (like `rosnode ping`)."""

@@ -109,7 +109,7 @@ def set_command(
     name: str = typer.Argument(..., metavar="NAME", help="Parameter (or namespace, for a YAML dictionary).",
                                autocompletion=complete_params),
     value: Optional[str] = typer.Argument(None, metavar="VALUE", help="The value, typed as YAML."),
-    textfile: Optional[str] = typer.Option(None, "-t", "--textfile", help="Set to the contents of a text file."),
+    textfile: Optional[str] = typer.Option(None, "-t", "--textfile", metavar="FILE", help="Set to the contents of a text file."),
     verbose: bool = typer.Option(False, "-v", help="Print what is set."),
 ) -> None:
     """Set a parameter; the value is YAML-typed, a dictionary merges into the namespace (like `rosparam set`)."""

@@ -40,7 +40,7 @@ def find_cmd(package: str = typer.Argument(..., metavar="PACKAGE", help="Package
 
 @pkg_app.command("ls")
 def ls_cmd(
-    path: str = typer.Argument(..., metavar="PKG[/SUBDIR]", help="A package, optionally followed by a path inside it.",
+    path: str = typer.Argument(..., metavar="PACKAGE[/SUBDIR]", help="A package, optionally followed by a path inside it.",
                                autocompletion=complete_packages),
     as_json: bool = typer.Option(False, "--json", help=JSON_OPTION_HELP),
 ) -> None:

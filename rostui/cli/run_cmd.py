@@ -1,4 +1,4 @@
-"""`rostui run PKG EXE [args...]`: run an executable of a package (like `rosrun`)."""
+"""`rostui run PACKAGE EXECUTABLE [ARGS]...`: run an executable of a package (like `rosrun`)."""
 
 from __future__ import annotations
 
@@ -23,7 +23,7 @@ def run_command(
                                      autocompletion=complete_executables),
     arguments: Optional[List[str]] = typer.Argument(
         None, metavar="[ARGS]...", help="Passed to the program as they are: name:=value, _param:=value, options."),
-    prefix: Optional[str] = typer.Option(None, "--prefix", "-p",
+    prefix: Optional[str] = typer.Option(None, "--prefix", "-p", metavar="COMMAND",
                                          help="Command to put in front of the executable (e.g. 'gdb --args')."),
 ) -> None:
     """Run EXECUTABLE of PACKAGE with every further argument passed through (like `rosrun`).

@@ -195,6 +195,8 @@ def echo_command(
     offset: bool = typer.Option(False, "--offset", help="Display time as offsets from current time."),
     width: Optional[int] = typer.Option(None, "-w", metavar="NUM_WIDTH", help="Fixed width for numeric values."),
     clear: bool = typer.Option(False, "-c", "--clear", help="Clear screen before printing next message."),
+    as_json: bool = typer.Option(False, "--json", help="Print each message as one JSON object a line (JSON Lines, "
+                                                       "for jq): time as {secs, nsecs}, uint8[] as a list of ints."),
 ) -> None:
     """Print messages of a topic (like `rostopic echo`); waits until the topic is published, or reads a bag (-b)."""
     if width is not None and width < 2:
@@ -203,6 +205,8 @@ def echo_command(
     from rostui.tools.topic.echo import field_evaluator
     from rostui.tools.topic.runners import run_echo
 
+    if as_json and (plot or clear or width is not None):
+        _fail("ERROR: --json cannot be combined with -p, -c or -w")
     if all_topics and not bag:
         _fail("ERROR: Display all option is only valid when echoing from bag files")
     if offset and bag:
@@ -215,12 +219,13 @@ def echo_command(
     except UsageError as e:
         _fail(f"ERROR: {e}")
     if bag:
-        _echo_bag(bag, name, plot=plot, noarr=noarr, nostr=nostr, count=count, fixed_width=width, clear=clear)
+        _echo_bag(bag, name, plot=plot, noarr=noarr, nostr=nostr, count=count, fixed_width=width, clear=clear,
+                  as_json=as_json)
     assert name is not None
     _check_master()
     raise typer.Exit(_run_async(run_echo(
         name, _out, plot=plot, noarr=noarr, nostr=nostr, offset=offset, count=count,
-        fixed_width=width, clear=clear)))
+        fixed_width=width, clear=clear, as_json=as_json)))
 
 
 def _echo_bag(path: str, topic: Optional[str], **options: Any) -> NoReturn:
@@ -282,7 +287,7 @@ def pub_command(
     topic: str = typer.Argument(..., metavar="TOPIC", help="Topic name.", autocompletion=_complete_topic),
     msg_type: str = typer.Argument(..., metavar="TYPE", help="Message type (pkg/Type).", autocompletion=_complete_type),
     values: Optional[List[str]] = typer.Argument(None, metavar="[ARGS]...", help="Field values in `msg show` order, or one YAML dict."),
-    rate: Optional[float] = typer.Option(None, "-r", "--rate", help="Publishing rate (Hz). For -f and stdin input, this defaults to 10."),
+    rate: Optional[float] = typer.Option(None, "-r", "--rate", metavar="RATE", help="Publishing rate (Hz). For -f and stdin input, this defaults to 10."),
     once: bool = typer.Option(False, "-1", "--once", help="Publish one message and exit."),
     file: Optional[str] = typer.Option(None, "-f", "--file", metavar="FILE", help="Read messages from a YAML file (echo format, --- separated)."),
     latch: bool = typer.Option(False, "-l", "--latch", help="Enable latching for -f, -r and piped input (latches the first message)."),

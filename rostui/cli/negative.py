@@ -25,7 +25,8 @@ def looks_negative(word: str) -> bool:
 
 def _leaf(root: Any, argv: Sequence[str]) -> tuple[Any, list[str], list[str]] | None:
     """The command ``argv`` names, the words naming it and the words after them (None: no such command)."""
-    command, path, rest = root, [], list(argv)
+    command, rest = root, list(argv)
+    path: list[str] = []
     while hasattr(command, "commands"):
         names = [w for w in rest if not w.startswith("-")]
         if not names:

@@ -119,3 +119,14 @@ def test_topic_echo_hints_while_it_waits(any_master: str, ros_env: dict[str, str
     echo.wait_for(r"^did you mean /turtle1/pose\?$")
     assert echo.proc.poll() is None  # it waits, as rostopic echo does
     assert talker.proc.poll() is None
+
+
+def test_service_call_wait_hints_while_it_waits(any_master: str, ros_env: dict[str, str], spawn: Spawn,
+                                                rospy_available: None) -> None:
+    spawn(rospy_peer("rospy_setbool_server.py", "/set_flag"), label="server").wait_for("ready")
+    caller = spawn([sys.executable, "-m", "rostui", "service", "call", "--wait", "/set_flga", "true"], label="call")
+    caller.wait_for(r"^did you mean /set_flag\?$")
+    assert caller.proc.poll() is None  # still waiting for /set_flga
+    spawn(rospy_peer("rospy_setbool_server.py", "/set_flga"), label="late server").wait_for("ready")
+    assert caller.wait_exit() == 0
+    assert "success: True" in caller.output

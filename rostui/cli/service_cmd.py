@@ -37,6 +37,11 @@ def _fail(exc: Exception, hint: str | None = None) -> NoReturn:
     fail(str(exc), hint=hint)
 
 
+def _print_hint(hint: str | None) -> None:
+    if hint:
+        print(hint, file=sys.stderr, flush=True)
+
+
 def _service_hint(name: str) -> str | None:
     """``did you mean …?`` among the services the master knows (None when ``name`` is one of them)."""
     from rostui.cli.common import suggestion
@@ -198,7 +203,8 @@ def call_command(
     name = _resolve(service)
     argv = [a for a in (args or []) if ":=" not in a]  # ROS remapping arguments are not request fields
     try:
-        srv_class = resolve_call_type(master_caller(CALLER), name, wait=wait)
+        srv_class = resolve_call_type(master_caller(CALLER), name, wait=wait,
+                                      on_wait=lambda: _print_hint(_service_hint(name)))
         if argv or sys.stdin is None or sys.stdin.isatty() or not srv_class._request_class.__slots__:
             requests = [build_request(srv_class, argv)]
         else:

@@ -97,6 +97,20 @@ def test_node_did_you_mean(any_master: str, ros_env: dict[str, str]) -> None:
     ours = rostui(["node", "info", "/rosuot"], ros_env)
     assert ours.stderr == "cannot contact [/rosuot]: unknown node\ndid you mean /rosout?\n"
     assert "Node [/rosuot]" in ours.stdout  # rosnode's report of an unknown node, unchanged
+    ours = rostui(["node", "ping", "-c", "1", "/rosuot"], ros_env)
+    assert ours.stderr == "cannot ping [/rosuot]: unknown node\ndid you mean /rosout?\n"
+    ours = rostui(["node", "kill", "/rosuot"], ros_env)
+    assert ours.returncode == 1
+    assert ours.stderr == "ERROR: Unknown node(s):\n * /rosuot\ndid you mean /rosout?\n"
+
+
+def test_topic_info_and_type_did_you_mean(any_master: str, ros_env: dict[str, str]) -> None:
+    ours = rostui(["topic", "info", "/rosout_ag"], ros_env)
+    assert (ours.returncode, ours.stdout) == (1, "")
+    assert ours.stderr == "ERROR: Unknown topic /rosout_ag\ndid you mean /rosout_agg?\n"
+    ours = rostui(["topic", "type", "/rosout_ag"], ros_env)
+    assert ours.returncode == 1 and ours.stderr.endswith("\ndid you mean /rosout_agg?\n")
+    assert ours.stderr.count("\n") == 2
 
 
 def test_service_did_you_mean(any_master: str, ros_env: dict[str, str], spawn: Spawn,
@@ -107,6 +121,11 @@ def test_service_did_you_mean(any_master: str, ros_env: dict[str, str], spawn: S
     assert ours.stderr == "ERROR: Service [/set_flga] is not available.\ndid you mean /set_flag?\n"
     ours = rostui(["service", "info", "/set_flga"], ros_env)
     assert ours.stderr == "ERROR: unknown service\ndid you mean /set_flag?\n"
+    for command, line in [("node", "Unknown service: /set_flga"), ("uri", "Unknown service: /set_flga"),
+                          ("type", "Unknown service [/set_flga]"),
+                          ("args", "ERROR: Service [/set_flga] is not available.")]:
+        ours = rostui(["service", command, "/set_flga"], ros_env)
+        assert (ours.returncode, ours.stderr) == (1, f"{line}\ndid you mean /set_flag?\n"), command
     assert rostui(["service", "call", "/set_flag", "true"], ros_env).stdout == "success: True\nmessage: \"got true\"\n"
 
 

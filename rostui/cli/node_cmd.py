@@ -106,7 +106,7 @@ def ping_command(
             _echo(f"pinging {n} with a timeout of {PING_TIMEOUT:.1f}s")
             uri = uris.get(n)
             if uri is None:
-                _echo(f"cannot ping [{n}]: unknown node", err=True)
+                _echo(f"cannot ping [{n}]: unknown node", err=True)  # listed a moment ago: no hint
                 continue
             try:
                 ms = ping_node(uri)
@@ -124,6 +124,7 @@ def ping_command(
     uri = lookup_uris(call, [name]).get(name)
     if uri is None:
         _echo(f"cannot ping [{name}]: unknown node", err=True)
+        _hint(name, lambda: system_state(call).nodes())
         return
     _echo(f"pinging {name} with a timeout of {PING_TIMEOUT:.1f}s")
     import time
@@ -168,6 +169,8 @@ def kill_command(
     unknown = [n for n in targets if uris.get(n) is None]
     if unknown and not all_:
         _echo("ERROR: Unknown node(s):\n" + "\n".join(f" * {n}" for n in unknown), err=True)
+        for n in unknown:
+            _hint(n, lambda: system_state(call).nodes())
         raise typer.Exit(1)
     for n in targets:
         if uris.get(n) is not None:

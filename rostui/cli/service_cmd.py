@@ -109,7 +109,7 @@ def node_command(service: str = typer.Argument(..., metavar="SERVICE", help="Ser
     if node is None:
         from rostui.cli.common import fail
 
-        fail(f"Unknown service: {name}")
+        fail(f"Unknown service: {name}", hint=_service_hint(name))
     print(node)
 
 
@@ -123,7 +123,7 @@ def uri_command(service: str = typer.Argument(..., metavar="SERVICE", help="Serv
     if uri is None:
         from rostui.cli.common import fail
 
-        fail(f"Unknown service: {name}")
+        fail(f"Unknown service: {name}", hint=_service_hint(name))
     print(uri)
 
 
@@ -140,7 +140,7 @@ def type_command(service: str = typer.Argument(..., metavar="SERVICE", help="Ser
     if type_name is None:
         from rostui.cli.common import fail
 
-        fail(f"Unknown service [{name}]")
+        fail(f"Unknown service [{name}]", hint=_service_hint(name))
     print(type_name)
 
 
@@ -149,10 +149,11 @@ def args_command(service: str = typer.Argument(..., metavar="SERVICE", help="Ser
     """Print a service's request fields (like `rosservice args`)."""
     from rostui.tools.service import ServiceToolError, service_args
 
+    name = _resolve(service)
     try:
-        print(" ".join(service_args(master_caller(CALLER), _resolve(service))))
+        print(" ".join(service_args(master_caller(CALLER), name)))
     except ServiceToolError as exc:
-        _fail(exc)
+        _fail(exc, _service_hint(name))
 
 
 @service_app.command("find")

@@ -46,10 +46,17 @@ def _resolve(name: str) -> str:
         _fail(f"ERROR: invalid topic name [{name}]: {e}")
 
 
-def _fail(message: str) -> NoReturn:
+def _fail(message: str, hint: Optional[str] = None) -> NoReturn:
     from rostui.cli.common import fail
 
-    fail(message)
+    fail(message, hint=hint)
+
+
+def _topic_hint(name: str) -> Optional[str]:
+    """``did you mean …?`` among the topics the master knows."""
+    from rostui.cli.common import suggestion
+
+    return suggestion(name, lambda: (topic for topic, _type in _call("getTopicTypes")))
 
 
 def _out(text: str) -> None:
@@ -119,10 +126,11 @@ def info_command(
     from rostui.tools.topic.common import TopicToolError
     from rostui.tools.topic.listing import format_info, topic_info
 
+    name = _resolve(topic)
     try:
-        info = topic_info(_call, _resolve(topic))
+        info = topic_info(_call, name)
     except TopicToolError as e:
-        _fail(f"ERROR: {e}")
+        _fail(f"ERROR: {e}", _topic_hint(name))
     if as_json:
         from rostui.cli.common import print_json
 
@@ -144,7 +152,7 @@ def type_command(
     try:
         text = type_text(_call, name)
     except TopicToolError as e:
-        _fail(str(e))
+        _fail(str(e), _topic_hint(name))
     if as_json:
         from rostui.cli.common import print_json
 

@@ -74,7 +74,7 @@ JSON_OPTION_HELP = "Print machine-readable JSON instead of ROS's text."
 def examples(*items: tuple[str, str]) -> str:
     """A ``--help`` epilog: ``Examples:``, then each ``(what, command)`` as a shell comment and its command line.
 
-    Lines stay within 78 columns so they are never wrapped at 80; Typer renders
-    the epilog as Rich markup, so a ``[`` followed by a letter must be written ``\\[``.
+    Keep each line within 78 columns, so that it is not wrapped at 80 (tests/test_cli_help.py checks);
+    Typer renders the epilog as Rich markup, so a ``[`` followed by a letter must be written ``\\[``.
     """
     return "Examples:\n" + "\n".join(f"# {what}\n{command}" for what, command in items)

@@ -12,7 +12,7 @@ import typer
 
 from rostui.cli import bag_view_cmd
 from rostui.cli.bag_progress import progress_bar
-from rostui.cli.common import fail
+from rostui.cli.common import examples, fail
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "allow_interspersed_args": True}
 
@@ -218,15 +218,33 @@ def run_change_compression(command: str, files: list[str], kind: str, output_dir
     return 1 if failed else 0
 
 
+RECORD_EXAMPLES = examples(
+    ("the turtle's commands and poses into square.bag (chapter 9)",
+     "rostui bag record -O square.bag /turtle1/command_velocity /turtle1/pose"),
+    ("every topic, also those that appear later; MCAP named by date and time", "rostui bag record -a"),
+    ("every topic but the log", "rostui bag record -a -x '/rosout.*'"),
+    ("a compressed rosbag .bag file that stops after one minute",
+     "rostui bag record -j --duration 1m -O run.bag /turtle1/pose"),
+)
+
+PLAY_EXAMPLES = examples(
+    ("replay what was recorded (chapter 9)", "rostui bag play square.bag"),
+    ("twice as fast, over and over", "rostui bag play -r 2 -l square.bag"),
+    ("drive a second turtle: remap the topic",
+     "rostui bag play square.bag \\\n    /turtle1/command_velocity:=/turtle2/command_velocity"),
+    ("publish the bag's time on /clock, from 5 s in", "rostui bag play --clock -s 5 square.bag"),
+)
+
+
 def register(app: typer.Typer) -> None:
     """Add ``rostui bag ...``."""
     bag_app = typer.Typer(name="bag", help="Record, play and inspect bags: MCAP by default, rosbag .bag by name.",
                           no_args_is_help=True, context_settings={"help_option_names": ["-h", "--help"]})
     app.add_typer(bag_app, name="bag")
 
-    @bag_app.command("record", context_settings=CONTEXT)
+    @bag_app.command("record", context_settings=CONTEXT, epilog=RECORD_EXAMPLES)
     def record_command(
-        args: list[str] = typer.Argument(None, metavar="[TOPIC ...]", help="Topics to record (and name:=value)."),
+        args: list[str] = typer.Argument(None, metavar="[TOPIC]...", help="Topics to record (and name:=value)."),
         all_topics: bool = typer.Option(False, "-a", "--all", help="Record all topics, also those that appear later."),
         regex: bool = typer.Option(False, "-e", "--regex",
                                    help="The topics are regular expressions: record every topic whose whole name "
@@ -254,22 +272,22 @@ def register(app: typer.Typer) -> None:
                                     compression=compression, split=split, size=size, duration=duration,
                                     max_size=max_size))
 
-    @bag_app.command("play", context_settings=CONTEXT)
+    @bag_app.command("play", context_settings=CONTEXT, epilog=PLAY_EXAMPLES)
     def play_command(
-        args: list[str] = typer.Argument(..., metavar="FILE ...", help="Bags to play (and topic:=newtopic)."),
-        rate: float = typer.Option(1.0, "-r", "--rate", help="Multiply the publish rate by this factor."),
+        args: list[str] = typer.Argument(..., metavar="FILE...", help="Bags to play (and topic:=newtopic)."),
+        rate: float = typer.Option(1.0, "-r", "--rate", metavar="FACTOR", help="Multiply the publish rate by this factor."),
         loop_play: bool = typer.Option(False, "-l", "--loop", help="Loop playback."),
         pause: bool = typer.Option(False, "--pause", help="Start paused."),
-        start: float = typer.Option(0.0, "-s", "--start", metavar="SEC", help="Start SEC seconds into the bag."),
-        duration: float | None = typer.Option(None, "-u", "--duration", metavar="SEC",
-                                              help="Play only SEC seconds."),
-        delay: float = typer.Option(0.2, "-d", "--delay", metavar="SEC",
-                                    help="Wait SEC seconds after advertising each topic."),
+        start: float = typer.Option(0.0, "-s", "--start", metavar="SECONDS", help="Start SECONDS into the bag."),
+        duration: float | None = typer.Option(None, "-u", "--duration", metavar="SECONDS",
+                                              help="Play only SECONDS of the bag."),
+        delay: float = typer.Option(0.2, "-d", "--delay", metavar="SECONDS",
+                                    help="Wait SECONDS after advertising each topic."),
         clock: bool = typer.Option(False, "--clock", help="Publish the bag time on /clock."),
-        hz: float = typer.Option(100.0, "--hz", help="Rate of /clock messages."),
+        hz: float = typer.Option(100.0, "--hz", metavar="HZ", help="Rate of /clock messages."),
         topics: list[str] | None = typer.Option(None, "--topics", metavar="TOPIC",
                                                 help="Play only these topics (repeat the option)."),
-        queue: int = typer.Option(100, "--queue", help="Outgoing queue size of each publisher."),
+        queue: int = typer.Option(100, "--queue", metavar="SIZE", help="Outgoing queue size of each publisher."),
         quiet: bool = typer.Option(False, "-q", "--quiet", help="No status line."),
     ) -> None:
         """Play bags back with their original timing (like `rosbag play`)."""
@@ -279,7 +297,7 @@ def register(app: typer.Typer) -> None:
 
     @bag_app.command("info")
     def info_command(
-        files: list[str] = typer.Argument(..., metavar="FILE ...", help="Bags to describe."),
+        files: list[str] = typer.Argument(..., metavar="FILE...", help="Bags to describe."),
         as_json: bool = typer.Option(False, "--json", help="Print machine-readable JSON instead of text."),
     ) -> None:
         """Summarize bags: times, size, counts, types and topics (like `rosbag info`)."""
@@ -287,7 +305,7 @@ def register(app: typer.Typer) -> None:
 
     @bag_app.command("reindex")
     def reindex_command(
-        files: list[str] = typer.Argument(..., metavar="FILE ...", help="Bags to rewrite with an index."),
+        files: list[str] = typer.Argument(..., metavar="FILE...", help="Bags to rewrite with an index."),
     ) -> None:
         """Repair bags whose recording was cut short (the original is kept as NAME.orig.EXT)."""
         raise typer.Exit(run_reindex(list(files)))
@@ -319,7 +337,7 @@ def register(app: typer.Typer) -> None:
 
     @bag_app.command("compress")
     def compress_command(
-        files: list[str] = typer.Argument(..., metavar="BAGFILE ...", help="Bags to compress."),
+        files: list[str] = typer.Argument(..., metavar="BAGFILE...", help="Bags to compress."),
         bz2_flag: bool = typer.Option(False, "-j", "--bz2", help="bz2 compression (the default; zstd in MCAP)."),
         lz4_flag: bool = typer.Option(False, "--lz4", help="lz4 compression."),
         output_dir: str | None = typer.Option(None, "--output-dir", metavar="DIR", help="Write to folder DIR."),
@@ -332,7 +350,7 @@ def register(app: typer.Typer) -> None:
 
     @bag_app.command("decompress")
     def decompress_command(
-        files: list[str] = typer.Argument(..., metavar="BAGFILE ...", help="Bags to decompress."),
+        files: list[str] = typer.Argument(..., metavar="BAGFILE...", help="Bags to decompress."),
         output_dir: str | None = typer.Option(None, "--output-dir", metavar="DIR", help="Write to folder DIR."),
         force: bool = typer.Option(False, "-f", "--force", help="Overwrite a backup file that exists."),
         quiet: bool = typer.Option(False, "-q", "--quiet", help="Say nothing of skipped bags."),

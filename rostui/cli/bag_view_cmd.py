@@ -107,7 +107,7 @@ def register(bag_app: typer.Typer) -> None:
 
     @bag_app.command("view", context_settings=CONTEXT)
     def view_command(
-        args: list[str] = typer.Argument(None, metavar="FILE ... | --record TOPIC ...",
+        args: list[str] = typer.Argument(None, metavar="FILE... | --record TOPIC...",
                                          help="Bags to view, or with --record the topics to record."),
         record: bool = typer.Option(False, "--record", help="Record instead: live counts, sizes and rates per "
                                                             "topic; r start/stop, n split."),
@@ -138,8 +138,8 @@ def register(bag_app: typer.Typer) -> None:
                                                  "s, m or h (30, 30s, 5m, 2h)."),
         clock: bool = typer.Option(False, "--clock", help="Publish the bag time on /clock while viewing "
                                                           "(also while paused)."),
-        hz: float | None = typer.Option(None, "--hz", help="Rate of /clock messages (default 100)."),
-        rate: float = typer.Option(1.0, "-r", "--rate", help="Playback rate factor (+/- change it in the app)."),
+        hz: float | None = typer.Option(None, "--hz", metavar="HZ", help="Rate of /clock messages (default 100)."),
+        rate: float = typer.Option(1.0, "-r", "--rate", metavar="FACTOR", help="Playback rate factor (+/- change it in the app)."),
         loop: bool = typer.Option(False, "-l", "--loop", help="Loop playback."),
         pause: bool = typer.Option(True, "--pause/--play", help="Open paused (default) or playing."),
         topics: list[str] | None = typer.Option(None, "--topics", metavar="TOPIC",

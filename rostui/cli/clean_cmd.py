@@ -74,7 +74,7 @@ def register(app: typer.Typer) -> None:
     @clean_app.command("purge")
     def clean_purge_command(
         yes: bool = typer.Option(False, "-y", "--yes", help="Do not ask for confirmation."),
-        size: int | None = typer.Option(None, "--size",
+        size: int | None = typer.Option(None, "--size", metavar="MB",
                                         help="Remove oldest logs until at most this many MB remain."),
     ) -> None:
         """Delete old ROS logs, keeping the current run (like `rosclean purge`)."""

@@ -6,13 +6,32 @@ import sys
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from typing import Any, Callable, NoReturn
+    from typing import Any, Callable, Iterable, NoReturn
 
 
-def fail(message: str, code: int = 1) -> NoReturn:
-    """Print one error line to stderr and exit with ``code`` (SystemExit: no Typer needed)."""
+def fail(message: str, code: int = 1, hint: str | None = None) -> NoReturn:
+    """Print one error line (and a ``did you mean …?`` hint line) to stderr and exit with ``code``.
+
+    SystemExit: no Typer needed.
+    """
     print(message, file=sys.stderr, flush=True)
+    if hint:
+        print(hint, file=sys.stderr, flush=True)
     raise SystemExit(code)
+
+
+def suggestion(name: str, candidates: Callable[[], Iterable[str]]) -> str | None:
+    """``did you mean …?`` for a misspelt ``name`` among ``candidates()`` (the master's names); None if none is close.
+
+    Asked only on the error path; a failing master call just means no hint.
+    """
+    from rostui.tools.suggest import did_you_mean
+
+    try:
+        names = list(candidates())
+    except (Exception, SystemExit):
+        return None
+    return did_you_mean(name, names)
 
 
 def master_uri() -> str:
@@ -50,3 +69,12 @@ def print_json(value: Any) -> None:
 
 
 JSON_OPTION_HELP = "Print machine-readable JSON instead of ROS's text."
+
+
+def examples(*items: tuple[str, str]) -> str:
+    """A ``--help`` epilog: ``Examples:``, then each ``(what, command)`` as a shell comment and its command line.
+
+    Keep each line within 78 columns, so that it is not wrapped at 80 (tests/test_cli_help.py checks);
+    Typer renders the epilog as Rich markup, so a ``[`` followed by a letter must be written ``\\[``.
+    """
+    return "Examples:\n" + "\n".join(f"# {what}\n{command}" for what, command in items)

@@ -39,7 +39,12 @@ def _param_get(args: Sequence[str]) -> int:
     except XmlRpcConnectionError:
         fail(f"ERROR: Unable to communicate with master at {uri}")
     except RosApiError:
-        fail(f"ERROR: Parameter [{key}] is not set")
+        from rostui.cli.common import suggestion
+        from rostui.tools.suggest import with_namespaces
+
+        hint = suggestion(key, lambda: with_namespaces(
+            ros_result(quick_call(uri, "getParamNames", "/rosparam", timeout=10.0))))
+        fail(f"ERROR: Parameter [{key}] is not set", hint=hint)
     text = simple_value_text(value)
     if text is None:
         from rostui.tools.param import format_get

@@ -16,7 +16,7 @@ VIEWS = ("nodes", "active", "all")
 
 def graph_command(
     dot: bool = typer.Option(False, "--dot", help="Print the graph as Graphviz DOT and exit (no UI)."),
-    view: str = typer.Option("nodes", "--view", help="nodes (Nodes only), active (Nodes/Topics active) "
+    view: str = typer.Option("nodes", "--view", metavar="VIEW", help="nodes (Nodes only), active (Nodes/Topics active) "
                                                      "or all (Nodes/Topics all)."),
     show_debug: bool = typer.Option(False, "--show-debug", help="Show debug nodes and topics (/rosout, "
                                                                 "rostopic's and rostui's tool nodes)."),

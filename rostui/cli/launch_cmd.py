@@ -1,10 +1,12 @@
-"""`rostui launch [PKG] FILE [name:=value ...]`: run roslaunch XML files (like `roslaunch`)."""
+"""`rostui launch [PACKAGE] FILE [ARG:=VALUE]...`: run roslaunch XML files (like `roslaunch`)."""
 
 from __future__ import annotations
 
 from typing import List, Optional
 
 import typer
+
+from rostui.cli.common import examples
 
 LAUNCH_CONTEXT = {
     "help_option_names": ["-h", "--help"],
@@ -15,13 +17,16 @@ LAUNCH_CONTEXT = {
 
 def launch_command(
     ctx: typer.Context,
+    arguments: Optional[List[str]] = typer.Argument(
+        None, metavar="[PACKAGE] FILE [ARG:=VALUE]...",
+        help="A launch file (a path, or a file name found below PACKAGE), then ARG:=VALUE for its args."),
     nodes: bool = typer.Option(False, "--nodes", help="Print the names of the nodes the files would start."),
     node_args: Optional[str] = typer.Option(None, "--args", metavar="NODE",
                                             help="Print the command line that would start NODE."),
     dump_params: bool = typer.Option(False, "--dump-params", help="Print the params the files would set, as YAML."),
     files: bool = typer.Option(False, "--files", help="Print every launch file the files read."),
     ros_args: bool = typer.Option(False, "--ros-args", help="Print the args the launch file takes."),
-    port: Optional[int] = typer.Option(None, "-p", "--port", help="Master port (when a master must be started)."),
+    port: Optional[int] = typer.Option(None, "-p", "--port", metavar="PORT", help="Master port (when a master must be started)."),
     screen: bool = typer.Option(False, "--screen", help="Every node's output to the screen."),
     verbose: bool = typer.Option(False, "-v", help="Print what is loaded and started."),
     wait: bool = typer.Option(False, "--wait", help="Wait for a master instead of starting one."),
@@ -32,11 +37,12 @@ def launch_command(
     tui: bool = typer.Option(False, "--tui", help="Run the launch inside a live monitor of its nodes "
                                                   "(state, pid, CPU, memory, restarts, output; start/stop/restart)."),
 ) -> None:
-    """Start the nodes of launch files: `rostui launch PKG FILE` or `rostui launch FILE`, then `name:=value` args.
+    """Start the nodes of a launch file (like `roslaunch`).
 
-    FILE is a path, or a file name found below package PKG.  `name:=value`
-    sets the file's arg `name`.  A master (with rosout) starts when none answers at
-    ROS_MASTER_URI; Ctrl-C stops every node (SIGINT, then SIGTERM, then SIGKILL).
+    FILE is a path, or a file name found below package PACKAGE; ARG:=VALUE
+    sets the file's arg ARG.  A master (with rosout) starts when none answers
+    at ROS_MASTER_URI; Ctrl-C stops every node (SIGINT, then SIGTERM, then
+    SIGKILL).
 
     --tui shows the nodes live (keys: s start, k stop, r restart, l launcher's output, f follow, q quit).
     """
@@ -47,7 +53,7 @@ def launch_command(
     from rostui.launch.errors import LaunchError
     from rostui.launch.files import resolve_request
 
-    words: List[str] = list(ctx.args)
+    words: List[str] = [*(arguments or []), *ctx.args]
     unknown = [w for w in words if w.startswith("-") and ":=" not in w]
     if unknown:
         print(f"rostui launch: unknown option {unknown[0]}", file=sys.stderr)
@@ -100,6 +106,14 @@ def launch_command(
         raise typer.Exit(1)
 
 
+LAUNCH_EXAMPLES = examples(
+    ("a launch file of a package; Ctrl-C stops its nodes (chapter 6)", "rostui launch agitr example.launch"),
+    ("set the file's arg use_sim3", "rostui launch agitr triplesim.launch use_sim3:=1"),
+    ("a file by its path, every node's output on the terminal", "rostui launch --screen ./my.launch"),
+    ("the nodes in a live monitor (start, stop, restart, output)", "rostui launch --tui agitr doublesim.launch"),
+)
+
+
 def register(app: typer.Typer) -> None:
     """Add the command to the rostui app."""
-    app.command("launch", context_settings=LAUNCH_CONTEXT)(launch_command)
+    app.command("launch", context_settings=LAUNCH_CONTEXT, epilog=LAUNCH_EXAMPLES)(launch_command)

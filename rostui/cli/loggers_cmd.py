@@ -13,7 +13,7 @@ def loggers_command(
                                                     "the app."),
     logger: Optional[str] = typer.Argument(None, metavar="[LOGGER]", help="With NODE and LEVEL: the logger to set (e.g. ros.agitr)."),
     level: Optional[str] = typer.Argument(None, metavar="[LEVEL]", help="DEBUG, INFO, WARN, ERROR or FATAL (any case)."),
-    timeout: float = typer.Option(3.0, "--timeout", help="Seconds to wait for the master and each node."),
+    timeout: float = typer.Option(3.0, "--timeout", metavar="SECONDS", help="Seconds to wait for the master and each node."),
 ) -> None:
     """Show and set the logger levels of running nodes (like rqt_logger_level).
 

@@ -43,7 +43,7 @@ def root(
 
 @app.command("core")
 def core_command(
-    port: int = typer.Option(11311, "-p", "--port", help="Port the master listens on."),
+    port: int = typer.Option(11311, "-p", "--port", metavar="PORT", help="Port the master listens on."),
 ) -> None:
     """Start a ROS master, parameter server and rosout (like `roscore`)."""
     from rostui.cli.core_cmd import run_core
@@ -57,5 +57,11 @@ for _module in (run_cmd, node_cmd, topic_cmd, msg_cmd, service_cmd, param_cmd, p
 
 
 def main() -> None:
-    """Console-script entry point."""
+    """Console-script entry point: a bare negative number is refused with one line before Typer parses."""
+    import sys
+
+    from rostui.cli.negative import looks_negative, refuse_bare_negatives
+
+    if any(looks_negative(word) for word in sys.argv[1:]):
+        refuse_bare_negatives(typer.main.get_command(app), sys.argv[1:])
     app()

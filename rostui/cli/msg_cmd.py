@@ -135,7 +135,7 @@ def _add_commands(app: typer.Typer, kind: Kind) -> None:
 
     @app.command("package")
     def package_cmd(
-        package: str = typer.Argument(..., autocompletion=complete_packages),
+        package: str = typer.Argument(..., metavar="PACKAGE", help="Package name.", autocompletion=complete_packages),
         single_line: bool = typer.Option(False, "-s", help="All types on one line."),
         as_json: bool = typer.Option(False, "--json", help=JSON_OPTION_HELP),
     ) -> None:

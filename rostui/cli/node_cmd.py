@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import sys
-from typing import List, Optional
+from typing import Callable, Iterable, List, Optional
 
 import typer
 
@@ -23,9 +23,18 @@ def _echo(text: str, err: bool = False) -> None:
     print(text, file=stream, flush=True)
 
 
+def _hint(name: str, candidates: Callable[[], Iterable[str]]) -> None:
+    """``did you mean …?`` on stderr when a registered node's name is close to ``name``."""
+    from rostui.cli.common import suggestion
+
+    line = suggestion(name, candidates)
+    if line:
+        _echo(line, err=True)
+
+
 @node_app.command("list")
 def list_command(
-    namespace: Optional[str] = typer.Argument(None, help="Only nodes in this namespace."),
+    namespace: Optional[str] = typer.Argument(None, metavar="NAMESPACE", help="Only nodes in this namespace."),
     uri: bool = typer.Option(False, "-u", help="List XML-RPC URIs."),
     all_: bool = typer.Option(False, "-a", "--all", help="List URIs and names."),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
@@ -46,12 +55,12 @@ def list_command(
 
 @node_app.command("info")
 def info_command(
-    nodes: List[str] = typer.Argument(..., help="Node names.", autocompletion=complete_nodes),
+    nodes: List[str] = typer.Argument(..., metavar="NODE...", help="Node names.", autocompletion=complete_nodes),
     quiet: bool = typer.Option(False, "-q", "--quiet", help="Only registrations; do not contact the node."),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """Print a node's publications, subscriptions, services, pid and connections (like `rosnode info`)."""
-    from rostui.tools.node import format_info, node_info, script_resolve
+    from rostui.tools.node import format_info, node_info, script_resolve, system_state
 
     call = master_caller(CALLER)
     infos = [node_info(call, script_resolve(n), quiet=quiet) for n in nodes]
@@ -69,14 +78,16 @@ def info_command(
             _echo(error, err=True)
             if info.uri is not None:
                 failed = True
+            else:
+                _hint(info.name, lambda: system_state(call).nodes())
     if failed:
         raise typer.Exit(1)
 
 
 @node_app.command("ping")
 def ping_command(
-    node: Optional[str] = typer.Argument(None, help="Node to ping.", autocompletion=complete_nodes),
-    count: Optional[int] = typer.Option(None, "-c", help="Number of pings to send (not with --all)."),
+    node: Optional[str] = typer.Argument(None, metavar="NODE", help="Node to ping.", autocompletion=complete_nodes),
+    count: Optional[int] = typer.Option(None, "-c", metavar="COUNT", help="Number of pings to send (not with --all)."),
     all_: bool = typer.Option(False, "-a", "--all", help="Ping all nodes once."),
 ) -> None:
     """Test connectivity to a node over XML-RPC (like `rosnode ping`)."""
@@ -95,7 +106,7 @@ def ping_command(
             _echo(f"pinging {n} with a timeout of {PING_TIMEOUT:.1f}s")
             uri = uris.get(n)
             if uri is None:
-                _echo(f"cannot ping [{n}]: unknown node", err=True)
+                _echo(f"cannot ping [{n}]: unknown node", err=True)  # listed a moment ago: no hint
                 continue
             try:
                 ms = ping_node(uri)
@@ -113,6 +124,7 @@ def ping_command(
     uri = lookup_uris(call, [name]).get(name)
     if uri is None:
         _echo(f"cannot ping [{name}]: unknown node", err=True)
+        _hint(name, lambda: system_state(call).nodes())
         return
     _echo(f"pinging {name} with a timeout of {PING_TIMEOUT:.1f}s")
     import time
@@ -137,7 +149,7 @@ def ping_command(
 
 @node_app.command("kill")
 def kill_command(
-    nodes: Optional[List[str]] = typer.Argument(None, help="Nodes to kill.", autocompletion=complete_nodes),
+    nodes: Optional[List[str]] = typer.Argument(None, metavar="[NODE]...", help="Nodes to kill.", autocompletion=complete_nodes),
     all_: bool = typer.Option(False, "-a", "--all", help="Kill all nodes."),
 ) -> None:
     """Ask nodes to shut down (like `rosnode kill`)."""
@@ -157,6 +169,8 @@ def kill_command(
     unknown = [n for n in targets if uris.get(n) is None]
     if unknown and not all_:
         _echo("ERROR: Unknown node(s):\n" + "\n".join(f" * {n}" for n in unknown), err=True)
+        for n in unknown:
+            _hint(n, lambda: system_state(call).nodes())
         raise typer.Exit(1)
     for n in targets:
         if uris.get(n) is not None:

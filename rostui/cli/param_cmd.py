@@ -7,7 +7,7 @@ from typing import Any, NoReturn, Optional
 import typer
 
 from rostui.cli.common import JSON_OPTION_HELP as _JSON_HELP
-from rostui.cli.common import master_caller
+from rostui.cli.common import examples, master_caller
 from rostui.cli.complete import complete_params
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
@@ -23,15 +23,23 @@ def _resolve(name: str) -> str:
     return script_resolve(name)
 
 
-def _fail(exc: Exception) -> NoReturn:
+def _fail(exc: Exception, hint: str | None = None) -> NoReturn:
     from rostui.cli.common import fail
 
-    fail(str(exc))
+    fail(str(exc), hint=hint)
+
+
+def _param_hint(key: str) -> str | None:
+    """``did you mean …?`` among the parameters and namespaces the master holds."""
+    from rostui.cli.common import suggestion
+    from rostui.tools.suggest import with_namespaces
+
+    return suggestion(key, lambda: with_namespaces(master_caller(CALLER)("getParamNames")))
 
 
 @param_app.command("list")
 def list_command(
-    namespace: Optional[str] = typer.Argument(None, help="Only names under this namespace.",
+    namespace: Optional[str] = typer.Argument(None, metavar="NAMESPACE", help="Only names under this namespace.",
                                               autocompletion=complete_params),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
@@ -50,7 +58,7 @@ def list_command(
 
 @param_app.command("get")
 def get_command(
-    name: str = typer.Argument(..., help="Parameter or namespace.", autocompletion=complete_params),
+    name: str = typer.Argument(..., metavar="NAME", help="Parameter or namespace.", autocompletion=complete_params),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """Print a parameter's value as YAML (like `rosparam get`)."""
@@ -62,7 +70,7 @@ def get_command(
     except RosApiError:
         from rostui.cli.common import fail
 
-        fail(f"ERROR: Parameter [{key}] is not set")
+        fail(f"ERROR: Parameter [{key}] is not set", hint=_param_hint(key))
     if json_out:
         import base64
 
@@ -86,12 +94,22 @@ def _jsonable(value: Any, base64: Any) -> Any:
     return value
 
 
-@param_app.command("set")
+SET_EXAMPLES = examples(
+    ("a yellow background, seen after `rostui service call /clear` (chapter 7)",
+     "rostui param set /background_r 255"),
+    ("a dictionary sets every key below the namespace",
+     "rostui param set /duck_colors '{huey: red, dewey: blue, louie: green}'"),
+    ("negative numbers after -- (otherwise they read as options)", "rostui param set -- /offset -3"),
+    ("a string that looks like a number", "rostui param set /version \"'1.0'\""),
+)
+
+
+@param_app.command("set", epilog=SET_EXAMPLES)
 def set_command(
-    name: str = typer.Argument(..., help="Parameter (or namespace, for a YAML dictionary).",
+    name: str = typer.Argument(..., metavar="NAME", help="Parameter (or namespace, for a YAML dictionary).",
                                autocompletion=complete_params),
-    value: Optional[str] = typer.Argument(None, help="The value, typed as YAML."),
-    textfile: Optional[str] = typer.Option(None, "-t", "--textfile", help="Set to the contents of a text file."),
+    value: Optional[str] = typer.Argument(None, metavar="VALUE", help="The value, typed as YAML."),
+    textfile: Optional[str] = typer.Option(None, "-t", "--textfile", metavar="FILE", help="Set to the contents of a text file."),
     verbose: bool = typer.Option(False, "-v", help="Print what is set."),
 ) -> None:
     """Set a parameter; the value is YAML-typed, a dictionary merges into the namespace (like `rosparam set`)."""
@@ -120,7 +138,7 @@ def set_command(
 
 @param_app.command("delete")
 def delete_command(
-    name: str = typer.Argument(..., help="Parameter or namespace to delete.", autocompletion=complete_params),
+    name: str = typer.Argument(..., metavar="NAME", help="Parameter or namespace to delete.", autocompletion=complete_params),
     verbose: bool = typer.Option(False, "-v", help="Print what is deleted."),
 ) -> None:
     """Delete a parameter or a whole namespace (like `rosparam delete`)."""
@@ -130,15 +148,15 @@ def delete_command(
     try:
         delete_param(master_caller(CALLER), key)
     except ParamError as exc:
-        _fail(exc)
+        _fail(exc, _param_hint(key))
     if verbose:
         print(f"deleted parameter [{key}]")
 
 
 @param_app.command("dump")
 def dump_command(
-    file: str = typer.Argument(..., help="File to write ('-' for stdout)."),
-    namespace: Optional[str] = typer.Argument(None, help="Namespace to dump (default /).",
+    file: str = typer.Argument(..., metavar="FILE", help="File to write ('-' for stdout)."),
+    namespace: Optional[str] = typer.Argument(None, metavar="NAMESPACE", help="Namespace to dump (default /).",
                                               autocompletion=complete_params),
     verbose: bool = typer.Option(False, "-v", help="Print what is dumped."),
 ) -> None:
@@ -172,8 +190,8 @@ def dump_command(
 
 @param_app.command("load")
 def load_command(
-    file: str = typer.Argument(..., help="YAML file to load ('-' for stdin)."),
-    namespace: Optional[str] = typer.Argument(None, help="Namespace to load into (default /).",
+    file: str = typer.Argument(..., metavar="FILE", help="YAML file to load ('-' for stdin)."),
+    namespace: Optional[str] = typer.Argument(None, metavar="NAMESPACE", help="Namespace to load into (default /).",
                                               autocompletion=complete_params),
     verbose: bool = typer.Option(False, "-v", help="Print what is loaded."),
 ) -> None:

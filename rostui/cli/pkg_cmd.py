@@ -27,7 +27,7 @@ def list_cmd(as_json: bool = typer.Option(False, "--json", help=JSON_OPTION_HELP
 
 
 @pkg_app.command("find")
-def find_cmd(package: str = typer.Argument(..., autocompletion=complete_packages)) -> None:
+def find_cmd(package: str = typer.Argument(..., metavar="PACKAGE", help="Package name.", autocompletion=complete_packages)) -> None:
     """Print the directory of a package (like `rospack find`)."""
     from rostui.cli.common import fail
     from rostui.tools.pkg import PackageToolError, find
@@ -40,7 +40,7 @@ def find_cmd(package: str = typer.Argument(..., autocompletion=complete_packages
 
 @pkg_app.command("ls")
 def ls_cmd(
-    path: str = typer.Argument(..., metavar="PKG[/SUBDIR]", help="A package, optionally followed by a path inside it.",
+    path: str = typer.Argument(..., metavar="PACKAGE[/SUBDIR]", help="A package, optionally followed by a path inside it.",
                                autocompletion=complete_packages),
     as_json: bool = typer.Option(False, "--json", help=JSON_OPTION_HELP),
 ) -> None:

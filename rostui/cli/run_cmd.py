@@ -1,4 +1,4 @@
-"""`rostui run PKG EXE [args...]`: run an executable of a package (like `rosrun`)."""
+"""`rostui run PACKAGE EXECUTABLE [ARGS]...`: run an executable of a package (like `rosrun`)."""
 
 from __future__ import annotations
 
@@ -18,10 +18,12 @@ RUN_CONTEXT = {
 
 def run_command(
     ctx: typer.Context,
-    package: str = typer.Argument(..., help="Package holding the executable.", autocompletion=complete_packages),
-    executable: str = typer.Argument(..., help="Executable file name (or a path inside the package).",
+    package: str = typer.Argument(..., metavar="PACKAGE", help="Package holding the executable.", autocompletion=complete_packages),
+    executable: str = typer.Argument(..., metavar="EXECUTABLE", help="Executable file name (or a path inside the package).",
                                      autocompletion=complete_executables),
-    prefix: Optional[str] = typer.Option(None, "--prefix", "-p",
+    arguments: Optional[List[str]] = typer.Argument(
+        None, metavar="[ARGS]...", help="Passed to the program as they are: name:=value, _param:=value, options."),
+    prefix: Optional[str] = typer.Option(None, "--prefix", "-p", metavar="COMMAND",
                                          help="Command to put in front of the executable (e.g. 'gdb --args')."),
 ) -> None:
     """Run EXECUTABLE of PACKAGE with every further argument passed through (like `rosrun`).
@@ -33,7 +35,7 @@ def run_command(
 
     from rostui.tools.run import RunError, choose_interactively, exec_argv, resolve
 
-    args: List[str] = list(ctx.args)
+    args: List[str] = [*(arguments or []), *ctx.args]
     try:
         argv = resolve(package, executable, args, prefix=prefix, choose=choose_interactively)
     except RunError as exc:

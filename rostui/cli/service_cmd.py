@@ -8,7 +8,7 @@ from typing import Any, List, NoReturn, Optional
 import typer
 
 from rostui.cli.common import JSON_OPTION_HELP as _JSON_HELP
-from rostui.cli.common import master_caller
+from rostui.cli.common import examples, master_caller
 from rostui.cli.complete import complete_services
 from rostui.cli.complete import complete_srv_types as complete_service_types
 
@@ -31,15 +31,31 @@ def _resolve(name: str) -> str:
     return script_resolve(name)
 
 
-def _fail(exc: Exception) -> NoReturn:
+def _fail(exc: Exception, hint: str | None = None) -> NoReturn:
     from rostui.cli.common import fail
 
-    fail(str(exc))
+    fail(str(exc), hint=hint)
+
+
+def _print_hint(hint: str | None) -> None:
+    if hint:
+        print(hint, file=sys.stderr, flush=True)
+
+
+def _service_hint(name: str) -> str | None:
+    """``did you mean …?`` among the services the master knows (None when ``name`` is one of them)."""
+    from rostui.cli.common import suggestion
+
+    def services() -> list[str]:
+        known = list(_state().services)
+        return [] if name in known else known
+
+    return suggestion(name, services)
 
 
 @service_app.command("list")
 def list_command(
-    namespace: Optional[str] = typer.Argument(None, help="Only services under this namespace."),
+    namespace: Optional[str] = typer.Argument(None, metavar="NAMESPACE", help="Only services under this namespace."),
     nodes: bool = typer.Option(False, "-n", "--nodes", help="Print the nodes that provide each service."),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
@@ -58,7 +74,7 @@ def list_command(
 
 @service_app.command("info")
 def info_command(
-    service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services),
+    service: str = typer.Argument(..., metavar="SERVICE", help="Service name.", autocompletion=complete_services),
     json_out: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """Print a service's node, URI, type and arguments (like `rosservice info`)."""
@@ -69,7 +85,7 @@ def info_command(
     node = service_node(_state(), name)
     uri = service_uri(call, name)
     if node is None or uri is None:
-        _fail(ServiceToolError("ERROR: unknown service"))
+        _fail(ServiceToolError("ERROR: unknown service"), _service_hint(name))
     try:
         type_name = probe_type(uri, name)
         fields = request_fields(type_name)
@@ -84,7 +100,7 @@ def info_command(
 
 
 @service_app.command("node")
-def node_command(service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services)) -> None:
+def node_command(service: str = typer.Argument(..., metavar="SERVICE", help="Service name.", autocompletion=complete_services)) -> None:
     """Print the node that provides a service (like `rosservice node`)."""
     from rostui.tools.service import service_node
 
@@ -93,12 +109,12 @@ def node_command(service: str = typer.Argument(..., help="Service name.", autoco
     if node is None:
         from rostui.cli.common import fail
 
-        fail(f"Unknown service: {name}")
+        fail(f"Unknown service: {name}", hint=_service_hint(name))
     print(node)
 
 
 @service_app.command("uri")
-def uri_command(service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services)) -> None:
+def uri_command(service: str = typer.Argument(..., metavar="SERVICE", help="Service name.", autocompletion=complete_services)) -> None:
     """Print a service's rosrpc URI (like `rosservice uri`)."""
     from rostui.tools.service import service_uri
 
@@ -107,12 +123,12 @@ def uri_command(service: str = typer.Argument(..., help="Service name.", autocom
     if uri is None:
         from rostui.cli.common import fail
 
-        fail(f"Unknown service: {name}")
+        fail(f"Unknown service: {name}", hint=_service_hint(name))
     print(uri)
 
 
 @service_app.command("type")
-def type_command(service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services)) -> None:
+def type_command(service: str = typer.Argument(..., metavar="SERVICE", help="Service name.", autocompletion=complete_services)) -> None:
     """Print a service's type (like `rosservice type`)."""
     from rostui.tools.service import ServiceToolError, service_type
 
@@ -124,19 +140,20 @@ def type_command(service: str = typer.Argument(..., help="Service name.", autoco
     if type_name is None:
         from rostui.cli.common import fail
 
-        fail(f"Unknown service [{name}]")
+        fail(f"Unknown service [{name}]", hint=_service_hint(name))
     print(type_name)
 
 
 @service_app.command("args")
-def args_command(service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services)) -> None:
+def args_command(service: str = typer.Argument(..., metavar="SERVICE", help="Service name.", autocompletion=complete_services)) -> None:
     """Print a service's request fields (like `rosservice args`)."""
     from rostui.tools.service import ServiceToolError, service_args
 
+    name = _resolve(service)
     try:
-        print(" ".join(service_args(master_caller(CALLER), _resolve(service))))
+        print(" ".join(service_args(master_caller(CALLER), name)))
     except ServiceToolError as exc:
-        _fail(exc)
+        _fail(exc, _service_hint(name))
 
 
 @service_app.command("find")
@@ -157,10 +174,19 @@ def find_command(
     print("\n".join(found))
 
 
-@service_app.command("call", context_settings={"ignore_unknown_options": True, "allow_interspersed_args": False})
+CALL_EXAMPLES = examples(
+    ("a service with an empty request (chapter 8)", "rostui service call /clear"),
+    ("request fields in `rostui srv show` order", "rostui service call /spawn 3 3 0 Mikey"),
+    ("or one YAML dictionary", "rostui service call /spawn '{x: 3, y: 3, theta: 0, name: Mikey}'"),
+    ("a logger level (chapter 4)", "rostui service call /count_and_log/set_logger_level ros.agitr DEBUG"),
+)
+
+
+@service_app.command("call", context_settings={"ignore_unknown_options": True, "allow_interspersed_args": False},
+                     epilog=CALL_EXAMPLES)
 def call_command(
-    service: str = typer.Argument(..., help="Service name.", autocompletion=complete_services),
-    args: Optional[List[str]] = typer.Argument(None, help="Request fields in order, or one YAML dictionary."),
+    service: str = typer.Argument(..., metavar="SERVICE", help="Service name.", autocompletion=complete_services),
+    args: Optional[List[str]] = typer.Argument(None, metavar="[ARGS]...", help="Request fields in order, or one YAML dictionary."),
     verbose: bool = typer.Option(False, "-v", help="Also print the request."),
     wait: bool = typer.Option(False, "--wait", help="Wait for the service to be advertised."),
 ) -> None:
@@ -178,7 +204,8 @@ def call_command(
     name = _resolve(service)
     argv = [a for a in (args or []) if ":=" not in a]  # ROS remapping arguments are not request fields
     try:
-        srv_class = resolve_call_type(master_caller(CALLER), name, wait=wait)
+        srv_class = resolve_call_type(master_caller(CALLER), name, wait=wait,
+                                      on_wait=lambda: _print_hint(_service_hint(name)))
         if argv or sys.stdin is None or sys.stdin.isatty() or not srv_class._request_class.__slots__:
             requests = [build_request(srv_class, argv)]
         else:
@@ -190,7 +217,7 @@ def call_command(
                 print("---")
             print(message_to_yaml(response))
     except ServiceToolError as exc:
-        _fail(exc)
+        _fail(exc, _service_hint(name))
 
 
 def register(app: typer.Typer) -> None:

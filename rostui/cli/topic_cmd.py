@@ -13,6 +13,7 @@ from typing import Any, Callable, Coroutine, Iterable, List, NoReturn, Optional
 import typer
 
 from rostui.cli.common import JSON_OPTION_HELP as _JSON_HELP
+from rostui.cli.common import examples
 from rostui.cli.complete import complete_msg_types as _complete_type
 from rostui.cli.complete import complete_topics as _complete_topic
 
@@ -45,10 +46,17 @@ def _resolve(name: str) -> str:
         _fail(f"ERROR: invalid topic name [{name}]: {e}")
 
 
-def _fail(message: str) -> NoReturn:
+def _fail(message: str, hint: Optional[str] = None) -> NoReturn:
     from rostui.cli.common import fail
 
-    fail(message)
+    fail(message, hint=hint)
+
+
+def _topic_hint(name: str) -> Optional[str]:
+    """``did you mean …?`` among the topics the master knows."""
+    from rostui.cli.common import suggestion
+
+    return suggestion(name, lambda: (topic for topic, _type in _call("getTopicTypes")))
 
 
 def _out(text: str) -> None:
@@ -87,7 +95,7 @@ def _check_master() -> None:
 # ----------------------------------------------------------------------------- master-only commands
 @topic_app.command("list")
 def list_command(
-    namespace: Optional[str] = typer.Argument(None, help="Only topics in this namespace.", autocompletion=_complete_topic),
+    namespace: Optional[str] = typer.Argument(None, metavar="NAMESPACE", help="Only topics in this namespace.", autocompletion=_complete_topic),
     verbose: bool = typer.Option(False, "-v", "--verbose", help="List full details about each topic."),
     publishers: bool = typer.Option(False, "-p", help="List only publishers."),
     subscribers: bool = typer.Option(False, "-s", help="List only subscribers."),
@@ -111,17 +119,18 @@ def list_command(
 
 @topic_app.command("info")
 def info_command(
-    topic: str = typer.Argument(..., help="Topic name.", autocompletion=_complete_topic),
+    topic: str = typer.Argument(..., metavar="TOPIC", help="Topic name.", autocompletion=_complete_topic),
     as_json: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """Print type, publishers and subscribers of a topic (like `rostopic info`)."""
     from rostui.tools.topic.common import TopicToolError
     from rostui.tools.topic.listing import format_info, topic_info
 
+    name = _resolve(topic)
     try:
-        info = topic_info(_call, _resolve(topic))
+        info = topic_info(_call, name)
     except TopicToolError as e:
-        _fail(f"ERROR: {e}")
+        _fail(f"ERROR: {e}", _topic_hint(name))
     if as_json:
         from rostui.cli.common import print_json
 
@@ -132,7 +141,7 @@ def info_command(
 
 @topic_app.command("type")
 def type_command(
-    topic: str = typer.Argument(..., help="Topic or field name (/topic/field).", autocompletion=_complete_topic),
+    topic: str = typer.Argument(..., metavar="TOPIC", help="Topic or field name (/topic/field).", autocompletion=_complete_topic),
     as_json: bool = typer.Option(False, "--json", help=_JSON_HELP),
 ) -> None:
     """Print the message type of a topic or field (like `rostopic type`)."""
@@ -143,7 +152,7 @@ def type_command(
     try:
         text = type_text(_call, name)
     except TopicToolError as e:
-        _fail(str(e))
+        _fail(str(e), _topic_hint(name))
     if as_json:
         from rostui.cli.common import print_json
 
@@ -174,9 +183,17 @@ def find_command(
 
 
 # ----------------------------------------------------------------------------- node commands
-@topic_app.command("echo")
+ECHO_EXAMPLES = examples(
+    ("print each command the turtle gets (chapter 2)", "rostui topic echo /turtle1/command_velocity"),
+    ("one field, five messages, then exit", "rostui topic echo -n 5 /turtle1/pose/x"),
+    ("JSON Lines, one message a line, for jq", "rostui topic echo --json /turtle1/pose | jq .theta"),
+    ("from a bag file, no master needed", "rostui topic echo -b square.bag /turtle1/pose"),
+)
+
+
+@topic_app.command("echo", epilog=ECHO_EXAMPLES)
 def echo_command(
-    topic: Optional[str] = typer.Argument(None, help="Topic, or a field of it (/turtle1/pose/x, /a/b[0]).", autocompletion=_complete_topic),
+    topic: Optional[str] = typer.Argument(None, metavar="TOPIC", help="Topic, or a field of it (/turtle1/pose/x, /a/b[0]).", autocompletion=_complete_topic),
     bag: Optional[str] = typer.Option(None, "-b", "--bag", metavar="BAGFILE", help="Echo messages from a bag file (.bag or MCAP), no master needed."),
     all_topics: bool = typer.Option(False, "-a", "--all", help="Display all messages in the bag (only with -b)."),
     count: Optional[int] = typer.Option(None, "-n", metavar="COUNT", help="Number of messages to echo."),
@@ -186,6 +203,8 @@ def echo_command(
     offset: bool = typer.Option(False, "--offset", help="Display time as offsets from current time."),
     width: Optional[int] = typer.Option(None, "-w", metavar="NUM_WIDTH", help="Fixed width for numeric values."),
     clear: bool = typer.Option(False, "-c", "--clear", help="Clear screen before printing next message."),
+    as_json: bool = typer.Option(False, "--json", help="Print each message as one JSON object a line (JSON Lines, "
+                                                       "for jq): time as {secs, nsecs}, uint8[] as a list of ints."),
 ) -> None:
     """Print messages of a topic (like `rostopic echo`); waits until the topic is published, or reads a bag (-b)."""
     if width is not None and width < 2:
@@ -194,6 +213,8 @@ def echo_command(
     from rostui.tools.topic.echo import field_evaluator
     from rostui.tools.topic.runners import run_echo
 
+    if as_json and (plot or clear or width is not None):
+        _fail("ERROR: --json cannot be combined with -p, -c or -w")
     if all_topics and not bag:
         _fail("ERROR: Display all option is only valid when echoing from bag files")
     if offset and bag:
@@ -206,12 +227,13 @@ def echo_command(
     except UsageError as e:
         _fail(f"ERROR: {e}")
     if bag:
-        _echo_bag(bag, name, plot=plot, noarr=noarr, nostr=nostr, count=count, fixed_width=width, clear=clear)
+        _echo_bag(bag, name, plot=plot, noarr=noarr, nostr=nostr, count=count, fixed_width=width, clear=clear,
+                  as_json=as_json)
     assert name is not None
     _check_master()
     raise typer.Exit(_run_async(run_echo(
         name, _out, plot=plot, noarr=noarr, nostr=nostr, offset=offset, count=count,
-        fixed_width=width, clear=clear)))
+        fixed_width=width, clear=clear, as_json=as_json)))
 
 
 def _echo_bag(path: str, topic: Optional[str], **options: Any) -> NoReturn:
@@ -232,7 +254,7 @@ def _echo_bag(path: str, topic: Optional[str], **options: Any) -> NoReturn:
 
 @topic_app.command("hz")
 def hz_command(
-    topics: List[str] = typer.Argument(..., help="Topic names.", autocompletion=_complete_topic),
+    topics: List[str] = typer.Argument(..., metavar="TOPIC...", help="Topic names.", autocompletion=_complete_topic),
     window: int = typer.Option(-1, "-w", "--window", metavar="WINDOW", help="Window size, in # of messages, for calculating rate."),
 ) -> None:
     """Print the publishing rate of topics every second (like `rostopic hz`)."""
@@ -245,7 +267,7 @@ def hz_command(
 
 @topic_app.command("bw")
 def bw_command(
-    topic: str = typer.Argument(..., help="Topic name.", autocompletion=_complete_topic),
+    topic: str = typer.Argument(..., metavar="TOPIC", help="Topic name.", autocompletion=_complete_topic),
     window: Optional[int] = typer.Option(None, "-w", "--window", metavar="WINDOW", help="Window size, in # of messages, for calculating rate."),
 ) -> None:
     """Print the bandwidth used by a topic every second (like `rostopic bw`)."""
@@ -256,12 +278,24 @@ def bw_command(
     raise typer.Exit(_run_async(run_bw(name, window, _out)))
 
 
-@topic_app.command("pub", context_settings={"ignore_unknown_options": True})
+PUB_EXAMPLES = examples(
+    ("1 Hz, values in `rostui msg show` order (chapter 2)",
+     "rostui topic pub -r 1 /turtle1/command_velocity turtlesim/Velocity 1 0"),
+    ("one YAML dictionary, latched (the default without -r)",
+     "rostui topic pub /turtle1/command_velocity turtlesim/Velocity \\\n    '{linear: 0.1, angular: 0.0}'"),
+    ("publish once (-1); negative numbers after --, or they read as options",
+     "rostui topic pub -1 /turtle1/command_velocity turtlesim/Velocity -- -1 0.5"),
+    ("messages from a file in `topic echo` format, at 10 Hz",
+     "rostui topic pub -f poses.yaml /turtle1/pose turtlesim/Pose"),
+)
+
+
+@topic_app.command("pub", context_settings={"ignore_unknown_options": True}, epilog=PUB_EXAMPLES)
 def pub_command(
-    topic: str = typer.Argument(..., help="Topic name.", autocompletion=_complete_topic),
+    topic: str = typer.Argument(..., metavar="TOPIC", help="Topic name.", autocompletion=_complete_topic),
     msg_type: str = typer.Argument(..., metavar="TYPE", help="Message type (pkg/Type).", autocompletion=_complete_type),
     values: Optional[List[str]] = typer.Argument(None, metavar="[ARGS]...", help="Field values in `msg show` order, or one YAML dict."),
-    rate: Optional[float] = typer.Option(None, "-r", "--rate", help="Publishing rate (Hz). For -f and stdin input, this defaults to 10."),
+    rate: Optional[float] = typer.Option(None, "-r", "--rate", metavar="RATE", help="Publishing rate (Hz). For -f and stdin input, this defaults to 10."),
     once: bool = typer.Option(False, "-1", "--once", help="Publish one message and exit."),
     file: Optional[str] = typer.Option(None, "-f", "--file", metavar="FILE", help="Read messages from a YAML file (echo format, --- separated)."),
     latch: bool = typer.Option(False, "-l", "--latch", help="Enable latching for -f, -r and piped input (latches the first message)."),

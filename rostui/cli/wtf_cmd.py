@@ -8,7 +8,7 @@ from rostui.cli.common import JSON_OPTION_HELP
 
 
 def wtf_command(
-    timeout: float = typer.Option(1.0, "--timeout", "-t", help="Seconds each node may take to answer."),
+    timeout: float = typer.Option(1.0, "--timeout", "-t", metavar="SECONDS", help="Seconds each node may take to answer."),
     as_json: bool = typer.Option(False, "--json", help=JSON_OPTION_HELP),
 ) -> None:
     """Check environment, master, nodes, topics and log size; one line per finding (like `roswtf`).

@@ -150,18 +150,23 @@ def build_request_from_value(srv_class: Any, value: Any) -> Any:
         raise ServiceToolError(f"ERROR: Incompatible arguments to call service: {text}") from None
 
 
-def resolve_call_type(call: Call, service: str, wait: bool = False) -> Any:
-    """The service class of ``service``, waiting for it to appear with ``wait``."""
+def resolve_call_type(call: Call, service: str, wait: bool = False,
+                      on_wait: Callable[[], None] | None = None) -> Any:
+    """The service class of ``service``, waiting for it to appear with ``wait`` (``on_wait()`` once, when it starts)."""
     import time
 
     from rostui.core.msg import get_service_class
 
+    waiting = False
     while True:
         uri = service_uri(call, service)
         if uri is not None:
             break
         if not wait:
             raise ServiceToolError(f"ERROR: Service [{service}] is not available.")
+        if not waiting and on_wait is not None:
+            on_wait()
+        waiting = True
         time.sleep(0.2)
     type_name = probe_type(uri, service)
     try:

@@ -184,8 +184,10 @@ class EchoFormatter:
 
     def __init__(self, field: str = "", *, plot: bool = False, noarr: bool = False, nostr: bool = False,
                  offset: bool = False, count: int | None = None, fixed_width: int | None = None,
-                 clear: bool = False, from_bag: bool = False) -> None:
+                 clear: bool = False, from_bag: bool = False, as_json: bool = False) -> None:
         self.evaluate = field_evaluator(field)
+        self.as_json = as_json
+        """One JSON object a line (``--json``, see echo_json.py) instead of rostopic's YAML."""
         self.field = field
         self.from_bag = from_bag
         """As ``rostopic echo -b``: ``-p``'s time is the bag's, and a selected field is printed without its
@@ -238,6 +240,10 @@ class EchoFormatter:
             return None
         self.count += 1
         offset = Time.now() if self.offset else None
+        if self.as_json:
+            from rostui.tools.topic.echo_json import json_line
+
+            return json_line(data, time_offset=offset, noarr=self.noarr, nostr=self.nostr)
         if self.plot:
             keep = self._keep()
             head = ""

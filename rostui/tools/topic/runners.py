@@ -82,7 +82,11 @@ async def _wait_for_topic(run: _Run, topic: str) -> tuple[str, str, str] | None:
         if type_name is not None and real_topic is not None:
             return type_name, real_topic, path
         if not warned:
-            sys.stderr.write(f"WARNING: topic [{topic}] does not appear to be published yet\n")
+            from rostui.tools.suggest import did_you_mean
+
+            hint = did_you_mean(topic, (name for name, _type in types))
+            sys.stderr.write(f"WARNING: topic [{topic}] does not appear to be published yet\n"
+                             + (f"{hint}\n" if hint else ""))
             sys.stderr.flush()
             warned = True
         if await run.sleep(0.1):
@@ -91,7 +95,7 @@ async def _wait_for_topic(run: _Run, topic: str) -> tuple[str, str, str] | None:
 
 async def run_echo(topic: str, out: Out, *, plot: bool = False, noarr: bool = False, nostr: bool = False,
                    offset: bool = False, count: int | None = None, fixed_width: int | None = None,
-                   clear: bool = False) -> int:
+                   clear: bool = False, as_json: bool = False) -> int:
     """``rostopic echo``: print messages of *topic* (or a field of it) until stopped or *count* reached.
 
     Waits, like rostopic, while the topic is not published; decodes any type
@@ -105,7 +109,7 @@ async def run_echo(topic: str, out: Out, *, plot: bool = False, noarr: bool = Fa
             return 0
         _, real, field = found
         fmt = EchoFormatter(field, plot=plot, noarr=noarr, nostr=nostr, offset=offset, count=count,
-                            fixed_width=fixed_width, clear=clear)
+                            fixed_width=fixed_width, clear=clear, as_json=as_json)
         failed: list[str] = []
 
         def on_msg(raw: Any) -> None:

@@ -19,7 +19,7 @@ def graph_command(
     view: str = typer.Option("nodes", "--view", metavar="VIEW", help="nodes (Nodes only), active (Nodes/Topics active) "
                                                      "or all (Nodes/Topics all)."),
     show_debug: bool = typer.Option(False, "--show-debug", help="Show debug nodes and topics (/rosout, "
-                                                                "anonymous tool nodes such as rostopic_<pid>_<ms>)."),
+                                                                "anonymous tool nodes such as /rostopic_PID_MS)."),
     hide_dead_sinks: bool = typer.Option(False, "--hide-dead-sinks", help="Hide topics nobody subscribes to."),
     hide_leaf_topics: bool = typer.Option(False, "--hide-leaf-topics", help="Hide topics used by one node only."),
     group: bool = typer.Option(False, "--group", help="Fold each namespace into one box."),

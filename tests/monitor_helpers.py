@@ -6,11 +6,16 @@ topic), so messages reach the monitor over TCPROS as from any other node.
 
 from __future__ import annotations
 
+import asyncio
 import subprocess
 import sys
 import xmlrpc.client
 from pathlib import Path
-from typing import Iterator, Sequence
+from typing import Awaitable, Callable, Iterator, Sequence
+
+from textual.pilot import Pilot
+
+from rostui.apps.monitor.app import MonitorApp
 
 from conftest import rostui_cmd, stop_process
 
@@ -116,3 +121,18 @@ if __name__ == "__main__":
     import asyncio
 
     asyncio.run(_publish_many(sys.argv[1], int(sys.argv[2]), float(sys.argv[3])))
+
+
+#: A pilot scenario played against a running monitor.
+Scenario = Callable[[Pilot, MonitorApp], Awaitable[None]]
+
+
+def run_monitor(app: MonitorApp, scenario: Scenario, size: tuple[int, int] = (120, 32)) -> None:
+    """Run ``app`` headless and play ``scenario``; the app quits with q at the end."""
+    async def main() -> None:
+        async with app.run_test(size=size) as pilot:
+            await pilot.pause()
+            await scenario(pilot, app)
+            await pilot.press("q")
+
+    asyncio.run(main())

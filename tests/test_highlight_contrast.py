@@ -15,8 +15,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from rich.color import Color, ColorSystem
-from rich.terminal_theme import DEFAULT_TERMINAL_THEME
+from rich.color import ColorSystem
 from textual.geometry import Region
 from textual.pilot import Pilot
 from textual.widget import Widget
@@ -32,41 +31,21 @@ from rostui.models.console.model import ConsoleOptions
 from rostui.models.contrast import MINIMUM, RGB, contrast_ratio
 
 from bag_view_helpers import write_counts
+from colour_modes import MODES, force_mode, shown
 from conftest import until
 from console_helpers import write_sample_log
 from graph_helpers import book_system, run_graph, settled, stop_programs
 from monitor_helpers import start_publishers, stop_all
-
-#: How each colour mode is forced (TERM, COLORTERM) and the name the app's console then reports.
-MODES = {
-    ColorSystem.STANDARD: ("xterm", None, "standard"),
-    ColorSystem.EIGHT_BIT: ("xterm-256color", None, "256"),
-    ColorSystem.TRUECOLOR: ("xterm-256color", "truecolor", "truecolor"),
-}
 
 
 @pytest.fixture(params=list(MODES), ids=lambda m: m.name.lower())
 def mode(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> ColorSystem:
     """Each colour mode in turn, forced through the environment as a terminal would set it; UTC stamps."""
     system: ColorSystem = request.param
-    term, colorterm, _ = MODES[system]
-    monkeypatch.setenv("TERM", term)
-    if colorterm is None:
-        monkeypatch.delenv("COLORTERM", raising=False)
-    else:
-        monkeypatch.setenv("COLORTERM", colorterm)
-    monkeypatch.delenv("NO_COLOR", raising=False)
+    force_mode(monkeypatch, system)
     monkeypatch.setenv("TZ", "UTC")
     time.tzset()
     return system
-
-
-def shown(color: Color | None, system: ColorSystem, foreground: bool) -> RGB | None:
-    """What a terminal in ``system`` shows for a rendered colour (Rich reduces it, the default theme paints it)."""
-    if color is None or color.is_default:
-        return None
-    triplet = color.downgrade(system).get_truecolor(DEFAULT_TERMINAL_THEME, foreground)
-    return triplet.red, triplet.green, triplet.blue
 
 
 def faint_text(widget: Widget, system: ColorSystem) -> list[tuple[str, RGB, RGB, float]]:

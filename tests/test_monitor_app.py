@@ -13,13 +13,14 @@ import re
 import subprocess
 import sys
 from pathlib import Path
-from typing import Any, Awaitable, Callable
+from typing import Any
 
 import pytest
 from cli_helpers import rostui
 from conftest import rostui_cmd, start_rostui_core, stop_process, until
 from live_helpers import Watcher
-from monitor_helpers import ManyTopics, Publisher, master_subscriptions, start_publishers, stop_all
+from monitor_helpers import (ManyTopics, Publisher, master_subscriptions, run_monitor as run,
+                             start_publishers, stop_all)
 from textual.pilot import Pilot
 from textual.widgets import Input, Static, TextArea
 
@@ -28,19 +29,9 @@ from rostui.apps.monitor.editor import PublishEditor
 from rostui.apps.monitor.plot import FieldChooser
 from rostui.models.monitor.rows import Column, Liveness, TopicRow
 
-Scenario = Callable[[Pilot, MonitorApp], Awaitable[None]]
 DEADLINE = 30.0
 
 
-def run(app: MonitorApp, scenario: Scenario, size: tuple[int, int] = (120, 32)) -> None:
-    """Run ``app`` headless and play ``scenario``; the app quits with q at the end."""
-    async def main() -> None:
-        async with app.run_test(size=size) as pilot:
-            await pilot.pause()
-            await scenario(pilot, app)
-            await pilot.press("q")
-
-    asyncio.run(main())
 
 
 def row(app: MonitorApp, topic: str) -> TopicRow | None:

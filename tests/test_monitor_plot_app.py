@@ -7,34 +7,26 @@ app's PlotModel and from the panel's heading line.
 
 from __future__ import annotations
 
-import asyncio
 from pathlib import Path
-from typing import Any, Awaitable, Callable
+from typing import Any
 
 from cli_helpers import rostui
 from conftest import until
-from monitor_helpers import start_publishers, stop_all
+from monitor_helpers import Scenario, run_monitor, start_publishers, stop_all
 from textual.pilot import Pilot
 from textual.widgets import SelectionList, Static
 
 from rostui.apps.monitor.app import MonitorApp
 from rostui.apps.monitor.plot import FieldChooser, PlotPanel
 
-Scenario = Callable[[Pilot, MonitorApp], Awaitable[None]]
 DEADLINE = 30.0
 POSE = ("/turtle1/pose", "turtlesim/Pose", "{x: 5.5, y: 2.5, theta: 0.5, linear_velocity: 1.0}", 20)
 LOG = ("/log", "rosgraph_msgs/Log", "{level: 2, msg: ready, line: 42}", 5)
 
 
 def run(app: MonitorApp, scenario: Scenario, size: tuple[int, int] = (120, 40)) -> None:
-    """Run ``app`` headless, play ``scenario``, quit with q."""
-    async def main() -> None:
-        async with app.run_test(size=size) as pilot:
-            await pilot.pause()
-            await scenario(pilot, app)
-            await pilot.press("q")
-
-    asyncio.run(main())
+    """Run ``app`` headless at 120x40 (room for the plot), play ``scenario``, quit with q."""
+    run_monitor(app, scenario, size)
 
 
 def text_of(app: MonitorApp, selector: str) -> str:

@@ -16,7 +16,6 @@ from typing import Any, Awaitable, Callable
 import pytest
 from rich.color import Color, ColorSystem
 from rich.style import Style
-from rich.terminal_theme import DEFAULT_TERMINAL_THEME
 from textual.geometry import Region
 from textual.pilot import Pilot
 
@@ -28,6 +27,7 @@ from rostui.turtlesim.render import TurtleView, ViewLayout
 from rostui.turtlesim.world import DEFAULT_PEN, UPDATE_PERIOD
 
 from cli_helpers import rostui
+from colour_modes import MODES, force_mode, shown
 from conftest import REPO, master_port, until
 
 DEADLINE = 30.0
@@ -242,32 +242,6 @@ def drive_model(app: TurtlesimApp, linear: float, angular: float, steps: int) ->
 
 #: Glyphs of the turtle sprites (shell, legs, heads).
 SPRITE_GLYPHS = frozenset("@()/\\" + "→↗↑↖←↙↓↘")
-#: How each colour mode is forced: TERM and COLORTERM, and the name the app's console reports.
-MODES = {
-    ColorSystem.STANDARD: ("xterm", None, "standard"),
-    ColorSystem.EIGHT_BIT: ("xterm-256color", None, "256"),
-    ColorSystem.TRUECOLOR: ("xterm-256color", "truecolor", "truecolor"),
-}
-
-
-def force_mode(monkeypatch: pytest.MonkeyPatch, system: ColorSystem) -> str:
-    """Make the next app's console detect ``system`` as a terminal would; return the name it will report."""
-    term, colorterm, name = MODES[system]
-    monkeypatch.setenv("TERM", term)
-    if colorterm is None:
-        monkeypatch.delenv("COLORTERM", raising=False)
-    else:
-        monkeypatch.setenv("COLORTERM", colorterm)
-    monkeypatch.delenv("NO_COLOR", raising=False)
-    return name
-
-
-def shown(color: Color | None, system: ColorSystem, foreground: bool) -> RGB | None:
-    """What a terminal in ``system`` shows for a rendered Rich colour: Rich reduces it, the default theme paints it."""
-    if color is None or color.is_default:
-        return None
-    triplet = color.downgrade(system).get_truecolor(DEFAULT_TERMINAL_THEME, foreground)
-    return triplet.red, triplet.green, triplet.blue
 
 
 def rendered_world(view: TurtleView, system: ColorSystem) -> list[tuple[str, RGB | None, RGB | None, bool]]:

@@ -38,9 +38,9 @@ REFRESH_RATE = 4.0
 def topics_table(session: RecordSession) -> Table:
     """One row per topic: messages in this file and in all, size, rate and bandwidth."""
     table = Table(expand=True, box=None, header_style="bold", pad_edge=False)
-    table.add_column("topic", ratio=3, no_wrap=True, overflow="ellipsis")
+    table.add_column("topic", ratio=1, no_wrap=True, overflow="ellipsis")
     for name in ("msgs (file)", "msgs (all)", "size (all)", "rate", "bandwidth"):
-        table.add_column(name, justify="right", ratio=1, no_wrap=True)
+        table.add_column(name, justify="right", no_wrap=True)
     subscribed = session.subscribed
     for topic in sorted(set(session.meters) | subscribed):
         meter = session.meters.get(topic)

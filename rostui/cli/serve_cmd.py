@@ -1,0 +1,178 @@
+"""`rostui serve APP [ARGS]`: one of the terminal apps in a web browser, through textual-serve.
+
+textual-serve (the optional extra ``rostui[web]``; rostui/apps/web_server.py,
+imported only by this command, wraps it) runs a small web server; each browser tab that opens it starts its own copy of the
+app as ``python -m rostui APP ARGS`` with this environment (so the same
+``ROS_MASTER_URI``), drawn by Textual's web driver into xterm.js in the page.
+The app and its arguments are checked here, before anything listens, so a
+typo is one line in this terminal rather than an empty page.
+"""
+
+from __future__ import annotations
+
+import socket
+import sys
+from typing import Any, Dict, List, Optional
+
+import typer
+
+#: The apps `rostui serve` runs, as a user names them.
+APPS = ("graph", "console", "loggers", "monitor", "bag view", "turtlesim", "launch --tui")
+
+#: Port textual-serve (and `textual serve`) listen on by default.
+DEFAULT_PORT = 8000
+
+#: Addresses that only this machine can reach.
+LOOPBACK = frozenset({"127.0.0.1", "localhost", "::1"})
+
+#: Addresses that mean every interface of this machine.
+EVERYWHERE = frozenset({"0.0.0.0", "::", ""})
+
+SERVE_CONTEXT = {
+    "help_option_names": ["-h", "--help"],
+    "allow_extra_args": True,
+    "ignore_unknown_options": True,
+    "allow_interspersed_args": False,
+}
+
+
+class NotAnApp(Exception):
+    """The words after `rostui serve` do not name an app with arguments it accepts."""
+
+
+def _app_path(words: List[str]) -> List[str]:
+    """The command words of the app ``words`` start with (``["bag", "view"]``), or :class:`NotAnApp`."""
+    choices = ", ".join(APPS)
+    if not words:
+        raise NotAnApp(f"name the app to serve: rostui serve APP [ARGS], APP one of {choices}")
+    if words[0] in ("graph", "console", "loggers", "monitor", "turtlesim", "launch"):
+        return words[:1]
+    if words[:2] == ["bag", "view"]:
+        return words[:2]
+    named = " ".join(w for w in words[:2] if not w.startswith("-"))
+    raise NotAnApp(f"`{named}` is not an app; serve one of {choices}")
+
+
+def _parse(ctx: typer.Context, path: List[str], args: List[str]) -> Dict[str, Any]:
+    """The app's parameters as its own command parses ``args`` (nothing runs), or :class:`NotAnApp`."""
+    root = ctx.find_root()
+    command: Any = root.command
+    for word in path:
+        command = command.get_command(root, word)
+    try:
+        with command.make_context(" ".join(path), list(args), parent=root) as parsed:
+            return dict(parsed.params)
+    except Exception as exc:
+        # Click's usage errors (Typer ships its own copy of Click) say what was wrong in format_message().
+        explain = getattr(exc, "format_message", None)
+        if explain is None:
+            raise
+        raise NotAnApp(f"{' '.join(path)}: {explain()}") from None
+
+
+def check_app(ctx: typer.Context, words: List[str]) -> None:
+    """Refuse (:class:`NotAnApp`) words that do not open an app: another command, a bad option, a form that prints.
+
+    The app's own options are parsed by its command without running it.
+    """
+    path = _app_path(words)
+    name = " ".join(path)
+    args = words[len(path):]
+    if any(a in ("-h", "--help") for a in args):
+        raise NotAnApp(f"serving runs the app, not its help: see `rostui {name} --help`")
+    params = _parse(ctx, path, args)
+    if path == ["launch"] and not params.get("tui"):
+        raise NotAnApp("launch serves its monitor only: rostui serve launch --tui [PKG] FILE [name:=value ...]")
+    if path == ["graph"] and params.get("dot"):
+        raise NotAnApp("graph --dot prints DOT and exits; serve `graph` without --dot")
+    if path == ["loggers"] and params.get("node") is not None:
+        raise NotAnApp("loggers NODE prints or sets levels without the app; serve `loggers` alone")
+    recording = params.get("record") or params.get("all_topics") or params.get("regex")
+    if path == ["bag", "view"] and not params.get("args") and not recording:
+        raise NotAnApp("bag view needs a bag: rostui serve bag view FILE ... (or --record TOPIC ...)")
+
+
+def public_url(host: str, port: int) -> str:
+    """The address a browser on this machine (or at the near end of an ``ssh -L`` tunnel) opens."""
+    if host in LOOPBACK:
+        name = "localhost"
+    elif host in EVERYWHERE:
+        name = socket.gethostname()
+    else:
+        name = f"[{host}]" if ":" in host else host
+    return f"http://{name}:{port}"
+
+
+def announcement(app: str, host: str, port: int, url: str) -> List[str]:
+    """The lines printed once the server listens: where to open it, and how to reach it from elsewhere."""
+    lines = [f"rostui serve: {app} at {url} (each browser tab runs its own copy; Ctrl-C stops the server)"]
+    if host in LOOPBACK:
+        lines.append(f"From another machine: ssh -L {port}:localhost:{port} {socket.gethostname()}, "
+                     f"then open http://localhost:{port} there")
+    else:
+        lines.append(f"Anyone who can reach {host or '*'}:{port} can use the app: there is no password")
+    return lines
+
+
+def _port_taken(host: str, port: int) -> Optional[str]:
+    """Why ``host:port`` cannot be listened on right now, or None when it can."""
+    try:
+        infos = socket.getaddrinfo(host or None, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE)
+    except socket.gaierror as exc:
+        return f"cannot resolve --host {host}: {exc.strerror}"
+    family, kind, proto, _name, address = infos[0]
+    with socket.socket(family, kind, proto) as probe:
+        probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            probe.bind(address)
+        except OSError as exc:
+            return f"cannot listen on {host}:{port}: {exc.strerror}"
+    return None
+
+
+def serve_command(
+    ctx: typer.Context,
+    host: str = typer.Option("127.0.0.1", "--host", metavar="ADDRESS",
+                             help="Address to listen on (default: this machine only; use ssh -L to reach it)."),
+    port: int = typer.Option(DEFAULT_PORT, "--port", "-p", metavar="PORT", help="Port to listen on."),
+    url: Optional[str] = typer.Option(None, "--public-url", metavar="URL",
+                                      help="The address browsers open, when not http://HOST:PORT "
+                                           "(a tunnel to another port, a proxy)."),
+) -> None:
+    """Serve a terminal app to web browsers: graph, console, loggers, monitor, bag view, turtlesim, launch --tui.
+
+    `rostui serve graph`, `rostui serve bag view run.bag`, `rostui serve launch --tui agitr doublesim.launch`:
+    the words after `serve` are the app's command, run for each browser tab with this
+    terminal's environment (ROS_MASTER_URI too).  Options for serve go before the app.
+    Listens on 127.0.0.1:8000; from a laptop, `ssh -L 8000:localhost:8000 ROBOT` and open
+    http://localhost:8000.  Needs the web extra: pip install 'rostui[web]'.
+    """
+    from rostui.cli.common import fail
+
+    words: List[str] = list(ctx.args)
+    try:
+        check_app(ctx, words)
+    except NotAnApp as exc:
+        fail(f"rostui serve: {exc}")
+    if not 0 < port < 65536:
+        fail(f"rostui serve: --port must be 1-65535, not {port}")
+    try:
+        from rostui.apps.web_server import AppServer
+    except ImportError as exc:
+        fail(f"rostui serve: the web extra is missing ({exc}): pip install 'rostui[web]'")
+    taken = _port_taken(host, port)
+    if taken is not None:
+        fail(f"rostui serve: {taken}")
+    app = " ".join(words)
+    address = url or public_url(host, port)
+    server = AppServer([sys.executable, "-m", "rostui", *words], host=host, port=port, public_url=address,
+                       title=f"rostui {app}", announce=announcement(app, host, port, address))
+    try:
+        server.serve()
+    except OSError as exc:
+        fail(f"rostui serve: cannot listen on {host}:{port}: {exc.strerror or exc}")
+
+
+def register(app: typer.Typer) -> None:
+    """Add `rostui serve` to the rostui app."""
+    app.command("serve", context_settings=SERVE_CONTEXT)(serve_command)

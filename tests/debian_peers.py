@@ -27,6 +27,8 @@ COMMANDS: dict[str, str] = {
     "tmux": "tmux",
     "ssh": "openssh-client",
     "ssh-keygen": "openssh-client",
+    "chromium": "chromium",
+    "chromedriver": "chromium-driver",
 }
 
 #: Files a test reads or runs by absolute path, and the package that installs each.

@@ -1,10 +1,11 @@
-"""`rostui serve turtlesim` in a real headless browser (Debian's chromium through chromium-driver).
+"""`rostui serve` in a real headless browser (Debian's chromium through chromium-driver).
 
 The test starts a master, serves turtlesim (with a ROS argument, to see that the
 served command keeps its words) on a free port, opens the page, reads the app off
 xterm.js, drives the turtle with the Up arrow and sees it move on the page and on
 the master.  Closing the page's tab quits that app (its node leaves the master); a second
 page's app quits when the server gets Ctrl-C, which then exits 0 with nothing left.
+Every other app opens in a page too, and its `q` ends it with all it started.
 """
 
 from __future__ import annotations
@@ -17,25 +18,37 @@ from typing import Iterator
 import psutil
 import pytest
 
+from bag_view_helpers import write_counts
 from browser_helpers import DEADLINE, XtermPage, headless_chromium
 from cli_helpers import rostui
 from conftest import REPO, free_port, rostui_cmd, stop_process, wait_for_port, wait_until
+from launch_tui_helpers import BUILTIN_SHARE, make_package, write_launch
 
 SCREEN_POSE = re.compile(r"turtle1 x (-?\d+\.\d+) y (-?\d+\.\d+)")
 ECHO_X = re.compile(r"^x: (-?[\d.e+-]+)$", re.M)
 NODE = "/browser_sim"
 
 
+def serve(words: list[str], env: dict[str, str], log: Path) -> tuple[subprocess.Popen, int]:
+    """`rostui serve --port PORT WORDS...` on a free port, listening when this returns; output to ``log``."""
+    port = free_port()
+    with log.open("w") as out:
+        proc = subprocess.Popen(rostui_cmd("serve", "--port", str(port), *words), env=env, cwd=REPO,
+                                stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT)
+    try:
+        wait_for_port(port, timeout=DEADLINE, proc=proc)
+    except BaseException:
+        stop_process(proc)
+        raise
+    return proc, port
+
+
 @pytest.fixture
 def served(rostui_core: subprocess.Popen, ros_env: dict[str, str], tmp_path: Path) -> Iterator[tuple[subprocess.Popen, int, Path]]:
     """`rostui serve turtlesim __name:=browser_sim` on a free port: the process, its port and its output file."""
-    port = free_port()
     log = tmp_path / "serve.log"
-    with log.open("w") as out:
-        proc = subprocess.Popen(rostui_cmd("serve", "--port", str(port), "turtlesim", f"__name:={NODE[1:]}"),
-                                env=ros_env, cwd=REPO, stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT)
+    proc, port = serve(["turtlesim", f"__name:={NODE[1:]}"], ros_env, log)
     try:
-        wait_for_port(port, timeout=DEADLINE, proc=proc)
         yield proc, port, log
     finally:
         stop_process(proc, timeout=60)
@@ -122,3 +135,47 @@ def test_turtlesim_in_a_browser_drives_the_turtle_and_stops_cleanly(
     assert "Traceback" not in output and "ERROR" not in output, output
     with pytest.raises(OSError):
         wait_for_port(port, timeout=0.5)
+
+
+#: Each other app (bag view and launch get their file in the test), and what its first screen shows.
+APPS = {
+    "graph": (["graph", "--show-debug"], "/rosout"),
+    "console": (["console"], "FATAL"),
+    "loggers": (["loggers"], "/rosout"),
+    "monitor": (["monitor"], "/rosout_agg"),
+    "bag view": (["bag", "view"], "/count"),
+    "launch --tui": (["launch", "--tui"], "quiet is up"),
+}
+
+
+@pytest.mark.timeout(240)
+@pytest.mark.parametrize("app", list(APPS))
+def test_every_app_opens_in_a_browser_and_q_ends_it(app: str, rostui_core: subprocess.Popen,
+                                                     ros_env: dict[str, str], tmp_path: Path) -> None:
+    words, shows = APPS[app]
+    env = {**ros_env, "ROS_PACKAGE_PATH": f"{BUILTIN_SHARE}:{make_package(tmp_path / 'pkgs')}"}
+    if app == "bag view":
+        words = [*words, str(write_counts(tmp_path / "counts.bag"))]
+    if app == "launch --tui":
+        words = [*words, str(write_launch(tmp_path / "quiet.launch", '<node pkg="tuitest" type="quiet" name="quiet"/>'))]
+    log = tmp_path / "serve.log"
+    server, port = serve(words, env, log)
+    try:
+        with headless_chromium() as driver:
+            page = XtermPage(driver)
+            page.open(f"http://localhost:{port}/")
+            page.wait_for(shows)
+            page.wait_for("q quit")
+            started = app_processes(server)  # the app, and for launch --tui its node
+            assert len(started) == (2 if app == "launch --tui" else 1), [p.cmdline() for p in started]
+            page.screenshot(tmp_path / f"serve_{app.replace(' ', '_')}.png")
+            page.press("q")
+            wait_until(page.closed, "the page to say its session ended after q", timeout=DEADLINE)
+            wait_until(lambda: gone(started), f"{app} and what it started to exit after q", timeout=DEADLINE)
+        assert server.poll() is None
+        server.send_signal(2)
+        assert server.wait(timeout=60) == 0
+    finally:
+        stop_process(server)
+    output = log.read_text()
+    assert "Traceback" not in output and "ERROR" not in output, output

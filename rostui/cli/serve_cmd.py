@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import socket
 import sys
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
 import typer
 
@@ -53,15 +53,15 @@ def _app_path(words: List[str]) -> List[str]:
     raise NotAnApp(f"`{named}` is not an app; serve one of {choices}")
 
 
-def _parse(ctx: typer.Context, path: List[str], args: List[str]) -> Dict[str, Any]:
-    """The app's parameters as its own command parses ``args`` (nothing runs), or :class:`NotAnApp`."""
+def _parse(ctx: typer.Context, path: List[str], args: List[str]) -> Tuple[Dict[str, Any], List[str]]:
+    """The app's parameters and extra words as its own command parses ``args`` (nothing runs), or :class:`NotAnApp`."""
     root = ctx.find_root()
     command: Any = root.command
     for word in path:
         command = command.get_command(root, word)
     try:
         with command.make_context(" ".join(path), list(args), parent=root) as parsed:
-            return dict(parsed.params)
+            return dict(parsed.params), list(parsed.args)
     except Exception as exc:
         # Click's usage errors (Typer ships its own copy of Click) say what was wrong in format_message().
         explain = getattr(exc, "format_message", None)
@@ -80,9 +80,9 @@ def check_app(ctx: typer.Context, words: List[str]) -> None:
     args = words[len(path):]
     if any(a in ("-h", "--help") for a in args):
         raise NotAnApp(f"serving runs the app, not its help: see `rostui {name} --help`")
-    params = _parse(ctx, path, args)
-    if path == ["launch"] and not params.get("tui"):
-        raise NotAnApp("launch serves its monitor only: rostui serve launch --tui [PKG] FILE [name:=value ...]")
+    params, extra = _parse(ctx, path, args)
+    if path == ["launch"]:
+        _check_launch(params, extra)
     if path == ["graph"] and params.get("dot"):
         raise NotAnApp("graph --dot prints DOT and exits; serve `graph` without --dot")
     if path == ["loggers"] and params.get("node") is not None:
@@ -90,6 +90,19 @@ def check_app(ctx: typer.Context, words: List[str]) -> None:
     recording = params.get("record") or params.get("all_topics") or params.get("regex")
     if path == ["bag", "view"] and not params.get("args") and not recording:
         raise NotAnApp("bag view needs a bag: rostui serve bag view FILE ... (or --record TOPIC ...)")
+
+
+def _check_launch(params: Dict[str, Any], extra: List[str]) -> None:
+    """`launch --tui` with a file and without the options that only print."""
+    usage = "rostui serve launch --tui [PKG] FILE [name:=value ...]"
+    if not params.get("tui"):
+        raise NotAnApp(f"launch serves its monitor only: {usage}")
+    printing = [flag for flag, key in (("--nodes", "nodes"), ("--args", "node_args"), ("--dump-params", "dump_params"),
+                                       ("--files", "files"), ("--ros-args", "ros_args")) if params.get(key)]
+    if printing:
+        raise NotAnApp(f"launch {printing[0]} prints and exits: {usage}")
+    if not [w for w in extra if ":=" not in w]:
+        raise NotAnApp(f"launch --tui needs a launch file: {usage}")
 
 
 def public_url(host: str, port: int) -> str:
@@ -141,11 +154,14 @@ def serve_command(
 ) -> None:
     """Serve a terminal app to web browsers: graph, console, loggers, monitor, bag view, turtlesim, launch --tui.
 
-    `rostui serve graph`, `rostui serve bag view run.bag`, `rostui serve launch --tui agitr doublesim.launch`:
-    the words after `serve` are the app's command, run for each browser tab with this
-    terminal's environment (ROS_MASTER_URI too).  Options for serve go before the app.
-    Listens on 127.0.0.1:8000; from a laptop, `ssh -L 8000:localhost:8000 ROBOT` and open
-    http://localhost:8000.  Needs the web extra: pip install 'rostui[web]'.
+    The words after `serve` are the app's command; each browser tab runs its own
+    copy with this terminal's environment (ROS_MASTER_URI too).  Options of serve
+    go before the app: `rostui serve --port 8080 bag view run.bag`.
+
+    Listens on 127.0.0.1:8000, this machine only.  From a laptop:
+    `ssh -L 8000:localhost:8000 ROBOT`, then open http://localhost:8000.
+
+    Needs the web extra: pip install 'rostui\\[web]'.
     """
     from rostui.cli.common import fail
 
@@ -175,4 +191,4 @@ def serve_command(
 
 def register(app: typer.Typer) -> None:
     """Add `rostui serve` to the rostui app."""
-    app.command("serve", context_settings=SERVE_CONTEXT)(serve_command)
+    app.command("serve", context_settings=SERVE_CONTEXT, options_metavar="[OPTIONS] APP [ARGS]...")(serve_command)

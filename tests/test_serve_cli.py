@@ -118,6 +118,9 @@ def test_urls_and_the_ssh_line() -> None:
     assert local[0].startswith("rostui serve: graph at http://localhost:8001 ")
     assert local[1] == (f"From another machine: ssh -L 8001:localhost:8001 {socket.gethostname()}, "
                         "then open http://localhost:8001 there")
+    tunnel = announcement("graph", "127.0.0.1", 8001, "http://localhost:9000")
+    assert tunnel[1].startswith("From another machine: ssh -L 9000:localhost:8001 ")
+    assert tunnel[1].endswith(", then open http://localhost:9000 there")
     shared = announcement("graph", "0.0.0.0", 8001, "http://robot:8001")
     assert "there is no password" in shared[1]
 

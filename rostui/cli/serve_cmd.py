@@ -1,8 +1,9 @@
 """`rostui serve APP [ARGS]`: one of the terminal apps in a web browser, through textual-serve.
 
-textual-serve (the optional extra ``rostui[web]``; rostui/apps/web_server.py,
-imported only by this command, wraps it) runs a small web server; each browser tab that opens it starts its own copy of the
-app as ``python -m rostui APP ARGS`` with this environment (so the same
+textual-serve (the optional extra ``rostui[web]``, wrapped by
+rostui/apps/web_server.py, which only this command imports) runs a small web
+server; each browser tab that opens it starts its own copy of the app as
+``python -m rostui APP ARGS`` with this environment (so the same
 ``ROS_MASTER_URI``), drawn by Textual's web driver into xterm.js in the page.
 The app and its arguments are checked here, before anything listens, so a
 typo is one line in this terminal rather than an empty page.
@@ -10,7 +11,6 @@ typo is one line in this terminal rather than an empty page.
 
 from __future__ import annotations
 
-import socket
 import sys
 from typing import Any, Dict, List, Optional, Tuple
 
@@ -107,6 +107,8 @@ def _check_launch(params: Dict[str, Any], extra: List[str]) -> None:
 
 def public_url(host: str, port: int) -> str:
     """The address a browser on this machine (or at the near end of an ``ssh -L`` tunnel) opens."""
+    import socket
+
     if host in LOOPBACK:
         name = "localhost"
     elif host in EVERYWHERE:
@@ -118,10 +120,15 @@ def public_url(host: str, port: int) -> str:
 
 def announcement(app: str, host: str, port: int, url: str) -> List[str]:
     """The lines printed once the server listens: where to open it, and how to reach it from elsewhere."""
+    import socket
+
+    from urllib.parse import urlsplit
+
     lines = [f"rostui serve: {app} at {url} (each browser tab runs its own copy; Ctrl-C stops the server)"]
     if host in LOOPBACK:
-        lines.append(f"From another machine: ssh -L {port}:localhost:{port} {socket.gethostname()}, "
-                     f"then open http://localhost:{port} there")
+        near = urlsplit(url).port or port
+        lines.append(f"From another machine: ssh -L {near}:localhost:{port} {socket.gethostname()}, "
+                     f"then open {url} there")
     else:
         lines.append(f"Anyone who can reach {host or '*'}:{port} can use the app: there is no password")
     return lines
@@ -129,6 +136,8 @@ def announcement(app: str, host: str, port: int, url: str) -> List[str]:
 
 def _port_taken(host: str, port: int) -> Optional[str]:
     """Why ``host:port`` cannot be listened on right now, or None when it can."""
+    import socket
+
     try:
         infos = socket.getaddrinfo(host or None, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE)
     except socket.gaierror as exc:

@@ -61,12 +61,14 @@ class AppServer(Server):
 
     async def on_shutdown(self, app: web.Application) -> None:
         """Close every open session as a closed tab would (its app quits), then wait for the apps to end."""
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + QUIT_GRACE
         sessions = list(self.sessions)
         for session in sessions:
             session.cancel()
         if sessions:
             await asyncio.wait(sessions, timeout=QUIT_GRACE)
-        await end_children(QUIT_GRACE, KILL_GRACE)
+        await end_children(max(0.0, deadline - loop.time()), KILL_GRACE)
 
 
 async def end_children(grace: float, kill_grace: float) -> None:

@@ -44,7 +44,8 @@ def serve(words: list[str], env: dict[str, str], log: Path) -> tuple[subprocess.
 
 
 @pytest.fixture
-def served(rostui_core: subprocess.Popen, ros_env: dict[str, str], tmp_path: Path) -> Iterator[tuple[subprocess.Popen, int, Path]]:
+def served(rostui_core: subprocess.Popen, ros_env: dict[str, str],
+           tmp_path: Path) -> Iterator[tuple[subprocess.Popen, int, Path]]:
     """`rostui serve turtlesim __name:=browser_sim` on a free port: the process, its port and its output file."""
     log = tmp_path / "serve.log"
     proc, port = serve(["turtlesim", f"__name:={NODE[1:]}"], ros_env, log)
@@ -156,7 +157,8 @@ def test_every_app_opens_in_a_browser_and_q_ends_it(app: str, rostui_core: subpr
     if app == "bag view":
         words = [*words, str(write_counts(tmp_path / "counts.bag"))]
     if app == "launch --tui":
-        words = [*words, str(write_launch(tmp_path / "quiet.launch", '<node pkg="tuitest" type="quiet" name="quiet"/>'))]
+        quiet = write_launch(tmp_path / "quiet.launch", '<node pkg="tuitest" type="quiet" name="quiet"/>')
+        words = [*words, str(quiet)]
     log = tmp_path / "serve.log"
     server, port = serve(words, env, log)
     try:

@@ -132,7 +132,8 @@ def test_shutdown_ends_an_app_that_ignores_sigterm() -> None:
         import psutil
         from rostui.apps.web_server import end_children
 
-        STUBBORN = "import signal, time; signal.signal(signal.SIGTERM, signal.SIG_IGN); print(1, flush=True); time.sleep(60)"
+        STUBBORN = ("import signal, time; signal.signal(signal.SIGTERM, signal.SIG_IGN); "
+                    "print(1, flush=True); time.sleep(60)")
 
         async def main():
             child = await asyncio.create_subprocess_exec(sys.executable, "-c", STUBBORN, stdout=asyncio.subprocess.PIPE)

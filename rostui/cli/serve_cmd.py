@@ -94,14 +94,15 @@ def check_app(ctx: typer.Context, words: List[str]) -> None:
 
 def _check_launch(params: Dict[str, Any], extra: List[str]) -> None:
     """`launch --tui` with a file and without the options that only print."""
-    usage = "rostui serve launch --tui [PKG] FILE [name:=value ...]"
+    usage = "rostui serve launch --tui [PACKAGE] FILE [ARG:=VALUE]..."
     if not params.get("tui"):
         raise NotAnApp(f"launch serves its monitor only: {usage}")
     printing = [flag for flag, key in (("--nodes", "nodes"), ("--args", "node_args"), ("--dump-params", "dump_params"),
                                        ("--files", "files"), ("--ros-args", "ros_args")) if params.get(key)]
     if printing:
         raise NotAnApp(f"launch {printing[0]} prints and exits: {usage}")
-    if not [w for w in extra if ":=" not in w]:
+    words = [*(params.get("arguments") or []), *extra]  # the launch command's positionals, however it takes them
+    if not [w for w in words if ":=" not in w]:
         raise NotAnApp(f"launch --tui needs a launch file: {usage}")
 
 

@@ -5,7 +5,7 @@ served command keeps its words) on a free port, opens the page, reads the app of
 xterm.js, drives the turtle with the Up arrow and sees it move on the page and on
 the master.  Closing the page's tab quits that app (its node leaves the master); a second
 page's app quits when the server gets Ctrl-C, which then exits 0 with nothing left.
-Every other app opens in a page too, and its `q` ends it with all it started.
+Every other app opens in a page too, `?` opens and closes its help, and `q` ends it with all it started.
 """
 
 from __future__ import annotations
@@ -17,6 +17,8 @@ from typing import Iterator
 
 import psutil
 import pytest
+
+from rostui.apps.widgets.help import HELP_TITLE
 
 from bag_view_helpers import write_counts
 from browser_helpers import DEADLINE, XtermPage, headless_chromium
@@ -150,7 +152,7 @@ APPS = {
 
 @pytest.mark.timeout(240)
 @pytest.mark.parametrize("app", list(APPS))
-def test_every_app_opens_in_a_browser_and_q_ends_it(app: str, rostui_core: subprocess.Popen,
+def test_every_app_opens_in_a_browser_shows_its_help_and_q_ends_it(app: str, rostui_core: subprocess.Popen,
                                                      ros_env: dict[str, str], tmp_path: Path) -> None:
     words, shows = APPS[app]
     env = {**ros_env, "ROS_PACKAGE_PATH": f"{BUILTIN_SHARE}:{make_package(tmp_path / 'pkgs')}"}
@@ -169,6 +171,11 @@ def test_every_app_opens_in_a_browser_and_q_ends_it(app: str, rostui_core: subpr
             page.wait_for("q quit")
             started = app_processes(server)  # the app, and for launch --tui its node
             assert len(started) == (2 if app == "launch --tui" else 1), [p.cmdline() for p in started]
+            page.press("?")  # the help panel opens over the app, and closes again
+            page.wait_for(HELP_TITLE)
+            page.screenshot(tmp_path / f"serve_{app.replace(' ', '_')}_help.png")
+            page.press("?")
+            wait_until(lambda: not page.shows(HELP_TITLE), f"{app}'s help panel to close", timeout=DEADLINE)
             page.screenshot(tmp_path / f"serve_{app.replace(' ', '_')}.png")
             page.press("q")
             wait_until(page.closed, "the page to say its session ended after q", timeout=DEADLINE)

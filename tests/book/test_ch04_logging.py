@@ -93,8 +93,7 @@ def test_count_logs_to_console_rosout_console_app_and_rosout_log(desk: Desk, tmp
     loggers = desk.terminal("loggers")
     loggers.run("rostui loggers")
     loggers.wait_for(r"2 nodes serve")
-    loggers.keys("Down")
-    loggers.wait_for(r"Loggers · /count_and_log")
+    loggers.wait_for(r"Loggers · /count_and_log")  # the first node is selected at start
     loggers.wait_for(r"ros\.agitr")
     loggers.keys("i")
     loggers.wait_for(r"ros\.agitr set to")

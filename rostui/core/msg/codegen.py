@@ -494,8 +494,8 @@ def build_message_class(
     sw = _SerWalker(ns, get_spec, cls_var)
     sw.fields(spec, "self", 2)
     sw.flush(2)
-    lines.append("def serialize(self):")
-    lines.append('    """The message in ROS 1 wire format (little endian)."""')
+    lines.append("def serialize(self, buff=None):")
+    lines.append('    """The message in ROS 1 wire format (little endian); written to *buff* instead when given (genpy)."""')
     lines.append("    _b = []")
     lines.append("    _w = _b.append")
     lines.append("    try:")
@@ -504,7 +504,9 @@ def build_message_class(
     lines.append("        raise")
     lines.append("    except (_struct_error, TypeError, ValueError, AttributeError, OverflowError) as _exc:")
     lines.append(f"        raise _SerErr({_lit(f'cannot serialize {spec.type_name}: %s')} % (_exc,)) from _exc")
-    lines.append("    return b''.join(_b)")
+    lines.append("    if buff is None:")
+    lines.append("        return b''.join(_b)")
+    lines.append("    buff.write(b''.join(_b))")
 
     # deserialize
     dw = _DeserWalker(ns, get_spec, cls_var)

@@ -38,7 +38,7 @@ def start() -> Choice:
     if choice.use_rostui:
         from .finder import install
 
-        install()
+        install(first=choice.real_ros is not None)
         os.environ[ENV_MODE] = Mode.ROSTUI.value
     else:
         sys.path[:] = [p for p in sys.path if not _is_pylib(p)]

@@ -5,7 +5,8 @@ that defines messages or services becomes importable. The classes are
 rostui's own generated ones (:func:`rostui.core.msg.get_message_class`), built
 on first use; a module's ``__getattr__`` builds them, so ``import std_msgs.msg``
 costs nothing until a class is named. The finder sits last on
-``sys.meta_path``: a package that is really installed is always found first.
+``sys.meta_path``: a package that is really installed is found first, unless
+the user chose rostui's modules over a real ROS (then it sits first).
 """
 
 from __future__ import annotations
@@ -145,11 +146,20 @@ class MessageModuleFinder(importlib.abc.MetaPathFinder):
         return spec
 
 
-def install() -> MessageModuleFinder:
-    """Put the finder last on ``sys.meta_path`` (once) and return it."""
+def install(first: bool = False) -> MessageModuleFinder:
+    """Put the finder on ``sys.meta_path`` (once) and return it.
+
+    Last by default, so installed packages win; *first* when the user chose
+    rostui's modules over a real ROS whose message packages are importable.
+    """
     for finder in sys.meta_path:
         if isinstance(finder, MessageModuleFinder):
-            return finder
-    finder = MessageModuleFinder()
-    sys.meta_path.append(finder)
+            sys.meta_path.remove(finder)
+            break
+    else:
+        finder = MessageModuleFinder()
+    if first:
+        sys.meta_path.insert(0, finder)
+    else:
+        sys.meta_path.append(finder)
     return finder

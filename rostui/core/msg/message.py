@@ -8,6 +8,7 @@ pickling of messages go through :attr:`Message._text_hook` and
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from types import MethodType
 from typing import Any, Callable, ClassVar, Generic, Protocol, TypeAlias, TypeVar, cast, overload
 
@@ -72,7 +73,7 @@ class Message:
     ``_connection_header`` is a free slot the node layer may set on received messages.
     """
 
-    __slots__: ClassVar[tuple[str, ...]] = ("_connection_header",)
+    __slots__: ClassVar[Sequence[str]] = ("_connection_header",)
 
     _connection_header: dict[str, str]
     """The publisher's connection header, on messages a subscriber received."""

@@ -82,7 +82,7 @@ def find_real_ros(paths: Iterable[str]) -> Path | None:
     search = [p for p in paths if not _same_dir(p, PYLIB)]
     for name in REAL_ROS_MODULES:
         spec = PathFinder.find_spec(name, search)
-        if spec is not None and spec.origin not in (None, "namespace"):
+        if spec is not None and spec.origin is not None and spec.origin != "namespace":
             return Path(spec.origin).parent
     return None
 

@@ -134,7 +134,7 @@ class Message:
 
     def deserialize_numpy(self, data: Buffer, numpy: Any) -> Message:
         """Fill this message from *data* as genpy does, numeric arrays as numpy arrays (*numpy* is the module)."""
-        filled = cast(Callable[[Buffer], Message], self.deserialize)(data)
+        filled = self.deserialize(data)
         _arrays_to_numpy(filled, numpy)
         return filled
 

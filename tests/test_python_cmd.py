@@ -131,7 +131,8 @@ def test_custom_packages_serialize_as_genpy_does(tmp_path: Path) -> None:
     built = {t: e for t, e in want.items() if "error" not in e}
     assert len(built) > 900
     renamed = sorted(t for t, e in built.items() if _renames_a_keyword(e))
-    differ = sorted(t for t, e in built.items() if t not in renamed and _without_definition(e) != _without_definition(got[t]))
+    differ = sorted(t for t, e in built.items()
+                    if t not in renamed and _without_definition(e) != _without_definition(got[t]))
     assert not differ, f"differ from genpy: {differ[:10]}"
     assert all(got[t] == {"error": "ImportError"} for t in renamed)  # rostui refuses keyword field names
 
@@ -233,3 +234,37 @@ def test_a_real_ros_is_never_shadowed_silently(tmp_path: Path) -> None:
         assert r.returncode == 0, r.stderr
         assert r.stdout.startswith("b'\\x02\\x00\\x00\\x00hi' ") and origin in r.stdout
         assert len(r.stderr.splitlines()) == 1 and says in r.stderr
+
+
+def test_the_sitecustomize_ours_hides_still_runs(tmp_path: Path) -> None:
+    own = tmp_path / "own_site"
+    own.mkdir()
+    (own / "sitecustomize.py").write_text(
+        "import builtins\nbuiltins.OWN_SITE_RAN = getattr(builtins, 'OWN_SITE_RAN', 0) + 1\n")
+    script = tmp_path / "site_ran.py"
+    script.write_text("import builtins, sys\nprint(builtins.OWN_SITE_RAN, sys.modules['sitecustomize'].__file__)\n")
+    r = rostui_python([str(script)], env=_env(PYTHONPATH=str(own)))
+    assert r.returncode == 0, r.stderr
+    runs, ours = r.stdout.split()
+    assert runs == "1" and ours.endswith("/rostui/compat/pylib/sitecustomize.py")
+
+
+def test_numpy_forms_read_numeric_arrays_as_numpy_arrays() -> None:
+    import io
+
+    import numpy
+
+    from rostui.core.msg import get_message_class
+
+    Floats = get_message_class("std_msgs/Float32MultiArray")
+    Image = get_message_class("sensor_msgs/Image")
+    msg = Floats(data=[0.5, 1.5, -2.0])
+    plain, with_numpy = io.BytesIO(), io.BytesIO()
+    msg.serialize(plain)
+    Floats(data=numpy.array([0.5, 1.5, -2.0], dtype=numpy.float32)).serialize_numpy(with_numpy, numpy)
+    assert plain.getvalue() == with_numpy.getvalue()
+    back = Floats().deserialize_numpy(plain.getvalue(), numpy)
+    assert isinstance(back.data, numpy.ndarray) and back.data.dtype == numpy.float32
+    assert back.data.tolist() == [0.5, 1.5, -2.0]
+    image = Image().deserialize_numpy(Image(height=1, width=2, data=b"\x01\x02").serialize(), numpy)
+    assert image.data == b"\x01\x02"  # uint8[] stays bytes, as in genpy

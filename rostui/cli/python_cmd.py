@@ -30,7 +30,8 @@ def python_command(
         None, metavar="[ARGS]...", help="The script's own arguments, untouched (name:=value, __name:=x, options)."),
     which: bool = typer.Option(False, "--which", help="Say which ROS a script would get, and exit."),
     real_ros: bool = typer.Option(False, "--real-ros", help="Give the script the real ROS installed, not rostui's."),
-    use_rostui: bool = typer.Option(False, "--rostui", help="Give the script rostui's modules even if a real ROS is installed."),
+    use_rostui: bool = typer.Option(False, "--rostui",
+                                    help="Give the script rostui's modules even if a real ROS is installed."),
 ) -> None:
     """Run SCRIPT with rostui's genpy, roslib and <pkg>.msg/<pkg>.srv modules on its import path.
 

@@ -47,7 +47,8 @@ t1, t2 = genpy.Time(10, 500000000), genpy.Time.from_sec(12.25)
 d = t2 - t1
 print(d, repr(d), d.to_sec(), d.to_nsec(), t1 + d == t2, t2 - d == t1, t1 < t2, t2 >= t1)
 print(genpy.Duration(1, 500000000) * 3, genpy.Duration(5) / 2, genpy.Duration(7) // 2, genpy.Duration(-1, 0).to_sec())
-print(abs(genpy.Duration(-3)), -genpy.Duration(2), genpy.Duration(7) % genpy.Duration(2), divmod(genpy.Duration(7), genpy.Duration(2)))
+print(abs(genpy.Duration(-3)), -genpy.Duration(2), genpy.Duration(7) % genpy.Duration(2),
+      divmod(genpy.Duration(7), genpy.Duration(2)))
 print(genpy.Time(3, 2000000000), genpy.Time(1).to_nsec(), genpy.Time().is_zero(), bool(genpy.Duration()))
 print(hash(genpy.Time(4, 5)) == hash(genpy.Time(4, 5)), genpy.Time(4, 5) == genpy.Time(4, 5))
 try:

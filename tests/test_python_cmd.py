@@ -182,7 +182,16 @@ def test_ctrl_c_reaches_the_script(tmp_path: Path) -> None:
     assert (proc.returncode, out, err) == (130, "interrupted\n", "")
 
 
+def no_real_ros_here() -> None:
+    """These tests need this Python (the venv's) to see no real ROS, as CI's venv does."""
+    from rostui.compat.choice import find_real_ros
+
+    if find_real_ros(sys.path) is not None:
+        pytest.skip("this Python imports a real ROS (a venv with system site packages)")
+
+
 def test_which_names_rostuis_modules_when_no_real_ros_is_importable() -> None:
+    no_real_ros_here()
     r = rostui_python(["--which"])
     assert r.returncode == 0
     assert r.stdout.startswith("rostui python: the script gets rostui's genpy, roslib and message modules (")
@@ -190,6 +199,13 @@ def test_which_names_rostuis_modules_when_no_real_ros_is_importable() -> None:
     assert "no real ROS is importable" in r.stdout
     r = rostui_python(["--real-ros", "--rostui", "x.py"])
     assert r.returncode == 2 and "exclude each other" in r.stderr
+
+
+def test_real_ros_chosen_where_there_is_none_gives_no_ros_modules() -> None:
+    no_real_ros_here()
+    r = rostui_python(["--real-ros", str(SCRIPTS / "no_genpy_import.py")])
+    assert r.returncode == 1
+    assert r.stderr.splitlines()[-1] == "ModuleNotFoundError: No module named 'std_msgs'"
 
 
 _USES_STRING = ("import io, genpy\nfrom std_msgs.msg import String\nb = io.BytesIO()\nString('hi').serialize(b)\n"

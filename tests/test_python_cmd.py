@@ -162,8 +162,8 @@ def test_ctrl_c_reaches_the_script(tmp_path: Path) -> None:
     script = tmp_path / "waits.py"
     script.write_text(textwrap.dedent("""\
         import sys, time
-        print("ready", flush=True)
         try:
+            print("ready", flush=True)
             time.sleep(60)
         except KeyboardInterrupt:
             print("interrupted", flush=True)

@@ -51,6 +51,7 @@ MODULES: dict[str, str] = {
     "roslaunch": "python3-roslaunch",
     "genpy": "python3-genpy",
     "genmsg": "python3-genmsg",
+    "roslib": "python3-roslib",
     "std_msgs": "python3-std-msgs",
     "std_srvs": "python3-std-srvs",
     "geometry_msgs": "python3-geometry-msgs",

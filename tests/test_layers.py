@@ -1,6 +1,6 @@
 """The layers of docs/architecture.md hold: every import in rostui/ (lazy ones inside functions too) points down.
 
-    cli  >  turtlesim  >  apps  >  launch, models  >  tools, client  >  core
+    cli  >  turtlesim  >  apps  >  launch, models  >  tools, client, compat  >  core
 
 core is the ROS 1 runtime and imports nothing above it; no layer below the apps imports Textual, Typer or Rich.
 """
@@ -24,12 +24,13 @@ MAY_IMPORT: dict[str, frozenset[str]] = {
     "models": frozenset({"core", "tools"}),
     "launch": frozenset({"core", "tools"}),
     "client": frozenset({"core"}),
+    "compat": frozenset({"core", "client"}),
     "apps": frozenset({"core", "tools", "models", "launch"}),
     "turtlesim": frozenset({"core", "tools", "models", "apps", "client"}),
-    "cli": frozenset({"core", "tools", "models", "launch", "apps", "turtlesim", "client", "version"}),
+    "cli": frozenset({"core", "tools", "models", "launch", "apps", "turtlesim", "client", "compat", "version"}),
 }
 #: Layers that must run without a terminal library.
-SCREEN_FREE = frozenset({"core", "tools", "models", "launch", "client"})
+SCREEN_FREE = frozenset({"core", "tools", "models", "launch", "client", "compat"})
 
 
 def _layer(module: str) -> str | None:

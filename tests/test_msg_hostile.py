@@ -63,7 +63,7 @@ def test_section_named_with_code_is_refused_and_never_run(fresh_types: Path) -> 
     ("evil_pkg/Evil", "int32 a" + SEP + "MSG: evil_pkg/Inner\rimport os\nint32 b\n", "not a valid pkg/Type name"),
     ("evil_pkg/Evil", "int32 a" + SEP + "MSG: evil'pkg/Inner\nint32 b\n", "not a valid pkg/Type name"),
     ("evil_pkg/Evil", "int32 __import__('os').system\n", "not a legal message field name"),
-    ("evil_pkg/Evil", "int32 class\n", "Python keyword"),
+    ("evil_pkg/Evil", "int32 class\nint32 class_\n", "two fields are named class_"),
     ("evil_pkg/Evil", "int32 serialize\n", "method of messages"),
     ("evil_pkg/Evil", "int32 serialize=1\nint32 a\n", "constant's name"),
     ("evil_pkg/Evil", "evil_pkg/Other X=1\n", "not a legal constant type"),
@@ -76,6 +76,15 @@ def test_hostile_definition_is_refused_with_one_message_error(type_name: str, de
     text = str(caught.value)
     assert why in text
     assert "\n" not in text and "\r" not in text  # one line, control characters quoted
+
+
+def test_a_field_named_like_a_python_keyword_gets_genpys_name() -> None:
+    """genpy names a field ``lambda`` (or ``self``) ``lambda_`` on its class; the wire and the md5 keep ``lambda``."""
+    Keyed = register_types_from_definition("kw_pkg/Keyed", "float64[] lambda\nint32 self\nint32 class=3\n")
+    assert Keyed.__slots__ == ["lambda_", "self_"] and Keyed.class_ == 3
+    msg = Keyed(lambda_=[1.5], self_=2)
+    assert Keyed.deserialize(msg.serialize()) == msg
+    assert "lambda_: [1.5]" in str(msg)
 
 
 def test_nesting_too_deep_is_refused_not_a_recursion_error() -> None:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numbers
 import time as _time
-from typing import TypeVar, overload
+from typing import ClassVar, TypeVar, overload
 
 __all__ = ["Time", "Duration", "TVal"]
 
@@ -31,6 +31,9 @@ class TVal:
 
     secs: int
     nsecs: int
+
+    repr_prefix: ClassVar[str] = "rostui"
+    """What ``repr()`` names the module: ``rostui.Time[...]``; genpy's shim sets ``genpy``, as genpy prints."""
 
     def __init__(self, secs: int | float = 0, nsecs: int = 0) -> None:
         """Build from integer secs/nsecs, or from float seconds (then nsecs must be 0)."""
@@ -165,7 +168,7 @@ class Time(TVal):
         return hash((self.secs, self.nsecs))
 
     def __repr__(self) -> str:
-        return f"rostui.Time[{self.to_nsec()}]"
+        return f"{TVal.repr_prefix}.Time[{self.to_nsec()}]"
 
     def __add__(self, other: Duration) -> Time:
         if not isinstance(other, Duration):
@@ -199,7 +202,7 @@ class Duration(TVal):
         return hash((self.secs, self.nsecs))
 
     def __repr__(self) -> str:
-        return f"rostui.Duration[{self.to_nsec()}]"
+        return f"{TVal.repr_prefix}.Duration[{self.to_nsec()}]"
 
     def __neg__(self) -> "Duration":
         return self.__class__(-self.secs, -self.nsecs)

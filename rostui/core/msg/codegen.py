@@ -25,7 +25,7 @@ from .errors import DeserializationError, MessageSpecError, SerializationError
 from .message import Message, hybridmethod
 from .spec import BUILTIN_TYPES, Field, MsgSpec, is_valid_name, is_valid_type_name, shown
 
-__all__ = ["build_message_class", "check_spec", "min_size", "PRIMITIVE_STRUCT", "RESERVED_NAMES",
+__all__ = ["attribute_name", "build_message_class", "check_spec", "min_size", "PRIMITIVE_STRUCT", "RESERVED_NAMES",
            "MAX_INLINED_FIELDS", "MAX_DEFAULT_COST"]
 
 PRIMITIVE_STRUCT: dict[str, tuple[str, int]] = {
@@ -83,25 +83,35 @@ def _lit(text: str) -> str:
     return repr(text)
 
 
+def attribute_name(name: str) -> str:
+    """The attribute a field or constant *name* has on a class: as in genpy, a Python keyword or ``self`` gets a ``_``."""
+    return name + "_" if keyword.iskeyword(name) or name == "self" else name
+
+
 def _check_names(spec: MsgSpec) -> None:
     if not is_valid_type_name(spec.type_name):
         raise MessageSpecError(f"{shown(spec.type_name)} is not a valid pkg/Type name", spec.source)
     for f in spec.fields:
         if not is_valid_name(f.name):
             raise MessageSpecError(f"{spec.type_name}: {shown(f.name)} is not a legal field name", spec.source)
-        if keyword.iskeyword(f.name) or f.name in RESERVED_NAMES:
-            raise MessageSpecError(f"{spec.type_name}: field name {f.name} cannot be used (a Python keyword "
-                                   f"or a method of messages)", spec.source)
+        if f.name in RESERVED_NAMES:
+            raise MessageSpecError(f"{spec.type_name}: field name {f.name} cannot be used (a method of messages)",
+                                   spec.source)
         if f.base_type not in BUILTIN_TYPES and not is_valid_type_name(f.base_type):
             raise MessageSpecError(f"{spec.type_name}: {shown(f.base_type)} is not a valid pkg/Type name "
                                    f"(field {f.name})", spec.source)
         if f.array_len is not None and (not isinstance(f.array_len, int) or f.array_len < 0):
             raise MessageSpecError(f"{spec.type_name}: bad array length of field {f.name}", spec.source)
-    field_names = {f.name for f in spec.fields}
+    field_names: set[str] = set()
+    for f in spec.fields:
+        if attribute_name(f.name) in field_names:
+            raise MessageSpecError(f"{spec.type_name}: two fields are named {attribute_name(f.name)} in Python",
+                                   spec.source)
+        field_names.add(attribute_name(f.name))
     for c in spec.constants:
         if not is_valid_name(c.name) or c.name in RESERVED_NAMES:
             raise MessageSpecError(f"{spec.type_name}: {shown(c.name)} cannot be a constant's name", spec.source)
-        if c.name in field_names:
+        if attribute_name(c.name) in field_names:
             raise MessageSpecError(f"{spec.type_name}: {c.name} is both a constant and a field", spec.source)
 
 
@@ -109,8 +119,9 @@ def check_spec(spec: MsgSpec, get_spec: Callable[[str], MsgSpec]) -> None:
     """Refuse (MessageSpecError) a type whose class must not be generated.
 
     Every name must follow ROS's grammar (type ``pkg/Name``, fields and
-    constants ``[A-Za-z][A-Za-z0-9_]*``, fields neither Python keywords nor
-    ``serialize``/``deserialize``), in the type and in every type nested in it;
+    constants ``[A-Za-z][A-Za-z0-9_]*``, fields not ``serialize``/``deserialize``;
+    a Python keyword becomes its :func:`attribute_name`, ``lambda_``, as in genpy,
+    and must then meet no other name), in the type and in every type nested in it;
     and the inlined (de)serializer (:data:`MAX_INLINED_FIELDS`) and the default
     value (:data:`MAX_DEFAULT_COST`) must stay small.
     """
@@ -224,7 +235,7 @@ class _SerWalker(_Gen):
 
     def fields(self, spec: MsgSpec, p: str, ind: int) -> None:
         for f in spec.fields:
-            self.field(f, f"{p}.{f.name}", ind)
+            self.field(f, f"{p}.{attribute_name(f.name)}", ind)
 
     def bytes_of(self, expr: str, ind: int) -> str:
         x = self.var("_x")
@@ -347,7 +358,7 @@ class _DeserWalker(_Gen):
 
     def field(self, f: Field, p: str, ind: int) -> None:
         t = f.base_type
-        target = f"{p}.{f.name}"
+        target = f"{p}.{attribute_name(f.name)}"
         if not f.is_array:
             if t in PRIMITIVE_STRUCT:
                 self.run.append((_deser_char(t), target))
@@ -473,11 +484,11 @@ def build_message_class(
         return name
 
     fields = spec.fields
-    names = [f.name for f in fields]
+    names = [attribute_name(f.name) for f in fields]
     lines: list[str] = []
     # __init__
     simple = all(n.isidentifier() and not keyword.iskeyword(n) and n != "self" for n in names)
-    defaults = {f.name: default_expr(f, cls_var) for f in fields}
+    defaults = {attribute_name(f.name): default_expr(f, cls_var) for f in fields}
     if simple and names:
         params = ", ".join(f"{n}=None" for n in names)
         lines.append(f"def __init__(self, {params}):")
@@ -494,8 +505,8 @@ def build_message_class(
     sw = _SerWalker(ns, get_spec, cls_var)
     sw.fields(spec, "self", 2)
     sw.flush(2)
-    lines.append("def serialize(self):")
-    lines.append('    """The message in ROS 1 wire format (little endian)."""')
+    lines.append("def serialize(self, buff=None):")
+    lines.append('    """The message in ROS 1 wire format (little endian); written to *buff* instead when given (genpy)."""')
     lines.append("    _b = []")
     lines.append("    _w = _b.append")
     lines.append("    try:")
@@ -504,7 +515,9 @@ def build_message_class(
     lines.append("        raise")
     lines.append("    except (_struct_error, TypeError, ValueError, AttributeError, OverflowError) as _exc:")
     lines.append(f"        raise _SerErr({_lit(f'cannot serialize {spec.type_name}: %s')} % (_exc,)) from _exc")
-    lines.append("    return b''.join(_b)")
+    lines.append("    if buff is None:")
+    lines.append("        return b''.join(_b)")
+    lines.append("    buff.write(b''.join(_b))")
 
     # deserialize
     dw = _DeserWalker(ns, get_spec, cls_var)
@@ -534,7 +547,7 @@ def build_message_class(
     exec(code, ns)
 
     attrs: dict[str, Any] = {
-        "__slots__": tuple(names),
+        "__slots__": list(names),  # a list, as in genpy's classes
         "__doc__": f"ROS message {spec.type_name} (generated by rostui).",
         "__module__": "rostui.core.msg.generated",
         "_type": spec.type_name,
@@ -551,7 +564,7 @@ def build_message_class(
     if "__init__" in ns:
         attrs["__init__"] = ns["__init__"]
     for c in spec.constants:
-        attrs[c.name] = c.value
+        attrs[attribute_name(c.name)] = c.value
     cls = type(spec.short_name, (Message,), attrs)
     cls.__qualname__ = spec.short_name
     return cls

@@ -8,17 +8,30 @@ pickling of messages go through :attr:`Message._text_hook` and
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from types import MethodType
-from typing import Any, Callable, ClassVar, Generic, TypeAlias, TypeVar, cast
+from typing import Any, Callable, ClassVar, Generic, Protocol, TypeAlias, TypeVar, cast, overload
 
 from .spec import MsgSpec, SrvSpec
 
-__all__ = ["Buffer", "Message", "Service", "hybridmethod", "install_hooks"]
+__all__ = ["Buffer", "Message", "Service", "Writable", "hybridmethod", "install_hooks"]
 
 Buffer: TypeAlias = bytes | bytearray | memoryview
 """What ``deserialize`` reads: a serialized message."""
 
 _M = TypeVar("_M", bound="Message")
+
+_NUMPY_DTYPES = {
+    "bool": "bool", "int8": "int8", "byte": "int8", "int16": "int16", "uint16": "uint16", "int32": "int32",
+    "uint32": "uint32", "int64": "int64", "uint64": "uint64", "float32": "float32", "float64": "float64",
+}
+
+
+class Writable(Protocol):
+    """Where ``serialize(buff)`` writes: anything with ``write(bytes)``, such as ``io.BytesIO``."""
+
+    def write(self, data: bytes, /) -> Any:
+        """Append *data*."""
 
 
 class hybridmethod(Generic[_M]):
@@ -60,7 +73,7 @@ class Message:
     ``_connection_header`` is a free slot the node layer may set on received messages.
     """
 
-    __slots__: ClassVar[tuple[str, ...]] = ("_connection_header",)
+    __slots__: ClassVar[Sequence[str]] = ("_connection_header",)
 
     _connection_header: dict[str, str]
     """The publisher's connection header, on messages a subscriber received."""
@@ -107,9 +120,23 @@ class Message:
                 value = kwds.get(name)
             setattr(self, name, self._defaults[name]() if value is None else value)
 
-    def serialize(self) -> bytes:  # pragma: no cover - replaced in generated classes
-        """The message in ROS 1 wire format."""
+    @overload
+    def serialize(self) -> bytes: ...
+    @overload
+    def serialize(self, buff: Writable) -> None: ...
+    def serialize(self, buff: Writable | None = None) -> bytes | None:  # pragma: no cover - replaced in generated classes
+        """The message in ROS 1 wire format; with *buff* (genpy's form) written there instead."""
         raise NotImplementedError
+
+    def serialize_numpy(self, buff: Writable, numpy: Any) -> None:
+        """genpy's numpy form of :meth:`serialize`: numeric arrays may be numpy arrays (*numpy* is the module)."""
+        self.serialize(buff)
+
+    def deserialize_numpy(self, data: Buffer, numpy: Any) -> Message:
+        """Fill this message from *data* as genpy does, numeric arrays as numpy arrays (*numpy* is the module)."""
+        filled = self.deserialize(data)
+        _arrays_to_numpy(filled, numpy)
+        return filled
 
     def _get_types(self) -> list[str]:
         """The field types, in field order (genpy compatibility)."""
@@ -140,6 +167,21 @@ class Message:
 
     def __reduce__(self) -> tuple[Callable[[str, str, str], Message], tuple[str, str, str], list[Any]]:
         return (Message._unpickle_hook, (self._type, self._md5sum, self._full_text), self.__getstate__())
+
+
+def _arrays_to_numpy(msg: Message, numpy: Any) -> None:
+    """Turn *msg*'s numeric array fields (nested messages too) into numpy arrays, as genpy's numpy mode does."""
+    for name, slot_type in zip(msg.__slots__, msg._slot_types):
+        value = getattr(msg, name)
+        base, is_array = slot_type.split("[", 1)[0], "[" in slot_type
+        if isinstance(value, Message):
+            _arrays_to_numpy(value, numpy)
+        elif is_array and base in _NUMPY_DTYPES:
+            setattr(msg, name, numpy.array(value, dtype=_NUMPY_DTYPES[base]))
+        elif is_array:
+            for item in value:
+                if isinstance(item, Message):
+                    _arrays_to_numpy(item, numpy)
 
 
 class Service:

@@ -1,0 +1,20 @@
+"""What unmodified ROS 1 Python scripts import, served by rostui (`rostui python`, `rostui shell-env`).
+
+:data:`PYLIB` is a directory of importable top-level packages (``genpy``,
+``roslib``) and a ``sitecustomize`` that, at a child interpreter's start,
+chooses between rostui's modules and a real ROS install (:mod:`.choice`) and
+installs the import hook of :mod:`.finder` that makes ``<pkg>.msg`` and
+``<pkg>.srv`` modules from rostui's message classes.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+__all__ = ["PYLIB", "ROSTUI_ROOT"]
+
+PYLIB: Path = Path(__file__).resolve().parent / "pylib"
+"""The directory put first on a script's ``sys.path`` (its ``PYTHONPATH``)."""
+
+ROSTUI_ROOT: Path = Path(__file__).resolve().parent.parent.parent
+"""The directory holding the ``rostui`` package, so an interpreter without rostui installed finds it."""

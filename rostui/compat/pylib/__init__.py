@@ -1,0 +1,1 @@
+"""The directory put on a script's import path; as ``rostui.compat.pylib`` it is only packaged data."""

@@ -55,7 +55,7 @@ class Choice:
     def describe(self) -> str:
         """One line saying which ROS the script gets and where it comes from."""
         if self.use_rostui:
-            shown = f"rostui's genpy, roslib and message modules ({PYLIB})"
+            shown = f"rostui's rospy, genpy, roslib and message modules ({PYLIB})"
             if self.real_ros is not None:
                 return f"rostui python: the script gets {shown}, not the real ROS at {self.real_ros}"
             return f"rostui python: the script gets {shown}"

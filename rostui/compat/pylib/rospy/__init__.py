@@ -1,0 +1,267 @@
+"""rospy for unmodified ROS 1 scripts, on rostui's node engine (:mod:`rostui.core.node.sync`).
+
+Nodes, topics, services, parameters, logging, ``Rate``, ``Timer`` and times
+keep rospy's names and arguments; message classes a script imports
+(``from std_msgs.msg import String``) are rostui's own, so they go through
+rostui's publishers and subscribers unchanged.
+"""
+
+from __future__ import annotations
+
+import abc
+from typing import Any, Callable, Sequence
+
+import genpy
+from genpy import Message
+
+from rostui.core.node import sync as _sync
+from rostui.core.node.anymsg import AnyMsg
+from rostui.core.node.sync import (
+    delete_param, get_master_uri, get_node_uri, get_param, get_param_cached, get_param_names, has_param,
+    is_shutdown, logdebug, logdebug_once, logdebug_throttle, logerr, logerr_once, logerr_throttle, logfatal,
+    logfatal_once, logfatal_throttle, loginfo, loginfo_once, loginfo_throttle, logwarn, logwarn_once,
+    logwarn_throttle, myargv, on_shutdown, search_param, set_param, signal_shutdown, sleep, spin,
+    wait_for_message,
+)
+from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync, ros_result
+
+from . import exceptions, names, rostime
+from ._nodeless import caller as _nodeless_caller
+from .exceptions import (
+    ROSException, ROSInitException, ROSInternalException, ROSInterruptException, ROSSerializationException,
+    ROSTimeMovedBackwardsException, ServiceException, TransportException,
+)
+from .names import get_caller_id, get_name, get_namespace, remap_name, resolve_name
+from .rostime import Duration, Time, get_rostime, get_time
+
+__all__ = [
+    "AnyMsg", "DEBUG", "Duration", "ERROR", "FATAL", "INFO", "Message", "Publisher", "ROSException",
+    "ROSInitException", "ROSInternalException", "ROSInterruptException", "ROSSerializationException",
+    "ROSTimeMovedBackwardsException", "Rate", "Service", "ServiceException", "ServiceProxy", "Subscriber",
+    "Time", "Timer", "TimerEvent", "TransportException", "WARN", "delete_param", "exceptions",
+    "get_caller_id", "get_master_uri", "get_name", "get_namespace", "get_node_uri", "get_param",
+    "get_param_cached", "get_param_names", "get_published_topics", "get_rostime", "get_time", "has_param",
+    "init_node", "is_shutdown", "logdebug", "logdebug_once", "logdebug_throttle", "logerr", "logerr_once",
+    "logerr_throttle", "logfatal", "logfatal_once", "logfatal_throttle", "loginfo", "loginfo_once",
+    "loginfo_throttle", "logwarn", "logwarn_once", "logwarn_throttle", "myargv", "names", "on_shutdown",
+    "remap_name", "resolve_name", "rostime", "search_param", "set_param", "signal_shutdown", "sleep", "spin",
+    "wait_for_message", "wait_for_service",
+]
+
+DEBUG = 1
+"""Log level constants, rosgraph_msgs/Log's values (``init_node(..., log_level=rospy.DEBUG)``)."""
+INFO = 2
+WARN = 4
+ERROR = 8
+FATAL = 16
+
+
+def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = False,
+              log_level: int | None = None, disable_rostime: bool = False, disable_rosout: bool = False,
+              disable_signals: bool = False, xmlrpc_port: int = 0, tcpros_port: int = 0) -> None:
+    """Start this process's node, as rospy's ``init_node``.
+
+    *disable_rostime*, *disable_rosout*, *xmlrpc_port* and *tcpros_port* are
+    accepted and have no effect: the node always uses the wall clock, logs to
+    ``/rosout`` and listens on free ports.
+    """
+    _sync.init_node(name, argv=argv, anonymous=anonymous, log_level=log_level, disable_signals=disable_signals)
+    _Topic.start_pending()
+
+
+class _Topic(abc.ABC):
+    """A topic handle that, made before ``init_node`` as rospy allows, registers once the node starts."""
+
+    _pending: list[_Topic] = []
+
+    def __init__(self) -> None:
+        self._impl: Any = None
+        if _initialized():
+            self._start()
+        else:
+            _Topic._pending.append(self)
+
+    @abc.abstractmethod
+    def _start(self) -> None:
+        """Register with the node that now runs."""
+
+    def _handle(self) -> Any:
+        if self._impl is None:
+            raise ROSException("ROS node has not been initialized")
+        return self._impl
+
+    @classmethod
+    def start_pending(cls) -> None:
+        """Register every handle made before ``init_node``."""
+        pending, cls._pending = cls._pending, []
+        for topic in pending:
+            topic._start()
+
+    def get_num_connections(self) -> int:
+        """The number of connected peers."""
+        return int(self._handle().get_num_connections())
+
+    def unregister(self) -> None:
+        """Stop publishing or receiving."""
+        if self._impl is None:
+            _Topic._pending.remove(self)
+        else:
+            self._impl.unregister()
+
+
+class Publisher(_Topic):
+    """Publish messages on a topic, as ``rospy.Publisher``; may be made before ``init_node``.
+
+    *subscriber_listener* is accepted; its ``peer_subscribe`` and
+    ``peer_unsubscribe`` are not called. *headers* are accepted and not sent.
+    """
+
+    def __init__(self, name: str, data_class: Any, subscriber_listener: Any = None, tcp_nodelay: bool = False,
+                 latch: bool = False, headers: dict[str, str] | None = None, queue_size: int | None = None) -> None:
+        self.name = self.resolved_name = resolve_name(name)
+        self.data_class, self.type = data_class, data_class._type
+        self._options = {"queue_size": queue_size, "latch": latch, "tcp_nodelay": tcp_nodelay}
+        super().__init__()
+
+    def _start(self) -> None:
+        self._impl = _sync.Publisher(self.resolved_name, self.data_class, **self._options)
+
+    def publish(self, *args: Any, **kwargs: Any) -> None:
+        """Publish a message, or one built from its fields given positionally or as keywords."""
+        self._handle().publish(*args, **kwargs)
+
+
+class Subscriber(_Topic):
+    """Call *callback* with each message of a topic, as ``rospy.Subscriber``; may be made before ``init_node``.
+
+    With *callback_args* the callback gets ``(message, callback_args)``; *buff_size* is accepted.
+    """
+
+    def __init__(self, name: str, data_class: Any, callback: Callable[..., Any] | None = None,
+                 callback_args: Any = None, queue_size: int | None = None, buff_size: int = 65536,
+                 tcp_nodelay: bool = False) -> None:
+        self.name = self.resolved_name = resolve_name(name)
+        self.data_class, self.callback, self.callback_args = data_class, callback, callback_args
+        self._options = {"queue_size": queue_size, "tcp_nodelay": tcp_nodelay}
+        super().__init__()
+
+    def _start(self) -> None:
+        self._impl = _sync.Subscriber(self.resolved_name, self.data_class, self.callback,
+                                      callback_args=self.callback_args, **self._options)
+
+
+class Service(_sync.Service):
+    """Serve a service, as ``rospy.Service``; the handler runs in a worker thread.
+
+    *buff_size* is accepted (rostui reads whole requests); *error_handler* is
+    accepted and not called.
+    """
+
+    def __init__(self, name: str, service_class: Any, handler: Callable[[Any], Any], buff_size: int = 65536,
+                 error_handler: Any = None) -> None:
+        super().__init__(name, service_class, handler)
+
+
+_initialized = names.is_initialized
+
+
+class ServiceProxy:
+    """Call a service like a function, as ``rospy.ServiceProxy``; works before ``init_node`` too.
+
+    Call it with the request's fields positionally, as keywords, or with a
+    request object; *persistent* keeps one connection for every call.
+    """
+
+    def __init__(self, name: str, service_class: Any, persistent: bool = False,
+                 headers: dict[str, str] | None = None) -> None:
+        self.service_class = service_class
+        self.request_class = service_class._request_class
+        self.response_class = service_class._response_class
+        self.persistent = persistent
+        self.resolved_name = resolve_name(name)
+        self._node_proxy: _sync.ServiceProxy | None = None
+        if _initialized():
+            self._node_proxy = _sync.ServiceProxy(name, service_class, persistent=persistent, headers=headers)
+        else:
+            self._caller = _nodeless_caller()
+            self._proxy = self._caller.proxy(self.resolved_name, service_class, persistent, headers)
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        """Call the service and return its response; ServiceException on failure."""
+        return self.call(*args, **kwargs)
+
+    def call(self, *args: Any, **kwargs: Any) -> Any:
+        """Call the service and return its response; ServiceException on failure."""
+        if self._node_proxy is not None:
+            return self._node_proxy.call(*args, **kwargs)
+        return self._caller.engine.run(self._proxy.call(*args, **kwargs))
+
+    def wait_for_service(self, timeout: float | None = None) -> None:
+        """Block until the service is available; ROSException after *timeout* seconds."""
+        wait_for_service(self.resolved_name, timeout)
+
+    def close(self) -> None:
+        """Close a persistent connection."""
+        if self._node_proxy is not None:
+            self._node_proxy.close()
+        else:
+            self._caller.engine.run(self._proxy.close())
+
+
+def wait_for_service(service: str, timeout: float | None = None) -> None:
+    """Block until *service* is registered and reachable; ROSException after *timeout* seconds.
+
+    Works before ``init_node``, as in rospy.
+    """
+    if _initialized():
+        _sync.wait_for_service(service, timeout)
+        return
+    resolved = resolve_name(service)
+    if not _nodeless_caller().wait_for_service(resolved, timeout):
+        raise ROSException(f"timeout exceeded while waiting for service {resolved}")
+
+
+class Rate(_sync.Rate):
+    """Keep a loop at *hz* cycles a second, as ``rospy.Rate``; *reset* is accepted (the clock never jumps back)."""
+
+    def __init__(self, hz: float, reset: bool = False) -> None:
+        super().__init__(hz)
+
+
+class TimerEvent:
+    """What a :class:`Timer` callback receives: expected and real times of this and the last call."""
+
+    def __init__(self, last_expected: Time | None, last_real: Time | None, current_expected: Time,
+                 current_real: Time, last_duration: float | None) -> None:
+        self.last_expected = last_expected
+        self.last_real = last_real
+        self.current_expected = current_expected
+        self.current_real = current_real
+        self.last_duration = last_duration
+
+
+def _time(seconds: float | None) -> Time | None:
+    return None if seconds is None else Time.from_sec(seconds)
+
+
+class Timer(_sync.Timer):
+    """Call ``callback(TimerEvent)`` every *period*, as ``rospy.Timer``; *reset* is accepted."""
+
+    def __init__(self, period: genpy.Duration | float, callback: Callable[[TimerEvent], Any],
+                 oneshot: bool = False, reset: bool = False) -> None:
+        def relay(event: _sync.TimerEvent) -> None:
+            callback(TimerEvent(_time(event.last_expected), _time(event.last_real),
+                                Time.from_sec(event.current_expected), Time.from_sec(event.current_real),
+                                event.last_duration))
+
+        super().__init__(period, relay, oneshot=oneshot)
+        self.callback = callback
+
+
+def get_published_topics(namespace: str = "/") -> list[list[str]]:
+    """``[topic, type]`` pairs of every topic published under *namespace*."""
+    master = get_master_uri() if _initialized() else _nodeless_caller().master_uri
+    try:
+        return [list(pair) for pair in ros_result(call_sync(master, "getPublishedTopics", get_caller_id(), namespace))]
+    except XmlRpcConnectionError as exc:
+        raise ROSException(f"Unable to communicate with master at {master}: {exc}") from exc

@@ -1,0 +1,79 @@
+"""Service calls before ``init_node``: rospy lets a script that is no node call services, so does this.
+
+The calls run on a private engine under rospy's caller id ``/unnamed`` and
+ask the master named by ``ROS_MASTER_URI`` (``__master:=`` on the command line wins).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import sys
+import threading
+import time
+from typing import Any
+
+from rostui.core import names as _names
+from rostui.core.localhost import connect_host
+from rostui.core.masteruri import master_uri_from_env
+from rostui.core.node.engine import Engine
+from rostui.core.node.services import ServiceException, parse_rosrpc_uri
+from rostui.core.node.services import ServiceProxy as _AsyncProxy
+from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, ros_result
+
+__all__ = ["Caller", "caller"]
+
+
+class Caller:
+    """The part of a node a service proxy needs: a caller id, the master, and an engine to run on."""
+
+    def __init__(self) -> None:
+        self.name = "/unnamed"
+        self.master_uri = master_uri_from_env(_names.parse_argv(sys.argv[1:]).master)
+        self.engine = Engine()
+
+    async def lookup_service(self, service: str) -> str:
+        """The ``rosrpc://`` URI of *service*; ServiceException when it is not registered."""
+        async with XmlRpcClient(self.master_uri) as client:
+            try:
+                return str(ros_result(await client.call("lookupService", self.name, service)))
+            except XmlRpcConnectionError as exc:
+                raise ServiceException(f"Unable to communicate with master at {self.master_uri}: {exc}") from exc
+            except RosApiError as exc:
+                raise ServiceException(f"service [{service}] unavailable") from exc
+
+    def proxy(self, resolved: str, service_class: Any, persistent: bool,
+              headers: dict[str, str] | None) -> _AsyncProxy:
+        """An asynchronous proxy of *resolved* that runs on this caller's engine."""
+        return _AsyncProxy(self, resolved, service_class, persistent=persistent, headers=headers)  # type: ignore[arg-type]
+
+    def wait_for_service(self, resolved: str, timeout: float | None) -> bool:
+        """Block until *resolved* is registered and accepts connections; False when *timeout* passes first."""
+        deadline = None if timeout is None else time.monotonic() + timeout
+
+        async def reachable() -> bool:
+            try:
+                uri = await self.lookup_service(resolved)
+                host, port = parse_rosrpc_uri(uri)
+                _, writer = await asyncio.wait_for(asyncio.open_connection(connect_host(host), port), 1.0)
+                writer.close()
+                return True
+            except (ServiceException, OSError, ValueError, asyncio.TimeoutError):
+                return False
+
+        while not self.engine.run(reachable()):
+            if deadline is not None and time.monotonic() >= deadline:
+                return False
+            time.sleep(0.1)
+        return True
+
+
+_lock = threading.Lock()
+_caller: list[Caller] = []
+
+
+def caller() -> Caller:
+    """This process's one nodeless caller, started on first use."""
+    with _lock:
+        if not _caller:
+            _caller.append(Caller())
+        return _caller[0]

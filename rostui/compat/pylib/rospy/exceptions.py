@@ -1,0 +1,33 @@
+"""rospy.exceptions: the errors rospy scripts catch, as rostui's runtime raises them."""
+
+from __future__ import annotations
+
+from rostui.core.node.services import ServiceException
+from rostui.core.node.sync import ROSException, ROSInterruptException
+
+__all__ = ["ROSException", "ROSInterruptException", "ROSTimeMovedBackwardsException", "ROSInitException",
+           "ROSSerializationException", "ROSInternalException", "TransportException", "ServiceException"]
+
+
+class ROSTimeMovedBackwardsException(ROSInterruptException):
+    """Time went backwards during a sleep (rospy raises it when simulated time is reset)."""
+
+    def __init__(self, time: float = 0.0) -> None:
+        self.time = time
+        super().__init__("ROS time moved backwards")
+
+
+class ROSInitException(ROSException):
+    """The node could not be initialised."""
+
+
+class ROSSerializationException(ROSException):
+    """A message could not be serialised."""
+
+
+class ROSInternalException(Exception):
+    """An error inside the client library itself."""
+
+
+class TransportException(ROSException):
+    """A connection to a peer failed."""

@@ -1,0 +1,44 @@
+"""rospy.rostime: ``rospy.Time`` and ``rospy.Duration`` (genpy's, printing as rospy's) and the clock."""
+
+from __future__ import annotations
+
+import genpy
+
+__all__ = ["Time", "Duration", "get_rostime", "get_time"]
+
+
+class Duration(genpy.Duration):
+    """A signed span of time, ``repr()`` ``rospy.Duration[nsecs]``."""
+
+    __slots__ = ()
+
+    def __repr__(self) -> str:
+        return f"rospy.Duration[{self.to_nsec()}]"
+
+
+class Time(genpy.Time):
+    """A point in time, ``repr()`` ``rospy.Time[nsecs]``; ``Time.now()`` is the current time."""
+
+    __slots__ = ()
+
+    def __repr__(self) -> str:
+        return f"rospy.Time[{self.to_nsec()}]"
+
+    def __sub__(self, other: object) -> "Time | Duration":  # type: ignore[override]
+        diff = super().__sub__(other)  # type: ignore[call-overload]
+        return Duration(diff.secs, diff.nsecs) if isinstance(diff, genpy.Duration) else diff
+
+    @classmethod
+    def from_seconds(cls, float_secs: float) -> "Time":
+        """The time *float_secs* after the epoch (rospy's older spelling of ``from_sec``)."""
+        return cls.from_sec(float_secs)
+
+
+def get_rostime() -> Time:
+    """The current time as a :class:`Time` (wall clock: rostui has no simulated time for rospy yet)."""
+    return Time.now()
+
+
+def get_time() -> float:
+    """The current time in float seconds."""
+    return get_rostime().to_sec()

@@ -67,7 +67,7 @@ BASE_COMMANDS: frozenset[str] = frozenset({
 BASE_FILES: frozenset[str] = frozenset({"/usr/bin/python3", "/bin/sh", "/usr/share"})
 
 #: Modules the tests generate themselves (with genpy, from rostui's own .msg files) before importing.
-GENERATED_MODULES: frozenset[str] = frozenset({"turtlesim", "rospy_tutorials"})
+GENERATED_MODULES: frozenset[str] = frozenset({"turtlesim", "rospy_tutorials", "beginner_tutorials"})
 
 #: Programs a test looks for but passes without, checking the behaviour either way (named, so the
 #: scan knows they are not forgotten): xterm is a launch-prefix whose absence roslaunch reports too.

@@ -255,7 +255,6 @@ class Timer(_sync.Timer):
                                 event.last_duration))
 
         super().__init__(period, relay, oneshot=oneshot)
-        self.callback = callback
 
 
 def get_published_topics(namespace: str = "/") -> list[list[str]]:

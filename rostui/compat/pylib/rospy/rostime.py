@@ -24,10 +24,6 @@ class Time(genpy.Time):
     def __repr__(self) -> str:
         return f"rospy.Time[{self.to_nsec()}]"
 
-    def __sub__(self, other: object) -> "Time | Duration":  # type: ignore[override]
-        diff = super().__sub__(other)  # type: ignore[call-overload]
-        return Duration(diff.secs, diff.nsecs) if isinstance(diff, genpy.Duration) else diff
-
     @classmethod
     def from_seconds(cls, float_secs: float) -> "Time":
         """The time *float_secs* after the epoch (rospy's older spelling of ``from_sec``)."""

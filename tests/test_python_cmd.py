@@ -236,7 +236,7 @@ def test_a_real_ros_is_never_shadowed_silently(tmp_path: Path) -> None:
     script = tmp_path / "plain.py"
     script.write_text(_USES_STRING)
     for args, origin, says in (([], "/dist-packages/genpy/", "gets the real ROS at "),
-                               (["--rostui"], "/rostui/compat/pylib/genpy/", "gets rostui's genpy")):
+                               (["--rostui"], "/rostui/compat/pylib/genpy/", "gets rostui's rospy, genpy")):
         exports = _shell_env(args)
         r = subprocess.run(["bash", "-c", f'{exports}\nexec "$0" "$1"', SYSTEM_PYTHON, str(script)], env=_env(),
                            capture_output=True, text=True, timeout=60)

@@ -184,3 +184,23 @@ def test_api_script_same_under_both(any_master: str, envs: dict[str, dict[str, s
         assert out.returncode == 0, out.stdout + out.stderr
         said[side] = [line for line in out.stdout.splitlines() if line.startswith("= ")]
     assert said["real"] and said["shim"] == said["real"]
+
+
+@pytest.mark.parametrize(("args", "origin", "says"), [
+    ([], "/usr/lib/python3/dist-packages/rospy/", "gets the real ROS at "),
+    (["--rostui"], str(PYLIB / "rospy") + "/", "gets rostui's rospy"),
+])
+def test_real_rospy_wins_unless_rostui_is_asked(rospy_available: None, args: list[str], origin: str,
+                                                says: str) -> None:
+    """Debian's python3 with shell-env's path gets Debian's rospy, or rostui's with --rostui.
+
+    One line on stderr says which.
+    """
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH" and not k.startswith("ROSTUI_PYTHON")}
+    exports = subprocess.run(rostui_cmd("shell-env", *args), env=env, capture_output=True, text=True,
+                             timeout=60).stdout
+    out = subprocess.run(["bash", "-c", f'{exports}\nexec "$0" -c "import rospy; print(rospy.__file__)"',
+                          SYSTEM_PYTHON], env=env, capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.startswith(origin), out.stdout
+    assert len(out.stderr.splitlines()) == 1 and says in out.stderr, out.stderr

@@ -11,11 +11,10 @@ from __future__ import annotations
 import abc
 from typing import Any, Callable, Sequence
 
-import genpy
-from genpy import Message
-
+from rostui.core.msg import Message
 from rostui.core.node import sync as _sync
 from rostui.core.node.anymsg import AnyMsg
+from rostui.core.rostime import Duration as _Duration
 from rostui.core.node.sync import (
     delete_param, get_master_uri, get_node_uri, get_param, get_param_cached, get_param_names, has_param,
     is_shutdown, logdebug, logdebug_once, logdebug_throttle, logerr, logerr_once, logerr_throttle, logfatal,
@@ -120,11 +119,12 @@ class Publisher(_Topic):
                  latch: bool = False, headers: dict[str, str] | None = None, queue_size: int | None = None) -> None:
         self.name = self.resolved_name = resolve_name(name)
         self.data_class, self.type = data_class, data_class._type
-        self._options = {"queue_size": queue_size, "latch": latch, "tcp_nodelay": tcp_nodelay}
+        self.queue_size, self.latch, self.tcp_nodelay = queue_size, latch, tcp_nodelay
         super().__init__()
 
     def _start(self) -> None:
-        self._impl = _sync.Publisher(self.resolved_name, self.data_class, **self._options)
+        self._impl = _sync.Publisher(self.resolved_name, self.data_class, queue_size=self.queue_size,
+                                     latch=self.latch, tcp_nodelay=self.tcp_nodelay)
 
     def publish(self, *args: Any, **kwargs: Any) -> None:
         """Publish a message, or one built from its fields given positionally or as keywords."""
@@ -142,12 +142,13 @@ class Subscriber(_Topic):
                  tcp_nodelay: bool = False) -> None:
         self.name = self.resolved_name = resolve_name(name)
         self.data_class, self.callback, self.callback_args = data_class, callback, callback_args
-        self._options = {"queue_size": queue_size, "tcp_nodelay": tcp_nodelay}
+        self.queue_size, self.tcp_nodelay = queue_size, tcp_nodelay
         super().__init__()
 
     def _start(self) -> None:
         self._impl = _sync.Subscriber(self.resolved_name, self.data_class, self.callback,
-                                      callback_args=self.callback_args, **self._options)
+                                      callback_args=self.callback_args, queue_size=self.queue_size,
+                                      tcp_nodelay=self.tcp_nodelay)
 
 
 class Service(_sync.Service):
@@ -247,7 +248,7 @@ def _time(seconds: float | None) -> Time | None:
 class Timer(_sync.Timer):
     """Call ``callback(TimerEvent)`` every *period*, as ``rospy.Timer``; *reset* is accepted."""
 
-    def __init__(self, period: genpy.Duration | float, callback: Callable[[TimerEvent], Any],
+    def __init__(self, period: _Duration | float, callback: Callable[[TimerEvent], Any],
                  oneshot: bool = False, reset: bool = False) -> None:
         def relay(event: _sync.TimerEvent) -> None:
             callback(TimerEvent(_time(event.last_expected), _time(event.last_real),

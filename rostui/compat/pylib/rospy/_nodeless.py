@@ -44,7 +44,8 @@ class Caller:
     def proxy(self, resolved: str, service_class: Any, persistent: bool,
               headers: dict[str, str] | None) -> _AsyncProxy:
         """An asynchronous proxy of *resolved* that runs on this caller's engine."""
-        return _AsyncProxy(self, resolved, service_class, persistent=persistent, headers=headers)  # type: ignore[arg-type]
+        host: Any = self
+        return _AsyncProxy(host, resolved, service_class, persistent=persistent, headers=headers)
 
     def wait_for_service(self, resolved: str, timeout: float | None) -> bool:
         """Block until *resolved* is registered and accepts connections; False when *timeout* passes first."""

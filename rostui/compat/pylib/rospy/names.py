@@ -41,7 +41,10 @@ get_caller_id = get_name
 
 
 def get_ros_namespace(argv: list[str] | None = None) -> str:
-    """The namespace from ``__ns:=`` in *argv* (default ``sys.argv``) or ``ROS_NAMESPACE``, global with trailing slash."""
+    """The namespace from ``__ns:=`` in *argv* (default ``sys.argv``) or ``ROS_NAMESPACE``.
+
+    It is global, with a trailing slash.
+    """
     args = _names.parse_argv(list(sys.argv if argv is None else argv)[1:])
     return _names.node_namespace(args, os.environ)
 

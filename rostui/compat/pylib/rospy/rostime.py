@@ -1,13 +1,18 @@
-"""rospy.rostime: ``rospy.Time`` and ``rospy.Duration`` (genpy's, printing as rospy's) and the clock."""
+"""rospy.rostime: ``rospy.Time`` and ``rospy.Duration`` (genpy's, printing as rospy's) and the clock.
+
+Their bases are rostui's times, which are the shim's ``genpy.Time`` and ``genpy.Duration``.
+"""
 
 from __future__ import annotations
 
-import genpy
+import time
+
+from rostui.core import rostime as _base
 
 __all__ = ["Time", "Duration", "get_rostime", "get_time"]
 
 
-class Duration(genpy.Duration):
+class Duration(_base.Duration):
     """A signed span of time, ``repr()`` ``rospy.Duration[nsecs]``."""
 
     __slots__ = ()
@@ -16,7 +21,7 @@ class Duration(genpy.Duration):
         return f"rospy.Duration[{self.to_nsec()}]"
 
 
-class Time(genpy.Time):
+class Time(_base.Time):
     """A point in time, ``repr()`` ``rospy.Time[nsecs]``; ``Time.now()`` is the current time."""
 
     __slots__ = ()
@@ -27,12 +32,12 @@ class Time(genpy.Time):
     @classmethod
     def from_seconds(cls, float_secs: float) -> "Time":
         """The time *float_secs* after the epoch (rospy's older spelling of ``from_sec``)."""
-        return cls.from_sec(float_secs)
+        return cls(float(float_secs))
 
 
 def get_rostime() -> Time:
     """The current time as a :class:`Time` (wall clock: rostui has no simulated time for rospy yet)."""
-    return Time.now()
+    return Time.from_nsec(time.time_ns())
 
 
 def get_time() -> float:

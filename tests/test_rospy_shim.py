@@ -56,7 +56,7 @@ def _generate_real_srv(out: Path) -> None:
         srv_dir = out / package / "srv"
         srv = PACKAGE_PATH / package / "srv" / "AddTwoInts.srv"
         base = [SYSTEM_PYTHON, GENSRV, "-p", package, "-o", str(srv_dir)]
-        subprocess.run([*base, "-Istd_msgs:/usr/share/std_msgs/msg", str(srv)], check=True)
+        subprocess.run([*base, str(srv)], check=True)
         subprocess.run([*base, "--initpy"], check=True)
         (out / package / "__init__.py").write_text("")
 

@@ -18,6 +18,8 @@ rospy.init_node("api", argv=sys.argv, anonymous=False, log_level=rospy.DEBUG, di
 say("name", rospy.get_name(), rospy.get_namespace(), rospy.names.resolve_name("chatter"), rospy.resolve_name("~p"))
 say("remapped", rospy.resolve_name("from_here"), rospy.names.get_caller_id())
 say("myargv", rospy.myargv())
+say("mappings", rospy.names.get_mappings(), rospy.names.remap_name("/from_here"), rospy.names.remap_name("other"),
+    rospy.names.ns_join("/a", "b"), rospy.names.make_global_ns("x"), rospy.Header._type)
 say("time", repr(rospy.Time(3, 5)), repr(rospy.Duration(2)), isinstance(rospy.Time.now(), genpy.Time),
     type(rospy.get_rostime()).__name__, repr(rospy.Time(5) - rospy.Time(3)), rospy.get_time() > 0)
 
@@ -25,6 +27,7 @@ rospy.set_param("~gain", 2.5)
 rospy.set_param("/api_test/nested", {"a": 1, "b": "x"})
 say("param", rospy.get_param("~gain"), rospy.get_param("/api_test/nested/b"), rospy.has_param("/api_test/nested"),
     rospy.get_param("/missing", "dflt"), rospy.get_param("/api_test/nested"))
+say("cached", rospy.get_param_cached("~gain"), rospy.get_param_cached("~gain"))
 say("search", rospy.search_param("nested"), rospy.search_param("nowhere"))
 say("names", sorted(n for n in rospy.get_param_names() if n.startswith("/api")))
 rospy.delete_param("/api_test")

@@ -22,13 +22,14 @@ from rostui.core.node.sync import (
     logwarn_throttle, myargv, on_shutdown, search_param, set_param, signal_shutdown, sleep, spin,
     wait_for_message,
 )
+from rostui.core.node.services import parse_rosrpc_uri
 from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync, ros_result
 
 from . import exceptions, names, rostime
 from ._nodeless import caller as _nodeless_caller
 from .exceptions import (
     ROSException, ROSInitException, ROSInternalException, ROSInterruptException, ROSSerializationException,
-    ROSTimeMovedBackwardsException, ServiceException, TransportException,
+    ROSTimeMovedBackwardsException, ServiceException, TransportException, TransportInitError, TransportTerminated,
 )
 from .names import get_caller_id, get_name, get_namespace, remap_name, resolve_name
 from .rostime import Duration, Time, get_rostime, get_time
@@ -36,7 +37,8 @@ from .rostime import Duration, Time, get_rostime, get_time
 __all__ = [
     "AnyMsg", "DEBUG", "Duration", "ERROR", "FATAL", "INFO", "Message", "Publisher", "ROSException",
     "ROSInitException", "ROSInternalException", "ROSInterruptException", "ROSSerializationException",
-    "ROSTimeMovedBackwardsException", "Rate", "Service", "ServiceException", "ServiceProxy", "Subscriber",
+    "ROSTimeMovedBackwardsException", "Rate", "Service", "SubscribeListener", "TransportInitError",
+    "TransportTerminated", "Header", "logout", "parse_rosrpc_uri", "ServiceException", "ServiceProxy", "Subscriber",
     "Time", "Timer", "TimerEvent", "TransportException", "WARN", "delete_param", "exceptions",
     "get_caller_id", "get_master_uri", "get_name", "get_namespace", "get_node_uri", "get_param",
     "get_param_cached", "get_param_names", "get_published_topics", "get_rostime", "get_time", "has_param",
@@ -53,6 +55,30 @@ INFO = 2
 WARN = 4
 ERROR = 8
 FATAL = 16
+
+
+logout = loginfo
+"""rospy's old name of :func:`loginfo`."""
+
+
+def __getattr__(name: str) -> Any:
+    """``rospy.Header``: std_msgs/Header, built on first use so ``import rospy`` stays quick."""
+    if name == "Header":
+        from rostui.core.msg import get_message_class
+
+        return get_message_class("std_msgs/Header")
+    raise AttributeError(f"module 'rospy' has no attribute {name!r}")
+
+
+class SubscribeListener:
+    """The base class of a Publisher's *subscriber_listener* (rostui never calls it: see docs/rospy.md)."""
+
+    def peer_subscribe(self, topic_name: str, topic_publish: Callable[[Any], None],
+                       peer_publish: Callable[[Any], None]) -> None:
+        """Called by rospy when a subscriber connects."""
+
+    def peer_unsubscribe(self, topic_name: str, num_peers: int) -> None:
+        """Called by rospy when a subscriber disconnects."""
 
 
 def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = False,

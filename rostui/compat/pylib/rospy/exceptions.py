@@ -6,7 +6,8 @@ from rostui.core.node.services import ServiceException
 from rostui.core.node.sync import ROSException, ROSInterruptException
 
 __all__ = ["ROSException", "ROSInterruptException", "ROSTimeMovedBackwardsException", "ROSInitException",
-           "ROSSerializationException", "ROSInternalException", "TransportException", "ServiceException"]
+           "ROSSerializationException", "ROSInternalException", "TransportException", "TransportInitError",
+           "TransportTerminated", "ServiceException"]
 
 
 class ROSTimeMovedBackwardsException(ROSInterruptException):
@@ -31,3 +32,11 @@ class ROSInternalException(Exception):
 
 class TransportException(ROSException):
     """A connection to a peer failed."""
+
+
+class TransportTerminated(ROSException):
+    """A connection was closed while in use."""
+
+
+class TransportInitError(ROSException):
+    """A connection could not be set up."""

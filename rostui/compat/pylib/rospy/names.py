@@ -10,10 +10,12 @@ from rostui.core.node import sync as _sync
 
 __all__ = ["get_name", "get_namespace", "get_caller_id", "resolve_name", "remap_name", "get_mappings",
            "get_resolved_mappings", "canonicalize_name", "ns_join", "is_global", "is_private", "namespace",
-           "get_ros_namespace", "is_initialized", "SEP", "PRIV_NAME"]
+           "get_ros_namespace", "is_initialized", "make_global_ns", "SEP", "GLOBALNS", "PRIV_NAME"]
 
 SEP = "/"
 """The separator of graph names."""
+GLOBALNS = "/"
+"""The global namespace."""
 PRIV_NAME = "~"
 """The prefix of private names."""
 _UNNAMED = "/unnamed"
@@ -21,6 +23,7 @@ _UNNAMED = "/unnamed"
 canonicalize_name = _names.canonicalize_name
 is_global = _names.is_global
 is_private = _names.is_private
+make_global_ns = _names.make_global_ns
 
 
 def is_initialized() -> bool:
@@ -55,13 +58,19 @@ def get_namespace() -> str:
 
 
 def get_mappings() -> dict[str, str]:
-    """The remappings given on the command line (``from:=to``), as written."""
-    return dict(_names.parse_argv(sys.argv[1:]).remaps)
+    """The command line's ``from:=to`` remappings and ``__key:=value`` specials, as written, in order."""
+    found: dict[str, str] = {}
+    for arg in sys.argv[1:]:
+        source, sep, target = arg.partition(":=")
+        if sep and source and not (source.startswith("_") and not source.startswith("__")):
+            found[source] = target
+    return found
 
 
 def get_resolved_mappings() -> dict[str, str]:
     """The command line's remappings with both sides resolved in this node's namespace."""
-    return _names.resolve_remappings(get_mappings(), get_namespace(), get_name())
+    remaps = {k: v for k, v in get_mappings().items() if not k.startswith("__")}
+    return _names.resolve_remappings(remaps, get_namespace(), get_name())
 
 
 def resolve_name(name: str, caller_id: str | None = None) -> str:
@@ -74,12 +83,14 @@ def resolve_name(name: str, caller_id: str | None = None) -> str:
 
 
 def remap_name(name: str, caller_id: str | None = None, resolved: bool = True) -> str:
-    """*name* after this node's remappings, or *name* itself when none applies.
+    """*name*'s remapping as written on the command line, resolved for *caller_id* (default this node).
 
-    With *resolved* false, *name* is resolved first (for *caller_id*, default this node).
+    A name the command line does not remap is returned as it is. *resolved* is accepted, as rospy does.
     """
-    key = name if resolved else resolve_name(name, caller_id)
-    return get_resolved_mappings().get(key, key)
+    mapped = get_mappings().get(name)
+    if mapped is None:
+        return name
+    return _names.resolve_for_caller(mapped, caller_id or get_name())
 
 
 def ns_join(ns: str, name: str) -> str:

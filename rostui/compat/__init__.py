@@ -1,6 +1,6 @@
 """What unmodified ROS 1 Python scripts import, served by rostui (`rostui python`, `rostui shell-env`).
 
-:data:`PYLIB` is a directory of importable top-level packages (``genpy``,
+:data:`PYLIB` is a directory of importable top-level packages (``genpy``, ``rosbag``,
 ``roslib``) and a ``sitecustomize`` that, at a child interpreter's start,
 chooses between rostui's modules and a real ROS install (:mod:`.choice`) and
 installs the import hook of :mod:`.finder` that makes ``<pkg>.msg`` and

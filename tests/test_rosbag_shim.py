@@ -81,6 +81,7 @@ SUMMARY = textwrap.dedent('''
         print('%.9f %.9f' % (bag.get_start_time(), bag.get_end_time()))
         print([m.message.data for m in bag.read_messages('/numbers', genpy.Time(1001), genpy.Time(1002.5))])
         print([t.to_nsec() for _, _, t in bag.read_messages(topics=['/chatter', '/pose'], end_time=genpy.Time(1000.5))])
+        print(len(list(bag.read_messages(start_time=genpy.Time(0), end_time=genpy.Time(0)))))
         sel = bag.read_messages(connection_filter=lambda topic, datatype, md5sum, msg_def, header:
                                 datatype == 'geometry_msgs/PoseStamped')
         print([(m.topic, m.message.header.seq) for m in sel][:5])

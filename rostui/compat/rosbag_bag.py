@@ -338,8 +338,9 @@ class Bag:
         the message is ``(datatype, data, md5sum, position, pytype)``.
         """
         reader = self._open_reader()
-        start = None if start_time is None else _ns(start_time)
-        end = None if end_time is None else _ns(end_time)
+        # a zero time bounds nothing, as in rosbag (whose test is the time's truth value)
+        start = None if start_time is None else _ns(start_time) or None
+        end = None if end_time is None else _ns(end_time) or None
         wanted = self._wanted(_topics(topics), connection_filter)
         return self._generate(reader, start, end, wanted, raw, return_connection_header)
 

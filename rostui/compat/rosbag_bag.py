@@ -283,17 +283,23 @@ class Bag:
             raise ValueError("I/O operation on closed bag")
         raise ROSBagException("rostui's rosbag reads a bag opened for reading ('r') only")
 
-    def _index_rows(self) -> list[tuple[Connection, int, int, int]]:
-        """``(connection, time_ns, chunk, offset)`` of every message in time order (file order if unindexed)."""
+    def _index_rows(self) -> Iterator[tuple[Connection, int, int, int]]:
+        """``(connection, time_ns, chunk, offset)`` of every message in time order, equal times in connection
+        order as rosbag's merge of its per-connection indexes gives them (file order for an unindexed file)."""
+        import numpy as np
+
         reader = self._open_reader()
         index = reader.file_index()
         if index is None:
             index = reader.scan_index()
         conns = reader.connections
-        rows = [(conns[c], t, chunk, off) for t, c, chunk, off in index.rows()]
-        # equal times come in connection order, as rosbag's merge of its per-connection indexes gives them
-        rows.sort(key=lambda row: (row[1], row[0].id))
-        return rows
+        # the index is sorted by time, ties in file order: a stable sort by (time, connection) keeps that order
+        order = np.lexsort((np.arange(len(index)), index.conn_ids, index.times))
+        block = 8192
+        for lo in range(0, len(order), block):
+            rows = order[lo:lo + block]
+            yield from zip((conns[c] for c in index.conn_ids[rows].tolist()), index.times[rows].tolist(),
+                           index.chunks[rows].tolist(), index.offsets[rows].tolist())
 
     def _message_class(self, conn: Connection) -> type[Message]:
         key = (conn.type, conn.definition)

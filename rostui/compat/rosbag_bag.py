@@ -1,7 +1,8 @@
 """rosbag's ``Bag`` for `rostui python`, over rostui's bag readers and writers (:mod:`rostui.core.bag`).
 
-Reading gives messages in time order through each file's index
-(:func:`rostui.core.bag.files.time_ordered`); writing goes through
+Reading gives messages in time order through the file's index
+(:class:`rostui.core.bag.fileindex.FileIndex`, built by scanning an unindexed
+file when ``allow_unindexed`` is given); writing goes through
 :func:`rostui.core.bag.files.open_writer`, so a ``.bag`` written here is the
 rosbag v2.0 file rostui's recorder writes, and any other name an MCAP file.
 """

@@ -194,7 +194,8 @@ def test_which_names_rostuis_modules_when_no_real_ros_is_importable() -> None:
     no_real_ros_here()
     r = rostui_python(["--which"])
     assert r.returncode == 0
-    assert r.stdout.startswith("rostui python: the script gets rostui's rospy, genpy, roslib and message modules (")
+    assert r.stdout.startswith(
+        "rostui python: the script gets rostui's rospy, genpy, roslib, rosbag and message modules (")
     r = rostui_python(["--which", "--real-ros"])
     assert "no real ROS is importable" in r.stdout
     r = rostui_python(["--real-ros", "--rostui", "x.py"])

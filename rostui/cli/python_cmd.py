@@ -33,7 +33,7 @@ def python_command(
     use_rostui: bool = typer.Option(False, "--rostui",
                                     help="Give the script rostui's modules even if a real ROS is installed."),
 ) -> None:
-    """Run SCRIPT with rostui's genpy, roslib and message modules (PACKAGE.msg, PACKAGE.srv) on its import path.
+    """Run SCRIPT with rostui's genpy, roslib, rosbag and message modules (PACKAGE.msg, PACKAGE.srv) on its import path.
 
     The script replaces this process in the same Python, so its argv, exit status
     and signals are its own. Where a real ROS is importable the script gets it

@@ -1,7 +1,7 @@
 """What unmodified ROS 1 Python scripts import, served by rostui (`rostui python`, `rostui shell-env`).
 
 :data:`PYLIB` is a directory of importable top-level packages (``rospy``,
-``genpy``, ``roslib``) and a ``sitecustomize`` that, at a child interpreter's start,
+``genpy``, ``rosbag``, ``roslib``) and a ``sitecustomize`` that, at a child interpreter's start,
 chooses between rostui's modules and a real ROS install (:mod:`.choice`) and
 installs the import hook of :mod:`.finder` that makes ``<pkg>.msg`` and
 ``<pkg>.srv`` modules from rostui's message classes.

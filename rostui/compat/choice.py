@@ -1,7 +1,7 @@
 """Which ROS a script gets: rostui's modules or a real ROS install that its interpreter can import.
 
 The choice travels to the script's interpreter in ``ROSTUI_PYTHON``: ``rostui``,
-``real``, or ``auto`` (unset): the real ROS when ``rospy`` or ``genpy`` is
+``real``, or ``auto`` (unset): the real ROS when ``rospy``, ``genpy`` or ``rosbag`` is
 importable from anywhere but :data:`rostui.compat.PYLIB`, rostui's otherwise.
 rostui's modules never hide a real ROS silently: whenever one is found, one
 line on stderr says which the script gets.
@@ -25,7 +25,7 @@ ENV_MODE = "ROSTUI_PYTHON"
 """The environment variable carrying the :class:`Mode` to a script's interpreter."""
 ENV_NOTICE_SHOWN = "ROSTUI_PYTHON_NOTICE_SHOWN"
 """Set once the notice is printed, so the script's own Python children do not repeat it."""
-REAL_ROS_MODULES = ("rospy", "genpy")
+REAL_ROS_MODULES = ("rospy", "genpy", "rosbag")
 """Top-level modules whose presence means a real ROS 1 install is importable."""
 
 
@@ -55,7 +55,7 @@ class Choice:
     def describe(self) -> str:
         """One line saying which ROS the script gets and where it comes from."""
         if self.use_rostui:
-            shown = f"rostui's rospy, genpy, roslib and message modules ({PYLIB})"
+            shown = f"rostui's rospy, genpy, roslib, rosbag and message modules ({PYLIB})"
             if self.real_ros is not None:
                 return f"rostui python: the script gets {shown}, not the real ROS at {self.real_ros}"
             return f"rostui python: the script gets {shown}"

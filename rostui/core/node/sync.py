@@ -444,14 +444,15 @@ class Service:
         self._engine.run(self._node.unadvertise_service(self._server))
 
 
-class _DetachedCaller:
-    """The minimum of a node a ServiceProxy needs, on a private loop."""
+class DetachedCaller:
+    """The minimum of a node a ServiceProxy needs (a caller id and the master), on a private loop."""
 
     def __init__(self, name: str, master_uri: str) -> None:
         self.name = name
         self.master_uri = master_uri
 
     async def lookup_service(self, service: str) -> str:
+        """The ``rosrpc://`` URI of *service*; ServiceException when it is not registered."""
         async with XmlRpcClient(self.master_uri) as client:
             try:
                 return str(ros_result(await client.call("lookupService", self.name, service)))
@@ -481,7 +482,7 @@ class ServiceProxy:
         """Call the service; ServiceException on failure."""
         if self._engine.on_engine_thread:
             from rostui.core.node.services import ServiceProxy as AsyncProxy
-            caller = _DetachedCaller(self._node.name, self._node.master_uri)
+            caller = DetachedCaller(self._node.name, self._node.master_uri)
             proxy = AsyncProxy(caller, self.resolved_name, self.service_class)  # type: ignore[arg-type]
             return self._engine.run_detached(lambda: proxy.call(*args, **kwargs))
         return self._engine.run(self._proxy.call(*args, **kwargs))

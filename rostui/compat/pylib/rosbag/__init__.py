@@ -9,7 +9,7 @@ bag's own message definitions for types rostui does not know.
 
 from __future__ import annotations
 
-from rostui.compat.rosbag_bag import (
+from .bag import (
     Bag,
     BagMessage,
     BagMessageWithConnectionHeader,

@@ -18,28 +18,17 @@ from rostui.core.masteruri import master_uri_from_env
 from rostui.core.node.engine import Engine
 from rostui.core.node.services import ServiceException, parse_rosrpc_uri
 from rostui.core.node.services import ServiceProxy as _AsyncProxy
-from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, ros_result
+from rostui.core.node.sync import DetachedCaller
 
 __all__ = ["Caller", "caller"]
 
 
-class Caller:
+class Caller(DetachedCaller):
     """The part of a node a service proxy needs: a caller id, the master, and an engine to run on."""
 
     def __init__(self) -> None:
-        self.name = "/unnamed"
-        self.master_uri = master_uri_from_env(_names.parse_argv(sys.argv[1:]).master)
+        super().__init__("/unnamed", master_uri_from_env(_names.parse_argv(sys.argv[1:]).master))
         self.engine = Engine()
-
-    async def lookup_service(self, service: str) -> str:
-        """The ``rosrpc://`` URI of *service*; ServiceException when it is not registered."""
-        async with XmlRpcClient(self.master_uri) as client:
-            try:
-                return str(ros_result(await client.call("lookupService", self.name, service)))
-            except XmlRpcConnectionError as exc:
-                raise ServiceException(f"Unable to communicate with master at {self.master_uri}: {exc}") from exc
-            except RosApiError as exc:
-                raise ServiceException(f"service [{service}] unavailable") from exc
 
     def proxy(self, resolved: str, service_class: Any, persistent: bool,
               headers: dict[str, str] | None) -> _AsyncProxy:

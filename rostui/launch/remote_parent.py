@@ -262,7 +262,8 @@ class RemoteLaunch:
                 self._node_line(process, stream, parsed[1])
                 continue
             child.ssh_lines.append(line)
-            if child.registered.is_set() and line.strip():
+            # A child's other stdout lines repeat what it says through ``log`` (roslaunch's parent drops them too).
+            if stream == "stderr" and child.registered.is_set() and line.strip():
                 supervisor.complain(f"remote[{child.name}]: {line}")
         if stream == "stderr":
             await self._connection_closed(child)

@@ -1,0 +1,209 @@
+"""Nodes on other machines: a launch on host A with nodes on hosts B and C, started over SSH.
+
+The hosts are Linux network namespaces with their own sshd (tests/netns_hosts.py);
+the master runs on A.  These tests need root and run in CI.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import signal
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+from typing import Iterator
+
+import psutil
+import pytest
+
+from conftest import SYSTEM_PYTHON, free_port, have_rospy, need_peer, wait_until
+from netns_hosts import NetnsHost, NetnsHosts, make_hosts
+
+VENV_BIN = str(Path(sys.executable).parent)
+
+LISTENER = textwrap.dedent("""\
+    import sys
+    import rospy
+    rospy.init_node("cross_host_listener")
+    message = rospy.wait_for_message(sys.argv[1], rospy.AnyMsg, timeout=60)
+    print("received %s from %s" % (message._connection_header["type"], message._connection_header["callerid"]),
+          flush=True)
+    """)
+
+
+class LaunchRun:
+    """A launch started on host A; its output is in a file so it can be read while it runs."""
+
+    def __init__(self, host: NetnsHost, argv: list[str], env: dict[str, str], log: Path) -> None:
+        self.log = log
+        self.proc = host.popen(argv, env, stdout=open(log, "w"), stderr=subprocess.STDOUT,  # noqa: SIM115
+                               start_new_session=True)
+
+    def output(self) -> str:
+        return self.log.read_text(errors="replace")
+
+    def wait_for(self, pattern: str, what: str, timeout: float = 60.0) -> re.Match[str]:
+        found: list[re.Match[str]] = []
+
+        def seen() -> bool:
+            match = re.search(pattern, self.output())
+            if match:
+                found.append(match)
+            assert self.proc.poll() is None or match, f"the launch ended early:\n{self.output()}"
+            return match is not None
+
+        wait_until(seen, what, timeout)
+        return found[0]
+
+    def interrupt(self, timeout: float = 90.0) -> int:
+        """Ctrl-C, as a terminal sends it, and wait for the launch to end."""
+        if self.proc.poll() is None:
+            os.kill(self.proc.pid, signal.SIGINT)
+        return self.proc.wait(timeout)
+
+    def kill(self) -> None:
+        if self.proc.poll() is None:
+            os.killpg(self.proc.pid, signal.SIGKILL)
+            self.proc.wait(10)
+
+
+def leftovers(host: NetnsHost) -> list[str]:
+    """The command lines of every process on ``host`` other than its sshd listener."""
+    found = []
+    for pid in host.pids():
+        if host.sshd is not None and pid == host.sshd.pid:
+            continue
+        try:
+            found.append(" ".join(psutil.Process(pid).cmdline()) or f"pid {pid}")
+        except psutil.NoSuchProcess:
+            continue
+    return found
+
+
+def node_pids(host: NetnsHost, fragment: str) -> list[int]:
+    """Pids of the processes on ``host`` whose command line contains ``fragment``."""
+    pids = []
+    for pid in host.pids():
+        try:
+            if fragment in " ".join(psutil.Process(pid).cmdline()):
+                pids.append(pid)
+        except psutil.NoSuchProcess:
+            continue
+    return pids
+
+
+def host_env(hosts: NetnsHosts, host: NetnsHost, master_port: int, tmp_path: Path) -> dict[str, str]:
+    """The environment of a program run on ``host`` by the test, with the master on host A."""
+    env = hosts.client_env(dict(os.environ))
+    home = tmp_path / f"ros_home_{host.name}_test"
+    home.mkdir(exist_ok=True)
+    env.update(ROS_MASTER_URI=f"http://{hosts['a'].address}:{master_port}/", ROS_IP=host.address,
+               ROS_HOME=str(home), PYTHONUNBUFFERED="1", PATH=f"{VENV_BIN}:{os.environ['PATH']}")
+    for key in ("ROS_HOSTNAME", "ROS_NAMESPACE"):
+        env.pop(key, None)
+    return env
+
+
+@pytest.fixture
+def three_hosts(tmp_path: Path) -> Iterator[NetnsHosts]:
+    with make_hosts(tmp_path, ["a", "b", "c"], unreachable=["d"]) as hosts:
+        yield hosts
+
+
+def write_launch(path: Path, body: str) -> Path:
+    path.write_text(f"<launch>\n{textwrap.dedent(body)}</launch>\n")
+    return path
+
+
+def test_nodes_on_two_other_hosts(three_hosts: NetnsHosts, tmp_path: Path) -> None:
+    need_peer(have_rospy(), "rospy (python3-rospy)")
+    hosts = three_hosts
+    a, b, c = hosts["a"], hosts["b"], hosts["c"]
+    launch = write_launch(tmp_path / "robot.launch", f"""\
+        <machine name="hostb" address="{b.address}" env-loader="{b.env_loader([VENV_BIN])}" user="root"/>
+        <machine name="hostc" address="{c.address}" env-loader="{c.env_loader([VENV_BIN])}" timeout="20"/>
+        <node machine="hostc" pkg="agitr" type="pubvel" name="pubvel" output="screen"/>
+        <node machine="hostb" pkg="agitr" type="subpose" name="subpose" respawn="true"/>
+        <node pkg="agitr" type="count" name="count"/>
+        """)
+    port = free_port()
+    env_a = host_env(hosts, a, port, tmp_path)
+    run = LaunchRun(a, ["rostui", "launch", str(launch), "--sigint-timeout", "5"], env_a, tmp_path / "launch.out")
+    try:
+        run.wait_for(r"process\[pubvel-\d+\]: started with pid", "pubvel to start on host C")
+        first = run.wait_for(r"process\[subpose-\d+\]: started with pid \[(\d+)\]", "subpose to start on host B")
+
+        def registered() -> bool:
+            names = a.run(["rostui", "node", "list"], env_a).stdout.split()
+            return {"/pubvel", "/subpose", "/count"} <= set(names)
+
+        wait_until(registered, "every node (A, B and C) to register with the master on A")
+        subpose_pids = node_pids(b, "subpose")
+        assert subpose_pids and int(first.group(1)) in subpose_pids, "subpose runs on host B"
+        assert node_pids(c, "pubvel"), "pubvel runs on host C"
+        assert not node_pids(a, "pubvel") and not node_pids(a, "subpose"), "nothing remote runs on host A"
+        # pubvel's screen output comes back to A's console.
+        run.wait_for(r"Sending random velocity command", "pubvel's output on A")
+
+        # A real rospy subscriber on host B receives pubvel's messages from host C.
+        (tmp_path / "listener.py").write_text(LISTENER)
+        heard = b.run([SYSTEM_PYTHON, str(tmp_path / "listener.py"), "/turtle1/command_velocity"],
+                      host_env(hosts, b, port, tmp_path), timeout=90)
+        assert "received turtlesim/Velocity from /pubvel" in heard.stdout, heard.stdout + heard.stderr
+
+        # A node killed on B: A reports its death and the child on B respawns it.
+        os.kill(int(first.group(1)), signal.SIGKILL)
+        run.wait_for(r"\[subpose-\d+\] process has died \[pid \d+, exit code -9\] on machine \[hostb\]",
+                     "A to report subpose's death on host B")
+        again = run.wait_for(r"process\[subpose-\d+\]: restarted with pid \[(\d+)\]", "subpose to respawn on B")
+        assert int(again.group(1)) != int(first.group(1))
+        wait_until(lambda: int(again.group(1)) in node_pids(b, "subpose"), "the new subpose on host B")
+
+        # Ctrl-C on A stops every node on every host; nothing stays behind on B or C.
+        assert run.interrupt() == 0, run.output()
+        for host in (b, c):
+            wait_until(lambda host=host: not leftovers(host), f"host {host.name} to have no process left", 30)
+        assert not node_pids(a, "agitr"), "no node left on host A"
+    finally:
+        run.kill()
+
+
+def test_a_host_that_does_not_answer(three_hosts: NetnsHosts, tmp_path: Path) -> None:
+    hosts = three_hosts
+    a, b, d = hosts["a"], hosts["b"], hosts["d"]
+    launch = write_launch(tmp_path / "far.launch", f"""\
+        <machine name="hostb" address="{b.address}" env-loader="{b.env_loader([VENV_BIN])}"/>
+        <machine name="faraway" address="{d.address}" timeout="3"/>
+        <node machine="hostb" pkg="agitr" type="subpose" name="subpose"/>
+        <node machine="faraway" pkg="agitr" type="pubvel" name="pubvel"/>
+        <node pkg="agitr" type="count" name="count"/>
+        """)
+    env_a = host_env(hosts, a, free_port(), tmp_path)
+    result = a.run(["rostui", "launch", str(launch)], env_a, timeout=120)
+    assert result.returncode == 1
+    errors = [line for line in result.stderr.splitlines() if line.strip()]
+    assert len(errors) == 1, result.stderr
+    assert errors[0].startswith(f"rostui launch: {launch}:3: cannot start nodes on machine [faraway] "
+                                f"({d.address}:22): "), errors[0]
+    assert "process[" not in result.stdout, "no node started anywhere"
+    wait_until(lambda: not leftovers(b), "host B to have no process left", 30)
+
+
+def test_a_host_missing_from_known_hosts_is_refused(three_hosts: NetnsHosts, tmp_path: Path) -> None:
+    hosts = three_hosts
+    a, c = hosts["a"], hosts["c"]
+    known = hosts.home / ".ssh" / "known_hosts"
+    known.write_text("".join(line + "\n" for line in known.read_text().splitlines()
+                             if not line.startswith(c.address + " ")))
+    launch = write_launch(tmp_path / "unknown.launch", f"""\
+        <machine name="hostc" address="{c.address}" env-loader="{c.env_loader([VENV_BIN])}"/>
+        <node machine="hostc" pkg="agitr" type="pubvel" name="pubvel"/>
+        """)
+    result = a.run(["rostui", "launch", str(launch)], host_env(hosts, a, free_port(), tmp_path), timeout=120)
+    assert result.returncode == 1
+    assert f"cannot start nodes on machine [hostc] ({c.address}:22): Host key verification failed." \
+        in result.stderr, result.stderr
+    assert c.address not in known.read_text(), "the unknown host key was not added"
+    wait_until(lambda: not leftovers(c), "host C to have no process left", 30)

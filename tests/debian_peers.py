@@ -27,6 +27,7 @@ COMMANDS: dict[str, str] = {
     "tmux": "tmux",
     "ssh": "openssh-client",
     "ssh-keygen": "openssh-client",
+    "ip": "iproute2",
     "chromium": "chromium",
     "chromedriver": "chromium-driver",
 }
@@ -39,6 +40,7 @@ FILES: dict[str, str] = {
     "/usr/lib/genpy/gensrv_py.py": "python3-genpy",
     "/usr/lib/python3/dist-packages/rospy/": "python3-rospy",
     "/usr/sbin/sshd": "openssh-server",
+    "/usr/lib/python3/dist-packages/paramiko/": "python3-paramiko",
     "/usr/share/rosgraph_msgs/package.xml": "libros-rosgraph-msgs-dev",
 }
 

@@ -22,6 +22,10 @@ from conftest import SYSTEM_PYTHON, free_port, have_rospy, need_peer, wait_until
 from netns_hosts import NetnsHost, NetnsHosts, make_hosts
 
 VENV_BIN = str(Path(sys.executable).parent)
+ROSTUI = str(Path(VENV_BIN) / "rostui")
+PARAMIKO = "/usr/lib/python3/dist-packages/paramiko/"
+#: What a machine with rostui but no ROS puts on its PATH as ``roslaunch`` (docs/launch.md).
+ROSLAUNCH_SHIM = '#!/bin/sh\nexec rostui launch "$@"\n'
 
 LISTENER = textwrap.dedent("""\
     import sys
@@ -130,13 +134,13 @@ def test_nodes_on_two_other_hosts(three_hosts: NetnsHosts, tmp_path: Path) -> No
         """)
     port = free_port()
     env_a = host_env(hosts, a, port, tmp_path)
-    run = LaunchRun(a, ["rostui", "launch", str(launch), "--sigint-timeout", "5"], env_a, tmp_path / "launch.out")
+    run = LaunchRun(a, [ROSTUI, "launch", str(launch), "--sigint-timeout", "5"], env_a, tmp_path / "launch.out")
     try:
         run.wait_for(r"process\[pubvel-\d+\]: started with pid", "pubvel to start on host C")
         first = run.wait_for(r"process\[subpose-\d+\]: started with pid \[(\d+)\]", "subpose to start on host B")
 
         def registered() -> bool:
-            names = a.run(["rostui", "node", "list"], env_a).stdout.split()
+            names = a.run([ROSTUI, "node", "list"], env_a).stdout.split()
             return {"/pubvel", "/subpose", "/count"} <= set(names)
 
         wait_until(registered, "every node (A, B and C) to register with the master on A")
@@ -181,7 +185,7 @@ def test_a_host_that_does_not_answer(three_hosts: NetnsHosts, tmp_path: Path) ->
         <node pkg="agitr" type="count" name="count"/>
         """)
     env_a = host_env(hosts, a, free_port(), tmp_path)
-    result = a.run(["rostui", "launch", str(launch)], env_a, timeout=120)
+    result = a.run([ROSTUI, "launch", str(launch)], env_a, timeout=120)
     assert result.returncode == 1
     errors = [line for line in result.stderr.splitlines() if line.strip()]
     assert len(errors) == 1, result.stderr
@@ -201,9 +205,82 @@ def test_a_host_missing_from_known_hosts_is_refused(three_hosts: NetnsHosts, tmp
         <machine name="hostc" address="{c.address}" env-loader="{c.env_loader([VENV_BIN])}"/>
         <node machine="hostc" pkg="agitr" type="pubvel" name="pubvel"/>
         """)
-    result = a.run(["rostui", "launch", str(launch)], host_env(hosts, a, free_port(), tmp_path), timeout=120)
+    result = a.run([ROSTUI, "launch", str(launch)], host_env(hosts, a, free_port(), tmp_path), timeout=120)
     assert result.returncode == 1
     assert f"cannot start nodes on machine [hostc] ({c.address}:22): Host key verification failed." \
         in result.stderr, result.stderr
     assert c.address not in known.read_text(), "the unknown host key was not added"
     wait_until(lambda: not leftovers(c), "host C to have no process left", 30)
+
+
+def test_real_roslaunch_drives_rostui_children(three_hosts: NetnsHosts, tmp_path: Path) -> None:
+    """Debian's roslaunch on A starts `roslaunch -c` on B, which the env-loader there makes rostui's child."""
+    need_peer(have_rospy() and Path(PARAMIKO).exists(), "roslaunch's SSH (python3-paramiko) and rospy")
+    hosts = three_hosts
+    a, b = hosts["a"], hosts["b"]
+    shim = tmp_path / "rostui-roslaunch"
+    shim.mkdir()
+    (shim / "roslaunch").write_text(ROSLAUNCH_SHIM)
+    (shim / "roslaunch").chmod(0o755)
+    launch = write_launch(tmp_path / "robot.launch", f"""\
+        <machine name="hostb" address="{b.address}" env-loader="{b.env_loader([str(shim), VENV_BIN])}"/>
+        <node machine="hostb" pkg="agitr" type="pubvel" name="pubvel" respawn="true"/>
+        """)
+    port = free_port()
+    env_a = host_env(hosts, a, port, tmp_path)
+    env_a["PATH"] = "/usr/local/bin:/usr/bin:/bin:/usr/sbin:/sbin"  # only Debian's ROS on A
+    run = LaunchRun(a, ["roslaunch", str(launch), "--sigint-timeout", "5"], env_a, tmp_path / "launch.out")
+    try:
+        first = run.wait_for(r"process\[pubvel-\d+\]: started with pid \[(\d+)\]", "pubvel to start on B")
+        assert int(first.group(1)) in node_pids(b, "pubvel"), "rostui's child runs pubvel on host B"
+        assert node_pids(b, "rostui launch -c"), "the child on B is rostui's"
+        (tmp_path / "listener.py").write_text(LISTENER)
+        heard = a.run([SYSTEM_PYTHON, str(tmp_path / "listener.py"), "/turtle1/command_velocity"],
+                      host_env(hosts, a, port, tmp_path), timeout=90)
+        assert "received turtlesim/Velocity from /pubvel" in heard.stdout, heard.stdout + heard.stderr
+
+        os.kill(int(first.group(1)), signal.SIGKILL)
+        run.wait_for(r"\[pubvel-\d+\] process has died \[pid \d+, exit code -9", "roslaunch to hear of the death")
+        again = run.wait_for(r"process\[pubvel-\d+\]: restarted with pid \[(\d+)\]", "the respawn on B")
+        assert int(again.group(1)) != int(first.group(1))
+
+        assert run.interrupt() == 0, run.output()
+        wait_until(lambda: not leftovers(b), "host B to have no process left", 30)
+    finally:
+        run.kill()
+
+
+def test_rostui_drives_a_real_roslaunch_child(three_hosts: NetnsHosts, tmp_path: Path) -> None:
+    """rostui on A starts Debian's `roslaunch -c` on C, a machine whose PATH has ROS but no rostui."""
+    need_peer(have_rospy(), "rospy (python3-rospy)")
+    hosts = three_hosts
+    a, b, c = hosts["a"], hosts["b"], hosts["c"]
+    launch = write_launch(tmp_path / "robot.launch", f"""\
+        <machine name="hostc" address="{c.address}" env-loader="{c.env_loader([])}"/>
+        <node machine="hostc" pkg="rostopic" type="rostopic" name="pub" respawn="true"
+              args="pub -r 5 /chatter std_msgs/String hello"/>
+        """)
+    port = free_port()
+    env_a = host_env(hosts, a, port, tmp_path)
+    run = LaunchRun(a, [ROSTUI, "launch", str(launch), "--sigint-timeout", "5"], env_a, tmp_path / "launch.out")
+    try:
+        first = run.wait_for(r"process\[pub-\d+\]: started with pid \[(\d+)\]", "pub to start on C")
+        assert int(first.group(1)) in node_pids(c, "/chatter"), "roslaunch's child runs the node on host C"
+        assert node_pids(c, "/usr/bin/roslaunch -c"), "the child on C is Debian's roslaunch"
+        (tmp_path / "listener.py").write_text(LISTENER)
+        heard = b.run([SYSTEM_PYTHON, str(tmp_path / "listener.py"), "/chatter"],
+                      host_env(hosts, b, port, tmp_path), timeout=90)
+        assert "received std_msgs/String from /pub" in heard.stdout, heard.stdout + heard.stderr
+
+        os.kill(int(first.group(1)), signal.SIGKILL)
+        run.wait_for(r"\[pub-\d+\] process has died \[pid \d+, exit code -9\] on machine \[hostc\]",
+                     "A to report the death on C")
+        wait_until(lambda: any(pid != int(first.group(1)) for pid in node_pids(c, "/chatter")),
+                   "roslaunch's child to respawn the node on C")
+        run.wait_for(r"process\[pub-\d+\]: started with pid \[(?!" + first.group(1) + r"\])\d+\]",
+                     "A to hear of the new process")
+
+        assert run.interrupt() == 0, run.output()
+        wait_until(lambda: not leftovers(c), "host C to have no process left", 30)
+    finally:
+        run.kill()

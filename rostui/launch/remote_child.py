@@ -6,7 +6,7 @@ remote machine.  It serves roslaunch's child API (``launch``, ``shutdown``,
 each ``launch`` call sends with the same supervisor as a local launch
 (output, respawn, ``required``, SIGINT then SIGTERM then SIGKILL), tells the
 parent about its lines (``log``) and every death (``process_died``), and
-sends each node's output lines back as ``[LABEL] TEXT`` on its own stdout and
+sends each node's output lines back as ``[LABEL]<TAB>TEXT`` on its own stdout and
 stderr (the SSH connection).  It sets no params and starts no master.  It
 stops every node and exits on ``shutdown``, when its last node has ended (as
 roslaunch's child), when the parent cannot be reached, or when its stdin
@@ -33,7 +33,7 @@ from rostui.launch.loader import XmlLoader
 from rostui.launch.model import LaunchConfig, NodeSpec
 from rostui.launch.output import OutputBuffer
 from rostui.launch.process import ManagedProcess, NodeState
-from rostui.launch.remote_protocol import LOG_ERROR, LOG_INFO
+from rostui.launch.remote_protocol import LOG_ERROR, LOG_INFO, format_output_line
 from rostui.launch.supervisor import Supervisor, SupervisorOptions, log_label, prefix_problem
 
 #: Seconds the child waits for the parent to answer a call before it gives the parent up.
@@ -41,7 +41,7 @@ PARENT_TIMEOUT = 15.0
 
 
 class ForwardedOutput(OutputBuffer):
-    """A node's output ring that also writes each of its lines to the SSH connection as ``[LABEL] TEXT``.
+    """A node's output ring that also writes each of its lines to the SSH connection as ``[LABEL]<TAB>TEXT``.
 
     stderr lines always go, stdout lines only for a node whose output goes to
     the screen (``output="screen"`` or ``--screen``), as on a local launch.
@@ -59,7 +59,7 @@ class ForwardedOutput(OutputBuffer):
         if stream == "stderr" or (stream == "stdout" and self.screen):
             target = sys.stderr if stream == "stderr" else sys.stdout
             try:
-                target.write(f"[{self.label}] {text}\n")
+                target.write(format_output_line(self.label, text) + "\n")
                 target.flush()
             except (OSError, ValueError):
                 pass  # the connection is gone; stdin's end of file stops the launch

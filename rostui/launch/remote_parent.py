@@ -246,7 +246,7 @@ class RemoteLaunch:
                 "allows more)")
 
     async def _pump(self, child: RemoteChild, reader: asyncio.StreamReader, stream: str) -> None:
-        """Route a child's output lines: ``[LABEL] TEXT`` to that node, anything else to the launcher's output."""
+        """Route a child's output lines: ``[LABEL]<TAB>TEXT`` to that node, anything else to the launcher's output."""
         supervisor = self._supervisor
         while True:
             try:

@@ -20,8 +20,9 @@ child serves XML-RPC of its own and then:
   SIGTERM, then SIGKILL) and answers when they are gone, then exits.
 
 Neither side takes a caller id.  Output of a rostui child's nodes comes back
-on the SSH connection, one line each, as ``[LABEL] TEXT``: stdout lines on
-stdout, stderr lines on stderr.
+on the SSH connection, one line each, as ``[LABEL]<TAB>TEXT`` (a tab, so
+roslaunch's own ``[LABEL] message`` lines are not taken for them): stdout
+lines on stdout, stderr lines on stderr.
 """
 
 from __future__ import annotations
@@ -96,11 +97,16 @@ def _flag(value: bool) -> str:
     return "true" if value else "false"
 
 
+def format_output_line(label: str, text: str) -> str:
+    """A node's output line as a rostui child sends it to its parent."""
+    return f"[{label}]\t{text}"
+
+
 def output_line(line: str) -> tuple[str, str] | None:
-    """``(label, text)`` for a ``[LABEL] TEXT`` line of a child's output, else None."""
+    """``(label, text)`` for a ``[LABEL]<TAB>TEXT`` line of a child's output, else None."""
     if not line.startswith("["):
         return None
-    label, sep, text = line[1:].partition("] ")
+    label, sep, text = line[1:].partition("]\t")
     if not sep or not label:
         return None
     return label, text

@@ -284,3 +284,47 @@ def test_rostui_drives_a_real_roslaunch_child(three_hosts: NetnsHosts, tmp_path:
         wait_until(lambda: not leftovers(c), "host C to have no process left", 30)
     finally:
         run.kill()
+
+
+def test_a_required_node_on_another_host_ends_the_launch(three_hosts: NetnsHosts, tmp_path: Path) -> None:
+    hosts = three_hosts
+    a, b, c = hosts["a"], hosts["b"], hosts["c"]
+    launch = write_launch(tmp_path / "required.launch", f"""\
+        <machine name="hostb" address="{b.address}" env-loader="{b.env_loader([VENV_BIN])}"/>
+        <machine name="hostc" address="{c.address}" env-loader="{c.env_loader([VENV_BIN])}"/>
+        <node machine="hostb" pkg="agitr" type="subpose" name="brain" required="true"
+              launch-prefix="sh -c 'sleep 3; exit 3' --"/>
+        <node machine="hostc" pkg="agitr" type="pubvel" name="pubvel"/>
+        """)
+    env_a = host_env(hosts, a, free_port(), tmp_path)
+    run = LaunchRun(a, [ROSTUI, "launch", str(launch), "--sigint-timeout", "5"], env_a, tmp_path / "launch.out")
+    try:
+        assert run.proc.wait(120) == 1, run.output()
+        output = run.output()
+        assert re.search(r"\[brain-\d+\] process has died \[pid \d+, exit code 3\] on machine \[hostb\]", output), output
+        assert re.search(r"REQUIRED process \[brain-\d+\] has died! Initiating shutdown!", output), output
+        for host in (b, c):
+            wait_until(lambda host=host: not leftovers(host), f"host {host.name} to have no process left", 30)
+    finally:
+        run.kill()
+
+
+def test_killing_the_launcher_stops_the_remote_nodes(three_hosts: NetnsHosts, tmp_path: Path) -> None:
+    """Without a word from the parent (SIGKILL), the SSH connection's end stops each child and its nodes."""
+    hosts = three_hosts
+    a, b = hosts["a"], hosts["b"]
+    launch = write_launch(tmp_path / "robot.launch", f"""\
+        <machine name="hostb" address="{b.address}" env-loader="{b.env_loader([VENV_BIN])}"/>
+        <node machine="hostb" pkg="agitr" type="pubvel" name="pubvel"/>
+        """)
+    env_a = host_env(hosts, a, free_port(), tmp_path)
+    run = LaunchRun(a, [ROSTUI, "launch", str(launch)], env_a, tmp_path / "launch.out")
+    try:
+        run.wait_for(r"process\[pubvel-\d+\]: started with pid", "pubvel to start on B")
+        assert node_pids(b, "pubvel")
+        os.kill(run.proc.pid, signal.SIGKILL)
+        run.proc.wait(10)
+        for host in (a, b):
+            wait_until(lambda host=host: not leftovers(host), f"host {host.name} to have no process left", 40)
+    finally:
+        run.kill()

@@ -17,6 +17,7 @@ its nodes too.
 from __future__ import annotations
 
 import asyncio
+import re
 import sys
 from collections import deque
 from dataclasses import dataclass, field
@@ -40,6 +41,17 @@ SHUTDOWN_GRACE = 10.0
 SSH_EXIT_GRACE = 5.0
 
 
+#: The longest line of a child's ``log`` shown; the rest is cut.
+MAX_LOG_LINE = 16384
+_CONTROL = {c: None for c in range(32) if c not in (9, 10)} | {127: None}
+_CSI = re.compile(r"\x1b\[[0-9;?]*[ -/]*[@-~]")
+
+
+def printable(text: str) -> str:
+    """A peer's text without terminal escapes and control characters (nothing reaches the console raw), bounded."""
+    return _CSI.sub("", text[:MAX_LOG_LINE]).translate(_CONTROL)
+
+
 @dataclass
 class RemoteProcess(ManagedProcess):
     """A node that runs on another machine: its state, pid and output come from that machine's child."""
@@ -58,6 +70,11 @@ class RemoteProcess(ManagedProcess):
     def pid(self) -> int | None:
         """The node's pid on its machine."""
         return self.remote_pid
+
+    @property
+    def local(self) -> bool:
+        """False: its pid is a process of another machine."""
+        return False
 
     async def stop(self, sigint_timeout: float, sigterm_timeout: float) -> str:
         """Nothing to do here: the machine's child stops its nodes when the launch shuts down."""
@@ -148,7 +165,7 @@ class RemoteLaunch:
     def log(self, client: str, level: int, message: str) -> list[Any]:
         """A line of a child's own: shown as the launcher's, and a start updates the node's pid."""
         child = self._child(str(client))
-        text = f"[{client}]: {message}"
+        text = printable(f"[{client}]: {message}")
         if isinstance(level, int) and level >= LOG_ERROR:
             self._supervisor.complain(text)
         else:
@@ -264,7 +281,7 @@ class RemoteLaunch:
             child.ssh_lines.append(line)
             # A child's other stdout lines repeat what it says through ``log`` (roslaunch's parent drops them too).
             if stream == "stderr" and child.registered.is_set() and line.strip():
-                supervisor.complain(f"remote[{child.name}]: {line}")
+                supervisor.complain(printable(f"remote[{child.name}]: {line}"))
         if stream == "stderr":
             await self._connection_closed(child)
 
@@ -277,12 +294,14 @@ class RemoteLaunch:
     async def _connection_closed(self, child: RemoteChild) -> None:
         """The SSH connection ended: outside a shutdown, its running nodes are gone with it."""
         supervisor = self._supervisor
-        if supervisor.stopping.is_set() or not child.registered.is_set():
-            return
+        alive = (NodeState.RUNNING, NodeState.RESPAWNING, NodeState.STARTING)
+        if supervisor.stopping.is_set() or not child.registered.is_set() \
+                or not any(p.state in alive for p in child.processes):
+            return  # a shutdown, or a child that ended with its last node (as roslaunch's does)
         supervisor.complain(f"remote[{child.name}]: the connection to machine [{child.machine.name}] closed: "
                             f"{ssh_failure(list(child.ssh_lines))}")
         for process in child.processes:
-            if process.state in (NodeState.RUNNING, NodeState.RESPAWNING, NodeState.STARTING):
+            if process.state in alive:
                 process.state = NodeState.DIED
                 process.note(f"[{process.label}] lost with the connection to machine [{child.machine.name}]",
                              error=True)
@@ -294,7 +313,7 @@ class RemoteLaunch:
         for child in self.children:
             if supervisor.stopping.is_set() or child.uri is None:
                 return
-            xml = nodes_xml([p.plan.spec for p in child.processes], supervisor.anons)
+            xml = nodes_xml([p.plan.spec for p in child.processes], supervisor.anons, screen=supervisor.options.screen)
             client = XmlRpcClient(child.uri, timeout=60.0)
             try:
                 reply = await client.call("launch", xml)

@@ -70,8 +70,11 @@ def label_matches(label: str, node: NodeSpec) -> bool:
     return base.replace("/", "-") == node.resolved_name.lstrip("/").replace("/", "-")
 
 
-def nodes_xml(nodes: list[NodeSpec], anons: dict[str, str]) -> str:
-    """The ``<launch>`` document a child gets for its machine's nodes (anon names already resolved)."""
+def nodes_xml(nodes: list[NodeSpec], anons: dict[str, str], screen: bool = False) -> str:
+    """The ``<launch>`` document a child gets for its machine's nodes (anon names already resolved).
+
+    ``screen`` (``--screen``) sends every node's output to the screen.
+    """
     root = etree.Element("launch")
     for node in nodes:
         ctx = SubstitutionContext(anons=anons, filename=node.filename)
@@ -81,7 +84,8 @@ def nodes_xml(nodes: list[NodeSpec], anons: dict[str, str]) -> str:
             "respawn": _flag(node.respawn), "respawn_delay": f"{node.respawn_delay:g}",
             "required": _flag(node.required),
         }
-        for key, value in (("output", node.output), ("cwd", node.cwd), ("launch-prefix", node.launch_prefix)):
+        output = "screen" if screen else node.output
+        for key, value in (("output", output), ("cwd", node.cwd), ("launch-prefix", node.launch_prefix)):
             if value:
                 attrs[key] = value
         element = etree.SubElement(root, "node", {k: str(v) for k, v in attrs.items()})

@@ -96,6 +96,6 @@ def measure(sampler: UsageSampler, process: ManagedProcess, children: dict[int, 
 
     ``children`` is :func:`~rostui.launch.usage.children_map`, taken once for every node of a refresh.
     """
-    if not process.running or process.pid is None:
-        return None
+    if not process.running or process.pid is None or not process.local:
+        return None  # a node on another machine is not measured here
     return sampler.measure(tree_of(process.pid, children))

@@ -471,12 +471,16 @@ class Supervisor:
             watcher.cancel()
             await asyncio.gather(watcher, return_exceptions=True)
 
-    def _check_open(self, process: ManagedProcess) -> None:
-        if self.stopping.is_set():
-            raise LaunchError("the launch is shutting down")
+    @staticmethod
+    def _refuse_remote(process: ManagedProcess) -> None:
         if isinstance(process, RemoteProcess):
             raise LaunchError(f"node [{process.name}] runs on machine [{process.machine.name}]: it starts and "
                               "stops with the whole launch")
+
+    def _check_open(self, process: ManagedProcess) -> None:
+        if self.stopping.is_set():
+            raise LaunchError("the launch is shutting down")
+        self._refuse_remote(process)
         if process.state is NodeState.FAILED and not process.plan.argv:
             raise LaunchError(f"node [{process.name}] cannot be started: {process.problem}")
 
@@ -501,7 +505,9 @@ class Supervisor:
         """
         process = self.process_named(name)
         async with process.lock:
-            self._check_open(process)
+            if self.stopping.is_set():
+                raise LaunchError("the launch is shutting down")
+            self._refuse_remote(process)
             await self._stop_locked(process, "stopped on request")
 
     async def start_node(self, name: str) -> bool:

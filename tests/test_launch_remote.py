@@ -328,3 +328,46 @@ def test_killing_the_launcher_stops_the_remote_nodes(three_hosts: NetnsHosts, tm
             wait_until(lambda host=host: not leftovers(host), f"host {host.name} to have no process left", 40)
     finally:
         run.kill()
+
+
+@pytest.mark.parametrize("parent", ["rostui", "roslaunch"])
+def test_one_file_with_a_rostui_host_and_a_ros_host(three_hosts: NetnsHosts, tmp_path: Path, parent: str) -> None:
+    """The same file under either launcher: B has only rostui (its `roslaunch` is rostui), C has only ROS."""
+    need_peer(have_rospy() and Path(PARAMIKO).exists(), "roslaunch's SSH (python3-paramiko) and rospy")
+    hosts = three_hosts
+    a, b, c = hosts["a"], hosts["b"], hosts["c"]
+    shim = tmp_path / "rostui-roslaunch"
+    shim.mkdir()
+    (shim / "roslaunch").write_text(ROSLAUNCH_SHIM)
+    (shim / "roslaunch").chmod(0o755)
+    launch = write_launch(tmp_path / "mixed.launch", f"""\
+        <machine name="hostb" address="{b.address}" env-loader="{b.env_loader([str(shim), VENV_BIN])}"/>
+        <machine name="hostc" address="{c.address}" env-loader="{c.env_loader([])}"/>
+        <node machine="hostb" pkg="agitr" type="pubvel" name="pubvel"/>
+        <node machine="hostc" pkg="rostopic" type="rostopic" name="pub" args="pub -r 5 /chatter std_msgs/String hi"/>
+        """)
+    port = free_port()
+    env_a = host_env(hosts, a, port, tmp_path)
+    if parent == "roslaunch":
+        env_a["PATH"] = "/usr/local/bin:/usr/bin:/bin:/usr/sbin:/sbin"
+        argv = ["roslaunch", str(launch), "--sigint-timeout", "5"]
+    else:
+        argv = [ROSTUI, "launch", str(launch), "--sigint-timeout", "5"]
+    run = LaunchRun(a, argv, env_a, tmp_path / "launch.out")
+    try:
+        run.wait_for(r"process\[pubvel-\d+\]: started with pid", "pubvel to start on B")
+        run.wait_for(r"process\[pub-\d+\]: started with pid", "pub to start on C")
+        assert node_pids(b, "rostui launch -c") or node_pids(b, "rostui launch --child"), "B runs rostui's child"
+        assert node_pids(c, "/usr/bin/roslaunch -c"), "C runs Debian's roslaunch child"
+        (tmp_path / "listener.py").write_text(LISTENER)
+        on_b = b.run([SYSTEM_PYTHON, str(tmp_path / "listener.py"), "/chatter"], host_env(hosts, b, port, tmp_path),
+                     timeout=90)
+        assert "received std_msgs/String from /pub" in on_b.stdout, on_b.stdout + on_b.stderr
+        on_a = a.run([SYSTEM_PYTHON, str(tmp_path / "listener.py"), "/turtle1/command_velocity"],
+                     host_env(hosts, a, port, tmp_path), timeout=90)
+        assert "received turtlesim/Velocity from /pubvel" in on_a.stdout, on_a.stdout + on_a.stderr
+        assert run.interrupt() == 0, run.output()
+        for host in (b, c):
+            wait_until(lambda host=host: not leftovers(host), f"host {host.name} to have no process left", 30)
+    finally:
+        run.kill()

@@ -7,6 +7,7 @@ import os
 import subprocess
 from pathlib import Path
 
+from rostui.apps.launchmon.rows import node_row
 from rostui.launch.loader import XmlLoader
 from rostui.launch.model import LaunchConfig, Machine, NodeSpec
 from rostui.launch.process import ProcessPlan
@@ -106,6 +107,8 @@ def test_the_parent_api_shrugs_off_garbage() -> None:
         assert remote.log("192.0.2.1-0", 2, "process[far_node-1]: started with pid [77]")[0] == 1
         assert process.remote_pid == 77 and process.running
         assert remote.list_children() == [1, "roslaunch children", []]
+        row = node_row(process, None)
+        assert (row.node, row.state, row.pid, row.cpu, row.mem) == ("/far_node @far", "running", "77", "-", "-")
 
     asyncio.run(scenario())
 

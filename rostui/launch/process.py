@@ -113,6 +113,11 @@ class ManagedProcess:
         """True when the pid is a process of this machine (a node on another machine has one of its own)."""
         return True
 
+    @property
+    def machine_name(self) -> str | None:
+        """The ``<machine>`` the node runs on when that is another host; None here."""
+        return None
+
     async def start(self) -> None:
         """Start (or restart) the process; raises OSError when it cannot be executed."""
         plan = self.plan

@@ -76,6 +76,11 @@ class RemoteProcess(ManagedProcess):
         """False: its pid is a process of another machine."""
         return False
 
+    @property
+    def machine_name(self) -> str | None:
+        """The name of its ``<machine>``."""
+        return self.machine.name
+
     async def stop(self, sigint_timeout: float, sigterm_timeout: float) -> str:
         """Nothing to do here: the machine's child stops its nodes when the launch shuts down."""
         return "exited"

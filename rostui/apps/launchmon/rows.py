@@ -76,11 +76,12 @@ def flags_text(process: ManagedProcess) -> str:
 
 
 def node_row(process: ManagedProcess, usage: Usage | None, now: float | None = None) -> NodeRow:
-    """The table row of ``process``; pid and usage only while it runs."""
+    """The table row of ``process``; pid and usage only while it runs; ``/name @machine`` for a remote node."""
     running = process.running
+    where = process.machine_name
     return NodeRow(
         key=process.label,
-        node=process.name,
+        node=process.name if where is None else f"{process.name} @{where}",
         state=state_text(process, now),
         pid=str(process.pid) if running and process.pid is not None else "-",
         cpu=f"{usage.cpu_percent:.1f}" if running and usage is not None else "-",

@@ -371,3 +371,55 @@ def test_one_file_with_a_rostui_host_and_a_ros_host(three_hosts: NetnsHosts, tmp
             wait_until(lambda host=host: not leftovers(host), f"host {host.name} to have no process left", 30)
     finally:
         run.kill()
+
+
+MONITOR_DRIVER = textwrap.dedent("""\
+    import asyncio, json, sys
+    from rostui.launch.files import LaunchRequest
+    from rostui.launch.supervisor import SupervisorOptions, load_supervisor
+
+    async def main():
+        options = SupervisorOptions(capture=True, handle_signals=False, stay_when_all_ended=True, sigint_timeout=5)
+        supervisor = load_supervisor(LaunchRequest([sys.argv[1]]), options, reporter=lambda *_: None)
+        run = asyncio.get_running_loop().create_task(supervisor.run())
+        far = None
+        for _ in range(600):
+            await asyncio.sleep(0.1)
+            if supervisor.processes:
+                far = supervisor.processes[0]
+                streams = {line.stream for line in far.output.since(0)}
+                if {"stdout", "stderr"} <= streams and far.running:
+                    break
+        lines = [[line.stream, line.text] for line in far.output.since(0)]
+        state, pid, local = far.state.value, far.pid, far.local
+        supervisor.request_stop()
+        await run
+        print(json.dumps({"lines": lines, "state": state, "pid": pid, "local": local,
+                          "after": far.state.value}))
+
+    asyncio.run(main())
+    """)
+
+
+def test_the_monitor_gets_a_remote_nodes_output(three_hosts: NetnsHosts, tmp_path: Path) -> None:
+    """With --tui's capture, a remote node's stdout and stderr lines land in its own output ring."""
+    import json
+
+    hosts = three_hosts
+    a, b = hosts["a"], hosts["b"]
+    launch = write_launch(tmp_path / "robot.launch", f"""\
+        <machine name="hostb" address="{b.address}" env-loader="{b.env_loader([VENV_BIN])}"/>
+        <node machine="hostb" pkg="agitr" type="pubvel" name="pubvel" output="screen"
+              launch-prefix="sh -c 'echo warming up &gt;&amp;2; exec &quot;$@&quot;' --"/>
+        """)
+    (tmp_path / "driver.py").write_text(MONITOR_DRIVER)
+    result = a.run([sys.executable, str(tmp_path / "driver.py"), str(launch)], host_env(hosts, a, free_port(), tmp_path),
+                   timeout=120)
+    assert result.returncode == 0, result.stderr
+    seen = json.loads(result.stdout.splitlines()[-1])
+    assert ["stderr", "warming up"] in seen["lines"]
+    assert any(stream == "stdout" and "Sending random velocity command" in text for stream, text in seen["lines"])
+    assert seen["state"] == "running" and seen["local"] is False
+    assert isinstance(seen["pid"], int) and seen["pid"] > 0, "the node's pid on host B"
+    assert seen["after"] == "stopped"
+    wait_until(lambda: not leftovers(b), "host B to have no process left", 30)

@@ -124,3 +124,15 @@ def test_a_child_refuses_a_broken_launch_document() -> None:
         assert not child.processes
 
     asyncio.run(scenario())
+
+
+def test_a_child_reports_a_node_it_cannot_find(ros_env: dict[str, str]) -> None:
+    async def scenario() -> None:
+        child = ChildLauncher("c-0", "http://127.0.0.1:9/", "run", SupervisorOptions())
+        code, _, (started, failed) = await child.launch_xml(
+            '<launch><node pkg="no_such_package" type="t" name="ghost"/></launch>')
+        assert (code, started, failed) == (1, [], ["ghost-1"])
+        [process] = child.processes
+        assert process.state.value == "failed" and "no_such_package" in process.problem
+
+    asyncio.run(scenario())

@@ -28,11 +28,10 @@ from rostui.core.network import resolve_addressing
 from rostui.core.xmlrpc import XmlRpcClient, XmlRpcError
 from rostui.core.xmlrpc.server import XmlRpcServer
 from rostui.launch.errors import LaunchError
-from rostui.launch.inspect import node_argv
 from rostui.launch.loader import XmlLoader
 from rostui.launch.model import LaunchConfig, NodeSpec
 from rostui.launch.output import OutputBuffer
-from rostui.launch.process import ManagedProcess, NodeState
+from rostui.launch.process import ManagedProcess, NodeState, ProcessPlan
 from rostui.launch.remote_protocol import LOG_ERROR, LOG_INFO, format_output_line
 from rostui.launch.supervisor import Supervisor, SupervisorOptions, log_label, prefix_problem
 
@@ -175,14 +174,9 @@ class ChildLauncher(Supervisor):
     def _prepare(self, node: NodeSpec, counter: int, run_dir: Path) -> ManagedProcess:
         problem = prefix_problem(node)
         try:
-            node_argv(node, self.anons)
-            plan = self._plan(node, counter, run_dir)
+            plan = self._plan(node, counter, run_dir)  # finds the executable, or raises LaunchError
         except LaunchError as exc:
             problem = problem or exc.message
-            plan = None
-        if plan is None:
-            from rostui.launch.process import ProcessPlan
-
             plan = ProcessPlan(node, log_label(node, counter), [], {}, "", None, True)
         process = ManagedProcess(plan)
         process.output = ForwardedOutput(plan.label, self.options.screen or node.output == "screen")

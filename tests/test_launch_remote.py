@@ -440,3 +440,26 @@ def test_a_missing_env_loader_is_one_error(three_hosts: NetnsHosts, tmp_path: Pa
                                 f"({b.address}:22): "), errors[0]
     assert "/opt/nowhere/env.sh" in errors[0], errors[0]
     wait_until(lambda: not leftovers(b), "host B to have no process left", 30)
+
+
+def test_a_host_cut_off_the_network_stops_its_nodes(three_hosts: NetnsHosts, tmp_path: Path) -> None:
+    """B loses its network: its child stops its nodes (the parent no longer answers), and A reports them lost."""
+    hosts = three_hosts
+    a, b = hosts["a"], hosts["b"]
+    launch = write_launch(tmp_path / "robot.launch", f"""\
+        <machine name="hostb" address="{b.address}" env-loader="{b.env_loader([VENV_BIN])}"/>
+        <node machine="hostb" pkg="agitr" type="pubvel" name="pubvel"/>
+        <node pkg="agitr" type="count" name="count"/>
+        """)
+    run = LaunchRun(a, [ROSTUI, "launch", str(launch)], host_env(hosts, a, free_port(), tmp_path),
+                    tmp_path / "launch.out")
+    try:
+        run.wait_for(r"process\[pubvel-\d+\]: started with pid", "pubvel to start on B")
+        subprocess.run(["ip", "-n", b.namespace, "link", "set", "eth0", "down"], check=True)
+        wait_until(lambda: not node_pids(b, "pubvel") and not node_pids(b, "launch --child"),
+                   "the child on B to stop its node and exit", 120)
+        run.wait_for(r"the connection to machine \[hostb\] closed", "A to report the lost connection", 120)
+        assert run.proc.poll() is None, "the launch goes on with its local node"
+        assert run.interrupt() == 0, run.output()
+    finally:
+        run.kill()

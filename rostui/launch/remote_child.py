@@ -9,8 +9,8 @@ parent about its lines (``log``) and every death (``process_died``), and
 sends each node's output lines back as ``[LABEL]<TAB>TEXT`` on its own stdout and
 stderr (the SSH connection).  It sets no params and starts no master.  It
 stops every node and exits on ``shutdown``, when its last node has ended (as
-roslaunch's child), when the parent cannot be reached, or when its stdin
-closes (the SSH connection is gone).
+roslaunch's child), when the parent has not answered for 20 s (a lost
+network), or when its stdin closes (the SSH connection is gone).
 """
 
 from __future__ import annotations
@@ -37,6 +37,10 @@ from rostui.launch.supervisor import Supervisor, SupervisorOptions, log_label, p
 
 #: Seconds the child waits for the parent to answer a call before it gives the parent up.
 PARENT_TIMEOUT = 15.0
+#: Seconds between the child's checks that its parent still answers (``get_pid``).
+PARENT_CHECK_INTERVAL = 2.0
+#: Seconds without an answer from the parent after which the child stops its nodes and exits.
+PARENT_GIVE_UP = 20.0
 
 
 class ForwardedOutput(OutputBuffer):
@@ -141,6 +145,24 @@ class ChildLauncher(Supervisor):
         finally:
             await client.close()
 
+    async def _watch_parent(self) -> None:
+        """Stop the launch when the parent has not answered for :data:`PARENT_GIVE_UP` seconds (a lost network)."""
+        loop = asyncio.get_running_loop()
+        last_answer = loop.time()
+        while not self.stopping.is_set():
+            await asyncio.sleep(PARENT_CHECK_INTERVAL)
+            client = XmlRpcClient(self.parent_uri, timeout=PARENT_CHECK_INTERVAL * 2)
+            try:
+                await client.call("get_pid")
+                last_answer = loop.time()
+            except (XmlRpcError, OSError):
+                if loop.time() - last_answer > PARENT_GIVE_UP:
+                    print(f"rostui launch --child: the parent at {self.parent_uri} has not answered for "
+                          f"{PARENT_GIVE_UP:g} s; stopping", file=sys.stderr, flush=True)
+                    self.request_stop()
+            finally:
+                await client.close()
+
     def _exited(self, process: ManagedProcess, code: int) -> None:
         self._send("process_died", process.label, code)
 
@@ -209,7 +231,9 @@ class ChildLauncher(Supervisor):
                 await client.close()
             if not (isinstance(reply, list) and reply and reply[0] == 1):
                 raise LaunchError(f"the parent at {self.parent_uri} refused child [{self.name}]: {reply}")
+            watch_parent = loop.create_task(self._watch_parent())
             await self.stopping.wait()
+            watch_parent.cancel()
         except (XmlRpcError, OSError) as exc:
             print(f"rostui launch --child: cannot reach the parent at {self.parent_uri}: {exc}", file=sys.stderr,
                   flush=True)

@@ -428,8 +428,9 @@ def test_the_monitor_gets_a_remote_nodes_output(three_hosts: NetnsHosts, tmp_pat
 def test_a_missing_env_loader_is_one_error(three_hosts: NetnsHosts, tmp_path: Path) -> None:
     hosts = three_hosts
     a, b = hosts["a"], hosts["b"]
+    missing = tmp_path / "nowhere" / "env.sh"
     launch = write_launch(tmp_path / "robot.launch", f"""\
-        <machine name="hostb" address="{b.address}" env-loader="/opt/nowhere/env.sh"/>
+        <machine name="hostb" address="{b.address}" env-loader="{missing}"/>
         <node machine="hostb" pkg="agitr" type="pubvel" name="pubvel"/>
         """)
     result = a.run([ROSTUI, "launch", str(launch)], host_env(hosts, a, free_port(), tmp_path), timeout=120)
@@ -438,7 +439,7 @@ def test_a_missing_env_loader_is_one_error(three_hosts: NetnsHosts, tmp_path: Pa
     assert len(errors) == 1, result.stderr
     assert errors[0].startswith(f"rostui launch: {launch}:2: cannot start nodes on machine [hostb] "
                                 f"({b.address}:22): "), errors[0]
-    assert "/opt/nowhere/env.sh" in errors[0], errors[0]
+    assert str(missing) in errors[0], errors[0]
     wait_until(lambda: not leftovers(b), "host B to have no process left", 30)
 
 

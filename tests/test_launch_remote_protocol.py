@@ -136,3 +136,13 @@ def test_a_child_reports_a_node_it_cannot_find(ros_env: dict[str, str]) -> None:
         assert process.state.value == "failed" and "no_such_package" in process.problem
 
     asyncio.run(scenario())
+
+
+def test_child_mode_takes_its_three_options_and_nothing_else(ros_env: dict[str, str]) -> None:
+    from conftest import rostui_cmd
+
+    alone = subprocess.run(rostui_cmd("launch", "--child", "x-0"), env=ros_env, capture_output=True, text=True)
+    assert alone.returncode == 2 and alone.stderr == "rostui launch: --child, -u and --run_id go together\n"
+    with_file = subprocess.run(rostui_cmd("launch", "-c", "x-0", "-u", "http://127.0.0.1:9/", "--run_id", "r",
+                                          "robot.launch"), env=ros_env, capture_output=True, text=True)
+    assert with_file.returncode == 2 and "--child takes no launch files" in with_file.stderr

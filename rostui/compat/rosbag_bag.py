@@ -286,6 +286,7 @@ class Bag:
                 self._writer = self._new_writer(path)
                 for conn, t, data in time_ordered(reader):
                     self._writer.write(self._connection_id(conn.topic, conn.header_fields()), t, data)
+                self._topic_ids = {}  # new messages get new connections, as in a .bag appended to
             finally:
                 reader.close()
         except BaseException:
@@ -404,12 +405,14 @@ class Bag:
 
     # --- reading -----------------------------------------------------------------------------------------
 
-    def _live_reader(self) -> Reader:
-        """The reader of an open bag: for one being written, a reader of the chunks written so far."""
+    def _live_reader(self, flush: bool = True) -> Reader:
+        """The reader of an open bag: for one being written, a reader of the chunks written so far (the open
+        chunk written out first, unless ``flush`` is False)."""
         if not self._open:
             raise ValueError("I/O operation on closed bag")
         if self._writer is not None:
-            self.flush()
+            if flush:
+                self.flush()
             if self._reader is None or self._stale:
                 if self._reader is not None:
                     self._reader.close()
@@ -423,7 +426,9 @@ class Bag:
         """A reader for the bag's counts and times; a closed bag's file is read again (rosbag answers these
         from the index it keeps after closing)."""
         if self._open:
-            yield self._live_reader()
+            # rosbag counts a bag being written from its closed chunks once it has any, else from every message
+            closed_chunks = getattr(self._writer, "chunk_infos", None) or getattr(self._writer, "chunk_indexes", None)
+            yield self._live_reader(flush=not closed_chunks)
             return
         if self._target.stream is not None:
             raise ValueError("I/O operation on closed bag")

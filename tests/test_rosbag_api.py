@@ -104,7 +104,20 @@ with rosbag.Bag('w.bag', 'a') as bag:
     bag.write('/c', Int32(9), genpy.Time(10))
 with rosbag.Bag('w.bag') as bag:
     print(show(bag))
-    print(sorted((k, (v.msg_type, v.message_count, v.connections)) for k, v in bag.get_type_and_topic_info().topics.items()))
+    topics = bag.get_type_and_topic_info().topics
+    print(sorted((k, (v.msg_type, v.message_count, v.connections)) for k, v in topics.items()))
+
+# compression and chunk size changed while writing
+with rosbag.Bag('set.bag', 'w') as bag:
+    bag.write('/s', Int32(1), genpy.Time(1))
+    bag.compression = 'bz2'
+    bag.write('/s', Int32(2), genpy.Time(2))
+    bag.chunk_threshold = 0
+    bag.write('/s', Int32(3), genpy.Time(3))
+    bag.write('/s', Int32(4), genpy.Time(4))
+    print(bag.options)
+with rosbag.Bag('set.bag') as bag:
+    print(bag.get_compression_info().compression, show(bag))
 
 # errors
 if os.path.exists('missing_a.bag'):

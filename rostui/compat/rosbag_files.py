@@ -14,6 +14,7 @@ rostui's ``genpy.Time``.
 
 from __future__ import annotations
 
+import importlib
 import io
 import os
 import shutil
@@ -35,13 +36,14 @@ def stamp_class() -> type[Time]:
     if _stamp_class is None:
         found: type[Time] = Time
         try:
-            import rospy.rostime as rostime
+            rostime = importlib.import_module("rospy.rostime")  # whichever rospy the script gets
         except ImportError:
             pass
         else:
             where = Path(getattr(rostime, "__file__", "") or "").resolve()
-            if _PYLIB in where.parents and issubclass(rostime.Time, Time):
-                found = rostime.Time
+            candidate = getattr(rostime, "Time", None)
+            if _PYLIB in where.parents and isinstance(candidate, type) and issubclass(candidate, Time):
+                found = candidate
         _stamp_class = found
     return _stamp_class
 

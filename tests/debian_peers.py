@@ -37,6 +37,8 @@ FILES: dict[str, str] = {
     "/usr/include/ros/ros.h": "libroscpp-dev",
     "/usr/lib/genpy/genmsg_py.py": "python3-genpy",
     "/usr/lib/genpy/gensrv_py.py": "python3-genpy",
+    "/usr/lib/rostopic/rostopic": "python3-rostopic",
+    "/usr/lib/rosbag/play": "python3-rosbag",
     "/usr/lib/python3/dist-packages/rospy/": "python3-rospy",
     "/usr/sbin/sshd": "openssh-server",
     "/usr/share/rosgraph_msgs/package.xml": "libros-rosgraph-msgs-dev",

@@ -83,11 +83,11 @@ def test_identical_duplicate_is_fine_a_different_one_is_an_error(tmp_path: Path)
 def test_env_loader_and_address_take_substitutions(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("ROBOT_HOST", "robot7")
     path = write(tmp_path, '<arg name="distro" default="noetic"/>\n'
-                           '<machine name="r" address="$(env ROBOT_HOST)" env-loader="/opt/ros/$(arg distro)/env.sh" '
+                           '<machine name="r" address="$(env ROBOT_HOST)" env-loader="/home/ops/$(arg distro)/env.sh" '
                            'ssh-port="2222" user="ops" password="pw" timeout="4.5"/>')
     machine = load(path, distro="melodic").machines["r"]
     assert (machine.address, machine.env_loader, machine.ssh_port, machine.user, machine.password,
-            machine.timeout) == ("robot7", "/opt/ros/melodic/env.sh", 2222, "ops", "pw", 4.5)
+            machine.timeout) == ("robot7", "/home/ops/melodic/env.sh", 2222, "ops", "pw", 4.5)
 
 
 @pytest.mark.parametrize("body,message", [

@@ -37,6 +37,8 @@ REAL_FILES = [
     (["ct_icp_odometry", "ct_icp_on_rosbag.launch"], ["rosbag:=/data/run1.bag", "topic:=/velodyne_points"]),
     (["fkie_node_manager", "demo_bob.launch"], []),
 ]
+#: Executables Debian's roslaunch finds in catkin's libexec (/usr/lib/PKG) for the real files' nodes.
+DEBIAN_LIBEXEC = ("/usr/lib/rostopic/rostopic", "/usr/lib/rosbag/play")
 INVALID = sorted(p.name for p in XML.glob("test-machine-invalid*.xml")) + ["test-machine-substitution.xml"]
 
 
@@ -121,7 +123,7 @@ def test_node_args_equal_roslaunch(env: dict[str, str], words: list[str], args: 
         theirs = run_roslaunch(["--args", node, *words, *args], env)
         assert theirs.returncode == 0, theirs.stderr
         assert ours.returncode == 0, ours.stderr
-        libexec = [w for w in theirs.stdout.split() if w.startswith("/usr/lib/")]
+        libexec = [w for w in theirs.stdout.split() if w in DEBIAN_LIBEXEC]
         if libexec:
             theirs_words, ours_words = theirs.stdout.split(), ours.stdout.split()
             at = theirs_words.index(libexec[0])

@@ -4,7 +4,8 @@ tests/roslaunch_xml holds roslaunch's own test launch files (ros_comm, unmodifie
 that declare machines, far-away ones too; tests/launch_real holds launch files
 of public robot repositories (unmodified) that use attributes roslaunch only
 warns about.  Both launchers see one ROS_PACKAGE_PATH: fake packages made here
-(``package``, ``roslaunch``, ``rospy``, ``rviz``, ``rostopic``, with empty executables, and
+(``package``, ``roslaunch``, ``rospy``, ``rviz``, ``rostopic`` and the PR2's driver packages,
+with empty executables, and
 roslaunch's test params.yaml where its files ``$(find roslaunch)`` it), rostui's
 built-ins and a copy of tests/launch_real.
 """
@@ -33,7 +34,10 @@ VALID = [
     (str(XML / "example-ssh.launch"), []),
     (str(XML / "manual-test-remote-timeouts.launch"), REMOTE_ARGS),
 ]
+#: PR2's machine definitions and the nodes it starts on its second computer: a real two-machine robot.
+PR2 = [str(REAL / "pr2_machine" / "pr2.machine"), str(REAL / "pr2_bringup" / "pr2-c2.launch")]
 REAL_FILES = [
+    (PR2, []),
     (["ct_icp_odometry", "ct_icp_on_rosbag.launch"], ["rosbag:=/data/run1.bag", "topic:=/velodyne_points"]),
     (["fkie_node_manager", "demo_bob.launch"], []),
 ]
@@ -68,6 +72,9 @@ def env(ros_env: dict[str, str], tmp_path: Path) -> dict[str, str]:
     _package(fake, "rospy", ["talker.py", "listener.py"])
     _package(fake, "rviz", ["rviz"])
     _package(fake, "rostopic", ["rostopic"])
+    _package(fake, "ocean_battery_driver", ["ocean_server"])
+    _package(fake, "urg_node", ["urg_node"])
+    _package(fake, "pr2_computer_monitor", ["ntp_monitor.py", "cpu_monitor.py", "hd_monitor.py"])
     real = tmp_path / "real"
     shutil.copytree(REAL, real)
     node = real / "ct_icp_odometry" / "ct_icp_odometry_node"
@@ -75,6 +82,7 @@ def env(ros_env: dict[str, str], tmp_path: Path) -> dict[str, str]:
     node.chmod(0o755)
     env = dict(ros_env)
     env["ROS_PACKAGE_PATH"] = f"{fake}:{BUILTIN_SHARE}:{real}"
+    env["ROS_ENV_LOADER"] = "/home/pr2/ros/env.sh"  # pr2.machine reads it with $(env)
     return env
 
 
@@ -82,7 +90,11 @@ def _cases() -> list[tuple[list[str], list[str]]]:
     return [([path], args) for path, args in VALID] + REAL_FILES
 
 
-IDS = [Path(words[-1]).name for words, _ in _cases()]
+def _id(words: list[str]) -> str:
+    return "+".join(Path(w).name for w in words if "/" in w) or words[-1]
+
+
+IDS = [_id(words) for words, _ in _cases()]
 
 
 @pytest.mark.parametrize("words,args", _cases(), ids=IDS)
@@ -105,7 +117,7 @@ def test_files_equal_roslaunch(env: dict[str, str], words: list[str], args: list
 WITH_NODES = [(words, args) for words, args in _cases() if not words[-1].endswith(("machine-valid.xml", "/test-valid.xml"))]
 
 
-@pytest.mark.parametrize("words,args", WITH_NODES, ids=[Path(w[-1]).name for w, _ in WITH_NODES])
+@pytest.mark.parametrize("words,args", WITH_NODES, ids=[_id(w) for w, _ in WITH_NODES])
 def test_node_args_equal_roslaunch(env: dict[str, str], words: list[str], args: list[str]) -> None:
     """``--args NODE`` for every node, remote ones included.
 
@@ -167,3 +179,12 @@ def test_strict_and_check_refuse_what_roslaunch_warns_about(env: dict[str, str],
     checked = run_rostui(["check", *words, *args], env)
     assert checked.returncode == 1 and checked.stdout == ""
     assert checked.stderr.splitlines()[:len(expected)] == expected
+
+
+def test_check_names_the_machine_that_does_not_resolve(env: dict[str, str]) -> None:
+    """PR2's second computer ``c2`` is not on this network: `launch check` says so, pointing at its <machine>."""
+    result = run_rostui(["check", *PR2], env)
+    assert result.returncode == 1
+    assert result.stderr.strip() == f"rostui launch: {PR2[0]}:3: cannot resolve host address for machine [c2]"
+    listing = run_rostui(["--nodes", *PR2], env)
+    assert listing.returncode == 0 and "/ntp_c2" in listing.stdout.split()

@@ -27,6 +27,7 @@ COMMANDS: dict[str, str] = {
     "tmux": "tmux",
     "ssh": "openssh-client",
     "ssh-keygen": "openssh-client",
+    "ip": "iproute2",
     "chromium": "chromium",
     "chromedriver": "chromium-driver",
 }
@@ -41,6 +42,7 @@ FILES: dict[str, str] = {
     "/usr/lib/rosbag/play": "python3-rosbag",
     "/usr/lib/python3/dist-packages/rospy/": "python3-rospy",
     "/usr/sbin/sshd": "openssh-server",
+    "/usr/lib/python3/dist-packages/paramiko/": "python3-paramiko",
     "/usr/share/rosgraph_msgs/package.xml": "libros-rosgraph-msgs-dev",
 }
 

@@ -38,6 +38,13 @@ def launch_command(
                                                         "not warnings (one FILE:LINE line each)."),
     tui: bool = typer.Option(False, "--tui", help="Run the launch inside a live monitor of its nodes "
                                                   "(state, pid, CPU, memory, restarts, output; start/stop/restart)."),
+    child: Optional[str] = typer.Option(None, "-c", "--child", metavar="NAME",
+                                        help="Run as child NAME of a parent launcher on another machine "
+                                             "(roslaunch's remote protocol; needs -u and --run_id)."),
+    server_uri: Optional[str] = typer.Option(None, "-u", "--server_uri", metavar="URI",
+                                             help="The parent launcher's XML-RPC URI (with --child)."),
+    run_id: Optional[str] = typer.Option(None, "--run_id", metavar="RUN_ID",
+                                         help="The parent's run id (with --child)."),
 ) -> None:
     """Start the nodes of a launch file (like `roslaunch`).
 
@@ -78,6 +85,20 @@ def launch_command(
         print("rostui launch: check reports problems; it cannot be combined with --nodes, --args, --dump-params, "
               "--files, --ros-args or --tui", file=sys.stderr)
         raise typer.Exit(2)
+    if child is not None or server_uri is not None or run_id is not None:
+        if child is None or server_uri is None or run_id is None:
+            print("rostui launch: --child, -u and --run_id go together", file=sys.stderr)
+            raise typer.Exit(2)
+        if words or modes or dump_params or files or tui:
+            print("rostui launch: --child takes no launch files and no other mode: its parent sends the nodes",
+                  file=sys.stderr)
+            raise typer.Exit(2)
+        from rostui.launch.remote_child import run_child
+        from rostui.launch.supervisor import SupervisorOptions
+
+        options = SupervisorOptions(screen=screen, verbose=verbose, sigint_timeout=sigint_timeout,
+                                    sigterm_timeout=sigterm_timeout)
+        raise typer.Exit(run_child(child, server_uri, run_id, options))
     if tui:
         from rostui.apps.terminal import terminal_missing
 

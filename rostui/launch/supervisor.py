@@ -18,6 +18,7 @@ and the monitor drives the launch through :meth:`Supervisor.start_node`,
 from __future__ import annotations
 
 import asyncio
+import getpass
 import os
 import shlex
 import shutil
@@ -44,9 +45,10 @@ from rostui.core.xmlrpc.server import XmlRpcServer
 from rostui.launch.errors import LaunchError
 from rostui.launch.files import LaunchRequest
 from rostui.launch.inspect import load_config, node_argv, node_env
-from rostui.launch.model import LaunchConfig, NodeSpec
+from rostui.launch.model import LaunchConfig, Machine, NodeSpec
 from rostui.launch.output import OutputBuffer
 from rostui.launch.process import ManagedProcess, NodeState, ProcessPlan
+from rostui.launch.remote_parent import RemoteLaunch, RemoteProcess
 
 CALLER = "/roslaunch"
 #: A respawned node that dies within this many seconds of starting is restarted with a growing delay.
@@ -102,18 +104,21 @@ def master_uri_for(options: SupervisorOptions) -> str:
 
 
 def check_machines(config: LaunchConfig) -> None:
-    """Refuse (before anything starts) nodes assigned to an unknown machine or to another host."""
+    """Refuse (before anything starts) nodes assigned to an unknown machine."""
     for node in config.nodes:
-        if not node.machine:
-            continue
-        machine = config.machines.get(node.machine)
-        if machine is None:
+        if node.machine and node.machine not in config.machines:
             raise LaunchError(f"unknown machine [{node.machine}] for node [{node.resolved_name}]",
                               node.filename, node.line)
-        if not is_local_host(machine.address):
-            raise LaunchError(f"node [{node.resolved_name}] is assigned to machine [{machine.name}] at "
-                              f"{machine.address}: remote launch (ssh) is not available in rostui",
-                              node.filename, node.line)
+
+
+def remote_machine(config: LaunchConfig, node: NodeSpec) -> Machine | None:
+    """The machine ``node`` runs on when that is another host (or another user), else None (it runs here)."""
+    machine = config.machines.get(node.machine) if node.machine else None
+    if machine is None:
+        return None
+    if is_local_host(machine.address) and (not machine.user or machine.user == getpass.getuser()):
+        return None
+    return machine
 
 
 def log_label(node: NodeSpec, counter: int) -> str:
@@ -150,6 +155,22 @@ class _LaunchApi:
         dead = [[p.plan.label, p.starts] for p in processes if p.proc and p.proc.returncode is not None]
         return [1, "processes on this launcher", [running, dead]]
 
+    def register(self, client: str, uri: str) -> list[Any]:
+        """roslaunch's parent API: a child on a remote machine says where its XML-RPC server is."""
+        return self._supervisor.remote.register(client, uri)
+
+    def list_children(self) -> list[Any]:
+        """roslaunch's parent API: the XML-RPC URIs of the registered children."""
+        return self._supervisor.remote.list_children()
+
+    def process_died(self, label: str, exit_code: int) -> list[Any]:
+        """roslaunch's parent API: a node on a remote machine has ended."""
+        return self._supervisor.remote.process_died(label, exit_code)
+
+    def log(self, client: str, level: int, message: str) -> list[Any]:
+        """roslaunch's parent API: a line of a child's own output."""
+        return self._supervisor.remote.log(client, level, message)
+
 
 class Supervisor:
     """Starts a loaded launch and keeps it running until Ctrl-C, a required node's death or all nodes ending.
@@ -181,6 +202,8 @@ class Supervisor:
         self._reporter = reporter
         self._watchers: dict[int, asyncio.Task[None]] = {}
         self._failures: dict[int, str] = {}
+        self.remote = RemoteLaunch(self)
+        """The children on other machines (roslaunch's remote protocol over SSH)."""
 
     # -- the launcher's own lines ------------------------------------------------------------------------------
 
@@ -300,6 +323,11 @@ class Supervisor:
     def _prepare_nodes(self, run_dir: Path) -> None:
         """One process entry per node, in file order (a node that cannot run is marked FAILED, not dropped)."""
         for counter, node in enumerate(self.config.nodes, start=1):
+            machine = remote_machine(self.config, node)
+            if machine is not None:
+                plan = ProcessPlan(node, log_label(node, counter), [], {}, "", None, self.options.capture)
+                self.processes.append(self.remote.add(RemoteProcess(plan, machine=machine)))
+                continue
             problem = prefix_problem(node)
             message = f"ERROR: cannot launch node [{node.resolved_name}]: {problem}; the other nodes keep running"
             try:
@@ -318,8 +346,8 @@ class Supervisor:
         for process in self.processes:
             if self.stopping.is_set():
                 return
-            if process.state is NodeState.STOPPED:  # stopped from the monitor before its turn came
-                continue
+            if process.state is NodeState.STOPPED or isinstance(process, RemoteProcess):
+                continue  # stopped from the monitor before its turn came, or started by its machine's child
             if process.state is NodeState.FAILED:
                 message = self._failures[id(process)]
                 self.complain(message)
@@ -371,18 +399,9 @@ class Supervisor:
                            f"cmd {' '.join(plan.argv)}]{where}")
                 self.complain(message)
             process.note(message, error=code != 0)
+            self._exited(process, code)
             node = plan.spec
-            if node.required:
-                self.complain(f"REQUIRED process [{plan.label}] has died! Initiating shutdown!")
-                self.end_reason = f"required node {process.name} has died (exit code {code}): the launch was shut down"
-                self.exit_code = 1 if code != 0 else 0
-                self.stopping.set()
-                return
-            if not node.respawn:
-                if self._all_ended() and self.embedded is None and not self.options.stay_when_all_ended:
-                    self.say("all processes on machine have died, roslaunch will exit")
-                    self.end_reason = "every node has ended: the launch is over"
-                    self.stopping.set()
+            if self.node_ended(process, code):
                 return
             backoff = min(MAX_BACKOFF, max(1.0, backoff * 2)) if ran_for < QUICK_DEATH else 0.0
             delay = node.respawn_delay + backoff
@@ -414,6 +433,29 @@ class Supervisor:
             self.say(message)
             process.note(message)
 
+    def _exited(self, process: ManagedProcess, code: int) -> None:
+        """Called once for each death of a node's process, before the launch decides what follows."""
+
+    def node_ended(self, process: ManagedProcess, code: int | None) -> bool:
+        """After a node's death: end the launch for a ``required`` node or when every node has ended.
+
+        True when the node will not be restarted (it is not ``respawn``).
+        """
+        node = process.plan.spec
+        if node.required:
+            self.complain(f"REQUIRED process [{process.label}] has died! Initiating shutdown!")
+            self.end_reason = f"required node {process.name} has died (exit code {code}): the launch was shut down"
+            self.exit_code = 1 if code != 0 else 0
+            self.stopping.set()
+            return True
+        if not node.respawn:
+            if self._all_ended() and self.embedded is None and not self.options.stay_when_all_ended:
+                self.say("all processes on machine have died, roslaunch will exit")
+                self.end_reason = "every node has ended: the launch is over"
+                self.stopping.set()
+            return True
+        return False
+
     # -- control of one node (the monitor's start, stop and restart) ------------------------------------------
 
     def process_named(self, name: str) -> ManagedProcess:
@@ -429,9 +471,16 @@ class Supervisor:
             watcher.cancel()
             await asyncio.gather(watcher, return_exceptions=True)
 
+    @staticmethod
+    def _refuse_remote(process: ManagedProcess) -> None:
+        if isinstance(process, RemoteProcess):
+            raise LaunchError(f"node [{process.name}] runs on machine [{process.machine.name}]: it starts and "
+                              "stops with the whole launch")
+
     def _check_open(self, process: ManagedProcess) -> None:
         if self.stopping.is_set():
             raise LaunchError("the launch is shutting down")
+        self._refuse_remote(process)
         if process.state is NodeState.FAILED and not process.plan.argv:
             raise LaunchError(f"node [{process.name}] cannot be started: {process.problem}")
 
@@ -458,6 +507,7 @@ class Supervisor:
         async with process.lock:
             if self.stopping.is_set():
                 raise LaunchError("the launch is shutting down")
+            self._refuse_remote(process)
             await self._stop_locked(process, "stopped on request")
 
     async def start_node(self, name: str) -> bool:
@@ -501,7 +551,10 @@ class Supervisor:
             await self._set_params()
             await self._advertise()
             self._prepare_nodes(run_dir)
+            assert self.server is not None
+            await self.remote.start_children(self.server.uri, self.run_id)
             await self._start_nodes()
+            await self.remote.launch_nodes()
             started = [p for p in self.processes if p.starts]
             if not started and self.embedded is None and not self.stopping.is_set() \
                     and not self.options.stay_when_all_ended:
@@ -518,6 +571,8 @@ class Supervisor:
         return self.exit_code
 
     async def _stop_for_shutdown(self, process: ManagedProcess) -> str:
+        if isinstance(process, RemoteProcess):
+            return "exited"  # its machine's child stops it (RemoteLaunch.shutdown)
         async with process.lock:
             was_running = process.running
             if was_running:
@@ -536,7 +591,9 @@ class Supervisor:
         self.stopping.set()
         try:
             stops = [self._stop_for_shutdown(p) for p in self.processes]
+            remote = asyncio.get_running_loop().create_task(self.remote.shutdown())
             results = await asyncio.gather(*stops, return_exceptions=True)
+            await remote
             for process, how in zip(self.processes, results):
                 if how in ("SIGTERM", "SIGKILL"):
                     self.complain(f"[{process.plan.label}] did not stop on SIGINT: sent {how}")
@@ -569,7 +626,8 @@ def load_supervisor(request: LaunchRequest, options: SupervisorOptions,
         supervisor.complain(f"WARNING: {warning}")
     check_machines(config)
     for node in config.nodes:
-        node_argv(node, loader.anons)  # every executable must exist before anything starts
+        if remote_machine(config, node) is None:  # remote executables are the remote machine's business
+            node_argv(node, loader.anons)  # every executable must exist before anything starts
     if options.verbose:
         for node in config.nodes:
             supervisor.say(f"node {node.resolved_name}: {node.package}/{node.type}")

@@ -38,6 +38,8 @@ FILES: dict[str, str] = {
     "/usr/include/ros/ros.h": "libroscpp-dev",
     "/usr/lib/genpy/genmsg_py.py": "python3-genpy",
     "/usr/lib/genpy/gensrv_py.py": "python3-genpy",
+    "/usr/lib/rostopic/rostopic": "python3-rostopic",
+    "/usr/lib/rosbag/play": "python3-rosbag",
     "/usr/lib/python3/dist-packages/rospy/": "python3-rospy",
     "/usr/sbin/sshd": "openssh-server",
     "/usr/lib/python3/dist-packages/paramiko/": "python3-paramiko",

@@ -18,7 +18,6 @@ and the monitor drives the launch through :meth:`Supervisor.start_node`,
 from __future__ import annotations
 
 import asyncio
-import getpass
 import os
 import shlex
 import shutil
@@ -38,13 +37,14 @@ import yaml
 from rostui.core.log.files import ros_home, run_log_dir
 from rostui.core.msg import MessageError
 from rostui.core.network import resolve_addressing
-from rostui.core.master.embedded import EmbeddedMaster, MasterUnavailableError, ensure_master, is_local_host, \
+from rostui.core.master.embedded import EmbeddedMaster, MasterUnavailableError, ensure_master, \
     master_answers
 from rostui.core.xmlrpc import XmlRpcClient, XmlRpcError
 from rostui.core.xmlrpc.server import XmlRpcServer
 from rostui.launch.errors import LaunchError
 from rostui.launch.files import LaunchRequest
 from rostui.launch.inspect import load_config, node_argv, node_env
+from rostui.launch.machines import assign_machines
 from rostui.launch.model import LaunchConfig, Machine, NodeSpec
 from rostui.launch.output import OutputBuffer
 from rostui.launch.process import ManagedProcess, NodeState, ProcessPlan
@@ -103,22 +103,9 @@ def master_uri_for(options: SupervisorOptions) -> str:
     return urlunsplit((parts.scheme or "http", f"{host}:{options.port}", "/", "", ""))
 
 
-def check_machines(config: LaunchConfig) -> None:
-    """Refuse (before anything starts) nodes assigned to an unknown machine."""
-    for node in config.nodes:
-        if node.machine and node.machine not in config.machines:
-            raise LaunchError(f"unknown machine [{node.machine}] for node [{node.resolved_name}]",
-                              node.filename, node.line)
-
-
 def remote_machine(config: LaunchConfig, node: NodeSpec) -> Machine | None:
-    """The machine ``node`` runs on when that is another host (or another user), else None (it runs here)."""
-    machine = config.machines.get(node.machine) if node.machine else None
-    if machine is None:
-        return None
-    if is_local_host(machine.address) and (not machine.user or machine.user == getpass.getuser()):
-        return None
-    return machine
+    """The machine ``node`` runs on when :func:`assign_machines` found it is another host (or user), else None."""
+    return config.machine_of(node) if node.remote else None
 
 
 def log_label(node: NodeSpec, counter: int) -> str:
@@ -624,7 +611,7 @@ def load_supervisor(request: LaunchRequest, options: SupervisorOptions,
     supervisor = Supervisor(config, loader.anons, options, reporter)
     for warning in config.warnings:
         supervisor.complain(f"WARNING: {warning}")
-    check_machines(config)
+    assign_machines(config)
     for node in config.nodes:
         if remote_machine(config, node) is None:  # remote executables are the remote machine's business
             node_argv(node, loader.anons)  # every executable must exist before anything starts

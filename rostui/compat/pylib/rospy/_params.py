@@ -22,7 +22,7 @@ _MISSING: Any = object()
 def get_param(param_name: str, default: Any = _MISSING) -> Any:
     """A parameter's value; *default* when it is not set, else KeyError."""
     if is_initialized():
-        return _sync.get_param(param_name, default)
+        return _sync.get_param(param_name) if default is _MISSING else _sync.get_param(param_name, default)
     try:
         return get_master()[param_name]
     except KeyError:

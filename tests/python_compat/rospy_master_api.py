@@ -36,7 +36,7 @@ except KeyError as exc:
     say("deleted", repr(exc))
 with warnings.catch_warnings(record=True) as caught:
     warnings.simplefilter("always")
-    root = rospy.get_ros_root(env={"ROS_ROOT": "/opt/ros_root"})
+    root = rospy.get_ros_root(env={"ROS_ROOT": "ros_root_given"})
 say("get_ros_root", root, rospy.get_ros_root(env={}), [w.category.__name__ for w in caught])
 try:
     rospy.get_ros_root(required=True, env={})

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import re
 import statistics
+import sys
 import subprocess
 import time
 from pathlib import Path
@@ -293,3 +294,49 @@ def test_master_api_script_same_under_both(any_master: str, envs: dict[str, dict
         said[side] = [line for line in out.stdout.splitlines() if line.startswith("= ")]
         assert "error processing request" not in out.stdout + out.stderr, out.stdout + out.stderr
     assert len(said["real"]) > 15 and said["shim"] == said["real"], said
+
+
+CLIENT_SCRIPT = """
+from rostui import client as ros
+
+ros.init_node("looping_watcher")
+print("wallclock", ros.is_wallclock(), flush=True)
+rate = ros.Rate(10, reset=True)
+while not ros.is_shutdown():
+    print("bag time", ros.get_time(), flush=True)
+    try:
+        rate.sleep()
+    except ros.ROSInterruptException:
+        break
+print("stopped", flush=True)
+"""
+
+
+def test_client_rate_with_reset_goes_on_when_a_looping_bag_restarts(envs: dict[str, dict[str, str]], rostui_core,
+                                                                    clock_bag: Path, started: Started,
+                                                                    tmp_path: Path) -> None:
+    """rostui's own client (`from rostui import client`) follows /clock; Rate(10, reset=True) lives through the
+    clock jumping back when `rosbag play -l` starts the bag over, and Ctrl-C still ends it."""
+    env = envs["real"]
+    _set_use_sim_time(env)
+    script = tmp_path / "looping_watcher.py"
+    script.write_text(CLIENT_SCRIPT)
+    watcher = started.start([sys.executable, str(script)], envs["shim"], "watcher")
+    wait_until(lambda: "bag time" in started.output("watcher"), "the watcher's first line")
+    _wait_subscribed(env, "/clock", "/looping_watcher")
+    started.start(["rosbag", "play", "--clock", "-l", "-r", PLAY_RATE, str(clock_bag)], env, "play")
+
+    def times() -> list[float]:
+        return [float(m) for m in re.findall(r"^bag time (\S+)$", started.output("watcher"), re.M)]
+
+    def restarted() -> bool:
+        seen = times()
+        drops = [i for i in range(1, len(seen)) if seen[i] < seen[i - 1] - 10]
+        return bool(drops) and len(seen) - drops[0] >= 20
+    wait_until(restarted, "bag time going back to the start and on", timeout=120)
+    assert watcher.poll() is None, started.output("watcher")
+    watcher.send_signal(2)
+    watcher.wait(timeout=60)
+    out = started.output("watcher")
+    assert out.startswith("wallclock False\n") and out.rstrip().endswith("stopped"), out
+    assert all(t == 0.0 or BAG_START <= t <= BAG_END + 1 for t in times()), times()

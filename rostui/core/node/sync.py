@@ -88,7 +88,8 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     (default ``sys.argv``); its ROS arguments (remaps, ``__name:=``,
     ``_param:=``...) configure the node.  When the parameter ``/use_sim_time``
     is true the node follows simulated time from ``/clock`` (see
-    :func:`get_rostime`), unless *disable_rostime*.
+    :func:`get_rostime`), unless *disable_rostime* (or *wait_for_master* is
+    False: without a master to ask, the node keeps the wall clock).
     """
     global _previous_excepthook
     if _state.node is not None:

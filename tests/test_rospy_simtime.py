@@ -137,19 +137,25 @@ def _echoed(started: Started, topic: str) -> list[float]:
     return [float(row.split(",")[1]) for row in rows if re.match(r"^\d+,", row)]
 
 
-def _play(env: dict[str, str], bag: Path, *args: str) -> None:
-    out = subprocess.run(["rosbag", "play", "--clock", "-r", PLAY_RATE, *args, str(bag)], env=env,
+#: The programs that play a bag with its clock on /clock: Debian's rosbag, and rostui's own.
+PLAYERS = {"rosbag": ["rosbag", "play"], "rostui": rostui_cmd("bag", "play")}
+
+
+def _play(env: dict[str, str], bag: Path, *args: str, player: str = "rosbag") -> None:
+    out = subprocess.run([*PLAYERS[player], "--clock", "-r", PLAY_RATE, *args, str(bag)], env=env,
                          capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stdout + out.stderr
 
 
-@pytest.mark.parametrize("any_master", ["rostui", "real"], indirect=True)
-def test_timer_fires_each_simulated_second_of_a_bag(any_master: str, envs: dict[str, dict[str, str]],
+@pytest.mark.parametrize(("any_master", "player"), [("rostui", "rosbag"), ("real", "rosbag"), ("real", "rostui")],
+                         indirect=["any_master"])
+def test_timer_fires_each_simulated_second_of_a_bag(any_master: str, player: str, envs: dict[str, dict[str, str]],
                                                     clock_bag: Path, started: Started) -> None:
     """timer_test.py (rospy.Timer) publishes event.current_real once per second of the bag's clock.
 
     The bag plays at 4x, so a Timer on the wall clock would fire about five times; on /clock it fires
-    about twenty, each stamped with the bag's time, under both rospys alike.
+    about twenty, each stamped with the bag's time, under both rospys alike, whether Debian's rosbag
+    or `rostui bag play` plays it.
     """
     env = envs["real"]
     _set_use_sim_time(env)
@@ -161,7 +167,7 @@ def test_timer_fires_each_simulated_second_of_a_bag(any_master: str, envs: dict[
         _wait_wired(env, UPDATE_TIME[side], node, echoes[side][0])
         _wait_wired(env, UPDATE_DT[side], node, echoes[side][1])
         _wait_subscribed(env, "/clock", node)
-    _play(env, clock_bag)
+    _play(env, clock_bag, player=player)
     wait_until(lambda: all(len(_echoed(started, UPDATE_TIME[s])) >= 15 for s in SIDES), "timer stamps echoed")
     time.sleep(1)
     counts = {}

@@ -218,7 +218,7 @@ def test_talker_rate_and_time_follow_a_bag(any_master: str, envs: dict[str, dict
     for side in SIDES:
         procs[side].send_signal(2)
     for side in SIDES:
-        procs[side].wait(timeout=60)
+        assert procs[side].wait(timeout=60) == 0, started.output(f"talker_{side}")
     said = {side: _hello_times(started.output(f"talker_{side}")) for side in SIDES}
     for side, times in said.items():
         assert times[0] == 0.0, (side, times[:5])

@@ -47,8 +47,6 @@ from rostui.core.rostime import Duration, Time
 from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, call_sync, ros_result
 
 
-
-
 class _State:
     """The process's single node and its engine."""
 

@@ -1,0 +1,260 @@
+"""Real turtlesim rospy scripts, unmodified, drive rostui's headless turtlesim the same under both rospys.
+
+Each script in tests/python_compat/turtlesim_real (sources in its SOURCES.md) runs under `rostui python`
+(rostui's rospy) and under Debian's rospy (/usr/bin/python3), each time against a fresh headless
+`rostui run turtlesim turtlesim_node`, on rostui core and on a real roscore. What the test compares is what
+a user would see in turtlesim: the turtles there, their poses (as `rostui topic echo -p` prints them),
+the poses where a turtle came to rest, and what the scripts print. Both runs must agree, within the same
+tolerance where the script's timing decides how far the turtle goes.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import pty
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+from conftest import REPO, SYSTEM_PYTHON, stop_process, wait_until
+from interop_helpers import Peer
+from test_interop_turtlesim import turtlesim_python  # noqa: F401  (the fixture: genpy's turtlesim for Debian)
+
+CORPUS = REPO / "tests" / "python_compat" / "turtlesim_real"
+PACKAGE_PATH = CORPUS / "ros_package_path"
+CENTRE = 5.544444561004639
+SIDES = ("shim", "real")
+#: How far apart the two runs may put a turtle whose motion the script times (m, rad).
+TIMED_TOLERANCE = 0.15
+
+
+@dataclass(frozen=True)
+class Pose:
+    """One turtlesim/Pose sample."""
+
+    x: float
+    y: float
+    theta: float
+    linear: float
+    angular: float
+
+    def near(self, other: Pose, tolerance: float) -> bool:
+        """Whether position and heading agree within *tolerance*."""
+        turn = math.remainder(self.theta - other.theta, 2 * math.pi)
+        return abs(self.x - other.x) <= tolerance and abs(self.y - other.y) <= tolerance and abs(turn) <= tolerance
+
+
+@pytest.fixture
+def sides(ros_env: dict[str, str], turtlesim_python: dict[str, str]) -> dict[str, dict[str, str]]:  # noqa: F811
+    """The environment of each side: ``shim`` (rostui python --rostui) and ``real`` (Debian's rospy)."""
+    base = {k: v for k, v in ros_env.items() if k != "PYTHONPATH" and not k.startswith("ROSTUI_PYTHON")}
+    shim = dict(base, ROS_PACKAGE_PATH=str(PACKAGE_PATH))
+    real = dict(base, PYTHONPATH=turtlesim_python["PYTHONPATH"],
+                ROS_PACKAGE_PATH=os.pathsep.join([str(PACKAGE_PATH), turtlesim_python["ROS_PACKAGE_PATH"]]))
+    return {"shim": shim, "real": real}
+
+
+def command(side: str, script: Path, *args: str) -> list[str]:
+    """How *side* runs *script*: `rostui python --rostui` or Debian's python3."""
+    if side == "shim":
+        return [sys.executable, "-m", "rostui", "python", "--rostui", str(script), *args]
+    return [SYSTEM_PYTHON, str(script), *args]
+
+
+class PoseLog:
+    """`rostui topic echo -p TOPIC` running in the background, its CSV rows parsed."""
+
+    def __init__(self, env: dict[str, str], topic: str) -> None:
+        self.peer = Peer([sys.executable, "-m", "rostui", "topic", "echo", "-p", topic], env, f"echo {topic}")
+
+    def poses(self) -> list[Pose]:
+        """Every pose printed so far."""
+        out = []
+        for line in self.peer.output.splitlines():
+            fields = line.split(",")
+            if len(fields) == 6 and not line.startswith("%"):
+                out.append(Pose(*(float(f) for f in fields[1:])))
+        return out
+
+    def rests(self) -> list[Pose]:
+        """The poses where the turtle came to rest, in order (the first is where it started)."""
+        out: list[Pose] = []
+        for pose in self.poses():
+            if pose.linear == 0.0 and pose.angular == 0.0 and (not out or not pose.near(out[-1], 1e-4)):
+                out.append(pose)
+        return out
+
+    def last(self) -> Pose:
+        """The latest pose (waits for the first)."""
+        wait_until(lambda: bool(self.poses()), "a pose to be printed")
+        return self.poses()[-1]
+
+
+@dataclass
+class World:
+    """A fresh headless turtlesim and the processes a run started, stopped at the end."""
+
+    env: dict[str, str]
+    peers: list[Peer]
+
+    def echo(self, topic: str) -> PoseLog:
+        """Start printing *topic*'s poses."""
+        log = PoseLog(self.env, topic)
+        self.peers.append(log.peer)
+        return log
+
+    def run(self, argv: list[str], env: dict[str, str], label: str) -> Peer:
+        """Start a script in the background."""
+        peer = Peer(argv, env, label)
+        self.peers.append(peer)
+        return peer
+
+    def topics(self) -> list[str]:
+        """`rostui topic list`."""
+        out = subprocess.run([sys.executable, "-m", "rostui", "topic", "list"], env=self.env, capture_output=True,
+                             text=True, timeout=60)
+        return out.stdout.split()
+
+
+@pytest.fixture
+def world(any_master: str, ros_env: dict[str, str]) -> Iterator[callable]:
+    """``world()`` starts a fresh headless rostui turtlesim (the previous one stopped first)."""
+    worlds: list[World] = []
+
+    def stop_all() -> None:
+        for w in worlds:
+            for peer in reversed(w.peers):
+                peer.stop()
+        worlds.clear()
+
+    def start() -> World:
+        stop_all()
+        sim = Peer([sys.executable, "-m", "rostui", "run", "turtlesim", "turtlesim_node", "--headless"], ros_env,
+                   "rostui turtlesim")
+        sim.wait_for(r"Spawning turtle \[turtle1\]")
+        w = World(ros_env, [sim])
+        worlds.append(w)
+        return w
+
+    try:
+        yield start
+    finally:
+        stop_all()
+
+
+def test_draw_square_rests_at_the_same_corners(world, sides: dict[str, dict[str, str]]) -> None:
+    """turtle_commander's square.py: forward 2 m, turn 1.56 rad, every 2 s; the corners where the turtle rests
+    agree between both rospys."""
+    corners: dict[str, list[Pose]] = {}
+    for side in SIDES:
+        w = world()
+        log = w.echo("/turtle1/pose")
+        log.last()
+        script = w.run(command(side, CORPUS / "turtle_commander" / "square.py"), sides[side], f"square {side}")
+        wait_until(lambda: len(log.rests()) >= 5 or script.proc.poll() is not None, "four legs of the square",
+                   timeout=90)
+        script.stop()
+        corners[side] = log.rests()[:5]
+        assert len(corners[side]) == 5, script.describe()
+        assert "Traceback" not in script.output, script.describe()
+    shim, real = corners["shim"], corners["real"]
+    assert all(a.near(b, TIMED_TOLERANCE) for a, b in zip(shim, real)), (shim, real)
+    assert shim[0].near(Pose(CENTRE, CENTRE, 0.0, 0, 0), 1e-6)
+    assert shim[1].x > CENTRE + 1.5 and shim[1].y == pytest.approx(CENTRE, abs=1e-4), shim  # forward first
+    assert shim[2].theta == pytest.approx(1.56, abs=TIMED_TOLERANCE), shim  # then a quarter turn left
+
+
+def test_service_scripts_spawn_and_teleport(world, sides: dict[str, dict[str, str]]) -> None:
+    """hello_turtleMia's turtleSpawn.py and turtlePos.py (no init_node) and turtle_commander's spawner.py
+    (a private parameter): the same turtles at the same poses, the same output."""
+    seen: dict[str, dict[str, object]] = {}
+    for side in SIDES:
+        w = world()
+        env = sides[side]
+        said = []
+        for script, args in ((CORPUS / "hello_turtleMia" / "turtleSpawn.py", []),
+                             (CORPUS / "hello_turtleMia" / "turtlePos.py", ["--x", "2", "--y", "3", "--ang", "1.0"]),
+                             (CORPUS / "turtle_commander" / "spawner.py", ["_spawned_name:=leo"])):
+            out = subprocess.run(command(side, script, *args), env=env, capture_output=True, text=True, timeout=120,
+                                 stdin=subprocess.DEVNULL)
+            assert out.returncode == 0, f"{script.name} ({side}):\n{out.stdout}{out.stderr}"
+            said.append(out.stdout)
+        poses = {name: w.echo(f"/{name}/pose").last() for name in ("turtle1", "turtle2", "leo")}
+        turtles = sorted(t.split("/")[1] for t in w.topics() if t.endswith("/pose"))
+        seen[side] = {"said": said, "poses": poses, "turtles": turtles}
+    assert seen["shim"] == seen["real"]
+    assert seen["shim"]["turtles"] == ["leo", "turtle1", "turtle2"]
+    assert seen["shim"]["said"][1] == "Teleported to x: 2.0, y: 3.0, ang: 1.0\n"
+    poses = seen["shim"]["poses"]
+    assert (poses["turtle1"].x, poses["turtle1"].y, poses["turtle1"].theta) == (2.0, 3.0, 1.0)
+    assert (poses["turtle2"].x, poses["turtle2"].y) == (5.0, 5.0) and (poses["leo"].x, poses["leo"].y) == (2.0, 8.0)
+
+
+class Terminal:
+    """A script on a pseudo-terminal: what it prints is collected, keys are typed into it."""
+
+    def __init__(self, argv: list[str], env: dict[str, str]) -> None:
+        self.master, slave = pty.openpty()
+        self.proc = subprocess.Popen(argv, env=env, stdin=slave, stdout=slave, stderr=slave, start_new_session=True)
+        os.close(slave)
+        self.text = ""
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    def _read(self) -> None:
+        while True:
+            try:
+                chunk = os.read(self.master, 4096)
+            except OSError:
+                return
+            if not chunk:
+                return
+            self.text += chunk.decode(errors="replace")
+
+    def type(self, keys: str) -> None:
+        """Type *keys*."""
+        os.write(self.master, keys.encode())
+
+    def close(self) -> None:
+        """Stop the script (if still running) and close the terminal."""
+        stop_process(self.proc)
+        os.close(self.master)
+
+
+def test_teleop_twist_keyboard_drives_the_turtle(world, sides: dict[str, dict[str, str]]) -> None:
+    """teleop_twist_keyboard.py on a terminal, remapped to turtle1: `i` drives 0.5 m/s forward until the key
+    times out (0.5 s), `j` turns left the same way, Ctrl-C ends it; both rospys leave the turtle at the same
+    place."""
+    script = CORPUS / "teleop_twist_keyboard" / "teleop_twist_keyboard.py"
+    ends: dict[str, list[Pose]] = {}
+    for side in SIDES:
+        w = world()
+        log = w.echo("/turtle1/pose")
+        log.last()
+        term = Terminal(command(side, script, "cmd_vel:=/turtle1/cmd_vel"), sides[side])
+        try:
+            wait_until(lambda: "currently:\tspeed 0.5\tturn 1.0" in term.text or term.proc.poll() is not None,
+                       "teleop_twist_keyboard's banner", timeout=60)
+            assert term.proc.poll() is None, term.text
+            for key in ("i", "j"):
+                before = len(log.rests())
+                term.type(key)
+                wait_until(lambda: len(log.rests()) > before, f"the turtle to stop after {key!r}")
+            term.type("\x03")
+            term.proc.wait(timeout=30)
+        finally:
+            term.close()
+        assert term.proc.returncode == 0, term.text
+        ends[side] = log.rests()
+    shim, real = ends["shim"], ends["real"]
+    assert len(shim) == len(real) == 3, (shim, real)
+    assert all(a.near(b, TIMED_TOLERANCE) for a, b in zip(shim, real)), (shim, real)
+    assert shim[1].x > CENTRE + 0.1 and shim[1].y == pytest.approx(CENTRE, abs=1e-4) and shim[1].theta == 0.0
+    assert shim[2].theta > 0.1 and (shim[2].x, shim[2].y) == (shim[1].x, shim[1].y)

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 import os
 import pty
+import re
 import subprocess
 import sys
 import threading
@@ -31,6 +32,7 @@ CORPUS = REPO / "tests" / "python_compat" / "turtlesim_real"
 PACKAGE_PATH = CORPUS / "ros_package_path"
 CENTRE = 5.544444561004639
 SIDES = ("shim", "real")
+BACKGROUND, RED, GREEN = (69, 86, 255), (225, 0, 0), (0, 255, 0)
 #: How far apart the two runs may put a turtle whose motion the script times (m, rad).
 TIMED_TOLERANCE = 0.15
 
@@ -258,3 +260,68 @@ def test_teleop_twist_keyboard_drives_the_turtle(world, sides: dict[str, dict[st
     assert all(a.near(b, TIMED_TOLERANCE) for a, b in zip(shim, real)), (shim, real)
     assert shim[1].x > CENTRE + 0.1 and shim[1].y == pytest.approx(CENTRE, abs=1e-4) and shim[1].theta == 0.0
     assert shim[2].theta > 0.1 and (shim[2].x, shim[2].y) == (shim[1].x, shim[1].y)
+
+
+def _colours(log: Peer) -> list[tuple[int, int, int]]:
+    """The colours a `rostui topic echo -p .../color_sensor` printed, each run of equal ones once."""
+    out: list[tuple[int, int, int]] = []
+    for line in log.output.splitlines():
+        fields = line.split(",")
+        if len(fields) == 4 and not line.startswith("%"):
+            colour = (int(fields[1]), int(fields[2]), int(fields[3]))
+            if not out or out[-1] != colour:
+                out.append(colour)
+    return out
+
+
+def test_turtle_controller_pen_colours(world, sides: dict[str, dict[str, str]]) -> None:
+    """my_robot_controller's turtle controller calls /turtle1/set_pen from its pose callback, red right of
+    x=5.5 and green left of it: the colour sensor sees the same pen colours in the same order under both
+    rospys, and the script prints the same log lines (rospy's format, times aside)."""
+    seen: dict[str, tuple[list[tuple[int, int, int]], list[str]]] = {}
+    for side in SIDES:
+        w = world()
+        sensor = w.run([sys.executable, "-m", "rostui", "topic", "echo", "-p", "/turtle1/color_sensor"], w.env,
+                       "color_sensor")
+        script = w.run(command(side, CORPUS / "my_robot_controller" / "turlte_controller.py"), sides[side],
+                       f"turtle controller {side}")
+        wait_until(lambda: GREEN in _colours(sensor) or script.proc.poll() is not None, "a green trail",
+                   timeout=90)
+        script.stop()
+        colours = _colours(sensor)
+        assert GREEN in colours, script.describe()
+        lines = [re.sub(r"^\[(\w+)\] \[\d+\.\d{6}\]: ", r"[\1] [T]: ", line) for line in script.lines]
+        started = "[INFO] [T]: Ros has been started"  # printed on the main thread, the others in the callback
+        assert started in lines, script.describe()
+        seen[side] = (colours[:colours.index(GREEN) + 1], [line for line in lines if line != started][:4])
+    assert seen["shim"] == seen["real"]
+    assert seen["shim"][0][:2] == [BACKGROUND, RED], seen
+    assert seen["shim"][1] == ["[INFO] [T]: ", "[INFO] [T]: COLOR RED", "[INFO] [T]: ", "[INFO] [T]: COLOR GREEN"]
+
+
+def test_draw_circle_keeps_one_circle(world, sides: dict[str, dict[str, str]]) -> None:
+    """my_robot_controller's draw_circle.py (node name "draw_cirle.py", code after the `if __name__` block):
+    3 m/s at 3 rad/s keeps the turtle on the circle of radius 1 above its start, under both rospys."""
+    centre = (CENTRE, CENTRE + 1.0)
+    warned = {}
+    for side in SIDES:
+        w = world()
+        log = w.echo("/turtle1/pose")
+        log.last()
+        script = w.run(command(side, CORPUS / "my_robot_controller" / "draw_circle.py"), sides[side],
+                       f"draw_circle {side}")
+        wait_until(lambda: sum(p.linear > 0 for p in log.poses()) > 250 or script.proc.poll() is not None,
+                   "four seconds of driving", timeout=60)
+        assert script.proc.poll() is None, script.describe()
+        nodes = subprocess.run([sys.executable, "-m", "rostui", "node", "list"], env=w.env, capture_output=True,
+                               text=True, timeout=60).stdout.split()
+        script.stop()
+        driving = [p for p in log.poses() if p.linear > 0]
+        radii = [math.hypot(p.x - centre[0], p.y - centre[1]) for p in driving]
+        assert all(abs(r - 1.0) < 0.05 for r in radii), (side, min(radii), max(radii))
+        assert max(p.theta for p in driving) - min(p.theta for p in driving) > 5.0, side  # went round
+        assert "/draw_cirle.py" in nodes, (side, nodes)
+        warned[side] = [line for line in script.lines if "Warning" in line]
+    assert warned["shim"] == warned["real"] == [
+        f"{CORPUS / 'my_robot_controller' / 'draw_circle.py'}:6: UserWarning: 'draw_cirle.py' is not a legal ROS "
+        "base name. This may cause problems with other ROS tools."]

@@ -24,6 +24,7 @@ from rostui.core.node.sync import (
 )
 from rostui.core.node.services import parse_rosrpc_uri
 from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync, ros_result
+from rostui.compat.rospy_console import RospyConsole
 
 from . import exceptions, names, rostime
 from ._nodeless import caller as _nodeless_caller
@@ -31,6 +32,7 @@ from .exceptions import (
     ROSException, ROSInitException, ROSInternalException, ROSInterruptException, ROSSerializationException,
     ROSTimeMovedBackwardsException, ServiceException, TransportException, TransportInitError, TransportTerminated,
 )
+from ._node_name import check_node_name
 from .names import get_caller_id, get_name, get_namespace, remap_name, resolve_name
 from .rostime import Duration, Time, get_rostime, get_time
 
@@ -60,6 +62,8 @@ FATAL = 16
 logout = loginfo
 """rospy's old name of :func:`loginfo`."""
 
+_sync.use_console(RospyConsole())  # log lines look like rospy's: [INFO] [1700000000.123456]: ...
+
 
 def __getattr__(name: str) -> Any:
     """``rospy.Header``: std_msgs/Header, built on first use so ``import rospy`` stays quick."""
@@ -88,9 +92,13 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
 
     *disable_rostime*, *disable_rosout*, *xmlrpc_port* and *tcpros_port* are
     accepted and have no effect: the node always uses the wall clock, logs to
-    ``/rosout`` and listens on free ports.
+    ``/rosout`` and listens on free ports. As rospy, a name that is not a legal
+    base name (``draw_circle.py``) is taken with a warning; an empty one or one
+    with a namespace raises ValueError.
     """
-    _sync.init_node(name, argv=argv, anonymous=anonymous, log_level=log_level, disable_signals=disable_signals)
+    check_node_name(name)
+    _sync.init_node(name, argv=argv, anonymous=anonymous, log_level=log_level, disable_signals=disable_signals,
+                    lenient_name=True)
     _Topic.start_pending()
 
 

@@ -325,3 +325,30 @@ def test_draw_circle_keeps_one_circle(world, sides: dict[str, dict[str, str]]) -
     assert warned["shim"] == warned["real"] == [
         f"{CORPUS / 'my_robot_controller' / 'draw_circle.py'}:6: UserWarning: 'draw_cirle.py' is not a legal ROS "
         "base name. This may cause problems with other ROS tools."]
+
+
+def test_move_straight_line_from_stdin(world, sides: dict[str, dict[str, str]]) -> None:
+    """The ROS wiki's "Moving in a Straight Line" as assign4's jinots.py has it (Python 3's int(input())):
+    speed 1, distance 2, forward, typed on stdin; it publishes in a loop without sleeping until the time says
+    2 m were driven, then stops the turtle; both rospys stop it at the same place."""
+    ends: dict[str, Pose] = {}
+    for side in SIDES:
+        w = world()
+        log = w.echo("/turtle1/pose")
+        log.last()
+        proc = subprocess.Popen(command(side, CORPUS / "assign4" / "jinots.py"), env=sides[side],
+                                stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        try:
+            assert proc.stdin is not None
+            proc.stdin.write("1\n2\n1\n")
+            proc.stdin.flush()
+            wait_until(lambda: len(log.rests()) >= 2 or proc.poll() is not None, "the turtle to drive and stop",
+                       timeout=60)
+        finally:
+            stop_process(proc)
+        out = proc.stdout.read() if proc.stdout else ""
+        assert len(log.rests()) == 2, out
+        assert out.startswith("Let's move your robot\nInput your speed:Type your distance:Foward?: "), out
+        ends[side] = log.rests()[1]
+    assert ends["shim"].near(ends["real"], TIMED_TOLERANCE), ends
+    assert ends["shim"].near(Pose(CENTRE + 2.0, CENTRE, 0.0, 0, 0), TIMED_TOLERANCE), ends

@@ -6,7 +6,9 @@ searched too); ``EXE`` containing ``/`` is a path relative to the package.
 Arguments are passed through untouched.  Differences, by design: a ``.py`` file
 without execute bit is run with this Python, Python scripts of rostui's built-in
 packages and Python scripts that import rostui always run with this Python, and
-rosrun's error lines go to stderr.
+rosrun's error lines go to stderr.  Other Python scripts are found here
+(:func:`ros_python_script`) and started by the command line the way ``rostui
+python`` starts a script (:mod:`rostui.compat.launcher`), which this layer cannot import.
 """
 
 from __future__ import annotations

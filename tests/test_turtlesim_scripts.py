@@ -352,3 +352,24 @@ def test_move_straight_line_from_stdin(world, sides: dict[str, dict[str, str]]) 
         ends[side] = log.rests()[1]
     assert ends["shim"].near(ends["real"], TIMED_TOLERANCE), ends
     assert ends["shim"].near(Pose(CENTRE + 2.0, CENTRE, 0.0, 0, 0), TIMED_TOLERANCE), ends
+
+
+def test_set_bg_color_turns_the_background_yellow(world, sides: dict[str, dict[str, str]]) -> None:
+    """A course's Python set_bg_color.py (the book's Listing 7.1): it sets background_r/g/b and calls
+    /clear; the colour sensor sees the yellow background under both rospys."""
+    for side in SIDES:
+        for colour in "rgb":  # the first run's yellow stays on the master; each turtlesim starts blue
+            subprocess.run([sys.executable, "-m", "rostui", "param", "delete", f"/background_{colour}"],
+                           env=sides[side], capture_output=True, timeout=60)
+        w = world()
+        sensor = w.run([sys.executable, "-m", "rostui", "topic", "echo", "-p", "/turtle1/color_sensor"], w.env,
+                       "color_sensor")
+        wait_until(lambda: bool(_colours(sensor)), "the colour sensor")
+        assert _colours(sensor)[-1] == BACKGROUND
+        out = subprocess.run(command(side, CORPUS / "irr_mcs_5403" / "set_bg_color.py"), env=sides[side],
+                             capture_output=True, text=True, timeout=120, stdin=subprocess.DEVNULL)
+        assert out.returncode == 0 and out.stdout == "", out.stdout + out.stderr
+        wait_until(lambda: _colours(sensor)[-1] == (255, 255, 0), f"a yellow background ({side})")
+        params = subprocess.run([sys.executable, "-m", "rostui", "param", "get", "/background_g"], env=w.env,
+                                capture_output=True, text=True, timeout=60).stdout.strip()
+        assert params == "255", (side, params)

@@ -373,3 +373,23 @@ def test_set_bg_color_turns_the_background_yellow(world, sides: dict[str, dict[s
         params = subprocess.run([sys.executable, "-m", "rostui", "param", "get", "/background_g"], env=w.env,
                                 capture_output=True, text=True, timeout=60).stdout.strip()
         assert params == "255", (side, params)
+
+
+def test_draw_cc_kills_resets_and_spawns(world, sides: dict[str, dict[str, str]]) -> None:
+    """p1_cchang31's draw_cc.py, twice: /reset, /kill turtle1, /spawn turtle2 and turtle3 and drive each
+    along three quarters of a circle; both rospys leave the same turtles, turtle2 at the same place, and the
+    same log lines."""
+    seen: dict[str, tuple[list[str], list[str]]] = {}
+    ends: dict[str, Pose] = {}
+    for side in SIDES:
+        w = world()
+        out = subprocess.run(command(side, CORPUS / "p1_cchang31" / "draw_cc.py"), env=sides[side],
+                             capture_output=True, text=True, timeout=180, stdin=subprocess.DEVNULL)
+        assert out.returncode == 0, out.stdout + out.stderr
+        turtles = sorted(t.split("/")[1] for t in w.topics() if t.endswith("/pose"))
+        lines = [re.sub(r"^\[(\w+)\] \[\d+\.\d{6}\]: ", r"[\1] [T]: ", line) for line in out.stdout.splitlines()]
+        seen[side] = (turtles, lines)
+        ends[side] = w.echo("/turtle2/pose").last()
+    assert seen["shim"] == seen["real"] == (["turtle2", "turtle3"], ["[INFO] [T]: CC drawn"] * 2)
+    assert ends["shim"].near(ends["real"], TIMED_TOLERANCE), ends
+    assert not ends["shim"].near(Pose(3.0, 5.0, 0.75 * math.pi, 0, 0), 0.5), ends  # it did drive

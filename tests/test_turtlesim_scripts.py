@@ -393,3 +393,26 @@ def test_draw_cc_kills_resets_and_spawns(world, sides: dict[str, dict[str, str]]
     assert seen["shim"] == seen["real"] == (["turtle2", "turtle3"], ["[INFO] [T]: CC drawn"] * 2)
     assert ends["shim"].near(ends["real"], TIMED_TOLERANCE), ends
     assert not ends["shim"].near(Pose(3.0, 5.0, 0.75 * math.pi, 0, 0), 0.5), ends  # it did drive
+
+
+def test_go_to_goal_from_stdin(world, sides: dict[str, dict[str, str]]) -> None:
+    """ROS_Training_Summer_24's goal.py (a go-to-goal proportional controller): it refuses a goal above 11,
+    then drives to (8, 7) typed on stdin and exits; both rospys leave the turtle there."""
+    ends: dict[str, Pose] = {}
+    said: dict[str, str] = {}
+    for side in SIDES:
+        w = world()
+        log = w.echo("/turtle1/pose")
+        log.last()
+        out = subprocess.run(command(side, CORPUS / "ros_training_summer_24" / "goal.py"), env=sides[side],
+                             input="12\n3\n8\n7\n", capture_output=True, text=True, timeout=180)
+        assert out.returncode == 0, out.stdout + out.stderr
+        said[side] = out.stdout
+        wait_until(lambda: log.last().linear == 0.0 and log.last().angular == 0.0, "the turtle to stop")
+        ends[side] = log.last()
+    assert said["shim"] == said["real"] == (
+        "Enter the x goal to move (<= 11): Enter the y goal to move (<= 11): Both x and y goals must be less than "
+        "or equal to 11. Please try again.\nEnter the x goal to move (<= 11): Enter the y goal to move (<= 11): ")
+    shim, real = ends["shim"], ends["real"]  # the heading at arrival is the controller's accident, not its goal
+    assert math.hypot(shim.x - real.x, shim.y - real.y) < TIMED_TOLERANCE, ends
+    assert math.hypot(shim.x - 8.0, shim.y - 7.0) < 0.1, ends

@@ -56,6 +56,7 @@ class _State:
     reason = ""
     hooks: list[Callable[..., Any]] = []
     clock = Clock()
+    console: Console | None = None
 
 
 _state = _State()
@@ -79,7 +80,7 @@ _previous_excepthook = sys.excepthook
 def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = False,
               log_level: int | Level | None = None, disable_signals: bool = False,
               master_uri: str | None = None, wait_for_master: bool = True,
-              disable_rostime: bool = False) -> None:
+              disable_rostime: bool = False, lenient_name: bool = False) -> None:
     """Start this process's node.
 
     ``argv`` is the full command line, program name first, as in rospy
@@ -88,6 +89,8 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     is true the node follows simulated time from ``/clock`` (see
     :func:`get_rostime`), unless *disable_rostime* (or *wait_for_master* is
     False: without a master to ask, the node keeps the wall clock).
+    ``lenient_name`` takes any name without ``/`` or ``~``, as rospy does
+    (``draw_circle.py``).
     """
     global _previous_excepthook
     if _state.node is not None:
@@ -96,7 +99,9 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     argv = list(sys.argv if argv is None else argv)
     package = package_of(argv[0]) if argv and argv[0] and os.path.exists(argv[0]) else None
     node = _node.AsyncNode(name, argv=argv[1:], anonymous=anonymous, master_uri=master_uri, package=package,
-                           busy_poll=True)
+                           busy_poll=True, lenient_name=lenient_name)
+    if _state.console is not None:
+        node.log.console = _state.console
     if log_level is not None:
         node.log.set_level(Level(int(log_level)))
     engine.run(node.start(announce=False))
@@ -583,6 +588,14 @@ def get_param_names() -> list[str]:
 
 # -- logging ----------------------------------------------------------------------------------
 _console_only = NodeLog("", package_logger(None), LoggerTree(), Console())
+
+
+def use_console(console: Console) -> None:
+    """Write this process's log lines with *console*, before ``init_node`` and after (rospy's look, for one)."""
+    _state.console = console
+    _console_only.console = console
+    if _state.node is not None:
+        _state.node.log.console = console
 
 
 def _log() -> NodeLog:

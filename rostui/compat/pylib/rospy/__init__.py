@@ -26,6 +26,7 @@ from rostui.core.node.sync import (
 )
 from rostui.core.node.services import parse_rosrpc_uri
 from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync, ros_result
+from rostui.compat.rospy_console import RospyConsole
 
 from . import exceptions, msproxy, names, rostime
 from ._params import delete_param, get_param, get_param_names, has_param, search_param, set_param
@@ -35,6 +36,7 @@ from .exceptions import (
     ROSTimeMovedBackwardsException, ServiceException, TransportException, TransportInitError, TransportTerminated,
 )
 from .msproxy import MasterProxy, get_master
+from ._node_name import check_node_name
 from .names import get_caller_id, get_name, get_namespace, remap_name, resolve_name
 from .rostime import Duration, Time, get_rostime, get_time
 
@@ -63,6 +65,8 @@ FATAL = 16
 
 logout = loginfo
 """rospy's old name of :func:`loginfo`."""
+
+_sync.use_console(RospyConsole())  # log lines look like rospy's: [INFO] [1700000000.123456]: ...
 
 
 def __getattr__(name: str) -> Any:
@@ -93,10 +97,13 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     With the parameter ``/use_sim_time`` true the node follows ``/clock``
     unless *disable_rostime*.  *disable_rosout*, *xmlrpc_port* and
     *tcpros_port* are accepted and have no effect: the node always logs to
-    ``/rosout`` and listens on free ports.
+    ``/rosout`` and listens on free ports.  As rospy, a name that is not a
+    legal base name (``draw_circle.py``) is taken with a warning; an empty one
+    or one with a namespace raises ValueError.
     """
+    check_node_name(name)
     _sync.init_node(name, argv=argv, anonymous=anonymous, log_level=log_level, disable_signals=disable_signals,
-                    disable_rostime=disable_rostime)
+                    disable_rostime=disable_rostime, lenient_name=True)
     _Topic.start_pending()
 
 

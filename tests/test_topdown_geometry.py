@@ -16,6 +16,7 @@ from rostui.models.sensors.pose2d import Pose2D, yaw_of
 from rostui.models.sensors.poses2d import odometry_pose, path_points, pose_array_poses
 from rostui.models.sensors.scan2d import scan_points
 from rostui.models.sensors.scene2d import Scene2D
+from topdown_helpers import occupancy, wall_scan
 
 LaserScan = get_message_class("sensor_msgs/LaserScan")
 PointCloud2 = get_message_class("sensor_msgs/PointCloud2")
@@ -28,26 +29,12 @@ Pose = get_message_class("geometry_msgs/Pose")
 OccupancyGrid = get_message_class("nav_msgs/OccupancyGrid")
 
 
-def wall_scan(frame: str = "laser") -> object:
-    """A 90-degree scan of a wall at x = 2 m (beams from -45 to +45 degrees), one beam out of range."""
-    n = 91
-    angles = np.radians(np.arange(-45, 46))
-    ranges = list(2.0 / np.cos(angles))
-    ranges[10] = float("inf")
-    ranges[11] = float("nan")
-    msg = LaserScan(angle_min=math.radians(-45), angle_max=math.radians(45), angle_increment=math.radians(1),
-                    range_min=0.1, range_max=10.0, ranges=ranges)
-    msg.header.frame_id = frame
-    assert len(ranges) == n
-    return msg
-
-
 def quaternion(yaw: float) -> tuple[float, float, float, float]:
     return 0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2)
 
 
 def test_scan_points_put_the_wall_at_x_2_and_skip_missing_returns() -> None:
-    pts = scan_points(wall_scan())
+    pts = scan_points(wall_scan(2.0))
     assert len(pts) == 89
     assert np.allclose(pts[:, 0], 2.0)
     assert pts[0, 1] == pytest.approx(-2.0) and pts[-1, 1] == pytest.approx(2.0)
@@ -127,18 +114,6 @@ def test_cloud_without_y_or_short_data_is_a_clear_error() -> None:
         cloud_points(msg)
 
 
-def occupancy() -> object:
-    grid = OccupancyGrid()
-    grid.header.frame_id = "map"
-    grid.info.resolution = 0.5
-    grid.info.width, grid.info.height = 4, 2
-    grid.info.origin.position.x, grid.info.origin.position.y = -1.0, 0.0
-    grid.info.origin.orientation.w = 1.0
-    grid.data = [0, 100, -1, 0,
-                 0, 0, 0, 70]
-    return grid
-
-
 def test_grid_samples_cells_by_position() -> None:
     g = grid_of(occupancy())
     probe = np.array([[-0.25, 0.25], [0.1, 0.1], [0.75, 0.75], [5.0, 5.0]])
@@ -170,7 +145,7 @@ def test_nice_step() -> None:
 
 def test_scene_draws_in_the_first_frame_and_notes_missing_transforms() -> None:
     scene = Scene2D(["/scan", "/odom"])
-    scene.offer("/scan", wall_scan("laser"))
+    scene.offer("/scan", wall_scan(2.0, "laser"))
     odom = Odometry()
     odom.header.frame_id = "odom"
     scene.offer("/odom", odom)
@@ -189,7 +164,7 @@ def test_scene_draws_in_the_first_frame_and_notes_missing_transforms() -> None:
 def test_scene_with_a_lookup_moves_drawings_into_the_fixed_frame() -> None:
     poses = {("map", "laser"): Pose2D(1.0, 0.0, 0.0)}
     scene = Scene2D(["/scan"], fixed_frame="map", lookup=lambda t, s: poses.get((t, s)))
-    scene.offer("/scan", wall_scan("laser"))
+    scene.offer("/scan", wall_scan(2.0, "laser"))
     view = Viewport(cols=40, rows=10, cx=0.05, scale=0.1)
     bits = scene.render(view).bits[1]
     cell = view.cell_of(3.0, 0.0)

@@ -171,9 +171,20 @@ class BrailleCanvas:
         a, d, t0, t1 = a[keep], d[keep], t0[keep], t1[keep]
         return a + d * t0[:, None], a + d * t1[:, None]
 
-    def compose(self) -> tuple[npt.NDArray[np.uint8], npt.NDArray[np.int64]]:
-        """Each cell's dot bits (all layers) and the topmost layer with a dot there (-1: empty)."""
-        union = np.bitwise_or.reduce(self.bits, axis=0) if len(self.bits) else np.zeros(self.bits.shape[1:], np.uint8)
+    def compose(self, background: int = 1) -> tuple[npt.NDArray[np.uint8], npt.NDArray[np.int64]]:
+        """Each cell's dot bits and the topmost layer with a dot there (-1: empty).
+
+        The first ``background`` layers (the grid) show only in cells where no
+        other layer has a dot, so a topic's cells carry its dots alone.
+        """
         has = self.bits != 0
-        top = np.where(has.any(axis=0), len(self.bits) - 1 - np.argmax(has[::-1], axis=0), -1)
-        return union, top.astype(np.int64)
+        top = np.where(has.any(axis=0), len(self.bits) - 1 - np.argmax(has[::-1], axis=0), -1).astype(np.int64)
+        front = self.bits[background:]
+        if len(front):
+            union = np.bitwise_or.reduce(front, axis=0)
+        else:
+            union = np.zeros(self.bits.shape[1:], np.uint8)
+        back = self.bits[:background]
+        if len(back):
+            union = np.where(union != 0, union, np.bitwise_or.reduce(back, axis=0)).astype(np.uint8)
+        return union, top

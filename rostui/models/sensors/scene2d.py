@@ -152,7 +152,8 @@ class Scene2D:
         """The pose of ``drawing``'s frame in the fixed frame, or None when there is none."""
         if self.fixed_frame is None:
             return None
-        return self.lookup(self.fixed_frame, drawing.frame.lstrip("/"))
+        frame = drawing.frame.lstrip("/")
+        return Pose2D() if frame == self.fixed_frame else self.lookup(self.fixed_frame, frame)
 
     def world_points(self) -> Points:
         """Every point, polyline vertex, pose and grid corner in the fixed frame (for fitting the view)."""
@@ -198,7 +199,7 @@ class Scene2D:
         xs = np.arange(np.ceil((view.cx - half_w) / step), np.floor((view.cx + half_w) / step) + 1) * step
         ys = np.arange(np.ceil((view.cy - half_h) / step), np.floor((view.cy + half_h) / step) + 1) * step
         dots = view.to_dots(np.column_stack((xs, np.full(len(xs), view.cy))))[:, 0] if len(xs) else np.zeros(0)
-        rows = np.arange(0, view.dots_high, 2)
+        rows = np.arange(1, view.dots_high, 4)  # one dot per cell: a faint line
         for col in np.floor(dots).astype(np.int64):
             canvas.plot_dots(0, np.full(len(rows), col), rows)
         dots = view.to_dots(np.column_stack((np.full(len(ys), view.cx), ys)))[:, 1] if len(ys) else np.zeros(0)

@@ -59,6 +59,7 @@ MODULES: dict[str, str] = {
     "std_srvs": "python3-std-srvs",
     "geometry_msgs": "python3-geometry-msgs",
     "sensor_msgs": "python3-sensor-msgs",
+    "nav_msgs": "python3-nav-msgs",
     "rosgraph_msgs": "python3-rosgraph-msgs",
     "roscpp": "python3-roscpp-msg",
 }

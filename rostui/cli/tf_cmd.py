@@ -50,6 +50,20 @@ def echo_command(
         raise typer.Exit(0) from None
 
 
+@tf_app.command("tree")
+def tree_command() -> None:
+    """Show the frames of /tf and /tf_static as a tree (like rqt_tf_tree or `rosrun tf view_frames`).
+
+    Each frame sits under its parent with the node that broadcasts it, its
+    rate, the age of its newest stamp, or "static"; the frame under the
+    cursor is spelled out below (in its parent and in its tree's root).
+    The same view is `rostui view /tf`.
+    """
+    from rostui.apps.view.tf_tree_app import run_app
+
+    raise typer.Exit(run_app())
+
+
 def register(app: typer.Typer) -> None:
     """Add ``rostui tf ...``."""
     app.add_typer(tf_app, name="tf")

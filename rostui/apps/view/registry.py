@@ -39,6 +39,7 @@ class TopicView(Widget):
 #: (message types, "module:Class") for each view; one entry per view module.
 VIEWS: tuple[tuple[tuple[str, ...], str], ...] = (
     (("sensor_msgs/Image", "sensor_msgs/CompressedImage"), "rostui.apps.view.image_view:ImageView"),
+    (("tf2_msgs/TFMessage",), "rostui.apps.view.tf_tree_view:TfTreeView"),
 )
 
 

@@ -42,6 +42,8 @@ FILES: dict[str, str] = {
     "/usr/sbin/sshd": "openssh-server",
     "/usr/lib/python3/dist-packages/paramiko/": "python3-paramiko",
     "/usr/share/rosgraph_msgs/package.xml": "libros-rosgraph-msgs-dev",
+    "/usr/lib/tf2_ros/static_transform_publisher": "tf2-tools",
+    "/usr/lib/tf/tf_echo": "tf-tools",
 }
 
 #: Top-level modules a test imports under the system Python (/usr/bin/python3), and their packages.
@@ -62,6 +64,7 @@ MODULES: dict[str, str] = {
     "nav_msgs": "python3-nav-msgs",
     "rosgraph_msgs": "python3-rosgraph-msgs",
     "roscpp": "python3-roscpp-msg",
+    "tf2_ros": "python3-tf2-ros",
 }
 
 #: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.

@@ -5,7 +5,7 @@ every repaint (about 100 ms of CPU for a 100x40 panel), too slow for a 30 fps
 camera.  This widget turns a frame into lines once, when it arrives, and
 reuses one style object per colour pair, so repeated colours cost a lookup
 and Textual's compositor finds their escape codes cached.  Colours are kept
-to 32 levels a channel (0 and 255 stay exact), which makes repeats common
+to 16 levels a channel (0 and 255 stay exact), which makes repeats common
 and neighbouring cells of one colour merge into one run of text.
 """
 
@@ -25,7 +25,7 @@ __all__ = ["HalfBlock"]
 MAX_STYLES = 65536
 UPPER_HALF = "▀"
 #: Bits kept of each channel.
-BITS = 5
+BITS = 4
 _LEVELS = (1 << BITS) - 1
 #: Each kept level as 0-255 (0 -> 0, the top level -> 255).
 _EXPAND = [round(level * 255 / _LEVELS) for level in range(_LEVELS + 1)]

@@ -25,6 +25,7 @@ from textual.widget import Widget
 from textual.widgets import Static
 
 from rostui.apps.view.feed import Rate
+from rostui.apps.view.halfblock import HalfBlock
 from rostui.apps.view.registry import TopicView
 from rostui.models.sensors.images import ImageDecodeError, Picture, decode_image, fit
 
@@ -68,9 +69,11 @@ def graphics() -> str:
 
 
 def _image_widget(kind: str) -> Widget:
+    if kind == "halfblock":
+        return HalfBlock()
     from textual_image import widget
 
-    cls: type[Widget] = {"kitty": widget.TGPImage, "sixel": widget.SixelImage}.get(kind, widget.HalfcellImage)
+    cls: type[Widget] = widget.SixelImage if kind == "sixel" else widget.TGPImage
     return cls()
 
 
@@ -144,9 +147,12 @@ class ImageView(TopicView):
         height, width = picture.rgb.shape[:2]
         shown_w, shown_h = fit(width, height, cols * cell_w, rows * cell_h)
         self.cells = (max(1, round(shown_w / cell_w)), max(1, round(shown_h / cell_h)))
-        image = PILImage.fromarray(picture.rgb, "RGB")
-        self.pixels.styles.width, self.pixels.styles.height = self.cells
-        self.pixels.image = image  # type: ignore[attr-defined]
+        if isinstance(self.pixels, HalfBlock):
+            self.pixels.set_pixels(picture.rgb)
+        else:
+            if self.pixels.styles.width != self.cells[0] or self.pixels.styles.height != self.cells[1]:
+                self.pixels.styles.width, self.pixels.styles.height = self.cells
+            self.pixels.image = PILImage.fromarray(picture.rgb, "RGB")  # type: ignore[attr-defined]
         self.drawn.add(now)
 
     def paint_info(self) -> None:

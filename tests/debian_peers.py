@@ -62,6 +62,7 @@ MODULES: dict[str, str] = {
     "geometry_msgs": "python3-geometry-msgs",
     "sensor_msgs": "python3-sensor-msgs",
     "nav_msgs": "python3-nav-msgs",
+    "tf2_msgs": "python3-tf2-msgs",
     "rosgraph_msgs": "python3-rosgraph-msgs",
     "roscpp": "python3-roscpp-msg",
     "tf2_ros": "python3-tf2-ros",

@@ -181,3 +181,44 @@ def test_scene_occupancy_layer_and_unreadable_message_note() -> None:
     bad.data = [0]
     scene.offer("/map", bad)
     assert scene.note("/map") == "cannot draw: 1 cells of data for a 4 x 2 grid"
+
+
+def test_buffer_lookup_projects_a_tf_chain_onto_the_plane() -> None:
+    from rostui.models.sensors.tf_lookup import buffer_lookup
+    from rostui.models.tf.buffer import TfBuffer
+    from rostui.models.tf.transform import Transform
+
+    buffer = TfBuffer()
+    half = math.pi / 4
+    buffer.set_transform("map", "odom", Transform.of((1.0, 0.0, 0.0), (0, 0, math.sin(half), math.cos(half))), 10.0,
+                         static=False, broadcaster="/test", received=10.0)
+    buffer.set_transform("odom", "laser", Transform.of((0.5, 0.0, 0.2), (0, 0, 0, 1)), 0.0, static=True,
+                         broadcaster="/test", received=10.0)
+    lookup = buffer_lookup(buffer)
+    where = lookup("map", "laser")
+    assert where is not None
+    pose = where.pose(Pose2D())
+    assert (pose.x, pose.y, pose.yaw) == pytest.approx((1.0, 0.5, math.pi / 2))
+    assert lookup("map", "nowhere") is None
+    scene = Scene2D(["/scan"], fixed_frame="map", lookup=lookup)
+    scene.offer("/scan", wall_scan(2.0, "laser"))
+    assert scene.note("/scan") == ""
+    assert np.allclose(scene.world_points()[:, 1], 2.5)  # the wall, 2 m ahead of a laser facing +y at y 0.5
+
+
+def test_an_upside_down_laser_is_drawn_mirrored() -> None:
+    """roll 180 degrees: a return to the scanner's left (+y) lies to the right (-y) of the base."""
+    from rostui.models.sensors.tf_lookup import buffer_lookup
+    from rostui.models.tf.buffer import TfBuffer
+    from rostui.models.tf.transform import Transform
+
+    buffer = TfBuffer()
+    buffer.set_transform("base_link", "laser", Transform.of((0.2, 0.0, 0.3), (1.0, 0.0, 0.0, 0.0)), 0.0,
+                         static=True, broadcaster="/test", received=0.0)
+    where = buffer_lookup(buffer)("base_link", "laser")
+    assert where is not None
+    assert np.allclose(where.apply(np.array([[1.0, 1.0]])), [[1.2, -1.0]])
+    pose = where.pose(Pose2D(0.0, 0.0, math.pi / 2))
+    assert pose.yaw == pytest.approx(-math.pi / 2)
+    inverse = where.inverse()
+    assert inverse is not None and np.allclose(inverse.apply(np.array([[1.2, -1.0]])), [[1.0, 1.0]])

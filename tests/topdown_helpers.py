@@ -25,7 +25,7 @@ OccupancyGrid = get_message_class("nav_msgs/OccupancyGrid")
 #: Where the live talker (tests/peers/topdown_talker.py) puts each topic: a point of its drawing, in "map".
 TALKER_SPOTS: dict[str, tuple[float, float]] = {
     "/scan": (2.05, 0.55), "/odom": (-1.75, 1.05), "/pose": (-2.35, -1.05), "/poses": (0.55, 2.05),
-    "/path": (-2.05, -2.05), "/map": (3.55, -2.3), "/cloud": (0.53, 0.05),
+    "/path": (-2.05, -2.05), "/map": (3.55, -2.3), "/cloud": (0.53, 0.05), "/scan_laser": (1.3, 1.05),
 }
 
 

@@ -18,6 +18,8 @@ CONTEXT = {"help_option_names": ["-h", "--help"]}
 def view_command(
     topics: List[str] = typer.Argument(..., metavar="TOPIC...", help="Topics to show, each in its own panel."),
     period: float = typer.Option(1.0, "--period", metavar="SECONDS", help="Seconds between master polls."),
+    frame: str = typer.Option("", "--frame", metavar="FRAME",
+                              help="Fixed frame of the top-down view (default: the first message's frame)."),
 ) -> None:
     """Show sensor topics in the terminal: sensor_msgs/Image and CompressedImage (and every type a view registers).
 
@@ -44,7 +46,7 @@ def view_command(
         resolved.append(resolve_topic(topic))
     from rostui.apps.view.app import run_app
 
-    raise typer.Exit(run_app(resolved, period=period))
+    raise typer.Exit(run_app(resolved, period=period, frame=frame or None))
 
 
 def register(app: typer.Typer) -> None:

@@ -11,6 +11,8 @@ Prints "ready" once every topic is advertised.  What is where (metres, frame "ma
   /map    OccupancyGrid: 1 m x 0.5 m, every cell occupied, corner at (3.05, -2.55), 0.1 m cells
   /cloud  PointCloud2: 36 points on a circle of radius 0.53 about the origin (big-endian float64,
           x y z after a 4-byte rgb field, 4 bytes of padding), plus one NaN point
+  /scan_laser  LaserScan in frame "laser", beams -30..+30 degrees, a wall 1.05 m ahead
+  /tf_static   map -> laser: (1, 0, 0), yaw 90 degrees (latched), so that wall lies along y = 1.05 in "map"
 """
 
 import importlib
@@ -35,6 +37,7 @@ def main(flavour: str) -> int:
                                     message("geometry_msgs/Pose"))
     OccupancyGrid, PointCloud2 = message("nav_msgs/OccupancyGrid"), message("sensor_msgs/PointCloud2")
     PointField = message("sensor_msgs/PointField")
+    TFMessage, TransformStamped = message("tf2_msgs/TFMessage"), message("geometry_msgs/TransformStamped")
 
     def heading(pose, yaw):
         pose.orientation.z, pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
@@ -72,12 +75,24 @@ def main(flavour: str) -> int:
     fields += [PointField(name=n, offset=4 + 8 * i, datatype=8, count=1) for i, n in enumerate("xyz")]
     cloud = PointCloud2(height=1, width=len(points), fields=fields, is_bigendian=True, point_step=32,
                         row_step=32 * len(points), data=data, is_dense=False)
+    laser_scan = LaserScan(angle_min=angles[0], angle_max=angles[-1], angle_increment=math.radians(1),
+                           range_min=0.1, range_max=20.0, ranges=[1.05 / math.cos(a) for a in angles])
+    mount = TransformStamped(child_frame_id="laser")
+    mount.header.frame_id = "map"
+    mount.header.stamp = ros.Time.now()
+    mount.transform.translation.x = 1.0
+    mount.transform.rotation.z, mount.transform.rotation.w = math.sin(math.pi / 4), math.cos(math.pi / 4)
+    static = ros.Publisher("/tf_static", TFMessage, queue_size=1, latch=True)
+    static.publish(TFMessage(transforms=[mount]))
     messages = {"/scan": scan, "/odom": odom, "/pose": pose, "/poses": poses, "/path": path, "/map": grid,
                 "/cloud": cloud}
     publishers = {}
     for topic, msg in messages.items():
         msg.header.frame_id = "map"
         publishers[topic] = ros.Publisher(topic, type(msg), queue_size=1)
+    laser_scan.header.frame_id = "laser"
+    messages["/scan_laser"] = laser_scan
+    publishers["/scan_laser"] = ros.Publisher("/scan_laser", LaserScan, queue_size=1)
     print("ready", flush=True)
     rate = ros.Rate(10)
     while not ros.is_shutdown():

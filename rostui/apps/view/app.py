@@ -42,12 +42,14 @@ class ViewApp(ReleasesOnExit, KeysApp):
 
     BINDINGS: ClassVar[list[BindingType]] = [Binding("q", "quit", "quit")]
 
-    def __init__(self, topics: Sequence[str], *, master_uri: str | None = None, period: float = 1.0) -> None:
+    def __init__(self, topics: Sequence[str], *, master_uri: str | None = None, period: float = 1.0,
+                 frame: str | None = None) -> None:
         super().__init__()
         self.master_uri = master_uri_from_env(master_uri)
         self.source = ViewSource(self.master_uri, period=period, on_state=self._on_state)
         self.topics = list(dict.fromkeys(topics))
-        self.grid = ViewGrid(self.topics, lambda: self.source.node, self.source.type_of, id="views")
+        self.grid = ViewGrid(self.topics, lambda: self.source.node, self.source.type_of, id="views",
+                             view_options={"frame": frame} if frame else None)
 
     def compose(self) -> ComposeResult:
         """The master line, the panels, the keys."""
@@ -105,13 +107,13 @@ class ViewScreen(Screen[None]):
         await self.grid.stop()
 
 
-def run_app(topics: Sequence[str], *, period: float = 1.0) -> int:
+def run_app(topics: Sequence[str], *, period: float = 1.0, frame: str | None = None) -> int:
     """Run :class:`ViewApp` in this terminal; returns the exit status (1 without a TTY)."""
     if terminal_missing("rostui view", "use `rostui topic echo` without one"):
         return 1
     from rostui.apps.view.image_view import detect_graphics
 
     detect_graphics()  # the terminal is asked what it draws before Textual owns stdin
-    app = ViewApp(topics, period=period)
+    app = ViewApp(topics, period=period, frame=frame)
     app.run()
     return app.return_code or 0

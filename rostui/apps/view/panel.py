@@ -7,12 +7,18 @@ mounted.  Each arrival schedules one delivery; a delivery takes only the
 newest message, decodes it and hands it to the view, so frames that came
 while the screen was busy are dropped, not queued.  A type no view shows
 is one line in the panel naming the types that can be shown.
+
+A view class with ``SHARED = True`` (the top-down view) draws several topics
+in one picture: the first panel of that class mounts the view, each later
+panel of the class hands its topic to that view (``add_topic``), delivers to
+it (``show_topic_message``) and hides itself.  ``view_options`` reach the
+views whose class lists them in ``OPTIONS`` (``--frame``).
 """
 
 from __future__ import annotations
 
 import asyncio
-from typing import Callable, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 from textual.app import ComposeResult
 from textual.containers import Container, Vertical
@@ -43,10 +49,13 @@ class ViewPanel(Vertical):
     ViewPanel > .view-note.problem { color: $error; }
     """
 
-    def __init__(self, topic: str, *, msg_type: str | None = None) -> None:
+    def __init__(self, topic: str, *, msg_type: str | None = None,
+                 view_options: Mapping[str, Any] | None = None) -> None:
         super().__init__(classes="view-panel")
         self.topic = topic
         self.msg_type = msg_type
+        self.view_options = dict(view_options or {})
+        self.joined = False
         self.view: TopicView | None = None
         self.feed = TopicFeed(topic, self._arrived)
         self.note = Static(classes="view-note")
@@ -78,12 +87,27 @@ class ViewPanel(Vertical):
                 self.problem = f"{self.topic}: {exc}"
                 self.say(self.problem, problem=True)
                 return
-            self.border_subtitle = escape(msg_type)
-            self.view = cls(self.topic)
-            await self.mount(self.view)
-            self.say("waiting for the first message")
+            host = self._shared_host(cls)
+            if host is not None:
+                host.add_topic(self.topic)  # type: ignore[attr-defined]
+                self.view, self.joined, self.display = host, True, False
+            else:
+                self.border_subtitle = escape(msg_type)
+                options = {k: v for k, v in self.view_options.items() if k in getattr(cls, "OPTIONS", ())}
+                self.view = cls(self.topic, **options)
+                await self.mount(self.view)
+                self.say("waiting for the first message")
         if self.view is not None:
             await self.feed.attach(node)
+
+    def _shared_host(self, cls: type[TopicView]) -> TopicView | None:
+        """The view of class ``cls`` another panel of this grid mounted, when ``cls`` shares one view."""
+        if not getattr(cls, "SHARED", False) or self.parent is None:
+            return None
+        for panel in self.parent.query_children(ViewPanel):
+            if panel is not self and not panel.joined and isinstance(panel.view, cls):
+                return panel.view
+        return None
 
     async def stop(self) -> None:
         """Unsubscribe."""
@@ -109,6 +133,9 @@ class ViewPanel(Vertical):
             self.say(f"cannot decode a message on {self.topic}: {str(exc).splitlines()[0] if str(exc) else exc!r}",
                      problem=True)
             return
+        if self.joined:
+            self.view.show_topic_message(self.topic, msg, received)  # type: ignore[attr-defined]
+            return
         if self.note.display:
             self.say("")
         self.view.show_message(msg, received)
@@ -121,12 +148,13 @@ class ViewGrid(Container):
     ViewGrid { layout: horizontal; height: 1fr; }
     """
 
-    def __init__(self, topics: Sequence[str], node_of: NodeOf, type_of: TypeOf, *, id: str | None = None) -> None:
+    def __init__(self, topics: Sequence[str], node_of: NodeOf, type_of: TypeOf, *, id: str | None = None,
+                 view_options: Mapping[str, Any] | None = None) -> None:
         super().__init__(id=id)
         self.topics = list(dict.fromkeys(topics))
         self.node_of = node_of
         self.type_of = type_of
-        self.panels = [ViewPanel(topic) for topic in self.topics]
+        self.panels = [ViewPanel(topic, view_options=view_options) for topic in self.topics]
         self._checking = False
 
     def compose(self) -> ComposeResult:

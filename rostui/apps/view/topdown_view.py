@@ -9,11 +9,18 @@ per cell.  Keys: ``+``/``-`` zoom, arrows pan, ``0`` back to the frame's origin,
 
 Only the newest message of each topic is kept; the picture is redrawn on a
 timer at most :attr:`TopDownView.FRAME_RATE` times a second, and only when a
-message came or the view moved.
+message came, tf changed or the view moved.
+
+In `rostui view` the first top-down topic's panel holds the view and every
+other top-down topic joins it (:attr:`TopDownView.SHARED`).  Without a given
+``lookup`` the view listens to /tf and /tf_static on its own node while it is
+mounted (a :class:`~rostui.models.tf.source.TfSource`), and ``f`` steps the
+fixed frame through every frame tf and the messages name.
 """
 
 from __future__ import annotations
 
+import time
 from typing import Any, ClassVar
 
 import numpy as np
@@ -21,12 +28,15 @@ from rich.segment import Segment
 from rich.style import Style
 from textual.binding import Binding, BindingType
 from textual.strip import Strip
-from textual.widget import Widget
 
+from rostui.apps.view.registry import TopicView
 from rostui.apps.widgets.terminal_colors import color_system, shown_in, style_rgb
 from rostui.models.contrast import RGB, keep_hue
 from rostui.models.sensors.canvas2d import BRAILLE_BASE, Viewport
-from rostui.models.sensors.scene2d import Lookup, Scene2D, same_frame_only
+from rostui.models.sensors.scene2d import Lookup, Scene2D
+from rostui.models.sensors.tf_lookup import buffer_lookup
+from rostui.models.tf.buffer import TfBuffer
+from rostui.models.tf.source import TfSource
 
 __all__ = ["TopDownView", "TOPIC_COLORS", "DEFAULT_SPAN"]
 
@@ -44,13 +54,18 @@ DEFAULT_SPAN = 10.0
 ZOOM_STEP = 1.5
 
 
-class TopDownView(Widget, can_focus=True):
+class TopDownView(TopicView, can_focus=True):
     """A top-down picture of ``topics`` in ``frame`` (None: the first message's frame).
 
-    ``lookup(target, source)`` gives the pose of frame ``source`` in ``target``
-    (a tf buffer); without one, only messages in the fixed frame are drawn.
-    :attr:`frames` counts the frames drawn.
+    ``lookup(target, source)`` gives the pose of frame ``source`` in ``target``;
+    None: tf from the master at ``master_uri`` (ROS_MASTER_URI by default),
+    listened to while the view is mounted.  :attr:`frames` counts the frames drawn.
     """
+
+    #: Every top-down topic of a `rostui view` joins the first one's view (see :meth:`add_topic`).
+    SHARED: ClassVar[bool] = True
+    #: Keyword options `rostui view` passes through (``--frame``).
+    OPTIONS: ClassVar[tuple[str, ...]] = ("frame",)
 
     DEFAULT_CSS = """
     TopDownView {
@@ -69,19 +84,26 @@ class TopDownView(Widget, can_focus=True):
         Binding("down", "pan(0,-1)", "pan down", show=False),
         Binding("0", "origin", "frame origin"),
         Binding("c", "fit", "fit all"),
+        Binding("f", "next_frame", "fixed frame"),
     ]
 
     FRAME_RATE = 20.0
 
     def __init__(self, topic: str | None = None, *, topics: tuple[str, ...] | list[str] = (),
-                 frame: str | None = None, lookup: Lookup = same_frame_only,
-                 name: str | None = None, id: str | None = None, classes: str | None = None) -> None:
-        super().__init__(name=name, id=id, classes=classes)
+                 frame: str | None = None, lookup: Lookup | None = None, master_uri: str | None = None,
+                 id: str | None = None, classes: str | None = None) -> None:
         names = ([topic] if topic else []) + [t for t in topics if t != topic]
-        self.topic = names[0] if names else ""
+        super().__init__(names[0] if names else "", id=id, classes=classes)
+        self.tf_buffer: TfBuffer | None = None
+        self.tf_source: TfSource | None = None
+        self.master_uri = master_uri
+        self._tf_changes = 0
+        if lookup is None:
+            self.tf_buffer = TfBuffer()
+            lookup = buffer_lookup(self.tf_buffer)
         self.scene = Scene2D(names, frame, lookup)
         self._view: Viewport | None = None
-        self._drawn: tuple[int, Viewport | None, int, int] = (-1, None, 0, 0)
+        self._drawn: tuple[int, int, str | None, Viewport | None, int, int] = (-1, -1, None, None, 0, 0)
         self._strips: list[Strip] = []
         self._rows: list[str] = []
         self._owners: list[list[int]] = []
@@ -92,7 +114,7 @@ class TopDownView(Widget, can_focus=True):
         """Draw ``topic`` too, in the next colour."""
         self.scene.add(topic)
 
-    def show_message(self, msg: Any, received: float = 0.0) -> None:
+    def show_message(self, msg: Any, received: float = 0.0) -> None:  # noqa: D102 (TopicView's)
         """``msg`` is the newest message of this view's first topic."""
         self.scene.offer(self.topic, msg, received)
 
@@ -151,6 +173,21 @@ class TopDownView(Widget, can_focus=True):
             self._view = self._home(self._view.cols, self._view.rows)
             self.draw_frame()
 
+    def action_next_frame(self) -> None:
+        """Make the next frame (by name) that tf or a message names the fixed frame."""
+        frames = set(self.tf_buffer.frames()) if self.tf_buffer is not None else set()
+        for topic in self.scene.topics:
+            drawing = self.scene.drawing(topic)
+            if drawing is not None and drawing.frame:
+                frames.add(drawing.frame.lstrip("/"))
+        if not frames:
+            return
+        ordered = sorted(frames)
+        current = self.scene.fixed_frame
+        self.scene.fixed_frame = ordered[(ordered.index(current) + 1) % len(ordered)] if current in ordered \
+            else ordered[0]
+        self.draw_frame()
+
     def action_fit(self) -> None:
         """Centre and zoom so that everything drawn shows."""
         if self._view is not None:
@@ -159,8 +196,24 @@ class TopDownView(Widget, can_focus=True):
 
     # -- Textual hooks -------------------------------------------------------------------
     def on_mount(self) -> None:
-        """Start the frame timer."""
+        """Start the frame timer; listen to tf unless a lookup was given."""
         self.set_interval(1.0 / self.FRAME_RATE, self.draw_frame)
+        if self.tf_buffer is not None:
+            from rostui.core.network import master_uri_from_env
+
+            uri = master_uri_from_env(self.master_uri or getattr(self.app, "master_uri", None))
+            self.tf_source = TfSource(uri, node_name="rostui_view_tf", buffer=self.tf_buffer,
+                                      on_change=self._tf_changed, clock=time.time)
+            self.run_worker(self.tf_source.run(), group="topdown-tf", exit_on_error=False)
+
+    def _tf_changed(self) -> None:
+        self._tf_changes += 1
+
+    async def on_unmount(self) -> None:
+        """Stop listening to tf."""
+        source, self.tf_source = self.tf_source, None
+        if source is not None:
+            await source.stop()
 
     def on_resize(self) -> None:
         """Keep centre and scale over the new size, and redraw at once."""
@@ -192,7 +245,7 @@ class TopDownView(Widget, can_focus=True):
             self._view = self._home(cols, rows)
         elif (self._view.cols, self._view.rows) != (cols, rows):
             self._view = self._view.resized(cols, rows)
-        state = (self.scene.generation, self._view, width, height)
+        state = (self.scene.generation, self._tf_changes, self.scene.fixed_frame, self._view, width, height)
         if state == self._drawn and self._strips:
             return False
         self._drawn = state

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["Points", "Pose2D", "yaw_of", "pose_of"]
+__all__ = ["Planar", "Points", "Pose2D", "yaw_of", "pose_of"]
 
 #: An N x 2 float64 array of (x, y) in metres.
 Points = npt.NDArray[np.float64]
@@ -61,3 +61,53 @@ class Pose2D:
 def pose_of(pose: Any) -> Pose2D:
     """A geometry_msgs/Pose (position, orientation) projected onto the ground plane."""
     return Pose2D(float(pose.position.x), float(pose.position.y), yaw_of(pose.orientation))
+
+
+@dataclass(frozen=True)
+class Planar:
+    """A 3D rigid transform as it acts on the ground plane: ``p -> matrix @ p + offset`` (2 x 2 and 2).
+
+    For points at z = 0 of the source frame this is exact, whatever the
+    transform's roll and pitch: an upside-down laser (roll 180 degrees) comes
+    out mirrored, as it should.
+    """
+
+    matrix: npt.NDArray[np.float64]
+    offset: npt.NDArray[np.float64]
+
+    @staticmethod
+    def of(where: "Planar | Pose2D") -> "Planar":
+        """``where`` as a Planar (a Pose2D is a rotation and a shift)."""
+        if isinstance(where, Planar):
+            return where
+        c, s = math.cos(where.yaw), math.sin(where.yaw)
+        return Planar(np.array([[c, -s], [s, c]]), np.array([where.x, where.y]))
+
+    @staticmethod
+    def from_rotation(rotation: npt.NDArray[np.float64], translation: npt.NDArray[np.float64]) -> "Planar":
+        """From a 3 x 3 rotation matrix and a translation: their x and y rows and columns."""
+        return Planar(np.asarray(rotation, dtype=np.float64)[:2, :2].copy(),
+                      np.asarray(translation, dtype=np.float64)[:2].copy())
+
+    def apply(self, points: Points) -> Points:
+        """``points`` (N x 2, z = 0 in the source frame) on the target frame's plane."""
+        out: Points = points @ self.matrix.T + self.offset
+        return out
+
+    def compose(self, other: "Planar | Pose2D") -> "Planar":
+        """``other`` first, then this."""
+        o = Planar.of(other)
+        return Planar(self.matrix @ o.matrix, self.matrix @ o.offset + self.offset)
+
+    def pose(self, pose: Pose2D) -> Pose2D:
+        """Where ``pose`` (in the source frame) lands and which way it faces on the target plane."""
+        x, y = self.apply(np.array([[pose.x, pose.y]]))[0]
+        dx, dy = self.matrix @ np.array([math.cos(pose.yaw), math.sin(pose.yaw)])
+        return Pose2D(float(x), float(y), math.atan2(dy, dx))
+
+    def inverse(self) -> "Planar | None":
+        """The way back, or None when the plane is seen edge-on (a frame pitched or rolled 90 degrees)."""
+        if abs(float(np.linalg.det(self.matrix))) < 1e-9:
+            return None
+        inv = np.linalg.inv(self.matrix)
+        return Planar(inv, -inv @ self.offset)

@@ -18,7 +18,7 @@ import numpy as np
 from rostui.models.sensors.canvas2d import BrailleCanvas, Viewport, nice_step
 from rostui.models.sensors.cloud2d import CloudError, cloud_points
 from rostui.models.sensors.grid2d import Grid2D, GridError, grid_of
-from rostui.models.sensors.pose2d import Points, Pose2D
+from rostui.models.sensors.pose2d import Planar, Points, Pose2D
 from rostui.models.sensors.poses2d import odometry_pose, path_points, pose_array_poses, stamped_pose
 from rostui.models.sensors.scan2d import scan_points
 
@@ -31,11 +31,11 @@ TOPDOWN_TYPES = ("sensor_msgs/LaserScan", "nav_msgs/Odometry", "nav_msgs/Path", 
 #: The grid's lines are at least this many dots apart (8 cells across).
 GRID_SPACING_DOTS = 16
 
-#: ``lookup(target_frame, source_frame)``: the pose of ``source_frame`` in ``target_frame``, or None.
-Lookup = Callable[[str, str], "Pose2D | None"]
+#: ``lookup(target_frame, source_frame)``: how ``source_frame`` lies in ``target_frame``'s plane, or None.
+Lookup = Callable[[str, str], "Planar | Pose2D | None"]
 
 
-def same_frame_only(target: str, source: str) -> Pose2D | None:
+def same_frame_only(target: str, source: str) -> Planar | Pose2D | None:
     """The lookup used without a tf buffer: identity within one frame, nothing between frames."""
     return Pose2D() if target.lstrip("/") == source.lstrip("/") else None
 
@@ -148,12 +148,13 @@ class Scene2D:
             return f"no transform from {drawing.frame or '(no frame)'} to {self.fixed_frame}"
         return ""
 
-    def transform(self, drawing: Drawing) -> Pose2D | None:
-        """The pose of ``drawing``'s frame in the fixed frame, or None when there is none."""
+    def transform(self, drawing: Drawing) -> Planar | None:
+        """How ``drawing``'s frame lies in the fixed frame's plane, or None when there is no transform."""
         if self.fixed_frame is None:
             return None
         frame = drawing.frame.lstrip("/")
-        return Pose2D() if frame == self.fixed_frame else self.lookup(self.fixed_frame, frame)
+        where = Pose2D() if frame == self.fixed_frame else self.lookup(self.fixed_frame, frame)
+        return None if where is None else Planar.of(where)
 
     def world_points(self) -> Points:
         """Every point, polyline vertex, pose and grid corner in the fixed frame (for fitting the view)."""
@@ -164,7 +165,7 @@ class Scene2D:
             if drawing is None or where is None:
                 continue
             parts += [where.apply(drawing.points), where.apply(drawing.polyline)]
-            parts += [where.apply(np.array([[p.x, p.y] for p in drawing.poses]).reshape(-1, 2))]
+            parts += [where.apply(np.array([[p.x, p.y] for p in drawing.poses], dtype=np.float64).reshape(-1, 2))]
             if drawing.grid is not None:
                 h, w = drawing.grid.values.shape
                 corners = np.array([[0, 0], [w, 0], [0, h], [w, h]], dtype=np.float64) * drawing.grid.resolution
@@ -189,7 +190,7 @@ class Scene2D:
             canvas.points(layer, where.apply(drawing.points))
             canvas.polyline(layer, where.apply(drawing.polyline))
             for pose in drawing.poses:
-                canvas.arrow(layer, where.compose(pose))
+                canvas.arrow(layer, where.pose(pose))
         return canvas
 
     def _draw_grid(self, canvas: BrailleCanvas, view: Viewport) -> None:
@@ -207,9 +208,12 @@ class Scene2D:
         for row in np.floor(dots).astype(np.int64):
             canvas.plot_dots(0, cols, np.full(len(cols), row))
 
-    def _draw_occupancy(self, canvas: BrailleCanvas, layer: int, view: Viewport, grid: Grid2D, where: Pose2D) -> None:
+    def _draw_occupancy(self, canvas: BrailleCanvas, layer: int, view: Viewport, grid: Grid2D, where: Planar) -> None:
         """A dot wherever the dot's centre lies over an occupied cell."""
-        centres = where.inverse().apply(view.dot_centres())
+        back = where.inverse()
+        if back is None:
+            return
+        centres = back.apply(view.dot_centres())
         occupied = grid.occupied(centres).reshape(view.dots_high, view.dots_wide)
         rows, cols = np.nonzero(occupied)
         canvas.plot_dots(layer, cols.astype(np.int64), rows.astype(np.int64))

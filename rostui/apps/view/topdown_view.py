@@ -196,8 +196,10 @@ class TopDownView(TopicView, can_focus=True):
 
     # -- Textual hooks -------------------------------------------------------------------
     def on_mount(self) -> None:
-        """Start the frame timer; listen to tf unless a lookup was given."""
+        """Start the frame timer; take the keys unless another widget has them; listen to tf unless a lookup was given."""
         self.set_interval(1.0 / self.FRAME_RATE, self.draw_frame)
+        if self.screen.focused is None:
+            self.focus()
         if self.tf_buffer is not None:
             from rostui.core.network import master_uri_from_env
 

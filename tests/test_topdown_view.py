@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 from rostui.apps.view.topdown_view import TopDownView
 from rostui.models.sensors.pose2d import Pose2D
@@ -129,6 +130,7 @@ async def test_messages_are_dropped_not_queued_and_frames_are_bounded() -> None:
         await pilot.pause(0.2)
         assert view.frames - before <= 1 + math.ceil(0.2 * TopDownView.FRAME_RATE) + 2
         assert view.scene.received("/scan") == 201
+        assert re.search(r"   \d+\.\d msg/s \(\d+\.\d drawn\)$", view.row_text(23)), view.row_text(23)
         assert {c for c, _ in scan_cells(view)} == {vp_col(view, 2.05 - 0.005 * 199)}
 
 

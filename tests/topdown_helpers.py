@@ -109,13 +109,14 @@ def occupancy() -> Any:
 class ViewTestApp(App[None]):
     """One :class:`TopDownView` filling the screen, nothing else."""
 
-    def __init__(self, topics: Sequence[str], frame: str | None = None, lookup: Lookup = same_frame_only) -> None:
+    def __init__(self, topics: Sequence[str], frame: str | None = None, lookup: Lookup = same_frame_only,
+                 show_rates: bool = True) -> None:
         super().__init__()
-        self.topics, self.frame, self.lookup = list(topics), frame, lookup
+        self.topics, self.frame, self.lookup, self.show_rates = list(topics), frame, lookup, show_rates
 
     def compose(self) -> ComposeResult:
         """The view."""
-        yield TopDownView(topics=self.topics, frame=self.frame, lookup=self.lookup)
+        yield TopDownView(topics=self.topics, frame=self.frame, lookup=self.lookup, show_rates=self.show_rates)
 
     def on_mount(self) -> None:
         """The view has the keys."""
@@ -128,8 +129,8 @@ class ViewTestApp(App[None]):
 
 
 def scene_app(frame: str | None = None) -> ViewTestApp:
-    """A room, a wall scan, odometry, a path and a pose array, all in "laser" (messages given at mount)."""
-    app = ViewTestApp(["/map", "/scan", "/path", "/odom", "/poses"], frame=frame)
+    """A room, a wall scan, odometry, a path and a pose array, all in "laser" (messages given at mount; no rates)."""
+    app = ViewTestApp(["/map", "/scan", "/path", "/odom", "/poses"], frame=frame, show_rates=False)
 
     def feed() -> None:
         view = app.view

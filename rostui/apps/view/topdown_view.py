@@ -27,8 +27,10 @@ import numpy as np
 from rich.segment import Segment
 from rich.style import Style
 from textual.binding import Binding, BindingType
+from textual.geometry import Region
 from textual.strip import Strip
 
+from rostui.apps.view.feed import Rate
 from rostui.apps.view.registry import TopicView
 from rostui.apps.widgets.terminal_colors import color_system, shown_in, style_rgb
 from rostui.models.contrast import RGB, keep_hue
@@ -50,6 +52,9 @@ GRID_COLOR: RGB = (90, 90, 90)
 #: Metres across the canvas before any zoom.
 DEFAULT_SPAN = 10.0
 
+#: The character of each braille dot pattern (no dots: a space).
+GLYPHS = np.array([" "] + [chr(BRAILLE_BASE + bits) for bits in range(1, 256)])
+
 #: Each + or - zooms by this factor.
 ZOOM_STEP = 1.5
 
@@ -59,7 +64,8 @@ class TopDownView(TopicView, can_focus=True):
 
     ``lookup(target, source)`` gives the pose of frame ``source`` in ``target``;
     None: tf from the master at ``master_uri`` (ROS_MASTER_URI by default),
-    listened to while the view is mounted.  :attr:`frames` counts the frames drawn.
+    listened to while the view is mounted.  :attr:`frames` counts the frames drawn; the status line
+    shows messages received and frames drawn per second unless ``show_rates`` is False.
     """
 
     #: Every top-down topic of a `rostui view` joins the first one's view (see :meth:`add_topic`).
@@ -91,7 +97,7 @@ class TopDownView(TopicView, can_focus=True):
 
     def __init__(self, topic: str | None = None, *, topics: tuple[str, ...] | list[str] = (),
                  frame: str | None = None, lookup: Lookup | None = None, master_uri: str | None = None,
-                 id: str | None = None, classes: str | None = None) -> None:
+                 show_rates: bool = True, id: str | None = None, classes: str | None = None) -> None:
         names = ([topic] if topic else []) + [t for t in topics if t != topic]
         super().__init__(names[0] if names else "", id=id, classes=classes)
         self.tf_buffer: TfBuffer | None = None
@@ -107,7 +113,11 @@ class TopDownView(TopicView, can_focus=True):
         self._strips: list[Strip] = []
         self._rows: list[str] = []
         self._owners: list[list[int]] = []
+        self._keys: list[tuple[str, tuple[int, ...]]] = []
         self.frames = 0
+        self.show_rates = show_rates
+        self.received_rate = Rate()
+        self.drawn_rate = Rate()
 
     # -- feeding ---------------------------------------------------------------------
     def add_topic(self, topic: str) -> None:
@@ -116,11 +126,12 @@ class TopDownView(TopicView, can_focus=True):
 
     def show_message(self, msg: Any, received: float = 0.0) -> None:  # noqa: D102 (TopicView's)
         """``msg`` is the newest message of this view's first topic."""
-        self.scene.offer(self.topic, msg, received)
+        self.show_topic_message(self.topic, msg, received)
 
     def show_topic_message(self, topic: str, msg: Any, received: float = 0.0) -> None:
         """``msg`` is the newest message of ``topic`` (the one before it is dropped)."""
         self.scene.offer(topic, msg, received)
+        self.received_rate.add(time.time())
 
     # -- what tests and tools read -----------------------------------------------------
     @property
@@ -249,12 +260,32 @@ class TopDownView(TopicView, can_focus=True):
             self._view = self._view.resized(cols, rows)
         state = (self.scene.generation, self._tf_changes, self.scene.fixed_frame, self._view, width, height)
         if state == self._drawn and self._strips:
+            self._update_status(self._view, width, height)
             return False
+        resized = (width, height) != self._drawn[4:]
         self._drawn = state
+        self.drawn_rate.add(time.time())
+        old = self._keys
         self._draw(self._view, width, height)
         self.frames += 1
-        self.refresh()
+        if resized or len(old) != len(self._keys):
+            self.refresh()
+        else:
+            for y, (before, after) in enumerate(zip(old, self._keys)):
+                if before != after:  # only rows that changed go to the terminal
+                    self.refresh(Region(0, y, width, 1))
         return True
+
+    def _update_status(self, view: Viewport, width: int, height: int) -> None:
+        """Rewrite only the status line when its text (the rates) changed."""
+        if height < 2 or len(self._strips) != height:
+            return
+        status = self._status(view)
+        if status != self._rows[-1]:
+            self._rows[-1] = status
+            self._keys[-1] = (status, ())
+            self._strips[-1] = Strip([Segment(status, self.rich_style)]).crop_extend(0, width, self.rich_style)
+            self.refresh(Region(0, height - 1, width, 1))
 
     def _draw(self, view: Viewport, width: int, height: int) -> None:
         base = self.rich_style
@@ -268,24 +299,25 @@ class TopDownView(TopicView, can_focus=True):
         if view.rows > 0 and view.cols > 0:
             bits, top = self.scene.render(view).compose()
             self._owners = top.tolist()
-            chars = np.vectorize(lambda b: chr(BRAILLE_BASE + b) if b else " ", otypes=[str])(bits)
+            chars = GLYPHS[bits]
             for r in range(view.rows):
                 line = "".join(chars[r])
                 texts.append(line)
-                strips.append(Strip(self._runs(line, top[r], styles, base), width))
+                strips.append(Strip(self._runs(line, self._owners[r], styles, base), width))
         else:
             self._owners = []
         if height >= 2:
             status = self._status(view)
             texts.append(status)
             strips.append(Strip([Segment(status, base)]).crop_extend(0, width, base))
+        owners = [()] + [tuple(row) for row in self._owners] + [()]
         self._rows, self._strips = texts[:height], strips[:height]
+        self._keys = [(text, owner) for text, owner in zip(self._rows, owners)]
 
-    def _runs(self, line: str, owners: Any, styles: list[Style], base: Style) -> list[Segment]:
+    def _runs(self, line: str, owner_list: list[int], styles: list[Style], base: Style) -> list[Segment]:
         """Segments of equal colour along one canvas row."""
         segments: list[Segment] = []
         start = 0
-        owner_list = owners.tolist()
         for i in range(1, len(line) + 1):
             if i == len(line) or owner_list[i] != owner_list[start]:
                 layer = owner_list[start]
@@ -309,4 +341,8 @@ class TopDownView(TopicView, can_focus=True):
         cells = max(2, round(step / (2 * view.scale)))
         metres = f"{step:g} m" if step >= 1 else f"{step * 100:g} cm"
         frame = self.scene.fixed_frame or "(waiting for a message)"
-        return f"├{'─' * (cells - 2)}┤ {metres}   frame {frame}   centre {view.cx:.2f}, {view.cy:.2f}"
+        text = f"├{'─' * (cells - 2)}┤ {metres}   frame {frame}   centre {view.cx:.2f}, {view.cy:.2f}"
+        if self.show_rates:
+            now = time.time()
+            text += f"   {self.received_rate.per_second(now):.1f} msg/s ({self.drawn_rate.per_second(now):.1f} drawn)"
+        return text

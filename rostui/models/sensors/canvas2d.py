@@ -186,5 +186,5 @@ class BrailleCanvas:
             union = np.zeros(self.bits.shape[1:], np.uint8)
         back = self.bits[:background]
         if len(back):
-            union = np.where(union != 0, union, np.bitwise_or.reduce(back, axis=0)).astype(np.uint8)
+            union = np.asarray(np.where(union != 0, union, np.bitwise_or.reduce(back, axis=0)), dtype=np.uint8)
         return union, top

@@ -109,5 +109,5 @@ class Planar:
         """The way back, or None when the plane is seen edge-on (a frame pitched or rolled 90 degrees)."""
         if abs(float(np.linalg.det(self.matrix))) < 1e-9:
             return None
-        inv = np.linalg.inv(self.matrix)
-        return Planar(inv, -inv @ self.offset)
+        inv = np.asarray(np.linalg.inv(self.matrix), dtype=np.float64)
+        return Planar(inv, np.asarray(-inv @ self.offset, dtype=np.float64))

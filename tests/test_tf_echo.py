@@ -86,3 +86,20 @@ def test_echo_without_a_master_or_with_a_bad_rate(ros_env: dict[str, str]) -> No
     assert result.stderr.strip() == f"ERROR: Unable to communicate with master at {ros_env['ROS_MASTER_URI']}/"
     result = rostui(["tf", "echo", "map", "laser", "0"], ros_env)
     assert result.returncode == 1 and result.stderr.strip() == "Echo rate must be > 0.0"
+
+
+def test_tf_tree_needs_a_terminal(ros_env: dict[str, str]) -> None:
+    result = rostui(["tf", "tree"], ros_env)
+    assert result.returncode == 1
+    assert result.stderr.strip() == ("ERROR: rostui tf tree draws in a terminal: stdin and stdout must be a TTY "
+                                     "(use `rostui tf echo SOURCE TARGET` without one)")
+
+
+def test_tf_echo_loads_no_textual() -> None:
+    import subprocess
+    import sys
+
+    code = ("import sys, rostui.cli.main, rostui.models.tf.echo; "
+            "print(sorted(m for m in ('textual', 'rich') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"

@@ -216,3 +216,31 @@ def test_frame_limit() -> None:
     with pytest.raises(Exception, match="more than 3 frames"):
         buf.set_transform("c", "d", Transform.identity(), 1.0, static=False, broadcaster="/x", received=0)
     assert buf.frames() == ["a", "b", "c"]
+
+
+def test_raw_feed_takes_the_broadcaster_and_refuses_garbage_and_other_types() -> None:
+    from rostui.core.msg import get_message_class
+    from rostui.core.node import AnyMsg
+    from rostui.models.tf.source import feed_raw
+
+    tf_message = get_message_class("tf2_msgs/TFMessage")
+    stamped = get_message_class("geometry_msgs/TransformStamped")()
+    stamped.header.frame_id, stamped.child_frame_id = "map", "odom"
+    stamped.header.stamp.secs = 12
+    stamped.transform.translation.x = 3.0
+    stamped.transform.rotation.w = 1.0
+    good = AnyMsg(tf_message(transforms=[stamped]).serialize())
+    good._connection_header = {"type": "tf2_msgs/TFMessage", "callerid": "/odom_node"}
+    buf = TfBuffer()
+    assert feed_raw(buf, good, static=False, received=1.0) == []
+    assert buf.edge("odom").broadcaster == "/odom_node"
+    assert buf.lookup_transform("map", "odom").transform.translation.tolist() == [3.0, 0.0, 0.0]
+
+    garbage = AnyMsg(b"\xff\xff\xff\x7f")
+    garbage._connection_header = {"type": "tf2_msgs/TFMessage", "callerid": "/bad"}
+    assert feed_raw(buf, garbage, static=False, received=2.0)[0].startswith("undecodable tf2_msgs/TFMessage from [/bad]")
+    other = AnyMsg(b"")
+    other._connection_header = {"type": "std_msgs/String", "callerid": "/confused"}
+    assert feed_raw(buf, other, static=False, received=2.0) == [
+        "[/confused] publishes std_msgs/String, not tf2_msgs/TFMessage; ignored"]
+    assert buf.frames() == ["map", "odom"]

@@ -5,7 +5,7 @@ Runs unmodified under Debian's rospy (/usr/bin/python3) and under `rostui python
 
     image_pattern_pub.py TOPIC ENCODING [RATE] [FILE]
 
-ENCODING is a raw encoding (rgb8, bgr8, rgba8, bgra8, mono8, mono16, 16UC1, 32FC1), or jpeg/png with
+RATE 0 publishes one message, latched, with a zero stamp, and waits.  ENCODING is a raw encoding (rgb8, bgr8, rgba8, bgra8, mono8, mono16, 16UC1, 32FC1), or jpeg/png with
 FILE holding the compressed picture.  The raw pattern (WIDTH x HEIGHT): four quadrants, top left red,
 top right green, bottom left blue, bottom right white, and a yellow square marker in the middle of the
 top-left quadrant.  Mono encodings get the grey level of each colour; depth encodings a left-to-right
@@ -87,11 +87,15 @@ def main():
         msg = CompressedImage()
         msg.format = encoding
         msg.data = data
-        pub = rospy.Publisher(topic, CompressedImage, queue_size=1)
+        pub = rospy.Publisher(topic, CompressedImage, queue_size=1, latch=rate == 0)
     else:
         msg = raw_image(encoding)
-        pub = rospy.Publisher(topic, Image, queue_size=1)
+        pub = rospy.Publisher(topic, Image, queue_size=1, latch=rate == 0)
     msg.header.frame_id = "camera"
+    if rate == 0:
+        pub.publish(msg)
+        rospy.spin()
+        return
     r = rospy.Rate(rate)
     while not rospy.is_shutdown():
         msg.header.stamp = rospy.Time.now()

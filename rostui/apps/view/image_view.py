@@ -7,7 +7,7 @@ said it has them (asked once, before Textual starts: :func:`detect_graphics`),
 else with half-block characters (two pixels a cell).  ``ROSTUI_VIEW_GRAPHICS``
 (``auto``, ``kitty``, ``sixel``, ``halfblock``) overrides the choice.  Above
 the picture one line gives the size, the encoding, the frame rates
-(received, drawn) and the latency (header stamp to drawing).
+(received, drawn) and the latency (header stamp to arrival; in a bag, to recording).
 """
 
 from __future__ import annotations
@@ -139,11 +139,12 @@ class ImageView(TopicView):
             self.error = str(exc)
             self.paint_info()
             return
+        first = self.picture is None or bool(self.error)
         self.error = ""
         self.picture = picture
         stamp = getattr(getattr(msg, "header", None), "stamp", None)
         seconds = stamp.to_sec() if stamp is not None and hasattr(stamp, "to_sec") else 0.0
-        self.latency = now - seconds if seconds > 0 else None
+        self.latency = received - seconds if seconds > 0 else None
         height, width = picture.rgb.shape[:2]
         shown_w, shown_h = fit(width, height, cols * cell_w, rows * cell_h)
         self.cells = (max(1, round(shown_w / cell_w)), max(1, round(shown_h / cell_h)))
@@ -154,6 +155,8 @@ class ImageView(TopicView):
                 self.pixels.styles.width, self.pixels.styles.height = self.cells
             self.pixels.image = PILImage.fromarray(picture.rgb, "RGB")  # type: ignore[attr-defined]
         self.drawn.add(now)
+        if first:
+            self.paint_info()
 
     def paint_info(self) -> None:
         """The line of figures: size, encoding, rates, latency (or why the last frame was not drawn)."""
@@ -165,8 +168,11 @@ class ImageView(TopicView):
         if picture is None:
             self.info.update("waiting for the first image")
             return
-        parts = [f"{picture.width}x{picture.height} {picture.encoding}",
-                 f"{self.received.per_second(now):.1f} fps ({self.drawn.per_second(now):.1f} drawn)"]
+        parts = [f"{picture.width}x{picture.height} {picture.encoding}"]
+        if self.received.count < 2:
+            parts.append(f"{self.received.count} frame")
+        else:
+            parts.append(f"{self.received.per_second(now):.1f} fps ({self.drawn.per_second(now):.1f} drawn)")
         if self.latency is not None:
             parts.append(f"latency {self.latency * 1000:.0f} ms")
         if picture.depth_range is not None:

@@ -33,10 +33,13 @@ REFRESH_EVERY = 0.5
 
 COLUMNS = ("frame", "broadcaster", "rate", "age")
 
+STALE = 2.0
+"""Seconds after which a dynamic edge's age is drawn as a warning."""
+
 
 def _pose_text(tr: Transform) -> str:
-    x, y, z = (float(v) for v in tr.translation)
-    roll, pitch, yaw = (math.degrees(a) for a in tr.rpy())
+    x, y, z = (round(float(v), 3) + 0.0 for v in tr.translation)  # rounded, + 0.0: no "-0.0"
+    roll, pitch, yaw = (round(math.degrees(a), 1) + 0.0 for a in tr.rpy())
     return f"xyz [{x:.3f}, {y:.3f}, {z:.3f}]  rpy° [{roll:.1f}, {pitch:.1f}, {yaw:.1f}]"
 
 
@@ -121,7 +124,8 @@ class TfTreeView(TopicView):
                 label,
                 Text(edge.broadcaster if edge else ""),
                 Text(rate, style="cyan" if rate == "static" else ""),
-                Text(format_age(edge, now)),
+                Text(format_age(edge, now), style="yellow" if edge and not edge.static and edge.age(now) > STALE
+                     else ""),
                 key=row.frame,
             )
         if selected in self._frames:

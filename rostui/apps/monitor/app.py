@@ -351,7 +351,21 @@ class MonitorApp(ReleasesOnExit, KeysApp):
 
     @on(TopicTable.Chosen)
     def _row_chosen(self, event: TopicTable.Chosen) -> None:
+        if self.open_view(event.topic):
+            return
         self.toggle_expanded(event.topic)
+
+    def open_view(self, topic: str) -> bool:
+        """Enter on a topic whose type has a view (an image...): show it over the table; False when none has."""
+        from rostui.apps.view.registry import viewable
+
+        msg_type = self.topic_type(topic)
+        if msg_type is None or not viewable(msg_type):
+            return False
+        from rostui.apps.view.app import ViewScreen
+
+        self.push_screen(ViewScreen([topic], lambda: self.source.node, self.topic_type))
+        return True
 
     def toggle_expanded(self, topic: str) -> None:
         """Enter: show ``topic``'s newest message as a tree below the table (again: hide it)."""

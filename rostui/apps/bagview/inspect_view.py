@@ -12,8 +12,7 @@ from textual.containers import VerticalScroll
 from textual.widget import Widget
 
 from rostui.apps.view.registry import TopicView, view_class, viewable
-from rostui.core.bag.index import BagError
-from rostui.core.bag.model import Connection
+from rostui.core.bag.model import BagError, Connection
 
 __all__ = ["InspectorView", "decode_bag_message"]
 

@@ -162,8 +162,7 @@ class ImageView(TopicView):
         if isinstance(self.pixels, HalfBlock):
             self.pixels.set_pixels(picture.rgb)
         else:
-            if self.pixels.styles.width != self.cells[0] or self.pixels.styles.height != self.cells[1]:
-                self.pixels.styles.width, self.pixels.styles.height = self.cells
+            self.pixels.styles.width, self.pixels.styles.height = self.cells
             self.pixels.image = PILImage.fromarray(picture.rgb, "RGB")  # type: ignore[attr-defined]
         if first:
             self.paint_info()

@@ -130,12 +130,12 @@ def _decode_compressed(msg: Any, max_size: tuple[int, int]) -> Picture:
     if kind is None or "compressedDepth" in words:
         raise ImageDecodeError(f"compressed format {fmt!r} is not shown; rostui view shows jpeg and png")
     try:
-        image = PILImage.open(io.BytesIO(bytes(msg.data)))
-        width, height = image.size
+        opened = PILImage.open(io.BytesIO(bytes(msg.data)))
+        width, height = opened.size
         target = fit(width, height, *max_size)
-        if image.format == "JPEG":
-            image.draft("RGB", (target[0] * 2, target[1] * 2))
-        image = image.convert("RGB")
+        if opened.format == "JPEG":
+            opened.draft("RGB", (target[0] * 2, target[1] * 2))
+        image = opened.convert("RGB")
     except (OSError, ValueError, PILImage.DecompressionBombError) as exc:
         raise ImageDecodeError(f"{kind} data cannot be decoded: {str(exc).splitlines()[0] if str(exc) else exc!r}") from None
     if image.size != target:

@@ -52,6 +52,9 @@ def test_monitor_enter_on_an_image_opens_its_view(rostui_core: Any, ros_env: dic
         await pilot.pause()
         assert close(pixel_at(panel.view.pixels, 0.75, 0.25), GREEN, 9)
         assert panel.feed.subscribed
+        sort = app.sort_column
+        await pilot.press("s")  # the table's keys wait under the view
+        assert app.sort_column == sort and isinstance(app.screen, ViewScreen)
         await pilot.press("escape")
         await until(lambda: not isinstance(app.screen, ViewScreen), "back to the table")
         assert not panel.feed.subscribed

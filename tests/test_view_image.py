@@ -254,3 +254,13 @@ def test_frames_are_dropped_not_queued() -> None:
     taken = feed.take()
     assert taken is not None and taken[0]._buff == bytes([4]) and feed.take() is None
     assert len(arrivals) == 5 and feed.received.count == 5
+
+
+def test_no_master_says_so_and_waits(ros_env: dict[str, str]) -> None:
+    async def check(app: ViewApp, pilot: Any) -> None:
+        status = app.query_one("#status")
+        await until(lambda: "waiting for master" in str(status.render()), "the no-master line")
+        assert "start one with `rostui core` (retrying)" in str(status.render())
+        assert str(app.grid.panels[0].note.render()) == "waiting for /camera/image_raw to be published"
+
+    run_view(["/camera/image_raw"], check)

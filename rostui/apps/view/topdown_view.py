@@ -35,7 +35,7 @@ from rostui.apps.view.registry import TopicView
 from rostui.apps.widgets.terminal_colors import color_system, shown_in, style_rgb
 from rostui.models.contrast import RGB, keep_hue
 from rostui.models.sensors.canvas2d import BRAILLE_BASE, Viewport
-from rostui.models.sensors.scene2d import Lookup, Scene2D
+from rostui.models.sensors.scene2d import Lookup, Scene2D, same_frame_only
 from rostui.models.sensors.tf_lookup import buffer_lookup
 from rostui.models.tf.buffer import TfBuffer
 from rostui.models.tf.source import TfSource
@@ -64,7 +64,8 @@ class TopDownView(TopicView, can_focus=True):
 
     ``lookup(target, source)`` gives the pose of frame ``source`` in ``target``;
     None: tf from the master at ``master_uri`` (ROS_MASTER_URI by default),
-    listened to while the view is mounted.  :attr:`frames` counts the frames drawn; the status line
+    listened to while the view is mounted in a `rostui view` panel (elsewhere,
+    as in the bag inspector, only messages in the fixed frame are drawn).  :attr:`frames` counts the frames drawn; the status line
     shows messages received and frames drawn per second unless ``show_rates`` is False.
     """
 
@@ -211,6 +212,9 @@ class TopDownView(TopicView, can_focus=True):
         self.set_interval(1.0 / self.FRAME_RATE, self.draw_frame)
         if self.screen.focused is None:
             self.focus()
+        if self.tf_buffer is not None and not self._in_panel():
+            self.tf_buffer = None  # a recorded message (the bag inspector): drawn in its own frame, no live tf
+            self.scene.lookup = same_frame_only
         if self.tf_buffer is not None:
             from rostui.core.network import master_uri_from_env
 
@@ -218,6 +222,12 @@ class TopDownView(TopicView, can_focus=True):
             self.tf_source = TfSource(uri, node_name="rostui_view_tf", buffer=self.tf_buffer,
                                       on_change=self._tf_changed, clock=time.time)
             self.run_worker(self.tf_source.run(), group="topdown-tf", exit_on_error=False)
+
+    def _in_panel(self) -> bool:
+        """True inside a `rostui view` panel (live topics), False elsewhere (the bag inspector)."""
+        from rostui.apps.view.panel import ViewPanel
+
+        return any(isinstance(node, ViewPanel) for node in self.ancestors)
 
     def _tf_changed(self) -> None:
         self._tf_changes += 1

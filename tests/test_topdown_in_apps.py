@@ -1,0 +1,63 @@
+"""The top-down view inside the bag view's inspector: the scan under the cursor, drawn in its own frame.
+
+A bag holds two LaserScans of a wall (2.05 m, then 1.05 m ahead, frame "laser"); no master is
+needed, and the inspector's view must not listen to tf (it draws recorded messages).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from rostui.apps.bagview.app import BagViewApp
+from rostui.apps.view.topdown_view import TopDownView
+from rostui.core.bag.files import open_writer
+from rostui.core.bag.model import Connection
+
+from conftest import until
+from topdown_helpers import LaserScan, sync, wall_scan
+
+T0 = 1_700_000_000_000_000_000
+
+
+def scan_bag(path: Path) -> Path:
+    """/scan: a wall 2.05 m ahead, then 1.05 m ahead, 100 ms apart."""
+    writer = open_writer(str(path))
+    writer.add_connection(Connection(0, "/scan", "sensor_msgs/LaserScan", LaserScan._md5sum, LaserScan._full_text,
+                                     "/scan"))
+    for i, x in enumerate([2.05, 1.05]):
+        msg = wall_scan(x)
+        msg.header.stamp.secs = T0 // 10**9
+        writer.write(0, T0 + i * 100_000_000, msg.serialize())
+    writer.close()
+    return path
+
+
+def wall_columns(view: TopDownView) -> set[int]:
+    vp = view.viewport
+    assert vp is not None
+    return {c for r in range(vp.rows) for c in range(vp.cols) if view.cell_topic(c, r) == "/scan"}
+
+
+def column_of(view: TopDownView, x: float) -> int:
+    assert view.viewport is not None
+    cell = view.viewport.cell_of(x, 0.0)
+    assert cell is not None
+    return cell[0]
+
+
+@sync
+async def test_bag_inspector_draws_the_scan_under_the_cursor(tmp_path: Path) -> None:
+    app = BagViewApp([str(scan_bag(tmp_path / "scan.mcap"))], publish=False)
+    async with app.run_test(size=(100, 40)) as pilot:
+        await until(lambda: app.index is not None and app.transport is not None, "the bag read")
+        if not app.inspector.display:
+            await pilot.press("i")
+        await until(lambda: isinstance(app.inspector_view.view, TopDownView)
+                    and bool(wall_columns(app.inspector_view.view)), "the first scan in the inspector")
+        view = app.inspector_view.view
+        assert isinstance(view, TopDownView)
+        assert view.tf_source is None and view.tf_buffer is None
+        assert wall_columns(view) == {column_of(view, 2.05)}
+        await pilot.press("end")
+        await until(lambda: wall_columns(view) == {column_of(view, 1.05)}, "the second scan, 1.05 m ahead")
+        await app.action_quit()

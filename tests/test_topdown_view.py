@@ -152,3 +152,20 @@ async def test_an_unreadable_message_is_a_note_not_a_crash() -> None:
         view.show_topic_message("/x", msg)
         await pilot.pause(0.15)
         assert "■ /x (cannot draw: 3 cells of data for a 4 x 2 grid)" in view.row_text(0)
+
+
+@sync
+async def test_f_steps_the_fixed_frame_through_the_frames_named() -> None:
+    """laser sits at x = 1 in odom: with f the fixed frame becomes odom and the wall moves 1 m right."""
+    poses = {("odom", "laser"): Pose2D(1.0, 0.0, 0.0), ("laser", "odom"): Pose2D(-1.0, 0.0, 0.0)}
+    app = ViewTestApp(["/scan", "/odom"], lookup=lambda target, source: poses.get((target, source)))
+    async with app.run_test(size=(80, 24)) as pilot:
+        view = app.view
+        view.show_topic_message("/scan", wall_scan(1.05, frame="laser"))
+        view.show_topic_message("/odom", odometry(0.0, 0.0, 0.0, frame="odom"))
+        await pilot.pause(0.15)
+        assert "frame laser" in view.row_text(23) and {c for c, _ in scan_cells(view)} == {vp_col(view, 1.05)}
+        await pilot.press("f")
+        assert "frame odom" in view.row_text(23) and {c for c, _ in scan_cells(view)} == {vp_col(view, 2.05)}
+        await pilot.press("f")
+        assert "frame laser" in view.row_text(23)

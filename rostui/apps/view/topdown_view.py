@@ -65,8 +65,9 @@ class TopDownView(TopicView, can_focus=True):
     ``lookup(target, source)`` gives the pose of frame ``source`` in ``target``;
     None: tf from the master at ``master_uri`` (ROS_MASTER_URI by default),
     listened to while the view is mounted in a `rostui view` panel (elsewhere,
-    as in the bag inspector, only messages in the fixed frame are drawn).  :attr:`frames` counts the frames drawn; the status line
-    shows messages received and frames drawn per second unless ``show_rates`` is False.
+    as in the bag inspector, only messages in the fixed frame are drawn).
+    :attr:`frames` counts the frames drawn; the status line shows messages
+    received and frames drawn per second unless ``show_rates`` is False.
     """
 
     #: Every top-down topic of a `rostui view` joins the first one's view (see :meth:`add_topic`).
@@ -125,7 +126,7 @@ class TopDownView(TopicView, can_focus=True):
         """Draw ``topic`` too, in the next colour."""
         self.scene.add(topic)
 
-    def show_message(self, msg: Any, received: float = 0.0) -> None:  # noqa: D102 (TopicView's)
+    def show_message(self, msg: Any, received: float = 0.0) -> None:
         """``msg`` is the newest message of this view's first topic."""
         self.show_topic_message(self.topic, msg, received)
 
@@ -208,7 +209,7 @@ class TopDownView(TopicView, can_focus=True):
 
     # -- Textual hooks -------------------------------------------------------------------
     def on_mount(self) -> None:
-        """Start the frame timer; take the keys unless another widget has them; listen to tf unless a lookup was given."""
+        """Start the frame timer; take the keys unless another widget has them; listen to tf (see the class)."""
         self.set_interval(1.0 / self.FRAME_RATE, self.draw_frame)
         if self.screen.focused is None:
             self.focus()

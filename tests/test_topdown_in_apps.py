@@ -50,10 +50,9 @@ def wall_columns(view: TopDownView) -> set[int]:
 
 
 def column_of(view: TopDownView, x: float) -> int:
-    assert view.viewport is not None
-    cell = view.viewport.cell_of(x, 0.0)
-    assert cell is not None
-    return cell[0]
+    """The canvas column showing (x, 0); -1 while the view has no canvas there (being laid out)."""
+    cell = view.viewport.cell_of(x, 0.0) if view.viewport is not None else None
+    return cell[0] if cell is not None else -1
 
 
 @sync

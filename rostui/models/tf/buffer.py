@@ -23,6 +23,9 @@ DEFAULT_CACHE_TIME = 10.0
 MAX_FRAMES = 10_000
 """Frames one buffer accepts; a peer naming more is refused, not remembered."""
 
+MAX_SAMPLES = 20_000
+"""Samples one dynamic edge keeps at most (2 kHz for ten seconds); past it the oldest go first."""
+
 _MAX_RECEIPTS = 4096
 
 
@@ -210,8 +213,8 @@ class TfBuffer:
                 samples.insert(i, sample)
                 stamps.insert(i, stamp)
         horizon = stamps[-1] - self.cache_time
-        if stamps[0] < horizon:
-            drop = min(bisect.bisect_left(stamps, horizon), len(stamps) - 1)
+        if stamps[0] < horizon or len(stamps) > MAX_SAMPLES:
+            drop = max(min(bisect.bisect_left(stamps, horizon), len(stamps) - 1), len(stamps) - MAX_SAMPLES)
             del samples[:drop]
             del stamps[:drop]
 

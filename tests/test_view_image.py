@@ -25,7 +25,7 @@ from rostui.apps.view.registry import UnknownViewError, view_class, viewable_typ
 from rostui.core.msg import get_message_class
 from rostui.models.sensors.images import ImageDecodeError, colour_map, decode_image, fit
 
-from conftest import have_rospy, need_peer, stop_process, until
+from conftest import have_rospy, need_peer, start_rostui_core, stop_process, until
 from view_helpers import (
     BLUE, COMPRESSED, GREEN, HEIGHT, RAW, RED, SAMPLES, WHITE, WIDTH, YELLOW, close, compressed_file, grey, pattern,
     pixel_at, start_camera,
@@ -254,3 +254,39 @@ def test_frames_are_dropped_not_queued() -> None:
     taken = feed.take()
     assert taken is not None and taken[0]._buff == bytes([4]) and feed.take() is None
     assert len(arrivals) == 5 and feed.received.count == 5
+
+
+def test_no_master_says_so_and_waits(ros_env: dict[str, str]) -> None:
+    async def check(app: ViewApp, pilot: Any) -> None:
+        status = app.query_one("#status")
+        await until(lambda: "waiting for master" in str(status.render()), "the no-master line")
+        assert "start one with `rostui core` (retrying)" in str(status.render())
+        assert str(app.grid.panels[0].note.render()) == "waiting for /camera/image_raw to be published"
+
+    run_view(["/camera/image_raw"], check)
+
+
+def test_master_restart_subscribes_again(ros_env: dict[str, str], tmp_path: Path) -> None:
+    """The master goes: the top line says so, the picture stays; a new master: the camera is drawn again."""
+    core = start_rostui_core(ros_env)
+    camera = start_camera(ros_env, tmp_path, "/camera/image_raw", "rgb8")
+
+    async def check(app: ViewApp, pilot: Any) -> None:
+        nonlocal core
+        panel = app.grid.panels[0]
+        await until(lambda: panel.view is not None and panel.view.drawn.count >= 2, "the first master's frames")
+        stop_process(core)
+        status = app.query_one("#status")
+        await until(lambda: "gone: waiting for it to come back" in str(status.render()), "the lost master")
+        assert isinstance(panel.view, ImageView) and panel.view.picture is not None
+        core = start_rostui_core(ros_env)
+        await until(lambda: "● master" in str(status.render()), "the new master")
+        drawn = panel.view.drawn.count
+        await until(lambda: panel.view is not None and panel.view.drawn.count > drawn + 2,
+                    "frames through the new master")
+
+    try:
+        run_view(["/camera/image_raw"], check)
+    finally:
+        stop_process(camera)
+        stop_process(core)

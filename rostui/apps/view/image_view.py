@@ -107,6 +107,7 @@ class ImageView(TopicView):
         self.latency: float | None = None
         self.error = ""
         self.cells = (0, 0)
+        self._last: tuple[Any, float] | None = None
 
     def compose(self) -> ComposeResult:
         """The information line over the picture."""
@@ -126,8 +127,18 @@ class ImageView(TopicView):
 
     def show_message(self, msg: Any, received: float) -> None:
         """Decode ``msg`` at the size it is drawn and draw it."""
-        now = time.time()
         self.received.add(received)
+        self._last = (msg, received)
+        if self.draw(msg, received):
+            self.drawn.add(time.time())
+
+    def on_resize(self) -> None:
+        """Draw the last image again at the new size (a latched camera sends no other)."""
+        if self._last is not None:
+            self.draw(*self._last)
+
+    def draw(self, msg: Any, received: float) -> bool:
+        """Draw ``msg`` to fit the view; False (and the reason on the figures line) when it cannot be decoded."""
         cols, rows = self.area()
         if self.kind == "halfblock":
             cell_w, cell_h = 1, 2
@@ -138,7 +149,7 @@ class ImageView(TopicView):
         except ImageDecodeError as exc:
             self.error = str(exc)
             self.paint_info()
-            return
+            return False
         first = self.picture is None or bool(self.error)
         self.error = ""
         self.picture = picture
@@ -151,12 +162,11 @@ class ImageView(TopicView):
         if isinstance(self.pixels, HalfBlock):
             self.pixels.set_pixels(picture.rgb)
         else:
-            if self.pixels.styles.width != self.cells[0] or self.pixels.styles.height != self.cells[1]:
-                self.pixels.styles.width, self.pixels.styles.height = self.cells
+            self.pixels.styles.width, self.pixels.styles.height = self.cells
             self.pixels.image = PILImage.fromarray(picture.rgb, "RGB")  # type: ignore[attr-defined]
-        self.drawn.add(now)
         if first:
             self.paint_info()
+        return True
 
     def paint_info(self) -> None:
         """The line of figures: size, encoding, rates, latency (or why the last frame was not drawn)."""

@@ -22,6 +22,7 @@ from textual.widgets import Static
 from rostui.apps.view.feed import TopicFeed
 from rostui.apps.view.registry import TopicView, UnknownViewError, view_class
 from rostui.core.node import AsyncNode
+from rostui.models.master_link import MASTER_ERRORS
 
 __all__ = ["ViewPanel", "ViewGrid", "NodeOf", "TypeOf"]
 
@@ -146,7 +147,10 @@ class ViewGrid(Container):
         try:
             node = self.node_of()
             for panel in self.panels:
-                await panel.check(node, self.type_of(panel.topic))
+                try:
+                    await panel.check(node, self.type_of(panel.topic))
+                except MASTER_ERRORS:  # the master went while subscribing: the next check tries again
+                    await panel.stop()
         finally:
             self._checking = False
 

@@ -6,9 +6,11 @@ are imported only when a topic of their type is shown, so asking what can
 be shown costs nothing.
 
 A view is a :class:`TopicView`: a Textual widget created with the topic's
-name that gets each message through :meth:`TopicView.show_message`.  Callers
-hand it only the newest message, when they are ready to draw (frames are
-dropped, never queued).
+name (``cls(topic)``, or ``cls(topic, classes=...)`` in the bag inspector:
+keep that signature) that gets each decoded message through
+:meth:`TopicView.show_message`.  Callers hand it only the newest message,
+when they are ready to draw (frames are dropped, never queued); the panel
+around it subscribes only while it is on screen.
 """
 
 from __future__ import annotations

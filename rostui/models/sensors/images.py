@@ -4,7 +4,7 @@
 ``uint8`` array of at most ``max_size`` pixels (aspect kept), so a 640x480
 frame shown in a 100x40 terminal is cut down before anything else touches
 it.  Raw images are subsampled by striding the array (no copy of the full
-frame), then smoothed by Pillow; JPEGs are decoded at a reduced scale
+frame), then resized by Pillow (box filter); JPEGs are decoded at a reduced scale
 (Pillow's ``draft``).  Depth images (16UC1 in millimetres, 32FC1 in metres)
 are coloured with a blue-to-red map over their finite non-zero range; zero
 and NaN are black.  Bad input raises :class:`ImageDecodeError` with one line.
@@ -130,22 +130,27 @@ def _decode_compressed(msg: Any, max_size: tuple[int, int]) -> Picture:
     if kind is None or "compressedDepth" in words:
         raise ImageDecodeError(f"compressed format {fmt!r} is not shown; rostui view shows jpeg and png")
     try:
-        image = PILImage.open(io.BytesIO(bytes(msg.data)))
-        width, height = image.size
+        opened = PILImage.open(io.BytesIO(bytes(msg.data)))
+        width, height = opened.size
         target = fit(width, height, *max_size)
-        if image.format == "JPEG":
-            image.draft("RGB", (target[0] * 2, target[1] * 2))
-        image = image.convert("RGB")
+        if opened.format == "JPEG":
+            opened.draft("RGB", (target[0] * 2, target[1] * 2))
+        image = opened.convert("RGB")
     except (OSError, ValueError, PILImage.DecompressionBombError) as exc:
         raise ImageDecodeError(f"{kind} data cannot be decoded: {str(exc).splitlines()[0] if str(exc) else exc!r}") from None
     if image.size != target:
-        image = image.resize(target, PILImage.Resampling.BILINEAR, reducing_gap=2.0)
+        image = image.resize(target, _filter(image.size, target), reducing_gap=2.0)
     return Picture(np.asarray(image), width, height, kind.lower())
 
 
 def _shrink(rgb: np.ndarray, target: tuple[int, int]) -> np.ndarray:
-    """``rgb`` resized to ``target`` (w, h) by Pillow (box filter when shrinking)."""
+    """``rgb`` resized to ``target`` (w, h) by Pillow."""
     if (rgb.shape[1], rgb.shape[0]) == target:
         return rgb
-    image = PILImage.fromarray(rgb, "RGB").resize(target, PILImage.Resampling.BOX)
+    image = PILImage.fromarray(rgb, "RGB").resize(target, _filter((rgb.shape[1], rgb.shape[0]), target))
     return np.asarray(image)
+
+
+def _filter(size: tuple[int, int], target: tuple[int, int]) -> PILImage.Resampling:
+    """Box (the mean of the pixels each one covers) when shrinking; nearest when enlarging, so edges stay sharp."""
+    return PILImage.Resampling.BOX if target[0] < size[0] else PILImage.Resampling.NEAREST

@@ -244,3 +244,15 @@ def test_raw_feed_takes_the_broadcaster_and_refuses_garbage_and_other_types() ->
     assert feed_raw(buf, other, static=False, received=2.0) == [
         "[/confused] publishes std_msgs/String, not tf2_msgs/TFMessage; ignored"]
     assert buf.frames() == ["map", "odom"]
+
+
+def test_an_edge_keeps_a_bounded_number_of_samples() -> None:
+    from rostui.models.tf.buffer import MAX_SAMPLES
+
+    buf = TfBuffer()
+    for i in range(MAX_SAMPLES + 500):
+        buf.set_transform("map", "odom", Transform.of((i, 0, 0), (0, 0, 0, 1)), 100.0 + i * 1e-5, static=False,
+                          broadcaster="/flood", received=0.0)
+    edge = buf.edge("odom")
+    assert edge is not None and len(edge.samples) == len(edge.stamps) == MAX_SAMPLES
+    assert buf.lookup_transform("map", "odom").transform.translation[0] == MAX_SAMPLES + 499

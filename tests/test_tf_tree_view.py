@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import asyncio
 import time
+import xmlrpc.client
 from typing import Any
 
 import pytest
@@ -125,6 +126,12 @@ async def wait_for_chain(view: TfTreeView, app: App[Any], static_broadcaster: st
     assert 5.0 < rate < 40.0, rate  # broadcast at 20 Hz; generous for a loaded machine
 
 
+def tf_subscribers(env: dict[str, str]) -> set[str]:
+    """The nodes the master lists as subscribers of /tf or /tf_static."""
+    _, _, (_, subs, _) = xmlrpc.client.ServerProxy(env["ROS_MASTER_URI"]).getSystemState("/tf_test")
+    return {node for name, nodes in subs if name in ("/tf", "/tf_static") for node in nodes}
+
+
 BROADCASTER_NAMES = {
     "rospy": ("/static_transform_publisher", "/rospy_tf_chain"),
     "rostui": ("/rostui_tf_chain", "/rostui_tf_chain"),
@@ -143,7 +150,9 @@ def test_live_tree_in_tf_tree_and_in_view(broadcaster: str, master: str, request
         async with app.run_test(size=(100, 24)) as pilot:
             await wait_for_chain(app.view, app, static_name, dynamic_name)
             assert "4 frames, 1 tree, 1 static" in str(app.view.summary_line.render())
+            assert any(n.startswith("/rostui_tf_tree_") for n in tf_subscribers(ros_env))
             await pilot.press("q")
+        assert not any(n.startswith("/rostui_tf_tree_") for n in tf_subscribers(ros_env))
 
     async def in_view() -> None:
         app = ViewApp(["/tf"])

@@ -23,6 +23,9 @@ DEFAULT_CACHE_TIME = 10.0
 MAX_FRAMES = 10_000
 """Frames one buffer accepts; a peer naming more is refused, not remembered."""
 
+MAX_SAMPLES = 20_000
+"""Samples one dynamic edge keeps at most (2 kHz for ten seconds); past it the oldest go first."""
+
 _MAX_RECEIPTS = 4096
 
 
@@ -68,6 +71,7 @@ class Edge:
     static: bool
     broadcaster: str
     samples: list[Sample] = field(default_factory=list)
+    stamps: list[float] = field(default_factory=list)
     receipts: deque[float] = field(default_factory=lambda: deque(maxlen=_MAX_RECEIPTS))
     count: int = 0
 
@@ -114,7 +118,7 @@ class Edge:
                 f"Lookup would require extrapolation into the past.  Requested time {time:.9f} but the earliest "
                 f"data is at time {first:.9f}, when looking up transform from frame [{self.child}] to frame "
                 f"[{self.parent}]")
-        i = bisect.bisect_left([s.stamp for s in samples], time)
+        i = bisect.bisect_left(self.stamps, time)
         after = samples[i]
         if after.stamp == time:
             return after.transform
@@ -188,23 +192,31 @@ class TfBuffer:
         sample = Sample(stamp, transform)
         if static:
             edge.samples = [sample]
+            edge.stamps = [stamp]
             return
         self._insert(edge, sample)
 
     def _insert(self, edge: Edge, sample: Sample) -> None:
-        samples = edge.samples
-        if samples and sample.stamp < samples[-1].stamp - self.cache_time:
+        samples, stamps = edge.samples, edge.stamps
+        stamp = sample.stamp
+        if stamps and stamp < stamps[-1] - self.cache_time:
             samples.clear()  # time jumped back (a bag played again, a simulator reset): start over
-        stamps = [s.stamp for s in samples]
-        i = bisect.bisect_left(stamps, sample.stamp)
-        if i < len(samples) and samples[i].stamp == sample.stamp:
-            samples[i] = sample
+            stamps.clear()
+        if not stamps or stamp > stamps[-1]:
+            samples.append(sample)
+            stamps.append(stamp)
         else:
-            samples.insert(i, sample)
-        horizon = samples[-1].stamp - self.cache_time
-        drop = bisect.bisect_left([s.stamp for s in samples], horizon)
-        if drop:
-            del samples[:min(drop, len(samples) - 1)]
+            i = bisect.bisect_left(stamps, stamp)
+            if i < len(stamps) and stamps[i] == stamp:
+                samples[i] = sample
+            else:
+                samples.insert(i, sample)
+                stamps.insert(i, stamp)
+        horizon = stamps[-1] - self.cache_time
+        if stamps[0] < horizon or len(stamps) > MAX_SAMPLES:
+            drop = max(min(bisect.bisect_left(stamps, horizon), len(stamps) - 1), len(stamps) - MAX_SAMPLES)
+            del samples[:drop]
+            del stamps[:drop]
 
     def clear(self) -> None:
         """Forget every frame and edge."""

@@ -192,8 +192,10 @@ def test_depth_drawn_with_the_colour_map(rostui_core: Any, ros_env: dict[str, st
     camera = start_camera(ros_env, tmp_path, "/camera/depth", encoding, peer=peer)
     try:
         async def check(app: ViewApp, pilot: Any) -> None:
-            await until(lambda: app.grid.panels[0].view is not None
-                        and app.grid.panels[0].view.drawn.count >= 1, f"{encoding} drawn", timeout=60)
+            await until(lambda: isinstance(app.grid.panels[0].view, ImageView)
+                        and app.grid.panels[0].view.drawn.count >= 1
+                        and app.grid.panels[0].view.drawn_for == app.grid.panels[0].view.area(),
+                        f"{encoding} drawn at the panel's size", timeout=60)
             await pilot.pause()
             pixels = pixels_of(app)
             assert pixel_at(pixels, 0.03, 0.5) == (0, 0, 0)  # no reading: black

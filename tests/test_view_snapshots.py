@@ -50,7 +50,7 @@ async def all_drawn(pilot: Pilot) -> None:
 
     def drawn() -> bool:
         return all(isinstance(p.view, ImageView) and p.view.drawn.count >= 1 and not p.note.display
-                   for p in app.grid.panels)
+                   and p.view.drawn_for == p.view.area() for p in app.grid.panels)
     await until(drawn, "every image drawn")
     await pilot.pause(0.3)
 

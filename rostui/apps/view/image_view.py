@@ -108,6 +108,8 @@ class ImageView(TopicView):
         self.error = ""
         self.cells = (0, 0)
         self._last: tuple[Any, float] | None = None
+        #: The area (cells) the last picture was fitted to.
+        self.drawn_for = (0, 0)
 
     def compose(self) -> ComposeResult:
         """The information line over the picture."""
@@ -129,17 +131,24 @@ class ImageView(TopicView):
         """Decode ``msg`` at the size it is drawn and draw it."""
         self.received.add(received)
         self._last = (msg, received)
-        if self.draw(msg, received):
+        if self.laid_out() and self.draw(msg, received):
             self.drawn.add(time.time())
+
+    def laid_out(self) -> bool:
+        """True once the view has a size (before, :meth:`on_resize` draws what came)."""
+        return self.content_size.width > 0 and self.content_size.height > 1
 
     def on_resize(self) -> None:
         """Draw the last image again at the new size (a latched camera sends no other)."""
-        if self._last is not None:
-            self.draw(*self._last)
+        if self._last is not None and self.laid_out():
+            if self.draw(*self._last) and self.drawn.count == 0:
+                self.drawn.add(time.time())
+            self.paint_info()
 
     def draw(self, msg: Any, received: float) -> bool:
         """Draw ``msg`` to fit the view; False (and the reason on the figures line) when it cannot be decoded."""
         cols, rows = self.area()
+        self.drawn_for = (cols, rows)
         if self.kind == "halfblock":
             cell_w, cell_h = 1, 2
         else:

@@ -188,10 +188,11 @@ class ImageView(TopicView):
             self.info.update("waiting for the first image")
             return
         parts = [f"{picture.width}x{picture.height} {picture.encoding}"]
-        if self.received.count < 2:
-            parts.append(f"{self.received.count} frame")
+        received = self.arrivals or self.received
+        if received.count < 2:
+            parts.append(f"{received.count} frame")
         else:
-            parts.append(f"{self.received.per_second(now):.1f} fps ({self.drawn.per_second(now):.1f} drawn)")
+            parts.append(f"{received.per_second(now):.1f} fps ({self.drawn.per_second(now):.1f} drawn)")
         if self.latency is not None:
             parts.append(f"latency {self.latency * 1000:.0f} ms")
         if picture.depth_range is not None:

@@ -5,7 +5,9 @@ topic types), mounts the registered view, and keeps a
 :class:`~rostui.apps.view.feed.TopicFeed` subscribed only while it is
 mounted.  Each arrival schedules one delivery; a delivery takes only the
 newest message, decodes it and hands it to the view, so frames that came
-while the screen was busy are dropped, not queued.  A type no view shows
+while the screen was busy are dropped, not queued.  A
+:class:`~rostui.models.frame_budget.FrameBudget` spaces deliveries so the
+viewer stays within its share of a core however fast frames come.  A type no view shows
 is one line in the panel naming the types that can be shown.
 
 A view class with ``SHARED = True`` (the top-down view) draws several topics
@@ -28,6 +30,7 @@ from textual.widgets import Static
 from rostui.apps.view.feed import TopicFeed
 from rostui.apps.view.registry import TopicView, UnknownViewError, view_class
 from rostui.core.node import AsyncNode
+from rostui.models.frame_budget import FrameBudget
 from rostui.models.master_link import MASTER_ERRORS
 
 __all__ = ["ViewPanel", "ViewGrid", "NodeOf", "TypeOf"]
@@ -58,6 +61,7 @@ class ViewPanel(Vertical):
         self.view_options = dict(view_options or {})
         self.joined = False
         self.view: TopicView | None = None
+        self.budget = FrameBudget()
         self.feed = TopicFeed(topic, self._arrived)
         self.note = Static(classes="view-note")
         self.problem = ""
@@ -96,6 +100,7 @@ class ViewPanel(Vertical):
                 self.border_subtitle = escape(msg_type)
                 options = {k: v for k, v in self.view_options.items() if k in getattr(cls, "OPTIONS", ())}
                 self.view = cls(self.topic, **options)
+                self.view.arrivals = self.feed.received
                 await self.mount(self.view)
                 self.say("waiting for the first message")
         if self.view is not None:
@@ -117,7 +122,11 @@ class ViewPanel(Vertical):
     def _arrived(self) -> None:
         if not self._delivery_pending and self.view is not None:
             self._delivery_pending = True
-            self.call_later(self.deliver)
+            wait = self.budget.wait()
+            if wait > 0:
+                self.set_timer(wait, self.deliver)
+            else:
+                self.call_later(self.deliver)
 
     def deliver(self) -> None:
         """Decode the newest message (only it) and hand it to the view."""

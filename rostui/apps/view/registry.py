@@ -20,6 +20,8 @@ from typing import Any
 
 from textual.widget import Widget
 
+from rostui.apps.view.feed import Rate
+
 __all__ = ["TopicView", "VIEWS", "UnknownViewError", "view_class", "viewable", "viewable_types"]
 
 
@@ -29,6 +31,8 @@ class TopicView(Widget):
     def __init__(self, topic: str, *, id: str | None = None, classes: str | None = None) -> None:
         super().__init__(id=id, classes=classes)
         self.topic = topic
+        self.arrivals: Rate | None = None
+        """Every message the topic delivered, drawn or dropped (set by the live panel; None in a bag)."""
 
     def show_message(self, msg: Any, received: float) -> None:
         """Draw ``msg`` (a decoded message), which arrived at wall time ``received`` (seconds).

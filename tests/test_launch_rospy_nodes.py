@@ -34,6 +34,12 @@ REAL = """<launch>
   <node pkg="demo_pkg" type="which_debian.py" name="which_debian" args="debian" output="screen"/>
 </launch>
 """
+FORCED = """<launch>
+  <node pkg="demo_pkg" type="which_debian.py" name="which_debian" args="forced" output="screen">
+    <env name="ROSTUI_PYTHON" value="rostui"/>
+  </node>
+</launch>
+"""
 
 
 @pytest.fixture
@@ -54,6 +60,7 @@ def launch_env(tmp_path: Path, ros_env: dict[str, str]) -> dict[str, str]:
         script.chmod(0o755)
     (root / "launch" / "chat.launch").write_text(CHAT)
     (root / "launch" / "real.launch").write_text(REAL)
+    (root / "launch" / "forced.launch").write_text(FORCED)
     bin_dir = tmp_path / "bin"
     bin_dir.mkdir()
     (bin_dir / "python").symlink_to(sys.executable)
@@ -95,6 +102,21 @@ def test_real_rospy_of_the_nodes_python_wins(launch_env: dict[str, str], rostui_
     notices = [line for line in launch.err.splitlines() if line.startswith("rostui python:")]
     assert notices == ["rostui python: the script gets the real ROS at /usr/lib/python3/dist-packages/rospy "
                        "(`rostui python --rostui` gives it rostui's)"], launch.err
+
+
+def test_rostui_python_env_beats_a_real_rospy(launch_env: dict[str, str], rostui_core: object, tmp_path: Path,
+                                              rospy_available: None) -> None:
+    """`<env name="ROSTUI_PYTHON" value="rostui"/>` gives the same node rostui's rospy; one stderr line names
+    the real ROS it does not get."""
+    launch = Launch(["demo_pkg", "forced.launch"], launch_env, tmp_path)
+    try:
+        wait_until(lambda: "['forced']" in launch.out, "the node to print which rospy it got", timeout=60)
+    finally:
+        launch.interrupt()
+    assert f"{PYLIB / 'rospy' / '__init__.py'} ['forced']" in launch.out.splitlines(), launch.out
+    notices = [line for line in launch.err.splitlines() if line.startswith("rostui python:")]
+    assert notices == [f"rostui python: the script gets rostui's rospy, genpy, roslib, rosbag and message modules "
+                       f"({PYLIB}), not the real ROS at /usr/lib/python3/dist-packages/rospy"], launch.err
 
 
 @pytest.mark.parametrize("node", ["/talker", "/listener"])

@@ -22,7 +22,7 @@ MAY_IMPORT: dict[str, frozenset[str]] = {
     "core": frozenset(),
     "tools": frozenset({"core"}),
     "models": frozenset({"core", "tools"}),
-    "launch": frozenset({"core", "tools"}),
+    "launch": frozenset({"core", "tools", "compat"}),
     "client": frozenset({"core"}),
     "compat": frozenset({"core", "client"}),
     "apps": frozenset({"core", "tools", "models", "launch"}),

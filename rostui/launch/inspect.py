@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import shlex
 import sys
+from pathlib import Path
 from typing import Any
 
 import yaml
@@ -106,6 +107,25 @@ def node_env(node: NodeSpec, master_uri: str, base: dict[str, str] | None = None
     return env
 
 
+def node_executable(node: NodeSpec, anons: dict[str, str]) -> tuple[Path, list[str]]:
+    """The file that runs ``node`` and its arguments: args, remaps and ``__name`` (``$(anon)`` resolved).
+
+    Raises :class:`LaunchError` when the executable cannot be found.
+    """
+    from rostui.tools.run import RunError, locate
+
+    ctx = SubstitutionContext(anons=anons, filename=node.filename)
+    name = resolve(node.name, ctx) or node.name
+    args = shlex.split(resolve(node.args, ctx) or "")
+    remaps = [f"{src}:={dst}" for src, dst in node.remaps] + [f"__name:={name}"]
+    try:
+        path = locate(node.package, node.type)
+    except RunError as exc:
+        raise LaunchError(f"cannot launch node of type [{node.package}/{node.type}]: {exc.lines[0]}",
+                          node.filename, node.line) from None
+    return path, [*args, *remaps]
+
+
 def node_argv(node: NodeSpec, anons: dict[str, str], *, as_shown: bool = False) -> list[str]:
     """The command line that starts ``node``: launch-prefix, the executable, its args, remaps and ``__name``.
 
@@ -115,18 +135,10 @@ def node_argv(node: NodeSpec, anons: dict[str, str], *, as_shown: bool = False) 
     as roslaunch --args prints it.  Raises :class:`LaunchError` when the
     executable cannot be found.
     """
-    from rostui.tools.run import RunError
-    from rostui.tools.run import resolve as resolve_executable
+    from rostui.tools.run import argv_for
 
-    ctx = SubstitutionContext(anons=anons, filename=node.filename)
-    name = resolve(node.name, ctx) or node.name
-    args = shlex.split(resolve(node.args, ctx) or "")
-    remaps = [f"{src}:={dst}" for src, dst in node.remaps] + [f"__name:={name}"]
-    try:
-        argv = resolve_executable(node.package, node.type, [*args, *remaps])
-    except RunError as exc:
-        raise LaunchError(f"cannot launch node of type [{node.package}/{node.type}]: {exc.lines[0]}",
-                          node.filename, node.line) from None
+    path, args = node_executable(node, anons)
+    argv = argv_for(path, args, None)
     if as_shown and len(argv) > 1 and argv[0] == sys.executable and os.access(argv[1], os.X_OK):
         argv = argv[1:]
     prefix = shlex.split(node.launch_prefix) if node.launch_prefix else []

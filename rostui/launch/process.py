@@ -11,6 +11,7 @@ from __future__ import annotations
 import asyncio
 import os
 import signal
+import sys
 import time
 from dataclasses import dataclass, field
 from enum import Enum
@@ -59,6 +60,8 @@ class ProcessPlan:
     stdout_log: Path | None
     capture: bool = False
     """True: stdout and stderr come through pipes into the process's :class:`OutputBuffer`."""
+    notice: str | None = None
+    """The one line saying which ROS a rospy script gets, shown where its stderr goes when it first starts."""
 
 
 @dataclass
@@ -134,6 +137,8 @@ class ManagedProcess:
             stderr=stderr, start_new_session=True)
         self.started_at = time.monotonic()
         self.starts += 1
+        if plan.notice is not None and self.starts == 1:
+            self._show_notice(plan.notice)
         self.known_tree = {self.proc.pid}
         self.state = NodeState.RUNNING
         self.exit_code = None
@@ -144,6 +149,13 @@ class ManagedProcess:
             self._pumps = [task for task in self._pumps if not task.done()]
             self._pumps.append(loop.create_task(pump(self.proc.stdout, self.output, "stdout", self._log)))
             self._pumps.append(loop.create_task(pump(self.proc.stderr, self.output, "stderr")))
+
+    def _show_notice(self, text: str) -> None:
+        """Put *text* where the node's stderr goes: its captured output, else this process's stderr."""
+        if self.plan.capture:
+            self.output.append("stderr", text)
+        else:
+            print(text, file=sys.stderr, flush=True)
 
     def note(self, text: str, error: bool = False) -> None:
         """Add a line of the launcher's own (started, died, restarting...) to the node's output."""

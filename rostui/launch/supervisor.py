@@ -44,6 +44,7 @@ from rostui.core.xmlrpc.server import XmlRpcServer
 from rostui.launch.errors import LaunchError
 from rostui.launch.files import LaunchRequest
 from rostui.launch.inspect import load_config, node_argv, node_env
+from rostui.launch.python_nodes import node_command
 from rostui.launch.machines import assign_machines
 from rostui.launch.model import LaunchConfig, Machine, NodeSpec
 from rostui.launch.output import OutputBuffer
@@ -291,10 +292,11 @@ class Supervisor:
 
     def _plan(self, node: NodeSpec, counter: int, run_dir: Path) -> ProcessPlan:
         label = log_label(node, counter)
-        argv = node_argv(node, self.anons) + [f"__log:={run_dir / (label + '.log')}"]
         env = node_env(node, self.master_uri)
         if self.options.capture:
             env.setdefault("PYTHONUNBUFFERED", "1")  # a Python node's prints reach the monitor as they happen
+        command = node_command(node, self.anons, env, [f"__log:={run_dir / (label + '.log')}"])
+        argv, env = command.argv, command.env
         if node.cwd == "node":
             exe = len(shlex.split(node.launch_prefix or ""))
             if argv[exe] == sys.executable:  # a built-in Python script run by this Python
@@ -305,7 +307,8 @@ class Supervisor:
             Path(cwd).mkdir(parents=True, exist_ok=True)
         to_screen = self.options.screen or node.output == "screen"
         stdout_log = None if to_screen else run_dir / f"{label}-stdout.log"
-        return ProcessPlan(node, label, argv, env, cwd, stdout_log, capture=self.options.capture)
+        return ProcessPlan(node, label, argv, env, cwd, stdout_log, capture=self.options.capture,
+                           notice=command.notice)
 
     def _prepare_nodes(self, run_dir: Path) -> None:
         """One process entry per node, in file order (a node that cannot run is marked FAILED, not dropped)."""

@@ -30,6 +30,7 @@ from rostui.compat.rospy_console import RospyConsole
 
 from . import exceptions, msproxy, names, rostime
 from ._params import delete_param, get_param, get_param_names, has_param, search_param, set_param
+from ._callback_thread import CallbackThread
 from ._nodeless import caller as _nodeless_caller
 from .exceptions import (
     ROSException, ROSInitException, ROSInternalException, ROSInterruptException, ROSSerializationException,
@@ -173,7 +174,8 @@ class Publisher(_Topic):
 class Subscriber(_Topic):
     """Call *callback* with each message of a topic, as ``rospy.Subscriber``; may be made before ``init_node``.
 
-    With *callback_args* the callback gets ``(message, callback_args)``; *buff_size* is accepted.
+    With *callback_args* the callback gets ``(message, callback_args)``; *buff_size* is accepted. As in
+    rospy, the callback runs on a thread of this subscriber's own, so it may block.
     """
 
     def __init__(self, name: str, data_class: Any, callback: Callable[..., Any] | None = None,
@@ -185,9 +187,18 @@ class Subscriber(_Topic):
         super().__init__()
 
     def _start(self) -> None:
-        self._impl = _sync.Subscriber(self.resolved_name, self.data_class, self.callback,
+        self._calls = None if self.callback is None else CallbackThread(
+            self.callback, self.queue_size, self.resolved_name, logerr)
+        self._impl = _sync.Subscriber(self.resolved_name, self.data_class, self._calls,
                                       callback_args=self.callback_args, queue_size=self.queue_size,
                                       tcp_nodelay=self.tcp_nodelay)
+
+    def unregister(self) -> None:
+        """Stop receiving; a callback under way finishes, queued messages are dropped."""
+        super().unregister()
+        calls: CallbackThread | None = getattr(self, "_calls", None)
+        if calls is not None:
+            calls.stop()
 
 
 class Service(_sync.Service):

@@ -315,12 +315,19 @@ class Publication:
             log.exception("error in subscriber listener of %s", self.topic)
 
     def publish_to(self, link: OutgoingLink, msg: Any) -> None:
-        """Send *msg* to one subscriber only (engine thread), numbered like :meth:`publish`."""
+        """Send *msg* to one subscriber only (any thread), numbered like :meth:`publish`."""
         self._number(msg)
         payload = msg.serialize() if not isinstance(msg, AnyMsg) else msg._buff
+        data = LEN.pack(len(payload)) + payload
+        if get_ident() == self.node.loop_thread_id:
+            self._send_one(link, data)
+        else:
+            self.node.loop.call_soon_threadsafe(self._send_one, link, data)
+
+    def _send_one(self, link: OutgoingLink, data: bytes) -> None:
         with self.lock:
             if link in self.links:
-                link.send(LEN.pack(len(payload)) + payload)
+                link.send(data)
 
     def _number(self, msg: Any) -> None:
         """Give a message with a Header the next sequence number."""

@@ -26,6 +26,7 @@ from rostui.core.node.services import parse_rosrpc_uri
 from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync, ros_result
 
 from . import exceptions, names, rostime
+from ._console import RospyConsole
 from ._nodeless import caller as _nodeless_caller
 from ._peers import ListenerRelay, rospy_service_header
 from .exceptions import (
@@ -61,6 +62,9 @@ FATAL = 16
 logout = loginfo
 """rospy's old name of :func:`loginfo`."""
 
+_console = RospyConsole()
+_sync._console_only.console = _console
+
 
 def __getattr__(name: str) -> Any:
     """``rospy.Header``: std_msgs/Header, built on first use so ``import rospy`` stays quick."""
@@ -85,13 +89,14 @@ class SubscribeListener:
 def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = False,
               log_level: int | None = None, disable_rostime: bool = False, disable_rosout: bool = False,
               disable_signals: bool = False, xmlrpc_port: int = 0, tcpros_port: int = 0) -> None:
-    """Start this process's node, as rospy's ``init_node``.
+    """Start this process's node, as rospy's ``init_node``; its console lines look like rospy's.
 
     *disable_rostime*, *disable_rosout*, *xmlrpc_port* and *tcpros_port* are
     accepted and have no effect: the node always uses the wall clock, logs to
     ``/rosout`` and listens on free ports.
     """
     _sync.init_node(name, argv=argv, anonymous=anonymous, log_level=log_level, disable_signals=disable_signals)
+    _sync._log().console = _console
     _Topic.start_pending()
 
 

@@ -59,6 +59,7 @@ MODULES: dict[str, str] = {
     "sensor_msgs": "python3-sensor-msgs",
     "rosgraph_msgs": "python3-rosgraph-msgs",
     "roscpp": "python3-roscpp-msg",
+    "numpy": "python3-numpy",
 }
 
 #: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.

@@ -115,6 +115,7 @@ def start(tmp_path: Path, envs: dict[str, dict[str, str]]) -> Iterator[Start]:
 _MASKS = [
     (re.compile(r"^\[(DEBUG|INFO|WARN|ERROR|FATAL)\] \[\d+\.\d{6}\]: "), r"[\1] "),  # rospy's console prefix
     (re.compile(r"_\d+_\d+(?!\d)"), "_ANON"),  # anonymous node names
+    (re.compile(r"nsecs: +"), "nsecs: "),  # rostopic echo aligns nanoseconds
     (re.compile(r"-?\d+(\.\d+)?"), "N"),  # times, counters, random operands
 ]
 
@@ -370,3 +371,48 @@ def test_numpy(any_master: str, start: Start, script: str) -> None:
 
     said = both(scenario)
     assert said == ["/numpy_listener_ANON I heard [N.  N N N N N]"]
+
+
+@MASTERS
+def test_publish_pointcloud2(any_master: str, start: Start, envs: dict[str, dict[str, str]]) -> None:
+    """010 publish_pointcloud2.py: sensor_msgs.point_cloud2.create_cloud's cloud, as rostopic echo prints it."""
+    def scenario(side: str) -> str:
+        talker = start(side, TUT / "010_publish_pointcloud2" / "publish_pointcloud2.py", name="pc2")
+        echo = subprocess.run(["rostopic", "echo", "-n", "1", "--noarr", "/points2"], env=envs["real"],
+                              capture_output=True, text=True, timeout=60)
+        return echo.stdout + talker.interrupt()
+
+    said = "\n".join(both(scenario))
+    assert "frame_id: \"map\"\nheight: N\nwidth: N" in said
+    assert "point_step: N\nrow_step: N\ndata: \"<array type: uintN, length: N>\"\nis_dense: False" in said
+
+
+POINT_CLOUD2_SCRIPT = """
+from sensor_msgs import point_cloud2
+from sensor_msgs.msg import PointField
+from std_msgs.msg import Header
+fields = [PointField('x', 0, PointField.FLOAT32, 1), PointField('flags', 6, PointField.UINT16, 1),
+          PointField('rgb', 8, PointField.UINT8, 3), PointField('t', 16, PointField.FLOAT64, 1),
+          PointField('id', 24, PointField.INT32, 1)]
+points = [(1.5, 7, 1, 2, 3, 0.25, -4), (float('nan'), 65535, 255, 0, 9, -1e300, 2**31 - 1)]
+cloud = point_cloud2.create_cloud(Header(seq=3, frame_id='f'), fields, points)
+print(cloud.height, cloud.width, cloud.point_step, cloud.row_step, cloud.is_dense, cloud.is_bigendian)
+print(bytes(cloud.data).hex())
+print(list(point_cloud2.read_points(cloud)))
+print(list(point_cloud2.read_points(cloud, field_names=('id', 'x'), skip_nans=True)))
+print(list(point_cloud2.read_points(cloud, uvs=[(1, 0)])))
+xyz = point_cloud2.create_cloud_xyz32(Header(), [(1, 2, 3), (4, 5, 6)])
+print([(f.name, f.offset, f.datatype, f.count) for f in xyz.fields], bytes(xyz.data).hex())
+print(point_cloud2.read_points_list(xyz, uvs=[(1, 0)]), point_cloud2.read_points_list(xyz, field_names=['z']))
+"""
+
+
+def test_point_cloud2_module_same_as_debians(envs: dict[str, dict[str, str]]) -> None:
+    """rostui's sensor_msgs.point_cloud2 packs and reads clouds as Debian's does: padding, counts, NaNs, uvs."""
+    said = {}
+    for side in SIDES:
+        out = subprocess.run(_command(side, Path("-c"), POINT_CLOUD2_SCRIPT), env=envs[side],
+                             capture_output=True, text=True, timeout=60)
+        assert out.returncode == 0, out.stderr
+        said[side] = out.stdout
+    assert said["shim"] == said["real"] and said["real"].startswith("1 2 28 56 False False\n"), said

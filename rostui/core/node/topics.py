@@ -291,14 +291,23 @@ class Publication:
             **self.extra_header,
         }
         conn.write(encode_header(reply))
+        listeners = list(self.peer_listeners)
         with self.lock:
             self.links = self.links + (link,)
-        for listener in list(self.peer_listeners):
+            if not listeners:
+                self._send_latched(link)
+                return link
+        for listener in listeners:
             self._tell(listener.peer_added, link)
         with self.lock:
-            if self.latch and self.latched_frame is not None and link in self.links:
-                link.send(self.latched_frame)
+            if link in self.links:
+                self._send_latched(link)
         return link
+
+    def _send_latched(self, link: OutgoingLink) -> None:
+        """Give a new subscriber the last message of a latched topic (under the lock)."""
+        if self.latch and self.latched_frame is not None:
+            link.send(self.latched_frame)
 
     def remove_link(self, link: OutgoingLink) -> None:
         """Drop a subscriber connection."""

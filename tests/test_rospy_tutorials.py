@@ -77,9 +77,12 @@ class Running:
         return self.log.read_text(errors="replace")
 
     def wait_for(self, text: str, count: int = 1) -> None:
-        """Wait until *text* is in its output *count* times."""
-        wait_until(lambda: self.output().count(text) >= count or self.proc.poll() is not None,
-                   f"{text!r} printed {count} times")
+        """Wait until *text* is in its output *count* times; fail with its output when it never is."""
+        try:
+            wait_until(lambda: self.output().count(text) >= count or self.proc.poll() is not None,
+                       f"{text!r} printed {count} times", timeout=60)
+        except AssertionError as exc:
+            raise AssertionError(f"{exc}; {self.proc.args} printed:\n{self.output()}") from None
         assert self.output().count(text) >= count, self.output()
 
     def interrupt(self) -> str:

@@ -324,10 +324,16 @@ class Publication:
             log.exception("error in subscriber listener of %s", self.topic)
 
     def publish_to(self, link: OutgoingLink, msg: Any) -> None:
-        """Send *msg* to one subscriber only (any thread), numbered like :meth:`publish`."""
+        """Send *msg* to one subscriber only (any thread), numbered like :meth:`publish`.
+
+        On a latched topic it becomes the latched message, as in rospy.
+        """
         self._number(msg)
         payload = msg.serialize() if not isinstance(msg, AnyMsg) else msg._buff
         data = LEN.pack(len(payload)) + payload
+        if self.latch:
+            with self.lock:
+                self.latched_frame, self.latched_msg = data, msg
         if get_ident() == self.node.loop_thread_id:
             self._send_one(link, data)
         else:

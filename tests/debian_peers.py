@@ -27,6 +27,7 @@ COMMANDS: dict[str, str] = {
     "tmux": "tmux",
     "ssh": "openssh-client",
     "ssh-keygen": "openssh-client",
+    "ip": "iproute2",
     "chromium": "chromium",
     "chromedriver": "chromium-driver",
 }
@@ -37,8 +38,12 @@ FILES: dict[str, str] = {
     "/usr/include/ros/ros.h": "libroscpp-dev",
     "/usr/lib/genpy/genmsg_py.py": "python3-genpy",
     "/usr/lib/genpy/gensrv_py.py": "python3-genpy",
+    "/usr/lib/rostopic/rostopic": "python3-rostopic",
+    "/usr/lib/rosbag/play": "python3-rosbag",
     "/usr/lib/python3/dist-packages/rospy/": "python3-rospy",
+    "/usr/lib/python3/dist-packages/rospy/__init__.py": "python3-rospy",
     "/usr/sbin/sshd": "openssh-server",
+    "/usr/lib/python3/dist-packages/paramiko/": "python3-paramiko",
     "/usr/share/rosgraph_msgs/package.xml": "libros-rosgraph-msgs-dev",
 }
 
@@ -68,8 +73,9 @@ BASE_COMMANDS: frozenset[str] = frozenset({
 })
 BASE_FILES: frozenset[str] = frozenset({"/usr/bin/python3", "/bin/sh", "/usr/share"})
 
-#: Modules the tests generate themselves (with genpy, from rostui's own .msg files) before importing.
-GENERATED_MODULES: frozenset[str] = frozenset({"turtlesim", "rospy_tutorials", "beginner_tutorials"})
+#: Modules the tests generate themselves (with genpy, from rostui's own .msg files) before importing, and
+#: demo_pkg, a package test_run_python.py writes whose messages rostui's import hook builds.
+GENERATED_MODULES: frozenset[str] = frozenset({"turtlesim", "rospy_tutorials", "beginner_tutorials", "demo_pkg"})
 
 #: Programs a test looks for but passes without, checking the behaviour either way (named, so the
 #: scan knows they are not forgotten): xterm is a launch-prefix whose absence roslaunch reports too.

@@ -8,6 +8,7 @@ built-in copy in ``rostui/share``; when it exists nowhere, the tools say so in o
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -58,7 +59,8 @@ def test_fake_package_without_msg_does_not_hide_builtin(package_path: pytest.Mon
     package_path.setenv("ROS_PACKAGE_PATH", str(tmp_path))
     clear_cache()
     assert packages.find_package("rosgraph_msgs") == fake  # rospack's answer is unchanged
-    assert packages.find_package_dirs("rosgraph_msgs") == [fake, packages.BUILTIN_SHARE / "rosgraph_msgs"]
+    debian = [ROSGRAPH_MSGS_XML.parent] if ROSGRAPH_MSGS_XML.is_file() else []  # found last, as rospack would
+    assert packages.find_package_dirs("rosgraph_msgs") == [fake, packages.BUILTIN_SHARE / "rosgraph_msgs", *debian]
     assert md5sum("rosgraph_msgs/Log") == LOG_MD5
     assert get_message_class("rosgraph_msgs/Log")._type == "rosgraph_msgs/Log"
     assert "rosgraph_msgs/Log" in list_message_types("rosgraph_msgs")
@@ -166,3 +168,23 @@ def test_msg_show_and_list_find_built_in_types_behind_debians_packages() -> None
     assert "rosgraph_msgs/Log" in listed.stdout.splitlines()
     md5 = rostui(["msg", "md5", "rosgraph_msgs/Log"], env)
     assert md5.stdout.strip() == LOG_MD5
+
+
+def test_pkg_find_sees_debians_packages_without_ros_package_path() -> None:
+    """A Debian user sets no ROS_PACKAGE_PATH: `rostui pkg find` answers as Debian's rospack for its packages."""
+    need_debian_layout()
+    from conftest import need_peer
+
+    from debian_peers import describe
+
+    need_peer(shutil.which("rospack") is not None, describe("rospack"))
+    env = {k: v for k, v in os.environ.items() if k not in ("ROS_PACKAGE_PATH", "CMAKE_PREFIX_PATH")}
+    debian_only = [p.parent.name for p in sorted(DEBIAN_SHARE.glob("*/package.xml"))
+                   if not (packages.BUILTIN_SHARE / p.parent.name).exists()][:5]
+    assert debian_only, "Debian's ROS installs packages under /usr/share"
+    for name in debian_only:
+        theirs = subprocess.run(["rospack", "find", name], env=env, capture_output=True, text=True, timeout=30)
+        ours = rostui(["pkg", "find", name], env)
+        assert (ours.returncode, ours.stdout) == (0, theirs.stdout), (name, ours.stderr)
+    builtin = rostui(["pkg", "find", "rosgraph_msgs"], env)  # rostui's own copy keeps its tools
+    assert builtin.stdout.strip() == str(packages.BUILTIN_SHARE / "rosgraph_msgs")

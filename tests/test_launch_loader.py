@@ -71,11 +71,12 @@ def test_unused_include_arg_is_an_error(tmp_path: Path) -> None:
         load(parent)
 
 
-def test_error_in_node_child_points_at_the_child(tmp_path: Path) -> None:
+def test_unknown_attribute_of_node_child_is_a_warning_at_the_child(tmp_path: Path) -> None:
     path = write(tmp_path, "n.launch", '<launch>\n  <node pkg="a" type="b" name="n">\n\n'
                                        '    <param name="x" value="1" value2="3"/>\n  </node>\n</launch>')
-    with pytest.raises(LaunchError, match=r"n.launch:4: unknown <param> attribute 'value2'"):
-        load(path)
+    config = load(path)
+    assert config.params == {"/n/x": 1}
+    assert config.warnings == [f"{path}:4: unknown <param> attribute 'value2'"]
 
 
 def test_duplicate_node_names_are_an_error(tmp_path: Path) -> None:

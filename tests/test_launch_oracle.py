@@ -130,16 +130,22 @@ def test_errors_fail_in_both(env: dict[str, str], name: str, extra: list[str], w
 
 
 @pytest.mark.parametrize("name,message", [("unknown_attribute.launch", "unknown <node> attribute 'colour'"),
-                                          ("unknown_element.launch", "unknown element <nodule>")])
-def test_unknown_names_fail(env: dict[str, str], name: str, message: str) -> None:
-    """rostui refuses unknown elements/attributes; roslaunch's own checker (roslaunch-check's) reports them too.
+                                          ("unknown_element.launch", "unrecognized tag <nodule>")])
+def test_unknown_names_warn_and_strict_refuses(env: dict[str, str], name: str, message: str) -> None:
+    """As in roslaunch, unknown elements/attributes do not stop --nodes; --strict and `launch check` refuse them.
 
-    (roslaunch itself only prints a WARNING for them and starts the rest.)
+    roslaunch's own checker (roslaunch-check's check_roslaunch) reports them as config errors too.
     """
     path = str(corpus_file(name))
-    ours = run_rostui(["--nodes", path], env)
-    assert ours.returncode == 1
-    assert ours.stderr.strip() == f"rostui launch: {path}:2: {message}"
+    ours, theirs = _both(["--nodes", path], env)
+    assert ours.returncode == theirs.returncode == 0, ours.stderr
+    assert ours.stdout == theirs.stdout
+    strict = run_rostui(["--strict", "--nodes", path], env)
+    assert strict.returncode == 1 and strict.stdout == ""
+    assert strict.stderr.strip() == f"rostui launch: {path}:2: {message}"
+    checked = run_rostui(["check", path], env)
+    assert checked.returncode == 1
+    assert checked.stderr.strip() == f"rostui launch: {path}:2: {message}"
     check = subprocess.run([SYSTEM_PYTHON, "-c", "import sys, roslaunch.rlutil as r; "
                             "e = r.check_roslaunch(sys.argv[1]); print(e or ''); sys.exit(1 if e else 0)", path],
                            env=env, capture_output=True, text=True, timeout=60)

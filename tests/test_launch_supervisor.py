@@ -138,11 +138,20 @@ def test_load_error_starts_nothing(env: dict[str, str], tmp_path: Path) -> None:
         assert probe.connect_ex(("127.0.0.1", master_port(env))) != 0  # no master was started
 
 
-def test_remote_machine_is_refused(env: dict[str, str]) -> None:
-    result = run_rostui([str(RUN / "remote.launch")], env)
+def test_a_remote_machine_that_cannot_be_reached_is_one_error(env: dict[str, str], tmp_path: Path) -> None:
+    """192.0.2.10 (TEST-NET-1) never answers: one line names the machine, and no node starts.
+
+    tests/test_launch_remote.py runs nodes on other hosts for real.
+    """
+    (tmp_path / "ssh_config").write_text("")  # never the real ~/.ssh/config
+    result = run_rostui([str(RUN / "remote.launch")], {**env, "ROSTUI_SSH_CONFIG": str(tmp_path / "ssh_config")},
+                        timeout=120)
     assert result.returncode == 1
-    assert "remote launch (ssh) is not available in rostui" in result.stderr
-    assert len(result.stderr.strip().splitlines()) == 1
+    errors = result.stderr.strip().splitlines()
+    assert len(errors) == 1, result.stderr
+    assert errors[0].startswith(f"rostui launch: {RUN / 'remote.launch'}:2: cannot start nodes on machine [faraway] "
+                                "(robot@192.0.2.10:22): "), errors[0]
+    assert "process[" not in result.stdout
 
 
 def test_rosparam_commands_and_clear_params_run_before_params(env: dict[str, str], rostui_core: subprocess.Popen,

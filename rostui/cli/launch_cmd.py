@@ -34,8 +34,17 @@ def launch_command(
                                          help="Seconds a node gets after SIGINT before SIGTERM."),
     sigterm_timeout: float = typer.Option(2.0, "--sigterm-timeout", metavar="SECONDS",
                                           help="Seconds a node gets after SIGTERM before SIGKILL."),
+    strict: bool = typer.Option(False, "--strict", help="Unknown elements and attributes are errors, "
+                                                        "not warnings (one FILE:LINE line each)."),
     tui: bool = typer.Option(False, "--tui", help="Run the launch inside a live monitor of its nodes "
                                                   "(state, pid, CPU, memory, restarts, output; start/stop/restart)."),
+    child: Optional[str] = typer.Option(None, "-c", "--child", metavar="NAME",
+                                        help="Run as child NAME of a parent launcher on another machine "
+                                             "(roslaunch's remote protocol; needs -u and --run_id)."),
+    server_uri: Optional[str] = typer.Option(None, "-u", "--server_uri", metavar="URI",
+                                             help="The parent launcher's XML-RPC URI (with --child)."),
+    run_id: Optional[str] = typer.Option(None, "--run_id", metavar="RUN_ID",
+                                         help="The parent's run id (with --child)."),
 ) -> None:
     """Start the nodes of a launch file (like `roslaunch`).
 
@@ -45,6 +54,9 @@ def launch_command(
     SIGKILL).
 
     --tui shows the nodes live (keys: s start, k stop, r restart, l launcher's output, f follow, q quit).
+
+    `rostui launch check [PACKAGE] FILE` reports, one FILE:LINE line each,
+    unknown elements and attributes, unknown machines and missing executables.
     """
     import os
     import sys
@@ -54,6 +66,9 @@ def launch_command(
     from rostui.launch.files import resolve_request
 
     words: List[str] = [*(arguments or []), *ctx.args]
+    checking = bool(words) and words[0] == "check"
+    if checking:
+        words = words[1:]
     unknown = [w for w in words if w.startswith("-") and ":=" not in w]
     if unknown:
         print(f"rostui launch: unknown option {unknown[0]}", file=sys.stderr)
@@ -66,6 +81,24 @@ def launch_command(
         print("rostui launch: --tui runs a launch; it cannot be combined with --nodes, --args, --dump-params, "
               "--files or --ros-args", file=sys.stderr)
         raise typer.Exit(2)
+    if checking and (modes or dump_params or files or tui):
+        print("rostui launch: check reports problems; it cannot be combined with --nodes, --args, --dump-params, "
+              "--files, --ros-args or --tui", file=sys.stderr)
+        raise typer.Exit(2)
+    if child is not None or server_uri is not None or run_id is not None:
+        if child is None or server_uri is None or run_id is None:
+            print("rostui launch: --child, -u and --run_id go together", file=sys.stderr)
+            raise typer.Exit(2)
+        if words or modes or dump_params or files or tui:
+            print("rostui launch: --child takes no launch files and no other mode: its parent sends the nodes",
+                  file=sys.stderr)
+            raise typer.Exit(2)
+        from rostui.launch.remote_child import run_child
+        from rostui.launch.supervisor import SupervisorOptions
+
+        options = SupervisorOptions(screen=screen, verbose=verbose, sigint_timeout=sigint_timeout,
+                                    sigterm_timeout=sigterm_timeout)
+        raise typer.Exit(run_child(child, server_uri, run_id, options))
     if tui:
         from rostui.apps.terminal import terminal_missing
 
@@ -73,6 +106,14 @@ def launch_command(
             raise typer.Exit(1)
     try:
         request = resolve_request(words)
+        request.strict = strict
+        if checking:
+            from rostui.launch.check import check_request
+
+            problems = check_request(request)
+            for line in problems:
+                print(f"rostui launch: {line}", file=sys.stderr)
+            raise typer.Exit(1 if problems else 0)
         if node_args is not None:
             print(inspect.node_args_line(request, node_args, inspect.default_master_uri()))
         elif nodes:
@@ -102,7 +143,8 @@ def launch_command(
                                         sigint_timeout=sigint_timeout, sigterm_timeout=sigterm_timeout)
             raise typer.Exit(run_launch(request, options))
     except LaunchError as exc:
-        print(f"rostui launch: {exc}", file=sys.stderr)
+        for line in str(exc).splitlines():
+            print(f"rostui launch: {line}", file=sys.stderr)
         raise typer.Exit(1)
 
 
@@ -111,6 +153,7 @@ LAUNCH_EXAMPLES = examples(
     ("set the file's arg use_sim3", "rostui launch agitr triplesim.launch use_sim3:=1"),
     ("a file by its path, every node's output on the terminal", "rostui launch --screen ./my.launch"),
     ("the nodes in a live monitor (start, stop, restart, output)", "rostui launch --tui agitr doublesim.launch"),
+    ("report unknown elements/attributes, machines and executables", "rostui launch check ./my.launch"),
 )
 
 

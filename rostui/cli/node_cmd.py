@@ -1,4 +1,4 @@
-"""`rostui node`: Nodes: list, info, kill, cleanup, ping (like `rosnode`)."""
+"""`rostui node`: Nodes: list, info, kill, cleanup, ping, machine (like `rosnode`)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from rostui.cli.complete import complete_nodes
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
 
-node_app = typer.Typer(name="node", help="Nodes: list, info, kill, cleanup, ping (like `rosnode`).", no_args_is_help=True, context_settings=CONTEXT)
+node_app = typer.Typer(name="node", help="Nodes: list, info, kill, cleanup, ping, machine (like `rosnode`).", no_args_is_help=True, context_settings=CONTEXT)
 
 CALLER = "/rosnode"
 
@@ -177,6 +177,24 @@ def kill_command(
             _echo(f"killing {n}")
     kill_nodes(call, [n for n in targets if uris.get(n) is not None])
     _echo("killed")
+
+
+@node_app.command("machine")
+def machine_command(
+    machine: Optional[str] = typer.Argument(None, metavar="[HOST]", help="List the nodes running on this host."),
+) -> None:
+    """List the hosts nodes run on, or the nodes on HOST (like `rosnode machine`)."""
+    from rostui.tools.node_machine import MachineError, machines, nodes_on
+
+    call = master_caller(CALLER)
+    if machine is None:
+        print("\n".join(machines(call)))
+        return
+    try:
+        print("\n".join(nodes_on(call, machine)))
+    except MachineError as exc:
+        _echo(f"ERROR: {exc}", err=True)
+        raise typer.Exit(1)
 
 
 @node_app.command("cleanup")

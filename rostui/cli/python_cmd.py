@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
-from typing import List, Optional
+from typing import TYPE_CHECKING, List, Optional
 
 import typer
+
+if TYPE_CHECKING:
+    from rostui.compat.launcher import Plan
 
 PYTHON_CONTEXT = {
     "help_option_names": ["-h", "--help"],
@@ -14,11 +17,12 @@ PYTHON_CONTEXT = {
 }
 
 
-def _mode(real_ros: bool, use_rostui: bool) -> str:
+def mode_name(real_ros: bool, use_rostui: bool, who: str = "rostui python") -> str:
+    """The :class:`~rostui.compat.choice.Mode` value --real-ros / --rostui ask for; exit 2 for both."""
     if real_ros and use_rostui:
         import sys
 
-        print("rostui python: --real-ros and --rostui exclude each other", file=sys.stderr)
+        print(f"{who}: --real-ros and --rostui exclude each other", file=sys.stderr)
         raise typer.Exit(2)
     return "real" if real_ros else "rostui" if use_rostui else "auto"
 
@@ -42,22 +46,31 @@ def python_command(
     import os
     import sys
 
-    from rostui.compat.choice import Mode, child_env, choose
+    from rostui.compat.choice import Mode, choose
+    from rostui.compat.launcher import plan
 
-    mode = Mode(_mode(real_ros, use_rostui))
+    mode = Mode(mode_name(real_ros, use_rostui))
     if which:
         print(choose(mode, sys.path).describe())
         return
     if script is None:
         print("rostui python: give the SCRIPT to run (or --which)", file=sys.stderr)
         raise typer.Exit(2)
-    argv = [sys.executable, script, *(arguments or []), *ctx.args]
-    sys.stdout.flush()
-    sys.stderr.flush()
+    run_script(plan(mode, script, [*(arguments or []), *ctx.args], os.environ), "rostui python")
+
+
+def run_script(how: "Plan", who: str) -> None:
+    """Print *how*'s notice, then replace this process with its command; *who* names the command in errors."""
+    import sys
+
+    from rostui.tools.run import exec_argv
+
+    if how.notice:
+        print(how.notice, file=sys.stderr)
     try:
-        os.execve(sys.executable, argv, child_env(mode, os.environ))
+        exec_argv(how.argv, how.env)
     except OSError as exc:
-        print(f"rostui python: cannot run {sys.executable}: {exc.strerror or exc}", file=sys.stderr)
+        print(f"{who}: cannot run {how.argv[0]}: {exc.strerror or exc}", file=sys.stderr)
         raise typer.Exit(126)
 
 
@@ -72,7 +85,7 @@ def shell_env_command(
     from rostui.compat.choice import ENV_MODE, pythonpath_for
 
     print(f"export PYTHONPATH={shlex.quote(pythonpath_for(os.environ.get('PYTHONPATH')))}")
-    print(f"export {ENV_MODE}={_mode(real_ros, use_rostui)}")
+    print(f"export {ENV_MODE}={mode_name(real_ros, use_rostui)}")
 
 
 def register(app: typer.Typer) -> None:

@@ -25,23 +25,45 @@ def run_command(
         None, metavar="[ARGS]...", help="Passed to the program as they are: name:=value, _param:=value, options."),
     prefix: Optional[str] = typer.Option(None, "--prefix", "-p", metavar="COMMAND",
                                          help="Command to put in front of the executable (e.g. 'gdb --args')."),
+    real_ros: bool = typer.Option(False, "--real-ros",
+                                  help="Run a Python script as rosrun would, with the real ROS installed."),
+    use_rostui: bool = typer.Option(False, "--rostui",
+                                    help="Give a Python script rostui's rospy and message modules even if a "
+                                         "real ROS is installed."),
 ) -> None:
     """Run EXECUTABLE of PACKAGE with every further argument passed through (like `rosrun`).
 
     Remappings (`name:=value`), `__name:=`, `_param:=` and options such as `-x`
-    reach the program untouched; the program replaces this process.
+    reach the program untouched; the program replaces this process. A ROS
+    Python script gets what `rostui python` gives it: rostui's rospy, genpy,
+    roslib, rosbag and message modules, or the real ROS where one is installed.
     """
+    import dataclasses
+    import os
+    import shlex
     import sys
 
-    from rostui.tools.run import RunError, choose_interactively, exec_argv, resolve
+    from rostui.cli.python_cmd import mode_name, run_script
+    from rostui.compat.choice import Mode
+    from rostui.compat.launcher import plan
+    from rostui.tools.run import RunError, argv_for, choose_interactively, exec_argv, locate, ros_python_script
 
+    mode = Mode(mode_name(real_ros, use_rostui, "rostui run"))
     args: List[str] = [*(arguments or []), *ctx.args]
     try:
-        argv = resolve(package, executable, args, prefix=prefix, choose=choose_interactively)
+        path = locate(package, executable, choose=choose_interactively)
     except RunError as exc:
         for line in exc.lines:
             print(line, file=sys.stderr)
         raise typer.Exit(exc.code)
+    script = ros_python_script(path, os.environ.get("PATH"))
+    if script is not None:
+        how = plan(mode, str(path), args, os.environ, interpreter=script.interpreter)
+        if prefix:
+            how = dataclasses.replace(how, argv=shlex.split(prefix) + how.argv)
+        run_script(how, "rostui run")
+        return
+    argv = argv_for(path, args, prefix)
     try:
         exec_argv(argv)
     except OSError as exc:

@@ -2,25 +2,34 @@
 
 Reading gives messages in time order through the file's index
 (:class:`rostui.core.bag.fileindex.FileIndex`, built by scanning an unindexed
-file when ``allow_unindexed`` is given); writing goes through
-:func:`rostui.core.bag.files.open_writer`, so a ``.bag`` written here is the
-rosbag v2.0 file rostui's recorder writes, and any other name an MCAP file.
+file when ``allow_unindexed`` is given); writing goes through rostui's
+writers, so a bag written here is the rosbag v2.0 file rostui's recorder
+writes, or an MCAP file when its name ends in ``.mcap``.
+Appending to a ``.bag`` continues the file in place
+(:mod:`rostui.core.bag.bag_append`); a bag open for writing or appending is
+read by flushing its open chunk and reading the file's chunks, as rosbag does.
 """
 
 from __future__ import annotations
 
 import collections
+import contextlib
+import io
 import os
 import time
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any, NamedTuple
 
-from rostui.core.bag.files import Reader, Writer, open_reader, open_writer
+from rostui.core.bag.bag_append import NotIndexed, read_chunk_infos, resume_bag
+from rostui.core.bag.files import Reader, Writer, open_reader, open_writer, time_ordered
+from rostui.core.bag.mcapfile import MAGIC as MCAP_MAGIC
 from rostui.core.bag.model import BagError, Connection
+from rostui.core.bag.rosbag2_0 import BagWriter
 from rostui.core.msg import Message, register_types_from_definition
 from rostui.core.rostime import Time
 
 from .lookup import get_message_class
+from .rosbag_files import BagTarget, open_target, stamp_class
 
 __all__ = ["Bag", "BagMessage", "BagMessageWithConnectionHeader", "Compression", "ROSBagException",
            "ROSBagFormatException", "ROSBagUnindexedException", "ROSBagEncryptNotSupportedException",
@@ -61,9 +70,10 @@ class Compression:
     LZ4 = "lz4"
 
 
-BagMessage = collections.namedtuple("BagMessage", "topic message timestamp")
+BagMessage = collections.namedtuple("BagMessage", "topic message timestamp", module="rosbag.bag")
 BagMessageWithConnectionHeader = collections.namedtuple("BagMessageWithConnectionHeader",
-                                                        "topic message timestamp connection_header")
+                                                        "topic message timestamp connection_header",
+                                                        module="rosbag.bag")
 
 
 class TopicTuple(NamedTuple):
@@ -108,38 +118,58 @@ def _ns(stamp: Any) -> int:
 
 
 def _time(ns: int) -> Time:
-    return Time(ns // 1_000_000_000, ns % 1_000_000_000)
+    return stamp_class()(ns // 1_000_000_000, ns % 1_000_000_000)
+
+
+def _canonical(name: str) -> str:
+    """A topic name without repeated or trailing slashes, as rosbag compares the topics asked for."""
+    if not name or name == "/":
+        return name
+    while "//" in name:
+        name = name.replace("//", "/")
+    return name.rstrip("/") or "/"
 
 
 def _topics(topics: str | Iterable[str] | None) -> set[str] | None:
     if not topics:
         return None
-    return {topics} if isinstance(topics, str) else set(topics)
+    return {_canonical(topics)} if isinstance(topics, str) else {_canonical(t) for t in topics}
+
+
+def _header_bytes(conn: Connection) -> dict[str, bytes]:
+    """The connection header as rosbag gives it to filters and with ``return_connection_header``: bytes values."""
+    return {k: v.encode() for k, v in conn.header_fields().items()}
+
+
+_COMPRESSIONS = (Compression.NONE, Compression.BZ2, Compression.LZ4)
 
 
 class Bag:
     """A bag file opened for reading (``'r'``), writing (``'w'``) or appending (``'a'``).
 
-    The format follows the file: a ``.bag`` (rosbag v2.0) or an MCAP file when
-    reading; when writing, a name ending in ``.bag`` makes a rosbag v2.0 file
-    and any other name an MCAP file. Use it as a context manager or ``close()`` it.
+    ``f`` is a file name or a binary file object. The format follows the file:
+    a ``.bag`` (rosbag v2.0) or an MCAP file when reading; when writing, a name
+    ending in ``.mcap`` makes an MCAP file and any other name (or a file
+    object) a rosbag v2.0 file, as rosbag writes. A bag open for writing or appending can be read too. Use
+    it as a context manager or ``close()`` it.
     """
 
-    def __init__(self, f: str | os.PathLike[str], mode: str = "r", compression: str = Compression.NONE,
+    def __init__(self, f: Any, mode: str = "r", compression: str = Compression.NONE,
                  chunk_threshold: int = 768 * 1024, allow_unindexed: bool = False, options: Any = None,
                  skip_index: bool = False) -> None:
-        if not isinstance(f, (str, os.PathLike)):
-            raise ValueError("rostui's rosbag opens bags by file name only, not file objects")
-        if mode not in ("r", "w", "a"):
-            raise ValueError(f"mode {mode!r} is invalid: use 'r', 'w' or 'a'")
-        if options is not None and isinstance(options, dict):
+        if options is not None:
+            if type(options) is not dict:
+                raise ValueError("options must be of type dict")
             compression = options.get("compression", compression)
             chunk_threshold = options.get("chunk_threshold", chunk_threshold)
-        if compression not in (Compression.NONE, Compression.BZ2, Compression.LZ4):
-            raise ValueError(f"compression {compression!r} is invalid: use none, bz2 or lz4")
+        if compression not in _COMPRESSIONS:
+            raise ValueError(f"compression must be one of: {', '.join(_COMPRESSIONS)}")
         if chunk_threshold < 0:
             raise ValueError("chunk_threshold must be greater than or equal to zero")
-        self._filename = os.fspath(f)
+        if not f:
+            raise ValueError("filename (or stream) is invalid")
+        if mode not in ("r", "w", "a"):
+            raise ValueError(f'mode "{mode}" is invalid')
         self._mode = mode
         self._compression = compression
         self._chunk_threshold = chunk_threshold
@@ -147,73 +177,132 @@ class Bag:
         self._skip_index = skip_index
         self._reader: Reader | None = None
         self._writer: Writer | None = None
-        self._conn_ids: dict[tuple[str, str, str, str, bool], int] = {}
+        self._stale = False  # the writer wrote since self._reader was opened on its file
+        self._topic_ids: dict[str, int] = {}
         self._classes: dict[tuple[str, str], type[Message]] = {}
+        self._open = False
+        try:
+            self._target: BagTarget = open_target(f, mode)
+        except TypeError as exc:
+            if mode == "w":
+                raise
+            raise ROSBagException(str(exc)) from None
         try:
             if mode == "r":
                 self._open_read()
+            elif mode == "w":
+                self._open_write()
             else:
-                self._open_write(append=mode == "a" and os.path.exists(self._filename))
-        except BagError as exc:
-            raise ROSBagException(str(exc)) from None
+                self._open_append()
+        except BaseException:
+            self._target.finish(wrote=False)
+            raise
+        self._open = True
 
     # --- opening -----------------------------------------------------------------------------------------
 
+    @staticmethod
+    def _check_bag_file(path: str) -> bytes:
+        """The file's first bytes; OSError as ``open`` raises it, ROSBagException for no bag (rosbag's words)."""
+        with open(path, "rb") as f:
+            head = f.readline(64)
+        if not head:
+            raise ROSBagException("empty file")
+        if head.startswith(MCAP_MAGIC[:5]):
+            return head
+        if not head.startswith(b"#ROS") or b" V" not in head:
+            raise ROSBagException("This does not appear to be a bag file")
+        if not head.startswith(b"#ROSBAG V2.0"):
+            raise ROSBagFormatException(f"unsupported bag version: {head.strip().decode(errors='replace')} "
+                                        "(rostui reads rosbag v2.0 and MCAP)")
+        return head
+
     def _open_read(self) -> None:
-        with open(self._filename, "rb"):  # a missing or unreadable file raises OSError, as rosbag's open does
-            pass
+        path = self._target.path
+        self._check_bag_file(path)
         try:
-            reader = open_reader(self._filename)
+            reader = open_reader(path)
         except BagError as exc:
-            raise ROSBagException(str(exc)) from None
+            raise ROSBagFormatException(str(exc)) from None
         if reader.file_index() is None and not self._allow_unindexed:
             reader.close()
             raise ROSBagUnindexedException()
         self._reader = reader
 
-    def _open_write(self, append: bool) -> None:
-        if not append:
-            self._writer = open_writer(self._filename, self._compression)
-            self._tune_writer()
+    def _new_writer(self, path: str) -> Writer:
+        """An MCAP writer for a name ending in ``.mcap``, else a rosbag v2.0 one (whatever the name, as rosbag)."""
+        try:
+            if path.endswith(".mcap"):
+                writer = open_writer(path, self._compression)
+            else:
+                writer = BagWriter(path, compression=self._compression)
+        except OSError as exc:
+            raise ROSBagException(f"cannot create {path}: {exc.strerror}") from None
+        except BagError as exc:
+            raise ROSBagException(str(exc)) from None
+        self._tune(writer)
+        return writer
+
+    def _tune(self, writer: Writer) -> None:
+        if hasattr(writer, "chunk_bytes"):
+            writer.chunk_bytes = max(1, self._chunk_threshold)
+        if hasattr(writer, "max_chunk_age"):
+            writer.max_chunk_age = float("inf")  # chunks close by size, as rosbag's do
+
+    def _open_write(self) -> None:
+        with open(self._target.path, "wb"):  # create or truncate it as rosbag does; errors are open()'s
+            pass
+        self._writer = self._new_writer(self._target.path)
+
+    def _open_append(self) -> None:
+        path = self._target.path
+        if not os.path.exists(path):
+            open(path, "ab").close()  # rosbag creates the file, then finds it empty
+        head = self._check_bag_file(path)
+        if head.startswith(MCAP_MAGIC[:5]):
+            self._append_by_copy()
             return
-        # rostui's writers only create files: appending rewrites the bag's messages into a new file first
-        backup = f"{self._filename}.rostui-append"
-        os.replace(self._filename, backup)
+        try:
+            writer = resume_bag(path, compression=self._compression, chunk_bytes=max(1, self._chunk_threshold),
+                                scan_unindexed=self._allow_unindexed)
+        except NotIndexed:
+            raise ROSBagUnindexedException() from None
+        except BagError as exc:
+            raise ROSBagFormatException(str(exc)) from None
+        self._tune(writer)
+        self._writer = writer  # new messages get new connections, even on old topics, as rosbag appends
+
+    def _append_by_copy(self) -> None:
+        """MCAP files are appended to by writing their messages into a new file first (rostui's MCAP writer
+        only creates files)."""
+        path = self._target.path
+        backup = f"{path}.rostui-append"
+        os.replace(path, backup)
         try:
             reader = open_reader(backup)
             try:
-                self._writer = open_writer(self._filename, self._compression)
-                self._tune_writer()
-                rows = (reader.messages() if reader.file_index() is None
-                        else self._indexed(reader))
-                for conn, t, data in rows:
-                    self._writer.write(self._connection_id(conn.topic, conn.type, conn.md5sum, conn.definition,
-                                                           conn.callerid, conn.latching), t, data)
+                if reader.file_index() is None and not self._allow_unindexed:
+                    raise ROSBagUnindexedException()
+                self._writer = self._new_writer(path)
+                for conn, t, data in time_ordered(reader):
+                    self._writer.write(self._connection_id(conn.topic, conn.header_fields()), t, data)
+                self._topic_ids = {}  # new messages get new connections, as in a .bag appended to
             finally:
                 reader.close()
         except BaseException:
             if self._writer is not None:
                 self._writer.close()
-            os.replace(backup, self._filename)
+                self._writer = None
+            os.replace(backup, path)
             raise
         os.remove(backup)
-
-    def _tune_writer(self) -> None:
-        if self._writer is not None and hasattr(self._writer, "chunk_bytes"):
-            self._writer.chunk_bytes = max(1, self._chunk_threshold)
-
-    @staticmethod
-    def _indexed(reader: Reader) -> Iterator[tuple[Connection, int, bytes]]:
-        from rostui.core.bag.files import time_ordered
-
-        return time_ordered(reader)
 
     # --- properties --------------------------------------------------------------------------------------
 
     @property
-    def filename(self) -> str:
-        """The file's name, as given."""
-        return self._filename
+    def filename(self) -> str | None:
+        """The file's name as given; None for a bag opened on a file object (as rosbag)."""
+        return self._target.filename
 
     @property
     def mode(self) -> str:
@@ -221,21 +310,46 @@ class Bag:
         return self._mode
 
     @property
+    def options(self) -> dict[str, Any]:
+        """``{'compression': ..., 'chunk_threshold': ...}``."""
+        return {"compression": self._compression, "chunk_threshold": self._chunk_threshold}
+
+    @property
     def compression(self) -> str:
-        """The compression of chunks written (``none``, ``bz2`` or ``lz4``)."""
+        """The compression of chunks written (``none``, ``bz2`` or ``lz4``); setting it closes the open chunk."""
         return self._compression
+
+    @compression.setter
+    def compression(self, value: str) -> None:
+        if value not in _COMPRESSIONS:
+            raise ValueError(f"compression must be one of: {', '.join(_COMPRESSIONS)}")
+        self.flush()
+        self._compression = value
+        if self._writer is not None and hasattr(self._writer, "compression"):
+            self._writer.compression = value
 
     @property
     def chunk_threshold(self) -> int:
-        """Uncompressed bytes after which a chunk is written out."""
+        """Uncompressed bytes after which a chunk is written out; setting it closes the open chunk."""
         return self._chunk_threshold
+
+    @chunk_threshold.setter
+    def chunk_threshold(self, value: int) -> None:
+        if value < 0:
+            raise ValueError("chunk_threshold must be greater than or equal to zero")
+        self.flush()
+        self._chunk_threshold = value
+        if self._writer is not None:
+            self._tune(self._writer)
 
     @property
     def size(self) -> int:
-        """The file's size in bytes (what has been written so far, when writing)."""
+        """The file's size in bytes (what has been written so far, when writing); ValueError when closed."""
+        if not self._open:
+            raise ValueError("I/O operation on closed bag")
         if self._writer is not None:
             return self._writer.size
-        return os.path.getsize(self._filename)
+        return os.path.getsize(self._target.path)
 
     @property
     def version(self) -> int:
@@ -255,41 +369,83 @@ class Bag:
 
     def close(self) -> None:
         """Finish the file (writing its index) and release it; closing twice does nothing."""
-        if self._writer is not None:
-            writer, self._writer = self._writer, None
-            try:
-                writer.close()
-            except BagError as exc:
-                raise ROSBagException(str(exc)) from None
-        if self._reader is not None:
-            reader, self._reader = self._reader, None
-            reader.close()
+        if not self._open:
+            return
+        self._open = False
+        wrote = self._writer is not None
+        try:
+            if self._reader is not None:
+                reader, self._reader = self._reader, None
+                reader.close()
+            if self._writer is not None:
+                writer, self._writer = self._writer, None
+                try:
+                    writer.close()
+                except BagError as exc:
+                    raise ROSBagException(str(exc)) from None
+        finally:
+            self._target.finish(wrote)
 
     def flush(self) -> None:
         """Write the open chunk to disk; ValueError on a closed bag."""
-        if self._writer is None and self._reader is None:
+        if not self._open:
             raise ValueError("I/O operation on closed bag")
-        if self._writer is not None:
+        if self._writer is not None and self._writer.buffered:
             self._writer.flush()
+            self._stale = True
 
     def __str__(self) -> str:
-        return f"path: {self._filename}\nmode: {self._mode}"
+        """What ``rosbag info`` prints for the bag (without rosbag's per-topic frequencies)."""
+        from rostui.core.bag.info import format_info
+
+        with self._peek() as reader:
+            summary = reader.summary()
+        summary.path = str(self._target.filename)
+        return format_info(summary)
 
     # --- reading -----------------------------------------------------------------------------------------
 
-    def _open_reader(self) -> Reader:
-        if self._reader is not None:
-            return self._reader
-        if self._writer is None:
+    def _live_reader(self, flush: bool = True) -> Reader:
+        """The reader of an open bag: for one being written, a reader of the chunks written so far (the open
+        chunk written out first, unless ``flush`` is False)."""
+        if not self._open:
             raise ValueError("I/O operation on closed bag")
-        raise ROSBagException("rostui's rosbag reads a bag opened for reading ('r') only")
+        if self._writer is not None:
+            if flush:
+                self.flush()
+            if self._reader is None or self._stale:
+                if self._reader is not None:
+                    self._reader.close()
+                self._reader = open_reader(self._target.path)
+                self._stale = False
+        assert self._reader is not None
+        return self._reader
 
-    def _index_rows(self) -> Iterator[tuple[Connection, int, int, int]]:
+    @contextlib.contextmanager
+    def _peek(self) -> Iterator[Reader]:
+        """A reader for the bag's counts and times; a closed bag's file is read again (rosbag answers these
+        from the index it keeps after closing)."""
+        if self._open:
+            # rosbag counts a bag being written from its closed chunks once it has any, else from every message
+            closed_chunks = getattr(self._writer, "chunk_infos", None) or getattr(self._writer, "chunk_indexes", None)
+            yield self._live_reader(flush=not closed_chunks)
+            return
+        if self._target.stream is not None:
+            raise ValueError("I/O operation on closed bag")
+        try:
+            reader = open_reader(self._target.path)
+        except BagError as exc:
+            raise ROSBagException(str(exc)) from None
+        try:
+            yield reader
+        finally:
+            reader.close()
+
+    def _index_rows(self, reader: Reader) -> Iterator[tuple[Connection, int, int, int]]:
         """``(connection, time_ns, chunk, offset)`` of every message in time order, equal times in connection
         order as rosbag's merge of its per-connection indexes gives them (file order for an unindexed file)."""
         import numpy as np
 
-        reader = self._open_reader()
         index = reader.file_index()
         if index is None:
             index = reader.scan_index()
@@ -310,7 +466,10 @@ class Bag:
             if found is not None and found._md5sum == conn.md5sum:
                 cls = found
             elif conn.definition:
-                cls = register_types_from_definition(conn.type, conn.definition)
+                try:
+                    cls = register_types_from_definition(conn.type, conn.definition)
+                except Exception as exc:  # the definition text does not parse
+                    raise ROSBagException(f"Error generating datatype {conn.type}: {exc}") from None
             elif found is not None:
                 cls = found
             else:
@@ -325,10 +484,10 @@ class Bag:
         def wanted(conn: Connection) -> bool:
             ok = decided.get(conn.id)
             if ok is None:
-                ok = topics is None or conn.topic in topics
+                ok = topics is None or conn.topic in topics or _canonical(conn.topic) in topics
                 if ok and connection_filter is not None:
                     ok = bool(connection_filter(conn.topic, conn.type, conn.md5sum, conn.definition,
-                                                conn.header_fields()))
+                                                _header_bytes(conn)))
                 decided[conn.id] = ok
             return ok
 
@@ -342,9 +501,11 @@ class Bag:
         ``topics`` is one topic or a list (empty or None: all); ``start_time`` and
         ``end_time`` bound the time stamps (both included); ``connection_filter``
         is called as ``f(topic, datatype, md5sum, msg_def, header)``. With ``raw``
-        the message is ``(datatype, data, md5sum, position, pytype)``.
+        the message is ``(datatype, data, md5sum, position, pytype)``; with
+        ``return_connection_header`` a fourth field holds the connection header
+        (values as bytes). A bag open for writing shows what was written so far.
         """
-        reader = self._open_reader()
+        reader = self._live_reader()
         # a zero time bounds nothing, as in rosbag (whose test is the time's truth value)
         start = None if start_time is None else _ns(start_time) or None
         end = None if end_time is None else _ns(end_time) or None
@@ -353,7 +514,10 @@ class Bag:
 
     def _generate(self, reader: Reader, start: int | None, end: int | None, wanted: Callable[[Connection], bool],
                   raw: bool, with_header: bool) -> Iterator[Any]:
-        for position, (conn, t, chunk, offset) in enumerate(self._index_rows()):
+        stamp = stamp_class()
+        new = object.__new__
+        chunk_positions = self._chunk_positions(reader) if raw else []
+        for position, (conn, t, chunk, offset) in enumerate(self._index_rows(reader)):
             if (start is not None and t < start) or not wanted(conn):
                 continue
             if end is not None and t > end:
@@ -361,62 +525,78 @@ class Bag:
             data = reader.payload(chunk, offset)
             cls = self._message_class(conn)
             if raw:
-                message: Any = (conn.type, bytes(data), conn.md5sum, position, cls)
+                where: Any = (chunk_positions[chunk], offset) if chunk < len(chunk_positions) else position
+                message: Any = (conn.type, bytes(data), conn.md5sum, where, cls)
             else:
                 try:
-                    message = cls().deserialize(bytes(data))
+                    message = cls().deserialize(data)
                 except Exception as exc:  # the generated deserialiser's errors on damaged data
                     raise ROSBagFormatException(f"cannot decode a {conn.type} message on {conn.topic}: "
                                                 f"{exc}") from None
+            # a bag's times are unsigned and whole: the stamp needs none of the constructor's checks
+            when = new(stamp)
+            when.secs, when.nsecs = divmod(t, 1_000_000_000)
             if with_header:
-                yield BagMessageWithConnectionHeader(conn.topic, message, _time(t), conn.header_fields())
+                yield BagMessageWithConnectionHeader(conn.topic, message, when, _header_bytes(conn))
             else:
-                yield BagMessage(conn.topic, message, _time(t))
+                yield BagMessage(conn.topic, message, when)
 
-    def _connections(self) -> list[Connection]:
-        return list(self._open_reader().connections.values())
-
-    def _counts(self) -> dict[int, int]:
-        return self._open_reader().summary().counts
+    def _chunk_positions(self, reader: Reader) -> list[int]:
+        """Where each chunk of a ``.bag`` starts, by chunk number (rosbag's raw position is ``(chunk position,
+        offset in the chunk)``); empty for MCAP, whose raw position is the message's place in time order."""
+        chunks = getattr(self._writer, "chunk_infos", None)
+        if chunks is None:
+            if reader.summary().format != "rosbag":
+                return []
+            try:
+                _conns, chunks, _end = read_chunk_infos(self._target.path, scan=True)
+            except BagError:
+                return []
+        return sorted(pos for pos, _start, _end, _counts in chunks)
 
     def get_message_count(self, topic_filters: str | list[str] | None = None) -> int:
         """How many messages the bag holds, on the given topics only when ``topic_filters`` is given."""
         if topic_filters is not None:
             return sum(t.message_count for t in self.get_type_and_topic_info(topic_filters).topics.values())
-        return sum(self._counts().values())
+        with self._peek() as reader:
+            return sum(reader.summary().counts.values())
 
     def _span(self) -> tuple[int, int]:
-        summary = self._open_reader().summary()
+        with self._peek() as reader:
+            summary = reader.summary()
         if not summary.message_count:
             raise ROSBagException("Bag contains no message")
         return summary.info_span or (summary.start_ns, summary.end_ns)
 
     def get_start_time(self) -> float:
-        """The bag's start, in seconds (its first chunk's start time, as rosbag gives it)."""
+        """The bag's start, in seconds (its first chunk's start time, as rosbag gives it); ROSBagException
+        ``Bag contains no message`` for an empty bag."""
         return _time(self._span()[0]).to_sec()
 
     def get_end_time(self) -> float:
-        """The bag's end, in seconds (its last chunk's end time, as rosbag gives it)."""
+        """The bag's end, in seconds (its last chunk's end time, as rosbag gives it); ROSBagException
+        ``Bag contains no message`` for an empty bag."""
         return _time(self._span()[1]).to_sec()
 
     def get_type_and_topic_info(self, topic_filters: str | list[str] | None = None) -> TypesAndTopicsTuple:
         """``TypesAndTopicsTuple(msg_types={type: md5sum}, topics={topic: TopicTuple})`` (``frequency`` is
         1 / the median period between the topic's messages, None with fewer than two)."""
-        conns = self._connections()
-        types: dict[str, str] = {}
-        for conn in sorted(conns, key=lambda c: (c.type, c.md5sum, c.definition)):
-            types.setdefault(conn.type, conn.md5sum)
-        if topic_filters is not None:
-            names = sorted(set([topic_filters] if not isinstance(topic_filters, list) else topic_filters))
-        else:
-            names = sorted({c.topic for c in conns})
-        counts = self._counts()
-        stamps: dict[str, list[float]] = {}
-        if names:
-            wanted = set(names)
-            for conn, t, _chunk, _offset in self._index_rows():
-                if conn.topic in wanted:
-                    stamps.setdefault(conn.topic, []).append(_time(t).to_sec())
+        with self._peek() as reader:
+            counts = reader.summary().counts
+            conns = list(reader.connections.values())
+            types: dict[str, str] = {}
+            for conn in sorted(conns, key=lambda c: (c.type, c.md5sum, c.definition)):
+                types.setdefault(conn.type, conn.md5sum)
+            if topic_filters is not None:
+                names = sorted(set([topic_filters] if not isinstance(topic_filters, list) else topic_filters))
+            else:
+                names = sorted({c.topic for c in conns})
+            stamps: dict[str, list[float]] = {}
+            if names:
+                wanted = set(names)
+                for conn, t, _chunk, _offset in self._index_rows(reader):
+                    if conn.topic in wanted:
+                        stamps.setdefault(conn.topic, []).append(t / 1e9)
         topics: dict[str, TopicTuple] = {}
         for name in names:
             of_topic = [c for c in conns if c.topic == name]
@@ -433,25 +613,50 @@ class Bag:
         return TypesAndTopicsTuple(types, topics)
 
     def get_compression_info(self) -> CompressionTuple:
-        """``CompressionTuple(compression, uncompressed, compressed)``: the main chunk compression and sizes."""
-        summary = self._open_reader().summary()
+        """``CompressionTuple(compression, uncompressed, compressed)``: the compression most chunks use and the
+        byte counts of all chunks (the compression set for writing, and zeros, before any chunk)."""
+        with self._peek() as reader:
+            summary = reader.summary()
         kinds = summary.chunk_compression
-        kind = max(kinds, key=lambda k: kinds[k]) if kinds else "none"
+        if not kinds:
+            return CompressionTuple(self._compression, 0, 0)
+        kind = max(kinds, key=lambda k: (kinds[k], k))
         plain = sum(u for u, _ in summary.chunk_bytes.values())
         packed = sum(p for _, p in summary.chunk_bytes.values())
         return CompressionTuple(kind, plain, packed)
 
+    def reindex(self) -> Iterator[int]:
+        """Yields the position of each chunk as the bag's chunks are read to index them (rosbag's progress).
+
+        Opened with ``'a'`` and ``allow_unindexed=True``, an unindexed ``.bag`` was read at opening up to its
+        last complete chunk; closing the bag writes its index, as ``rosbag reindex`` does. Read-only bags
+        (``'r'``) are indexed in memory only. MCAP files: ROSBagException (use ``rostui bag reindex``).
+        """
+        if not self._open:
+            raise ValueError("I/O operation on closed bag")
+        chunks = getattr(self._writer, "chunk_infos", None)
+        if chunks is None:
+            with open(self._target.path, "rb") as f:
+                if f.read(len(MCAP_MAGIC)) == MCAP_MAGIC:
+                    raise ROSBagException("rostui's rosbag reindexes .bag files only: use `rostui bag reindex`")
+            try:
+                _conns, chunks, _end = read_chunk_infos(self._target.path, scan=True)
+            except BagError as exc:
+                raise ROSBagFormatException(str(exc)) from None
+        return iter([pos for pos, _start, _end, _counts in chunks])
+
     # --- writing -----------------------------------------------------------------------------------------
 
-    def _connection_id(self, topic: str, type_name: str, md5sum: str, definition: str, callerid: str = "",
-                       latching: bool = False) -> int:
+    def _connection_id(self, topic: str, header: dict[str, str]) -> int:
+        """The connection of ``topic``: one per topic, from its first message's header, as rosbag writes."""
         assert self._writer is not None
-        key = (topic, type_name, md5sum, callerid, latching)
-        conn_id = self._conn_ids.get(key)
+        conn_id = self._topic_ids.get(topic)
         if conn_id is None:
-            conn_id = self._conn_ids[key] = len(self._conn_ids)
-            self._writer.add_connection(Connection(conn_id, topic, type_name, md5sum, definition, callerid,
-                                                   latching))
+            conn_id = max(self._writer.connections, default=-1) + 1
+            self._topic_ids[topic] = conn_id
+            self._writer.add_connection(Connection(conn_id, topic, header.get("type", ""), header.get("md5sum", ""),
+                                                   header.get("message_definition", ""), header.get("callerid", ""),
+                                                   header.get("latching", "0") == "1"))
         return conn_id
 
     def write(self, topic: str, msg: Any, t: Any = None, raw: bool = False,
@@ -460,12 +665,13 @@ class Bag:
 
         With ``raw``, ``msg`` is ``(datatype, data, md5sum, position, pytype)`` (or
         rosbag's older ``(datatype, data, md5sum, pytype)``) as ``read_messages(raw=True)``
-        gives it. ``connection_header`` may carry ``callerid`` and ``latching``.
+        gives it. A topic's first ``connection_header`` (or its first message's type)
+        makes its connection, as rosbag writes one connection per topic.
         """
-        if self._writer is None:
-            if self._reader is not None:
-                raise ROSBagException("the bag is open for reading, not writing")
+        if not self._open:
             raise ValueError("I/O operation on closed bag")
+        if self._writer is None:
+            raise io.UnsupportedOperation("write")
         if not topic:
             raise ValueError("topic is invalid")
         if not msg:
@@ -477,22 +683,25 @@ class Bag:
             elif len(msg) == 4:
                 type_name, data, md5sum, pytype = msg
             else:
-                raise ValueError("raw messages are (datatype, data, md5sum, position, pytype)")
+                raise ValueError("msg must be of length 4 or 5")
+            if pytype is None:
+                pytype = get_message_class(type_name)
+                if pytype is None:
+                    raise ROSBagException(f"cannot locate message class and no message class provided for "
+                                          f"[{type_name}]")
             definition = pytype._full_text
             payload = bytes(data)
         else:
             type_name, md5sum, definition = msg._type, msg._md5sum, msg._full_text
-            from io import BytesIO
-
-            buff = BytesIO()
+            buff = io.BytesIO()
             msg.serialize(buff)
             payload = buff.getvalue()
-        header = connection_header or {}
-        topic = header.get("topic", topic)
-        conn_id = self._connection_id(topic, header.get("type", type_name), header.get("md5sum", md5sum),
-                                      header.get("message_definition", definition), header.get("callerid", ""),
-                                      header.get("latching", "0") == "1")
+        header = {k: (v.decode() if isinstance(v, bytes) else str(v)) for k, v in (connection_header or {}).items()}
+        if connection_header is None:
+            header = {"topic": topic, "type": type_name, "md5sum": md5sum, "message_definition": definition}
+        conn_id = self._connection_id(topic, header)
         try:
             self._writer.write(conn_id, stamp, payload)
         except BagError as exc:
             raise ROSBagException(str(exc)) from None
+        self._stale = True

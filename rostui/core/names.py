@@ -440,19 +440,22 @@ def node_global_name(
     args: NodeArgs,
     env: Mapping[str, str] = os.environ,
     anonymous: bool = False,
+    lenient: bool = False,
 ) -> str:
     """The node's global name: namespace + (``__name`` or ``default_name``) [+ anonymous suffix].
 
     A non-empty ``__name:=`` replaces ``default_name`` and turns ``anonymous``
     off, as in rospy and roscpp.  The base name must be legal (letters, digits,
     ``_``; no ``/``), else :class:`InvalidNameError` -- stricter than rospy,
-    which only warns.
+    which only warns; with ``lenient`` any non-empty name without ``/`` or
+    ``~`` is taken, as rospy takes it.
     """
     name = default_name
     if args.name:
         name = args.name
         anonymous = False
-    _validate_base_name(name, "node name")
+    if not (lenient and isinstance(name, str) and name and SEP not in name and PRIV not in name):
+        _validate_base_name(name, "node name")
     if anonymous:
         name = anonymous_name(name)
     return node_namespace(args, env) + name

@@ -1,4 +1,4 @@
-"""ROS package discovery: ROS_PACKAGE_PATH first, then rostui's built-in ``share/``.
+"""ROS package discovery: ROS_PACKAGE_PATH first, then rostui's built-in ``share/``, then Debian's.
 
 A package is a directory holding a ``package.xml``; each root is searched
 recursively (without descending into a package, like rospack) and the first
@@ -8,6 +8,13 @@ whenever ROS_PACKAGE_PATH changes (or :func:`clear_cache` is called).
 :func:`find_package_dirs` also gives the later directories of the same name:
 a file a package should hold but does not (Debian's ``/usr/share/rosgraph_msgs``
 has no ``msg/``) is then looked for there, down to rostui's built-in copy.
+
+Debian installs ROS packages as ``/usr/share/<pkg>/package.xml`` and its
+rospack finds them with no ROS_PACKAGE_PATH at all; rostui looks there last
+(one level deep, as Debian's rospack does), so a package rostui has built in
+keeps rostui's own tools.  A directory there holding ``msg/`` or ``srv/``
+definitions counts as a package even without a package.xml (Debian's
+ros-nav-msgs installs no package.xml).
 """
 
 from __future__ import annotations
@@ -20,6 +27,7 @@ from pathlib import Path
 __all__ = [
     "PackageNotFoundError",
     "BUILTIN_SHARE",
+    "SYSTEM_SHARE",
     "package_roots",
     "list_packages",
     "find_package",
@@ -35,6 +43,9 @@ __all__ = [
 
 BUILTIN_SHARE: Path = Path(__file__).resolve().parent.parent / "share"
 """Directory holding rostui's built-in packages (``rostui/share``)."""
+
+SYSTEM_SHARE: Path = Path("/usr/share")
+"""Where Debian installs ROS packages (each directly below it); searched one level deep, last."""
 
 _SKIP_DIRS = {".git", ".hg", ".svn", "__pycache__", "node_modules", ".venv"}
 
@@ -55,7 +66,10 @@ _cache_all: dict[str, list[Path]] = {}
 
 
 def package_roots() -> list[Path]:
-    """The package search roots in precedence order: ROS_PACKAGE_PATH entries, then built-ins."""
+    """The recursive package search roots in precedence order: ROS_PACKAGE_PATH entries, then built-ins.
+
+    :data:`SYSTEM_SHARE` comes after them and is not among them: it is searched one level deep.
+    """
     roots: list[Path] = []
     for entry in os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep):
         if entry.strip():
@@ -96,6 +110,30 @@ def _scan_root(root: Path, found: dict[str, list[Path]]) -> None:
         stack.extend(children)
 
 
+def _scan_share(share: Path, found: dict[str, list[Path]]) -> None:
+    """Add the packages directly below *share* (``<share>/<pkg>/package.xml``) to *found*, after the others."""
+    try:
+        children = sorted(c for c in share.iterdir() if not c.name.startswith("."))
+    except OSError:
+        return
+    for d in children:
+        if (d / "package.xml").is_file() or _holds_definitions(d):
+            dirs = found.setdefault(_package_name(d), [])
+            if d not in dirs:
+                dirs.append(d)
+
+
+def _holds_definitions(d: Path) -> bool:
+    """True for a directory with ``msg/*.msg`` or ``srv/*.srv`` files (Debian's ros-nav-msgs has no package.xml)."""
+    for kind in ("msg", "srv"):
+        try:
+            if any(f.suffix == "." + kind for f in (d / kind).iterdir()):
+                return True
+        except OSError:
+            continue
+    return False
+
+
 def _package_name(pkg_dir: Path) -> str:
     """The ``<name>`` in package.xml, or the directory name if it cannot be read."""
     try:
@@ -122,6 +160,7 @@ def _scan() -> tuple[dict[str, Path], dict[str, list[Path]]]:
             found: dict[str, list[Path]] = {}
             for root in package_roots():
                 _scan_root(root, found)
+            _scan_share(SYSTEM_SHARE, found)
             _cache, _cache_all, _cache_key = {name: dirs[0] for name, dirs in found.items()}, found, key
         return _cache, _cache_all
 

@@ -37,3 +37,16 @@ class ArgNotSetError(LaunchError):
         """Remember the arg's name."""
         super().__init__(f"arg '{name}' is used but never set")
         self.name = name
+
+
+class StrictError(LaunchError):
+    """``--strict``: the files hold unknown elements or attributes; one ``FILE:LINE: message`` line each."""
+
+    def __init__(self, lines: list[str]) -> None:
+        """Keep every problem's line."""
+        super().__init__(lines[0] if lines else "unknown elements or attributes")
+        self.lines = lines
+
+    def __str__(self) -> str:
+        """One line per problem."""
+        return "\n".join(self.lines)

@@ -17,6 +17,8 @@ class LaunchRequest:
     files: list[str]
     args: dict[str, str] = field(default_factory=dict)
     namespace: str = "/"
+    strict: bool = False
+    """Unknown elements and attributes are errors (``--strict``), not warnings."""
 
 
 def split_mappings(words: list[str]) -> tuple[list[str], dict[str, str]]:

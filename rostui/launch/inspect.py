@@ -10,7 +10,7 @@ from typing import Any
 import yaml
 
 from rostui.core.names import canonicalize_name
-from rostui.launch.errors import LaunchError
+from rostui.launch.errors import LaunchError, StrictError
 from rostui.launch.files import LaunchRequest
 from rostui.launch.loader import XmlLoader
 from rostui.launch.model import LaunchConfig, NodeSpec
@@ -18,11 +18,16 @@ from rostui.launch.substitution import SubstitutionContext, resolve
 
 
 def load_config(request: LaunchRequest, *, args_only: bool = False) -> tuple[LaunchConfig, XmlLoader]:
-    """Load every file of ``request`` into one config (the loader is returned for its shared anon names)."""
+    """Load every file of ``request`` into one config (the loader is returned for its shared anon names).
+
+    With ``request.strict`` an unknown element or attribute raises :class:`StrictError`.
+    """
     config = LaunchConfig()
     loader = XmlLoader(args_only=args_only)
     for filename in request.files:
         loader.load(filename, config, request.args, request.namespace)
+    if request.strict and config.problems:
+        raise StrictError([str(problem) for problem in config.problems])
     return config, loader
 
 

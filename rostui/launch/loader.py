@@ -6,9 +6,10 @@ declared earlier in the same scope) land under the node's name; remaps and
 ``env`` are inherited by later nodes of the scope; args are scoped to their
 file (an included file sees only what its ``<include>`` passes, or everything
 with ``pass_all_args``) and to their group; ``if``/``unless`` accept only
-true/false/1/0.  Unlike roslaunch, an unknown element or attribute is an
-error, not a warning.  Every error is a :class:`LaunchError` carrying the
-file and line of the element at fault.
+true/false/1/0.  An unknown element or attribute is, as in roslaunch, only a
+warning (a :class:`~rostui.launch.model.LaunchProblem` with its file and
+line); ``--strict`` turns those into errors.  Every error is a
+:class:`LaunchError` carrying the file and line of the element at fault.
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ from rostui.core.names import (
     canonicalize_name, is_legal_name, is_private, join_names, make_global_ns,
 )
 from rostui.launch.errors import ArgNotSetError, LaunchError
-from rostui.launch.model import LaunchConfig, Machine, NodeSpec, RosparamCommand
+from rostui.launch.model import LaunchConfig, LaunchProblem, Machine, NodeSpec, RosparamCommand
 from rostui.launch.substitution import SubstitutionContext, resolve
 from rostui.launch.values import convert_value
 
@@ -40,6 +41,10 @@ PARAM_ATTRS = {"name", "value", "type", "textfile", "binfile", "command"}
 ROSPARAM_ATTRS = {"command", "ns", "file", "param", "subst_value"}
 ARG_ATTRS = {"name", "value", "default", "doc"}
 MACHINE_ATTRS = {"name", "address", "env-loader", "ssh-port", "user", "password", "default", "timeout"}
+#: ``<machine>`` attributes of ROS before Fuerte: roslaunch refuses them (env-loader replaced them).
+PRE_FUERTE_MACHINE_ATTRS = ("ros-root", "ros-package-path", "ros-ip", "ros-hostname")
+#: ``<machine default=…>`` -> (the machine becomes the default for later nodes, nodes may be assigned to it).
+MACHINE_DEFAULTS = {"true": (True, True), "false": (False, True), "never": (False, False)}
 ATTRS = {
     "launch": {"deprecated"}, "node": NODE_ATTRS, "test": TEST_ATTRS, "param": PARAM_ATTRS,
     "rosparam": ROSPARAM_ATTRS, "arg": ARG_ATTRS, "machine": MACHINE_ATTRS, "remap": {"from", "to"},
@@ -139,11 +144,13 @@ class XmlLoader:
         self.args_only = args_only
         self.anons: dict[str, str] = {}
         self.root: Scope | None = None
+        self.config: LaunchConfig | None = None
 
     # -- entry points ------------------------------------------------------------------------------------------
 
     def load(self, filename: str, config: LaunchConfig, argv_args: dict[str, str], namespace: str = "/") -> None:
         """Load ``filename`` (with ``name:=value`` args from the command line) into ``config``."""
+        self.config = config
         root = self._parse(filename, None)
         config.files.append(filename)
         self._launch_tag(root, config, filename)
@@ -181,12 +188,19 @@ class XmlLoader:
             raise LaunchError(f"<{tag.tag}> tag is missing required attribute: '{name}'")
         return self._sub(value, scope) or ""
 
-    @staticmethod
-    def _check_attrs(tag: etree._Element) -> None:
-        allowed = ATTRS.get(tag.tag, set()) | {"if", "unless"}
+    def _problem(self, message: str, filename: str, tag: etree._Element) -> None:
+        """Record an unknown element or attribute (a warning; an error with --strict)."""
+        if self.config is None:
+            return
+        problem = LaunchProblem(message, filename, _line(tag))
+        self.config.problems.append(problem)
+        self.config.warnings.append(str(problem))
+
+    def _check_attrs(self, tag: etree._Element, scope: Scope) -> None:
+        allowed = ATTRS.get(_str(tag.tag).lower(), set()) | {"if", "unless"}
         for attr in map(_str, tag.attrib):
             if attr not in allowed:
-                raise LaunchError(f"unknown <{tag.tag}> attribute '{attr}'")
+                self._problem(f"unknown <{tag.tag}> attribute '{attr}'", scope.filename, tag)
 
     def _included(self, tag: etree._Element, scope: Scope) -> bool:
         """Evaluate ``if``/``unless``: True when the element applies."""
@@ -225,7 +239,6 @@ class XmlLoader:
     # -- elements ----------------------------------------------------------------------------------------------
 
     def _launch_tag(self, root: etree._Element, config: LaunchConfig, filename: str) -> None:
-        self._check_attrs(root)
         deprecated = root.get("deprecated")
         if deprecated:
             config.warnings.append(f"[{filename}] DEPRECATED: {deprecated}")
@@ -244,15 +257,18 @@ class XmlLoader:
     def _element(self, tag: etree._Element, scope: Scope, config: LaunchConfig,
                  default_machine: Machine | None) -> Machine | None:
         name = tag.tag
-        if name not in ATTRS or name == "launch":
-            raise LaunchError(f"unknown element <{name}>")
         if name == "arg":
             if self._included(tag, scope):
                 self._arg_tag(tag, scope)
             return default_machine
-        if self.args_only or not self._included(tag, scope):
+        if self.args_only:
             return default_machine
-        self._check_attrs(tag)
+        if name not in ATTRS or name == "launch":
+            self._problem(f"unrecognized tag <{name}>", scope.filename, tag)
+            return default_machine
+        if not self._included(tag, scope):
+            return default_machine
+        self._check_attrs(tag, scope)
         if name == "group":
             child = self._ns_clear_params(tag, scope, config)
             child.params = list(child.params)
@@ -271,9 +287,9 @@ class XmlLoader:
         elif name == "machine":
             machine, is_default = self._machine_tag(tag, scope)
             previous = config.machines.get(machine.name)
-            if previous is not None and (previous.address, previous.user, previous.ssh_port) != \
-                    (machine.address, machine.user, machine.ssh_port):
-                raise LaunchError(f"Machine [{machine.name}] already added and does not match duplicate entry")
+            if previous is not None and not previous.same_as(machine):
+                raise LaunchError(f"Machine [{machine.name}] already added and does not match duplicate entry "
+                                  f"(first declared at {previous.filename}:{previous.line})")
             config.machines.setdefault(machine.name, machine)
             if is_default:
                 return machine
@@ -292,7 +308,7 @@ class XmlLoader:
         (config.tests if node.is_test else config.nodes).append(node)
 
     def _arg_tag(self, tag: etree._Element, scope: Scope) -> None:
-        self._check_attrs(tag)
+        self._check_attrs(tag, scope)
         name = self._req(tag, scope, "name")
         value, default, doc = (self._opt(tag, scope, a) for a in ("value", "default", "doc"))
         if value is not None and default is not None:
@@ -366,17 +382,19 @@ class XmlLoader:
         for sub in tag:
             if not isinstance(sub.tag, str):
                 continue
+            kind = _str(sub.tag).lower()
             try:
-                if sub.tag not in ("remap", "param", "rosparam", "env"):
-                    raise LaunchError(f"unknown element <{sub.tag}> inside <{tag.tag}>")
+                if kind not in ("remap", "param", "rosparam", "env"):
+                    self._problem(f"unrecognized '{sub.tag}' child tag in <{tag.tag}>", scope.filename, sub)
+                    continue
                 if not self._included(sub, scope):
                     continue
-                self._check_attrs(sub)
-                if sub.tag == "remap":
+                self._check_attrs(sub, scope)
+                if kind == "remap":
                     remap_scope.add_remap(self._req(sub, scope, "from"), self._req(sub, scope, "to"))
-                elif sub.tag == "param":
+                elif kind == "param":
                     self._param_tag(sub, param_scope, config, force_local=True)
-                elif sub.tag == "rosparam":
+                elif kind == "rosparam":
                     self._rosparam_tag(sub, param_scope, config)
                 else:
                     self._env_tag(sub, env_scope)
@@ -504,26 +522,40 @@ class XmlLoader:
         scope.env.append((name, value))
 
     def _machine_tag(self, tag: etree._Element, scope: Scope) -> tuple[Machine, bool]:
+        """A ``<machine>`` and whether it becomes the default machine of later nodes."""
+        if any(self._opt(tag, scope, a) for a in PRE_FUERTE_MACHINE_ATTRS):
+            raise LaunchError("<machine>: ros-* attributes are not supported since ROS Fuerte; use env-loader "
+                              "instead")
         name, address = self._req(tag, scope, "name"), self._req(tag, scope, "address")
         env_loader, ssh_port, user, password, default, timeout = (
             self._opt(tag, scope, a) for a in ("env-loader", "ssh-port", "user", "password", "default", "timeout"))
         try:
             port = int(ssh_port or "22")
         except ValueError:
-            raise LaunchError(f"invalid ssh-port for <machine>: {ssh_port}") from None
+            raise LaunchError(f"'ssh-port' must be a number: [{ssh_port}]") from None
         default = (default or "false").lower()
-        if default not in ("true", "false", "never"):
-            raise LaunchError(f"Invalid value for 'default': {default}")
+        if default not in MACHINE_DEFAULTS:
+            raise LaunchError(f"Invalid value for 'default': {default} (true, false or never)")
+        is_default, assignable = MACHINE_DEFAULTS[default]
         for sub in tag:
-            if isinstance(sub.tag, str):
-                raise LaunchError(f"unknown element <{sub.tag}> inside <machine>")
+            if not isinstance(sub.tag, str):
+                continue
+            if sub.tag == "env":
+                raise LaunchError("<machine>: <env> tag is not supported since ROS Fuerte; use env-loader instead")
+            self._problem(f"unrecognized '{sub.tag}' tag in <machine> tag", scope.filename, sub)
         limit: float | None = None
+        if timeout == "":
+            raise LaunchError("'timeout' cannot be empty")
         if timeout is not None:
-            limit = self._float(timeout, 0.0, "timeout")
+            try:
+                limit = float(timeout)
+            except ValueError:
+                raise LaunchError(f"'timeout' must be a number: [{timeout}]") from None
             if limit <= 0:
-                raise LaunchError(f"'timeout' must be a positive number: [{timeout}]")
-        machine = Machine(name, address, env_loader, port, user, password, limit, _line(tag), scope.filename)
-        return machine, default == "true"
+                raise LaunchError(f"'timeout' must be a positive number: [{limit}]")
+        machine = Machine(name, address, env_loader, port, user or None, password, limit, _line(tag), scope.filename,
+                          assignable=assignable)
+        return machine, is_default
 
     def _include_tag(self, tag: etree._Element, scope: Scope, config: LaunchConfig,
                      default_machine: Machine | None) -> Machine | None:
@@ -538,15 +570,17 @@ class XmlLoader:
         for sub in tag:
             if not isinstance(sub.tag, str):
                 continue
+            kind = _str(sub.tag).lower()
             try:
-                if sub.tag not in ("arg", "env"):
-                    raise LaunchError(f"unknown element <{sub.tag}> inside <include>")
+                if kind not in ("arg", "env"):
+                    self._problem(f"unrecognized '{sub.tag}' tag in <include> tag", scope.filename, sub)
+                    continue
                 if not self._included(sub, child):
                     continue
-                if sub.tag == "arg":
+                if kind == "arg":
                     self._arg_tag(sub, child)
                 else:
-                    self._check_attrs(sub)
+                    self._check_attrs(sub, child)
                     self._env_tag(sub, child)
             except LaunchError as exc:
                 raise exc.located(scope.filename, _line(sub)) from None

@@ -108,6 +108,16 @@ class ManagedProcess:
         """The node's pid while it has a process."""
         return self.proc.pid if self.proc is not None else None
 
+    @property
+    def local(self) -> bool:
+        """True when the pid is a process of this machine (a node on another machine has one of its own)."""
+        return True
+
+    @property
+    def machine_name(self) -> str | None:
+        """The ``<machine>`` the node runs on when that is another host; None here."""
+        return None
+
     async def start(self) -> None:
         """Start (or restart) the process; raises OSError when it cannot be executed."""
         plan = self.plan

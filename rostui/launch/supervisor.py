@@ -37,16 +37,18 @@ import yaml
 from rostui.core.log.files import ros_home, run_log_dir
 from rostui.core.msg import MessageError
 from rostui.core.network import resolve_addressing
-from rostui.core.master.embedded import EmbeddedMaster, MasterUnavailableError, ensure_master, is_local_host, \
+from rostui.core.master.embedded import EmbeddedMaster, MasterUnavailableError, ensure_master, \
     master_answers
 from rostui.core.xmlrpc import XmlRpcClient, XmlRpcError
 from rostui.core.xmlrpc.server import XmlRpcServer
 from rostui.launch.errors import LaunchError
 from rostui.launch.files import LaunchRequest
 from rostui.launch.inspect import load_config, node_argv, node_env
-from rostui.launch.model import LaunchConfig, NodeSpec
+from rostui.launch.machines import assign_machines
+from rostui.launch.model import LaunchConfig, Machine, NodeSpec
 from rostui.launch.output import OutputBuffer
 from rostui.launch.process import ManagedProcess, NodeState, ProcessPlan
+from rostui.launch.remote_parent import RemoteLaunch, RemoteProcess
 
 CALLER = "/roslaunch"
 #: A respawned node that dies within this many seconds of starting is restarted with a growing delay.
@@ -101,19 +103,9 @@ def master_uri_for(options: SupervisorOptions) -> str:
     return urlunsplit((parts.scheme or "http", f"{host}:{options.port}", "/", "", ""))
 
 
-def check_machines(config: LaunchConfig) -> None:
-    """Refuse (before anything starts) nodes assigned to an unknown machine or to another host."""
-    for node in config.nodes:
-        if not node.machine:
-            continue
-        machine = config.machines.get(node.machine)
-        if machine is None:
-            raise LaunchError(f"unknown machine [{node.machine}] for node [{node.resolved_name}]",
-                              node.filename, node.line)
-        if not is_local_host(machine.address):
-            raise LaunchError(f"node [{node.resolved_name}] is assigned to machine [{machine.name}] at "
-                              f"{machine.address}: remote launch (ssh) is not available in rostui",
-                              node.filename, node.line)
+def remote_machine(config: LaunchConfig, node: NodeSpec) -> Machine | None:
+    """The machine ``node`` runs on when :func:`assign_machines` found it is another host (or user), else None."""
+    return config.machine_of(node) if node.remote else None
 
 
 def log_label(node: NodeSpec, counter: int) -> str:
@@ -150,6 +142,22 @@ class _LaunchApi:
         dead = [[p.plan.label, p.starts] for p in processes if p.proc and p.proc.returncode is not None]
         return [1, "processes on this launcher", [running, dead]]
 
+    def register(self, client: str, uri: str) -> list[Any]:
+        """roslaunch's parent API: a child on a remote machine says where its XML-RPC server is."""
+        return self._supervisor.remote.register(client, uri)
+
+    def list_children(self) -> list[Any]:
+        """roslaunch's parent API: the XML-RPC URIs of the registered children."""
+        return self._supervisor.remote.list_children()
+
+    def process_died(self, label: str, exit_code: int) -> list[Any]:
+        """roslaunch's parent API: a node on a remote machine has ended."""
+        return self._supervisor.remote.process_died(label, exit_code)
+
+    def log(self, client: str, level: int, message: str) -> list[Any]:
+        """roslaunch's parent API: a line of a child's own output."""
+        return self._supervisor.remote.log(client, level, message)
+
 
 class Supervisor:
     """Starts a loaded launch and keeps it running until Ctrl-C, a required node's death or all nodes ending.
@@ -181,6 +189,8 @@ class Supervisor:
         self._reporter = reporter
         self._watchers: dict[int, asyncio.Task[None]] = {}
         self._failures: dict[int, str] = {}
+        self.remote = RemoteLaunch(self)
+        """The children on other machines (roslaunch's remote protocol over SSH)."""
 
     # -- the launcher's own lines ------------------------------------------------------------------------------
 
@@ -300,6 +310,11 @@ class Supervisor:
     def _prepare_nodes(self, run_dir: Path) -> None:
         """One process entry per node, in file order (a node that cannot run is marked FAILED, not dropped)."""
         for counter, node in enumerate(self.config.nodes, start=1):
+            machine = remote_machine(self.config, node)
+            if machine is not None:
+                plan = ProcessPlan(node, log_label(node, counter), [], {}, "", None, self.options.capture)
+                self.processes.append(self.remote.add(RemoteProcess(plan, machine=machine)))
+                continue
             problem = prefix_problem(node)
             message = f"ERROR: cannot launch node [{node.resolved_name}]: {problem}; the other nodes keep running"
             try:
@@ -318,8 +333,8 @@ class Supervisor:
         for process in self.processes:
             if self.stopping.is_set():
                 return
-            if process.state is NodeState.STOPPED:  # stopped from the monitor before its turn came
-                continue
+            if process.state is NodeState.STOPPED or isinstance(process, RemoteProcess):
+                continue  # stopped from the monitor before its turn came, or started by its machine's child
             if process.state is NodeState.FAILED:
                 message = self._failures[id(process)]
                 self.complain(message)
@@ -371,18 +386,9 @@ class Supervisor:
                            f"cmd {' '.join(plan.argv)}]{where}")
                 self.complain(message)
             process.note(message, error=code != 0)
+            self._exited(process, code)
             node = plan.spec
-            if node.required:
-                self.complain(f"REQUIRED process [{plan.label}] has died! Initiating shutdown!")
-                self.end_reason = f"required node {process.name} has died (exit code {code}): the launch was shut down"
-                self.exit_code = 1 if code != 0 else 0
-                self.stopping.set()
-                return
-            if not node.respawn:
-                if self._all_ended() and self.embedded is None and not self.options.stay_when_all_ended:
-                    self.say("all processes on machine have died, roslaunch will exit")
-                    self.end_reason = "every node has ended: the launch is over"
-                    self.stopping.set()
+            if self.node_ended(process, code):
                 return
             backoff = min(MAX_BACKOFF, max(1.0, backoff * 2)) if ran_for < QUICK_DEATH else 0.0
             delay = node.respawn_delay + backoff
@@ -414,6 +420,29 @@ class Supervisor:
             self.say(message)
             process.note(message)
 
+    def _exited(self, process: ManagedProcess, code: int) -> None:
+        """Called once for each death of a node's process, before the launch decides what follows."""
+
+    def node_ended(self, process: ManagedProcess, code: int | None) -> bool:
+        """After a node's death: end the launch for a ``required`` node or when every node has ended.
+
+        True when the node will not be restarted (it is not ``respawn``).
+        """
+        node = process.plan.spec
+        if node.required:
+            self.complain(f"REQUIRED process [{process.label}] has died! Initiating shutdown!")
+            self.end_reason = f"required node {process.name} has died (exit code {code}): the launch was shut down"
+            self.exit_code = 1 if code != 0 else 0
+            self.stopping.set()
+            return True
+        if not node.respawn:
+            if self._all_ended() and self.embedded is None and not self.options.stay_when_all_ended:
+                self.say("all processes on machine have died, roslaunch will exit")
+                self.end_reason = "every node has ended: the launch is over"
+                self.stopping.set()
+            return True
+        return False
+
     # -- control of one node (the monitor's start, stop and restart) ------------------------------------------
 
     def process_named(self, name: str) -> ManagedProcess:
@@ -429,9 +458,16 @@ class Supervisor:
             watcher.cancel()
             await asyncio.gather(watcher, return_exceptions=True)
 
+    @staticmethod
+    def _refuse_remote(process: ManagedProcess) -> None:
+        if isinstance(process, RemoteProcess):
+            raise LaunchError(f"node [{process.name}] runs on machine [{process.machine.name}]: it starts and "
+                              "stops with the whole launch")
+
     def _check_open(self, process: ManagedProcess) -> None:
         if self.stopping.is_set():
             raise LaunchError("the launch is shutting down")
+        self._refuse_remote(process)
         if process.state is NodeState.FAILED and not process.plan.argv:
             raise LaunchError(f"node [{process.name}] cannot be started: {process.problem}")
 
@@ -458,6 +494,7 @@ class Supervisor:
         async with process.lock:
             if self.stopping.is_set():
                 raise LaunchError("the launch is shutting down")
+            self._refuse_remote(process)
             await self._stop_locked(process, "stopped on request")
 
     async def start_node(self, name: str) -> bool:
@@ -501,7 +538,10 @@ class Supervisor:
             await self._set_params()
             await self._advertise()
             self._prepare_nodes(run_dir)
+            assert self.server is not None
+            await self.remote.start_children(self.server.uri, self.run_id)
             await self._start_nodes()
+            await self.remote.launch_nodes()
             started = [p for p in self.processes if p.starts]
             if not started and self.embedded is None and not self.stopping.is_set() \
                     and not self.options.stay_when_all_ended:
@@ -518,6 +558,8 @@ class Supervisor:
         return self.exit_code
 
     async def _stop_for_shutdown(self, process: ManagedProcess) -> str:
+        if isinstance(process, RemoteProcess):
+            return "exited"  # its machine's child stops it (RemoteLaunch.shutdown)
         async with process.lock:
             was_running = process.running
             if was_running:
@@ -536,7 +578,9 @@ class Supervisor:
         self.stopping.set()
         try:
             stops = [self._stop_for_shutdown(p) for p in self.processes]
+            remote = asyncio.get_running_loop().create_task(self.remote.shutdown())
             results = await asyncio.gather(*stops, return_exceptions=True)
+            await remote
             for process, how in zip(self.processes, results):
                 if how in ("SIGTERM", "SIGKILL"):
                     self.complain(f"[{process.plan.label}] did not stop on SIGINT: sent {how}")
@@ -567,9 +611,10 @@ def load_supervisor(request: LaunchRequest, options: SupervisorOptions,
     supervisor = Supervisor(config, loader.anons, options, reporter)
     for warning in config.warnings:
         supervisor.complain(f"WARNING: {warning}")
-    check_machines(config)
+    assign_machines(config)
     for node in config.nodes:
-        node_argv(node, loader.anons)  # every executable must exist before anything starts
+        if remote_machine(config, node) is None:  # remote executables are the remote machine's business
+            node_argv(node, loader.anons)  # every executable must exist before anything starts
     if options.verbose:
         for node in config.nodes:
             supervisor.say(f"node {node.resolved_name}: {node.package}/{node.type}")

@@ -76,11 +76,12 @@ def flags_text(process: ManagedProcess) -> str:
 
 
 def node_row(process: ManagedProcess, usage: Usage | None, now: float | None = None) -> NodeRow:
-    """The table row of ``process``; pid and usage only while it runs."""
+    """The table row of ``process``; pid and usage only while it runs; ``/name @machine`` for a remote node."""
     running = process.running
+    where = process.machine_name
     return NodeRow(
         key=process.label,
-        node=process.name,
+        node=process.name if where is None else f"{process.name} @{where}",
         state=state_text(process, now),
         pid=str(process.pid) if running and process.pid is not None else "-",
         cpu=f"{usage.cpu_percent:.1f}" if running and usage is not None else "-",
@@ -96,6 +97,6 @@ def measure(sampler: UsageSampler, process: ManagedProcess, children: dict[int, 
 
     ``children`` is :func:`~rostui.launch.usage.children_map`, taken once for every node of a refresh.
     """
-    if not process.running or process.pid is None:
-        return None
+    if not process.running or process.pid is None or not process.local:
+        return None  # a node on another machine is not measured here
     return sampler.measure(tree_of(process.pid, children))

@@ -368,6 +368,8 @@ class McapBagReader(ChunkedFile):
         self.connections: dict[int, Connection] = {}
         self.truncated = ""
         self._md5s: dict[int, str] = {}  # by schema id (0: no schema), for channels without md5sum metadata
+        self._scanned_schemas: dict[int, Any] = {}
+        """Schema records met while reading chunks: a later chunk's channel may use one an earlier chunk held."""
         self._summary = self._read_summary()
 
     def close(self) -> None:
@@ -480,7 +482,7 @@ class McapBagReader(ChunkedFile):
     def _chunk_part(self, number: int) -> ChunkEntries:
         """The entries of chunk ``number`` found by reading its records (schemas and channels taken in)."""
         times, conn_ids, offsets = [], [], []
-        schemas: dict[int, Any] = {}
+        schemas = self._scanned_schemas
         for at, opcode, body in _walk(self.cache.get(number)):
             if opcode == OP_MESSAGE:
                 channel_id, _seq, log_time = _MESSAGE_FIELDS.unpack_from(body)
@@ -508,7 +510,7 @@ class McapBagReader(ChunkedFile):
         self.chunk_table = []
         parts: list[ChunkEntries] = []
         loose: tuple[list[int], list[int], list[int]] = ([], [], [])
-        schemas: dict[int, Any] = {}
+        schemas = self._scanned_schemas
         self.file.seek(len(MAGIC))
         pos = len(MAGIC)
         while pos + 9 <= self.size:

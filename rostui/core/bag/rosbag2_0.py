@@ -14,12 +14,13 @@ import os
 import struct
 import time
 from collections.abc import Callable, Iterator
+from dataclasses import dataclass
 from typing import Any, BinaryIO
 
 from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, FileIndex
 from rostui.core.bag.iov import Parts
 from rostui.core.bag.model import BagError, BagSummary, Connection
-from rostui.core.bag.sink import open_append
+from rostui.core.bag.sink import AppendFile, open_append
 
 MAGIC = b"#ROSBAG V2.0\n"
 FILE_HEADER_LENGTH = 4096
@@ -117,6 +118,17 @@ def _decompress(kind: str, data: bytes) -> bytes:
     raise BagError(f"unsupported chunk compression '{kind}'")
 
 
+@dataclass(frozen=True)
+class Resumed:
+    """An existing ``.bag`` a :class:`BagWriter` goes on writing: the file opened at the end of its last
+    complete chunk (the old index cut off), its connections and its chunks' infos
+    ``(position, start_ns, end_ns, {conn_id: count})`` (:mod:`rostui.core.bag.bag_append` finds them)."""
+
+    out: AppendFile
+    connections: dict[int, Connection]
+    chunks: list[tuple[int, int, int, dict[int, int]]]
+
+
 class BagWriter:
     """Writes a rosbag v2.0 file; ``close()`` writes the index and the final file header.
 
@@ -125,16 +137,16 @@ class BagWriter:
     """
 
     def __init__(self, path: str, *, compression: str = "none", chunk_bytes: int = 768 * 1024,
-                 max_chunk_age: float = 0.5, direct: bool = False) -> None:
+                 max_chunk_age: float = 0.5, direct: bool = False, resume: Resumed | None = None) -> None:
         if compression not in COMPRESSIONS:
             raise BagError(f"a .bag file cannot use {compression} compression (none, bz2 or lz4)")
         self.path = path
         self.compression = compression
         self.chunk_bytes = chunk_bytes
         self.max_chunk_age = max_chunk_age
-        self.out = open_append(path, direct)
-        self.connections: dict[int, Connection] = {}
-        self.chunk_infos: list[tuple[int, int, int, dict[int, int]]] = []
+        self.out = open_append(path, direct) if resume is None else resume.out
+        self.connections: dict[int, Connection] = {} if resume is None else dict(resume.connections)
+        self.chunk_infos: list[tuple[int, int, int, dict[int, int]]] = [] if resume is None else list(resume.chunks)
         self.closed = False
         self.good_end = 0
         self._chunk = Parts()
@@ -142,6 +154,11 @@ class BagWriter:
         self._chunk_index: dict[int, list[tuple[int, int]]] = {}
         self._chunk_new_conns: set[int] = set()
         self._written_conns: set[int] = set()
+        if resume is not None:
+            # the old chunks hold these connections' records: new chunks do not repeat them, as rosbag appends
+            self._written_conns = set(self.connections)
+            self.good_end = self.out.end
+            return
         self._write_all([MAGIC, self._file_header(0, 0, 0)])
         self.good_end = len(MAGIC) + FILE_HEADER_RECORD_SIZE
 

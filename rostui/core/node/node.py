@@ -148,12 +148,12 @@ class AsyncNode:
 
     def __init__(self, name: str, *, argv: Sequence[str] | None = None, anonymous: bool = False,
                  master_uri: str | None = None, package: str | None = None, busy_poll: bool = False,
-                 watch_master: bool = True) -> None:
+                 watch_master: bool = True, lenient_name: bool = False) -> None:
         args = names.parse_argv(list(argv or []))
         self.args = args
         self.argv = list(args.args)
         self.namespace = names.node_namespace(args)
-        self.name = names.node_global_name(name, args, anonymous=anonymous)
+        self.name = names.node_global_name(name, args, anonymous=anonymous, lenient=lenient_name)
         self.remappings = names.resolve_remappings(args.remaps, self.namespace, self.name)
         self.master_uri = master_uri_from_env(args.master or master_uri)
         self.addressing: Addressing = resolve_addressing(self.master_uri, args.ip, args.hostname)

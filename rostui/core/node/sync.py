@@ -27,26 +27,24 @@ import signal
 import sys
 import threading
 import time
+from types import TracebackType
 from typing import Any, Callable, Sequence
 
 from rostui.core import names
 from rostui.core.log import Console, Level, LoggerTree, NodeLog, package_logger
 from rostui.core.node import node as _node
+from rostui.core.node import timing as _timing
+from rostui.core.node.clock import CLOCK_TOPIC, USE_SIM_TIME_PARAM, Clock
+from rostui.core.node.errors import ROSException as ROSException
+from rostui.core.node.errors import ROSInterruptException as ROSInterruptException
+from rostui.core.node.errors import ROSTimeMovedBackwardsException as ROSTimeMovedBackwardsException
 from rostui.core.node.engine import Engine
 from rostui.core.packages import package_of
-from rostui.core.msg import get_service_class
-from rostui.core.node.services import ServiceException, probe_service
+from rostui.core.msg import get_message_class, get_service_class
+from rostui.core.node.services import ServiceException, make_response, probe_service
 from rostui.core.node.topics import TopicType
 from rostui.core.rostime import Duration, Time
 from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, call_sync, ros_result
-
-
-class ROSException(Exception):
-    """Base error of the sync API."""
-
-
-class ROSInterruptException(ROSException, KeyboardInterrupt):
-    """Raised by sleep() and Rate.sleep() when the node shuts down."""
 
 
 class _State:
@@ -57,6 +55,8 @@ class _State:
     shutdown = threading.Event()
     reason = ""
     hooks: list[Callable[..., Any]] = []
+    clock = Clock()
+    console: Console | None = None
 
 
 _state = _State()
@@ -79,12 +79,18 @@ _previous_excepthook = sys.excepthook
 
 def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = False,
               log_level: int | Level | None = None, disable_signals: bool = False,
-              master_uri: str | None = None, wait_for_master: bool = True) -> None:
+              master_uri: str | None = None, wait_for_master: bool = True,
+              disable_rostime: bool = False, lenient_name: bool = False) -> None:
     """Start this process's node.
 
     ``argv`` is the full command line, program name first, as in rospy
     (default ``sys.argv``); its ROS arguments (remaps, ``__name:=``,
-    ``_param:=``...) configure the node.
+    ``_param:=``...) configure the node.  When the parameter ``/use_sim_time``
+    is true the node follows simulated time from ``/clock`` (see
+    :func:`get_rostime`), unless *disable_rostime* (or *wait_for_master* is
+    False: without a master to ask, the node keeps the wall clock).
+    ``lenient_name`` takes any name without ``/`` or ``~``, as rospy does
+    (``draw_circle.py``).
     """
     global _previous_excepthook
     if _state.node is not None:
@@ -93,7 +99,9 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     argv = list(sys.argv if argv is None else argv)
     package = package_of(argv[0]) if argv and argv[0] and os.path.exists(argv[0]) else None
     node = _node.AsyncNode(name, argv=argv[1:], anonymous=anonymous, master_uri=master_uri, package=package,
-                           busy_poll=True)
+                           busy_poll=True, lenient_name=lenient_name)
+    if _state.console is not None:
+        node.log.console = _state.console
     if log_level is not None:
         node.log.set_level(Level(int(log_level)))
     engine.run(node.start(announce=False))
@@ -117,6 +125,26 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
                 raise ROSInterruptException("shutdown while waiting for the master") from None
             raise
         engine.run(node.announce())
+        if not disable_rostime:
+            _start_sim_time(engine, node)
+
+
+def _start_sim_time(engine: Engine, node: _node.AsyncNode) -> None:
+    """Follow ``/clock`` when the master's ``/use_sim_time`` is true (zero until the first message)."""
+    try:
+        code, _, value = call_sync(node.master_uri, "getParam", node.name, USE_SIM_TIME_PARAM)
+    except XmlRpcConnectionError as exc:
+        raise ROSException(f"Unable to communicate with master at {node.master_uri}: {exc}") from exc
+    if code != 1 or not value:
+        return
+    clock = _state.clock
+    clock.set(Time(0, 0))
+    node.log.clock = clock.now_ns
+
+    def tick(msg: Any) -> None:
+        clock.set(msg.clock)
+
+    engine.run(node.subscribe(CLOCK_TOPIC, get_message_class("rosgraph_msgs/Clock"), tick, queue_size=1))
 
 
 def _on_signal(signum: int, _frame: Any) -> None:
@@ -126,6 +154,7 @@ def _on_signal(signum: int, _frame: Any) -> None:
 def _on_node_shutdown(reason: str) -> None:
     _state.reason = reason
     _state.shutdown.set()
+    _state.clock.wake()
     for hook in list(_state.hooks):
         try:
             hook(reason) if _accepts_arg(hook) else hook()
@@ -162,6 +191,7 @@ def signal_shutdown(reason: str) -> None:
     """Shut the node down: unregister everything, close connections."""
     engine, node = _state.engine, _state.node
     _state.shutdown.set()
+    _state.clock.wake()
     if engine is None or node is None:
         return
     if engine.on_engine_thread:
@@ -232,111 +262,55 @@ def myargv(argv: Sequence[str] | None = None) -> list[str]:
 
 # -- time ---------------------------------------------------------------------------
 def get_rostime() -> Time:
-    """The current time."""
-    return Time.now()
+    """The current ROS time: the wall clock, or under ``/use_sim_time`` the last ``/clock`` (zero before one)."""
+    return _state.clock.now()
 
 
 def get_time() -> float:
-    """The current time in seconds."""
-    return time.time()
+    """The current ROS time in float seconds."""
+    return _state.clock.now().to_sec()
+
+
+def is_wallclock() -> bool:
+    """True unless this node follows simulated time from ``/clock``."""
+    return _state.clock.is_wallclock
 
 
 def sleep(duration: float | Duration) -> None:
-    """Sleep, returning early with ROSInterruptException on shutdown."""
-    seconds = duration.to_sec() if isinstance(duration, Duration) else float(duration)
-    if seconds <= 0:
-        return
-    if _state.shutdown.wait(seconds):
-        raise ROSInterruptException("ROS shutdown request")
+    """Sleep *duration* seconds of ROS time; ROSInterruptException on shutdown.
+
+    Under simulated time it waits for the first ``/clock`` message, then until
+    ``/clock`` has advanced by *duration*; ROSTimeMovedBackwardsException when
+    the clock jumps back meanwhile.
+    """
+    _timing.sleep(_state.clock, _state.shutdown, duration)
 
 
-class Rate:
-    """Keeps a loop at a fixed frequency (like rospy.Rate / ros::Rate)."""
+class Rate(_timing.Rate):
+    """Keeps a loop at *hz* cycles a second of ROS time (like rospy.Rate / ros::Rate).
 
-    def __init__(self, hz: float) -> None:
-        if hz <= 0:
-            raise ValueError("rate must be positive")
-        self.period = 1.0 / hz
-        self.last = time.monotonic()
+    With *reset*, a jump back of simulated time restarts the cycle instead of
+    raising ROSTimeMovedBackwardsException.
+    """
 
-    def remaining(self) -> float:
-        """Seconds left in the current cycle."""
-        return self.last + self.period - time.monotonic()
-
-    def sleep(self) -> None:
-        """Sleep until the next cycle; raises ROSInterruptException on shutdown."""
-        now = time.monotonic()
-        remaining = self.last + self.period - now
-        if remaining > 0:
-            if _state.shutdown.wait(remaining):
-                raise ROSInterruptException("ROS shutdown request")
-            self.last += self.period
-        else:
-            self.last = now if -remaining > self.period else self.last + self.period
-            if _state.shutdown.is_set():
-                raise ROSInterruptException("ROS shutdown request")
+    def __init__(self, hz: float, reset: bool = False) -> None:
+        super().__init__(hz, _state.clock, _state.shutdown, reset=reset)
 
 
-class TimerEvent:
-    """What a Timer callback receives."""
-
-    def __init__(self, last_expected: float | None, last_real: float | None, current_expected: float,
-                 current_real: float, last_duration: float | None) -> None:
-        self.last_expected = last_expected
-        self.last_real = last_real
-        self.current_expected = current_expected
-        self.current_real = current_real
-        self.last_duration = last_duration
+TimerEvent = _timing.TimerEvent
 
 
-class Timer:
-    """Calls ``callback(TimerEvent)`` every ``period`` seconds on the engine thread."""
+class Timer(_timing.Timer):
+    """Calls ``callback(TimerEvent)`` every *period* seconds of ROS time, on the timer's own thread.
 
-    def __init__(self, period: float | Duration, callback: Callable[[TimerEvent], Any], oneshot: bool = False) -> None:
-        engine, _ = _require()
-        self.period = period.to_sec() if isinstance(period, Duration) else float(period)
-        self.callback = callback
-        self.oneshot = oneshot
-        self._loop = engine.loop
-        self._handle: Any = None
-        self._stopped = False
-        self._last_expected: float | None = None
-        self._last_real: float | None = None
-        self._last_duration: float | None = None
-        self._next = time.time() + self.period
-        engine.call_soon(self._schedule)
+    With *reset*, a jump back of simulated time restarts the period; without
+    it the timer stops.
+    """
 
-    def _schedule(self) -> None:
-        if not self._stopped:
-            self._handle = self._loop.call_later(max(0.0, self._next - time.time()), self._fire)
-
-    def _fire(self) -> None:
-        if self._stopped or _state.shutdown.is_set():
-            return
-        start = time.time()
-        event = TimerEvent(self._last_expected, self._last_real, self._next, start, self._last_duration)
-        try:
-            self.callback(event)
-        except Exception as exc:
-            sys.stderr.write(f"error in timer callback: {exc}\n")
-        self._last_expected, self._last_real = self._next, start
-        self._last_duration = time.time() - start
-        if self.oneshot:
-            return
-        self._next += self.period
-        if self._next < time.time():
-            self._next = time.time() + self.period
-        self._schedule()
-
-    def shutdown(self) -> None:
-        """Stop the timer."""
-        self._stopped = True
-        if self._handle is not None:
-            self._loop.call_soon_threadsafe(self._handle.cancel)
-
-    def is_alive(self) -> bool:
-        """True until shutdown() or a oneshot fired."""
-        return not self._stopped
+    def __init__(self, period: float | Duration, callback: Callable[[Any], Any], oneshot: bool = False,
+                 reset: bool = False) -> None:
+        _require()
+        super().__init__(period, callback, _state.clock, _state.shutdown, oneshot=oneshot, reset=reset)
 
 
 # -- topics -----------------------------------------------------------------------------
@@ -430,11 +404,34 @@ def wait_for_message(topic: str, topic_type: Any, timeout: float | None = None) 
 
 
 # -- services --------------------------------------------------------------------------
+ErrorHandler = Callable[[BaseException, "type[BaseException]", BaseException, "TracebackType | None"], Any]
+"""A Service's *error_handler*: ``(exception, type, value, traceback)``, as rospy calls it."""
+
+
+def _reporting(handler: Callable[[Any], Any], service_class: Any, error_handler: ErrorHandler) -> Callable[[Any], Any]:
+    """*handler*, handing any error but a ServiceException to *error_handler* (in the worker thread).
+
+    The caller gets the error as always; *error_handler* replaces the error line the node would log.
+    """
+    def serve(request: Any) -> Any:
+        try:
+            return make_response(service_class, handler(request))
+        except ServiceException:
+            raise
+        except Exception as exc:
+            error_handler(exc, type(exc), exc, exc.__traceback__)
+            raise ServiceException(f"error processing request: {exc}") from exc
+    return serve
+
+
 class Service:
     """Serve a service; ``handler(request)`` runs in a worker thread (rospy.Service)."""
 
-    def __init__(self, name: str, service_class: Any, handler: Callable[[Any], Any]) -> None:
+    def __init__(self, name: str, service_class: Any, handler: Callable[[Any], Any],
+                 error_handler: ErrorHandler | None = None) -> None:
         engine, node = _require()
+        if error_handler is not None:
+            handler = _reporting(handler, service_class, error_handler)
         self._engine, self._node = engine, node
         self._server = engine.run(node.advertise_service(name, service_class, handler, threaded=True))
         self.resolved_name = self._server.name
@@ -591,6 +588,14 @@ def get_param_names() -> list[str]:
 
 # -- logging ----------------------------------------------------------------------------------
 _console_only = NodeLog("", package_logger(None), LoggerTree(), Console())
+
+
+def use_console(console: Console) -> None:
+    """Write this process's log lines with *console*, before ``init_node`` and after (rospy's look, for one)."""
+    _state.console = console
+    _console_only.console = console
+    if _state.node is not None:
+        _state.node.log.console = console
 
 
 def _log() -> NodeLog:

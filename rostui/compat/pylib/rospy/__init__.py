@@ -9,41 +9,46 @@ rostui's publishers and subscribers unchanged.
 from __future__ import annotations
 
 import abc
-from typing import Any, Callable, Sequence
+import os
+import warnings
+from typing import Any, Callable, Mapping, Sequence
 
 from rostui.core.msg import Message
 from rostui.core.node import sync as _sync
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.rostime import Duration as _Duration
+from rostui.core.rostime import Time as _Time
 from rostui.core.node.sync import (
-    delete_param, get_master_uri, get_node_uri, get_param, get_param_cached, get_param_names, has_param,
-    is_shutdown, logdebug, logdebug_once, logdebug_throttle, logerr, logerr_once, logerr_throttle, logfatal,
+    get_master_uri, get_node_uri, get_param_cached, is_shutdown, logdebug, logdebug_once, logdebug_throttle, logerr, logerr_once, logerr_throttle, logfatal,
     logfatal_once, logfatal_throttle, loginfo, loginfo_once, loginfo_throttle, logwarn, logwarn_once,
-    logwarn_throttle, myargv, on_shutdown, search_param, set_param, signal_shutdown, sleep, spin,
+    logwarn_throttle, myargv, on_shutdown, signal_shutdown, sleep, spin,
     wait_for_message,
 )
 from rostui.core.node.services import parse_rosrpc_uri
 from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync, ros_result
+from rostui.compat.rospy_console import RospyConsole
 
-from . import exceptions, names, rostime
-from ._console import RospyConsole
+from . import exceptions, msproxy, names, rostime
+from ._params import delete_param, get_param, get_param_names, has_param, search_param, set_param
 from ._nodeless import caller as _nodeless_caller
 from ._peers import ListenerRelay, rospy_service_header
 from .exceptions import (
     ROSException, ROSInitException, ROSInternalException, ROSInterruptException, ROSSerializationException,
     ROSTimeMovedBackwardsException, ServiceException, TransportException, TransportInitError, TransportTerminated,
 )
+from .msproxy import MasterProxy, get_master
+from ._node_name import check_node_name
 from .names import get_caller_id, get_name, get_namespace, remap_name, resolve_name
 from .rostime import Duration, Time, get_rostime, get_time
 
 __all__ = [
-    "AnyMsg", "DEBUG", "Duration", "ERROR", "FATAL", "INFO", "Message", "Publisher", "ROSException",
+    "AnyMsg", "DEBUG", "Duration", "ERROR", "FATAL", "INFO", "MasterProxy", "Message", "Publisher", "ROSException",
     "ROSInitException", "ROSInternalException", "ROSInterruptException", "ROSSerializationException",
     "ROSTimeMovedBackwardsException", "Rate", "Service", "SubscribeListener", "TransportInitError",
     "TransportTerminated", "Header", "logout", "parse_rosrpc_uri", "ServiceException", "ServiceProxy", "Subscriber",
     "Time", "Timer", "TimerEvent", "TransportException", "WARN", "delete_param", "exceptions",
-    "get_caller_id", "get_master_uri", "get_name", "get_namespace", "get_node_uri", "get_param",
-    "get_param_cached", "get_param_names", "get_published_topics", "get_rostime", "get_time", "has_param",
+    "get_caller_id", "get_master", "get_master_uri", "get_name", "get_namespace", "get_node_uri", "get_param",
+    "get_param_cached", "get_param_names", "get_published_topics", "get_ros_root", "get_rostime", "get_time", "has_param",
     "init_node", "is_shutdown", "logdebug", "logdebug_once", "logdebug_throttle", "logerr", "logerr_once",
     "logerr_throttle", "logfatal", "logfatal_once", "logfatal_throttle", "loginfo", "loginfo_once",
     "loginfo_throttle", "logwarn", "logwarn_once", "logwarn_throttle", "myargv", "names", "on_shutdown",
@@ -62,8 +67,7 @@ FATAL = 16
 logout = loginfo
 """rospy's old name of :func:`loginfo`."""
 
-_console = RospyConsole()
-_sync._console_only.console = _console
+_sync.use_console(RospyConsole())  # log lines look like rospy's: [INFO] [1700000000.123456]: ...
 
 
 def __getattr__(name: str) -> Any:
@@ -91,12 +95,16 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
               disable_signals: bool = False, xmlrpc_port: int = 0, tcpros_port: int = 0) -> None:
     """Start this process's node, as rospy's ``init_node``; its console lines look like rospy's.
 
-    *disable_rostime*, *disable_rosout*, *xmlrpc_port* and *tcpros_port* are
-    accepted and have no effect: the node always uses the wall clock, logs to
-    ``/rosout`` and listens on free ports.
+    With the parameter ``/use_sim_time`` true the node follows ``/clock``
+    unless *disable_rostime*.  *disable_rosout*, *xmlrpc_port* and
+    *tcpros_port* are accepted and have no effect: the node always logs to
+    ``/rosout`` and listens on free ports.  As rospy, a name that is not a
+    legal base name (``draw_circle.py``) is taken with a warning; an empty one
+    or one with a namespace raises ValueError.
     """
-    _sync.init_node(name, argv=argv, anonymous=anonymous, log_level=log_level, disable_signals=disable_signals)
-    _sync._log().console = _console
+    check_node_name(name)
+    _sync.init_node(name, argv=argv, anonymous=anonymous, log_level=log_level, disable_signals=disable_signals,
+                    disable_rostime=disable_rostime, lenient_name=True)
     _Topic.start_pending()
 
 
@@ -197,13 +205,15 @@ class Service(_sync.Service):
 
     The request carries the client's connection header as
     ``_connection_header``; clients get rospy's server header. *buff_size*
-    is accepted (rostui reads whole requests); *error_handler* is accepted
-    and not called.
+    is accepted (rostui reads whole requests).  A handler that
+    raises anything but ServiceException has *error_handler* called as
+    ``error_handler(exception, type, value, traceback)`` before the caller
+    gets the error, as rospy does.
     """
 
     def __init__(self, name: str, service_class: Any, handler: Callable[[Any], Any], buff_size: int = 65536,
-                 error_handler: Any = None) -> None:
-        super().__init__(name, service_class, handler)
+                 error_handler: _sync.ErrorHandler | None = None) -> None:
+        super().__init__(name, service_class, handler, error_handler=error_handler)
         self._server.header_fields = rospy_service_header(self.resolved_name, service_class, get_caller_id())
 
 
@@ -267,10 +277,19 @@ def wait_for_service(service: str, timeout: float | None = None) -> None:
 
 
 class Rate(_sync.Rate):
-    """Keep a loop at *hz* cycles a second, as ``rospy.Rate``; *reset* is accepted (the clock never jumps back)."""
+    """Keep a loop at *hz* cycles a second of ROS time, as ``rospy.Rate``.
+
+    With *reset*, simulated time jumping back restarts the cycle instead of
+    raising ROSTimeMovedBackwardsException.
+    """
 
     def __init__(self, hz: float, reset: bool = False) -> None:
-        super().__init__(hz)
+        super().__init__(hz, reset=reset)
+
+    def remaining(self) -> Duration:
+        """ROS time left in the current cycle."""
+        left = super().remaining()
+        return Duration(left.secs, left.nsecs)
 
 
 class TimerEvent:
@@ -285,21 +304,37 @@ class TimerEvent:
         self.last_duration = last_duration
 
 
-def _time(seconds: float | None) -> Time | None:
-    return None if seconds is None else Time.from_sec(seconds)
+def _time(stamp: _Time | None) -> Time | None:
+    return None if stamp is None else Time(stamp.secs, stamp.nsecs)
 
 
 class Timer(_sync.Timer):
-    """Call ``callback(TimerEvent)`` every *period*, as ``rospy.Timer``; *reset* is accepted."""
+    """Call ``callback(TimerEvent)`` every *period* of ROS time on its own thread, as ``rospy.Timer``.
+
+    With *reset*, simulated time jumping back restarts the period; without it the timer stops.
+    """
 
     def __init__(self, period: _Duration | float, callback: Callable[[TimerEvent], Any],
                  oneshot: bool = False, reset: bool = False) -> None:
-        def relay(event: _sync.TimerEvent) -> None:
-            callback(TimerEvent(_time(event.last_expected), _time(event.last_real),
-                                Time.from_sec(event.current_expected), Time.from_sec(event.current_real),
-                                event.last_duration))
+        super().__init__(period, callback, oneshot=oneshot, reset=reset)
 
-        super().__init__(period, relay, oneshot=oneshot)
+    def make_event(self, last_expected: _Time | None, last_real: _Time | None, current_expected: _Time,
+                   current_real: _Time, last_duration: float | None) -> TimerEvent:
+        """rospy's TimerEvent, its times ``rospy.Time``."""
+        return TimerEvent(_time(last_expected), _time(last_real), Time(current_expected.secs, current_expected.nsecs),
+                          Time(current_real.secs, current_real.nsecs), last_duration)
+
+
+def get_ros_root(required: bool = False, env: Mapping[str, str] | None = None) -> str | None:
+    """``ROS_ROOT`` from *env* (default the environment); ROSException when *required* and unset.
+
+    Deprecated in rospy, so it warns as rospy does.
+    """
+    warnings.warn("Call to deprecated function get_ros_root.", category=DeprecationWarning, stacklevel=2)
+    root = (os.environ if env is None else env).get("ROS_ROOT")
+    if required and not root:
+        raise ROSException("ROS_ROOT is not set")
+    return root
 
 
 def get_published_topics(namespace: str = "/") -> list[list[str]]:

@@ -3,19 +3,11 @@
 from __future__ import annotations
 
 from rostui.core.node.services import ServiceException
-from rostui.core.node.sync import ROSException, ROSInterruptException
+from rostui.core.node.errors import ROSException, ROSInterruptException, ROSTimeMovedBackwardsException
 
 __all__ = ["ROSException", "ROSInterruptException", "ROSTimeMovedBackwardsException", "ROSInitException",
            "ROSSerializationException", "ROSInternalException", "TransportException", "TransportInitError",
            "TransportTerminated", "ServiceException"]
-
-
-class ROSTimeMovedBackwardsException(ROSInterruptException):
-    """Time went backwards during a sleep (rospy raises it when simulated time is reset)."""
-
-    def __init__(self, time: float = 0.0) -> None:
-        self.time = time
-        super().__init__("ROS time moved backwards")
 
 
 class ROSInitException(ROSException):

@@ -1,0 +1,56 @@
+"""The console lines rospy prints: ``[INFO] [1700000000.123456]: message``, not roscpp's ``[ INFO] [...]``.
+
+rospy (rosgraph's ``RosStreamHandler``) fills ``ROSCONSOLE_FORMAT`` (default
+``[${severity}] [${time}]: ${message}``) with the level's name unpadded and the
+wall time as seconds with six decimals; DEBUG and INFO go to stdout, WARN and
+above to stderr, and INFO is never colored. Only the look differs from
+:class:`rostui.core.log.console.Console`, which does the writing.
+"""
+
+from __future__ import annotations
+
+import re
+import threading
+from collections.abc import Callable
+
+from rostui.core.log.console import COLORS, RESET, Console
+from rostui.core.log.levels import Level
+from rostui.core.log.record import LogRecord
+
+__all__ = ["RospyConsole"]
+
+_TOKEN = re.compile(r"\$\{([a-z]+)\}")
+
+
+def _seconds(record: LogRecord) -> str:
+    return f"{record.stamp / 1e9:f}"
+
+
+_FIELDS: dict[str, Callable[[LogRecord], str]] = {
+    "severity": lambda r: r.level.name,
+    "message": lambda r: r.message,
+    "walltime": _seconds,
+    "time": _seconds,
+    "thread": lambda r: str(threading.get_ident()),
+    "logger": lambda r: r.logger,
+    "file": lambda r: r.file,
+    "line": lambda r: str(r.line),
+    "function": lambda r: r.function,
+    "node": lambda r: r.node,
+}
+
+
+class RospyConsole(Console):
+    """A :class:`Console` whose lines look like rospy's."""
+
+    def format(self, record: LogRecord, color: bool = False) -> str:
+        """The line for ``record`` as rospy prints it (without newline); INFO stays uncolored."""
+
+        def field(match: re.Match[str]) -> str:
+            fill = _FIELDS.get(match.group(1))
+            return match.group(0) if fill is None else fill(record)
+
+        text = _TOKEN.sub(field, self.fmt)
+        if color and record.level is not Level.INFO:
+            return f"{COLORS.get(record.level, '')}{text}{RESET}"
+        return text

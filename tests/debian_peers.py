@@ -45,6 +45,8 @@ FILES: dict[str, str] = {
     "/usr/sbin/sshd": "openssh-server",
     "/usr/lib/python3/dist-packages/paramiko/": "python3-paramiko",
     "/usr/share/rosgraph_msgs/package.xml": "libros-rosgraph-msgs-dev",
+    "/usr/lib/tf2_ros/static_transform_publisher": "tf2-tools",
+    "/usr/lib/tf/tf_echo": "tf-tools",
 }
 
 #: Top-level modules a test imports under the system Python (/usr/bin/python3), and their packages.
@@ -62,9 +64,12 @@ MODULES: dict[str, str] = {
     "std_srvs": "python3-std-srvs",
     "geometry_msgs": "python3-geometry-msgs",
     "sensor_msgs": "python3-sensor-msgs",
+    "nav_msgs": "python3-nav-msgs",
+    "tf2_msgs": "python3-tf2-msgs",
     "rosgraph_msgs": "python3-rosgraph-msgs",
     "roscpp": "python3-roscpp-msg",
     "numpy": "python3-numpy",
+    "tf2_ros": "python3-tf2-ros",
 }
 
 #: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.

@@ -11,7 +11,8 @@ import typer
 
 from rostui.cli import (
     bag_cmd, clean_cmd, console_cmd, graph_cmd, launch_cmd, loggers_cmd, monitor_cmd, msg_cmd, node_cmd, param_cmd,
-    pkg_cmd, python_cmd, run_cmd, serve_cmd, service_cmd, topic_cmd, turtlesim_cmd, wtf_cmd,
+    pkg_cmd, python_cmd, run_cmd, serve_cmd, service_cmd, tf_cmd, topic_cmd, turtlesim_cmd, view_cmd,
+    wtf_cmd,
 )
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
@@ -53,7 +54,7 @@ def core_command(
 
 for _module in (run_cmd, node_cmd, topic_cmd, msg_cmd, service_cmd, param_cmd, pkg_cmd, wtf_cmd, clean_cmd,
                 turtlesim_cmd, graph_cmd, console_cmd, loggers_cmd, launch_cmd, bag_cmd, monitor_cmd, serve_cmd,
-                python_cmd):
+                python_cmd, tf_cmd, view_cmd):
     _module.register(app)
 
 

@@ -51,7 +51,8 @@ def monitor_command(
     """Watch every topic live: type, publishers, subscribers, rate, bandwidth, message age (like rqt_topic).
 
     Only the topics on screen are subscribed.  Keys: / filter, s sort, S reverse,
-    Enter expand a topic into its message tree, Tab into the tree, f plot
+    Enter expand a topic into its message tree (an image: open its view,
+    as rostui view shows it; Esc back), Tab into the tree, f plot
     numeric fields, v show/hide the plot, + and - its time window, space
     pause it, p publish a message, x collapse, q quit.
 

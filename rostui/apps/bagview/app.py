@@ -27,6 +27,7 @@ from textual.containers import VerticalScroll
 from textual.widgets import Input, Static
 
 from rostui.apps.bagview.bars import PLAY_KEYS, header_text, play_status, wall_text
+from rostui.apps.bagview.inspect_view import InspectorView
 from rostui.apps.bagview.timeline import TimelineView
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
@@ -150,6 +151,7 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         self.inspector = VerticalScroll(id="inspector")
         self.inspector_title = Static(id="inspector-title")
         self.inspector_text = Static(id="inspector-text")
+        self.inspector_view = InspectorView(self.inspector, self.inspector_text)
         self.prompt = GotoPrompt(placeholder="go to: 50%  ·  12.5 (seconds from the start)  ·  a bag time",
                                  id="prompt")
         self.status = Static(id="status")
@@ -281,6 +283,7 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         if topic is None or position is None:
             self.inspector_title.update("no message")
             self.inspector_text.update("")
+            self.inspector_view.clear()
             return
         conn, t, data = self.index.item(position)
         track = self.index.tracks[topic]
@@ -288,7 +291,9 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         self.inspector_title.update(_escape(f"{topic}  {conn.type}  #{number} of {track.count}  bag {t / 1e9:.6f}  "
                                             f"{wall_text(t)}  {len(data)} B"))
         try:
-            self.inspector_text.update(_escape(message_yaml(conn, data, noarr=len(data) > INSPECT_ARRAYS_UP_TO)))
+            pictured = self.inspector_view.show(topic, conn, data, t)
+            noarr = pictured or len(data) > INSPECT_ARRAYS_UP_TO
+            self.inspector_text.update(_escape(message_yaml(conn, data, noarr=noarr)))
         except BagError as exc:
             self.inspector_text.update(f"[b]{_escape(str(exc))}[/b]")
 

@@ -28,6 +28,8 @@ from rostui.apps.monitor.editor import PublishEditor
 from rostui.apps.monitor.plot import FieldChooser, PlotPanel
 from rostui.apps.monitor.table import TopicTable
 from rostui.apps.terminal import terminal_missing
+from rostui.apps.view.app import ViewScreen
+from rostui.apps.view.registry import viewable
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
@@ -312,8 +314,13 @@ class MonitorApp(ReleasesOnExit, KeysApp):
 
     # -- keys ------------------------------------------------------------------------
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
-        """The plot's keys act on the main screen only (in the field chooser, letters are not the app's)."""
+        """The plot's keys act on the main screen only (in the field chooser, letters are not the app's).
+
+        Over a topic's view (Enter on an image) only help, quit and the palette are the app's.
+        """
         if action in PLOT_ACTIONS and len(self.screen_stack) > 1:
+            return False
+        if action not in ("help", "quit", "command_palette") and isinstance(self.screen, ViewScreen):
             return False
         return True
 
@@ -351,7 +358,17 @@ class MonitorApp(ReleasesOnExit, KeysApp):
 
     @on(TopicTable.Chosen)
     def _row_chosen(self, event: TopicTable.Chosen) -> None:
+        if self.open_view(event.topic):
+            return
         self.toggle_expanded(event.topic)
+
+    def open_view(self, topic: str) -> bool:
+        """Enter on a topic whose type has a view (an image...): show it over the table; False when none has."""
+        msg_type = self.topic_type(topic)
+        if msg_type is None or not viewable(msg_type):
+            return False
+        self.push_screen(ViewScreen([topic], lambda: self.source.node, self.topic_type))
+        return True
 
     def toggle_expanded(self, topic: str) -> None:
         """Enter: show ``topic``'s newest message as a tree below the table (again: hide it)."""

@@ -1,0 +1,219 @@
+#!/usr/bin/env python3
+"""`rostui view /scan` on a 720-point LaserScan at 40 Hz in a 100x40 terminal: CPU, bytes to the terminal, frames.
+
+A publisher process (this script in ``publish`` mode: rostui's AsyncNode)
+sends sensor_msgs/LaserScan (720 beams over 360 degrees: a 6 m x 4 m room
+with a moving box, ranges recomputed each scan) at ``--rate`` Hz on the CPUs
+other than CPU 0; the master (`rostui core`) runs there too.  The real
+`rostui view /scan` runs on a ``--cols`` x ``--rows`` pseudo-terminal pinned to
+CPU 0 (braille top-down view, at most 20 frames a second).  After a warm-up,
+over ``--seconds``:
+
+- the viewer's CPU (psutil user+system time of its process), as cores and per frame drawn;
+- the bytes it wrote to the terminal per second;
+- scans sent (the publisher's count), and scans received and frames drawn per
+  second (the view's own "N msg/s (M drawn)" status, averaged over the window).
+
+In the same run, with the same publisher, real ``rostopic hz`` (rospy) is
+measured on the same topic for the same time, pinned to CPU 0: what merely
+receiving the scans costs a ROS tool.  The load average is printed: the
+machine is shared.
+
+    .venv/bin/python bench/bench_view_scan.py
+    .venv/bin/python bench/bench_view_scan.py --rate 40 --seconds 20 --json out.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import json
+import os
+import re
+import shutil
+import signal
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import psutil
+
+from _common import APP_CPU, REPO, RecordingPty, free_port, other_cpus, ros_env, wait_port
+
+TOPIC = "/scan"
+BEAMS = 720
+RATES = re.compile(rb"([\d.]+) msg/s \(([\d.]+) drawn\)")
+
+
+# -- publish mode (a separate process) --------------------------------------------------------
+def room_ranges(i: int) -> list[float]:
+    """Scan ``i``: ranges from the centre of a 6 m x 4 m room with a 0.5 m box circling at 1.2 m."""
+    import numpy as np
+
+    angles = -np.pi + np.arange(BEAMS) * (2 * np.pi / BEAMS)
+    c, s = np.cos(angles), np.sin(angles)
+    with np.errstate(divide="ignore"):
+        walls = np.minimum(np.where(c != 0, 3.0 / np.abs(c), np.inf), np.where(s != 0, 2.0 / np.abs(s), np.inf))
+    centre = 1.2 * np.array([np.cos(i / 40), np.sin(i / 40)])
+    bearing = np.arctan2(centre[1], centre[0])
+    box = np.abs((angles - bearing + np.pi) % (2 * np.pi) - np.pi) < 0.2
+    ranges = np.where(box, np.hypot(*centre) - 0.25, walls)
+    return [float(r) for r in ranges]
+
+
+async def publish(rate: float) -> None:
+    """Publish scans on :data:`TOPIC` at ``rate`` Hz until SIGINT; print how many went out."""
+    import math
+
+    from rostui.core.msg import get_message_class
+    from rostui.core.node import AsyncNode
+    from rostui.core.rostime import Time
+
+    stop = asyncio.Event()
+    loop = asyncio.get_running_loop()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(sig, stop.set)
+    node = await AsyncNode("bench_laser", anonymous=True, argv=[]).start(publish_rosout=False)
+    scan_type = get_message_class("sensor_msgs/LaserScan")
+    pub = await node.advertise(TOPIC, scan_type, queue_size=1)
+    scans = [room_ranges(i) for i in range(250)]
+    print("advertised", flush=True)
+    period = 1.0 / rate
+    due = loop.time()
+    sent = 0
+    while not stop.is_set():
+        msg = scan_type(angle_min=-math.pi, angle_max=math.pi - 2 * math.pi / BEAMS,
+                        angle_increment=2 * math.pi / BEAMS, time_increment=0.0, scan_time=period,
+                        range_min=0.05, range_max=30.0, ranges=scans[sent % len(scans)])
+        msg.header.stamp = Time.from_sec(time.time())
+        msg.header.frame_id = "laser"
+        pub.publish(msg)
+        sent += 1
+        if sent % int(rate) == 0:
+            print(f"sent {sent} {time.time():.3f}", flush=True)
+        due += period
+        try:
+            await asyncio.wait_for(stop.wait(), max(0.0, due - loop.time()))
+        except asyncio.TimeoutError:
+            pass
+    await node.shutdown("done")
+
+
+# -- measuring -----------------------------------------------------------------------------
+def sent_between(log: Path, start: float, end: float) -> int:
+    """Frames the publisher sent between wall times ``start`` and ``end`` (from its "sent N T" lines)."""
+    points = [(float(t), int(n)) for n, t in re.findall(r"sent (\d+) ([\d.]+)", log.read_text())]
+    before = max((n for t, n in points if t <= start), default=0)
+    after = max((n for t, n in points if t <= end), default=0)
+    return after - before
+
+
+def cpu_seconds(pid: int) -> float:
+    """User + system CPU seconds of process ``pid``."""
+    times = psutil.Process(pid).cpu_times()
+    return times.user + times.system
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rate", type=float, default=40.0)
+    parser.add_argument("--seconds", type=float, default=20.0)
+    parser.add_argument("--warmup", type=float, default=5.0)
+    parser.add_argument("--cols", type=int, default=100)
+    parser.add_argument("--rows", type=int, default=40)
+    parser.add_argument("--json", type=Path)
+    args = parser.parse_args()
+
+    port = free_port()
+    home = tempfile.mkdtemp(prefix="bench_view_scan_")
+    env = ros_env(port, home, TERM="xterm-256color", COLORTERM="truecolor")
+    others = other_cpus()
+    procs: list[subprocess.Popen] = []
+
+    def pinned(cpus: set[int]):  # noqa: ANN202
+        return lambda: os.sched_setaffinity(0, cpus)
+
+    core = subprocess.Popen([sys.executable, "-m", "rostui", "core", "-p", str(port)], env=env,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT, preexec_fn=pinned(others))
+    procs.append(core)
+    results: dict[str, object] = {"rate": args.rate, "seconds": args.seconds, "cols": args.cols, "rows": args.rows}
+    try:
+        wait_port(port)
+        log = Path(home) / "publisher.log"
+        with log.open("w") as out:
+            publisher = subprocess.Popen([sys.executable, __file__, "publish", "--rate", str(args.rate)], env=env,
+                                         stdout=out, stderr=subprocess.STDOUT, preexec_fn=pinned(others))
+        procs.append(publisher)
+        deadline = time.time() + 30
+        while "advertised" not in log.read_text():
+            if time.time() > deadline or publisher.poll() is not None:
+                raise SystemExit(f"publisher did not start: {log.read_text()}")
+            time.sleep(0.1)
+
+        viewer = RecordingPty([sys.executable, "-m", "rostui", "view", TOPIC], env, args.cols, args.rows, pin={APP_CPU})
+        viewer.start()
+        assert viewer.proc is not None
+        time.sleep(args.warmup)
+        offset, cpu0, t0 = viewer.size, cpu_seconds(viewer.proc.pid), time.time()
+        time.sleep(args.seconds)
+        written, cpu1, t1 = viewer.size - offset, cpu_seconds(viewer.proc.pid), time.time()
+        window = viewer.since(offset)
+        viewer.quit()
+        rates = [(float(a), float(b)) for a, b in RATES.findall(window)]
+        span = t1 - t0
+        sent = sent_between(log, t0, t1)
+        received_fps = statistics.mean(r for r, _ in rates) if rates else 0.0
+        drawn_fps = statistics.mean(d for _, d in rates) if rates else 0.0
+        cpu = cpu1 - cpu0
+        results.update({
+            "viewer_cores": cpu / span, "viewer_cpu_ms_per_frame_drawn": 1000 * cpu / max(1.0, drawn_fps * span),
+            "viewer_cpu_ms_per_scan_received": 1000 * cpu / max(1.0, received_fps * span),
+            "bytes_per_second": written / span, "sent_fps": sent / span,
+            "received_fps": received_fps, "drawn_fps": drawn_fps,
+        })
+
+        if shutil.which("rostopic"):
+            hz = subprocess.Popen(["rostopic", "hz", TOPIC], env=env, stdout=subprocess.DEVNULL,
+                                  stderr=subprocess.DEVNULL, preexec_fn=pinned({APP_CPU}))
+            procs.append(hz)
+            time.sleep(args.warmup)
+            c0, h0 = cpu_seconds(hz.pid), time.time()
+            time.sleep(args.seconds)
+            results["rostopic_hz_cores"] = (cpu_seconds(hz.pid) - c0) / (time.time() - h0)
+    finally:
+        for proc in reversed(procs):
+            if proc.poll() is None:
+                proc.send_signal(signal.SIGINT)
+                try:
+                    proc.wait(timeout=10)
+                except subprocess.TimeoutExpired:
+                    proc.kill()
+                    proc.wait()
+        shutil.rmtree(home, ignore_errors=True)
+
+    load = os.getloadavg()
+    print(f"rostui view {TOPIC}: {BEAMS}-beam LaserScan at {args.rate:g} Hz, {args.cols}x{args.rows} terminal, "
+          f"braille, {args.seconds:g} s (load average {load[0]:.1f} {load[1]:.1f})")
+    print(f"  scans sent {results['sent_fps']:.1f}/s, received {results['received_fps']:.1f}/s, "
+          f"frames drawn {results['drawn_fps']:.1f}/s")
+    print(f"  viewer CPU {results['viewer_cores']:.2f} cores, {results['viewer_cpu_ms_per_frame_drawn']:.1f} ms "
+          f"per frame drawn, {results['viewer_cpu_ms_per_scan_received']:.1f} ms per scan received")
+    print(f"  written to the terminal {results['bytes_per_second'] / 1e3:.1f} kB/s")
+    if "rostopic_hz_cores" in results:
+        hz_cores = float(results["rostopic_hz_cores"])  # type: ignore[arg-type]
+        print(f"  rostopic hz (rospy) on the same topic: {hz_cores:.2f} cores; "
+              f"view/rostopic hz {float(results['viewer_cores']) / max(hz_cores, 1e-9):.2f}x")  # type: ignore[arg-type]
+    if args.json:
+        args.json.write_text(json.dumps(results, indent=2))
+    return 0
+
+
+if __name__ == "__main__":
+    if len(sys.argv) > 1 and sys.argv[1] == "publish":
+        sys.path.insert(0, str(REPO))
+        asyncio.run(publish(float(sys.argv[sys.argv.index("--rate") + 1]) if "--rate" in sys.argv else 40.0))
+    else:
+        sys.exit(main())

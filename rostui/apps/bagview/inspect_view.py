@@ -1,0 +1,64 @@
+"""The bag inspector's picture: the registered view (rostui/apps/view/registry.py) of the message under the cursor.
+
+When the selected message's type has a view (an image...), the view is
+mounted at the top of the inspector, above the message's text, and shown
+that message; another topic or type replaces it, a type without a view
+removes it.
+"""
+
+from __future__ import annotations
+
+from textual.containers import VerticalScroll
+from textual.widget import Widget
+
+from rostui.apps.view.registry import TopicView, view_class, viewable
+from rostui.core.bag.model import BagError, Connection
+
+__all__ = ["InspectorView", "decode_bag_message"]
+
+#: Fewest lines the picture gets in the inspector.
+MIN_LINES = 6
+
+
+def decode_bag_message(conn: Connection, data: bytes) -> object:
+    """The message, decoded with the type recorded in the bag; :class:`BagError` when it cannot be."""
+    from rostui.core.msg import register_types_from_definition
+
+    try:
+        cls = register_types_from_definition(conn.type, conn.definition)
+        return cls().deserialize(data)
+    except Exception as exc:  # a bad definition, or the generated deserializer's errors on damaged data
+        raise BagError(f"cannot decode this {conn.type or 'message'}: {exc}") from None
+
+
+class InspectorView:
+    """Keeps the view of the inspected message's type in ``inspector`` (before ``before``)."""
+
+    def __init__(self, inspector: VerticalScroll, before: Widget) -> None:
+        self.inspector = inspector
+        self.before = before
+        self.view: TopicView | None = None
+        self._key: tuple[str, str] | None = None
+
+    def show(self, topic: str | None, conn: Connection | None, data: bytes, t_ns: int) -> bool:
+        """Show the message in its view; False (and no view) when its type has none."""
+        if topic is None or conn is None or not viewable(conn.type):
+            self.clear()
+            return False
+        if self._key != (topic, conn.type) or self.view is None:
+            self.clear()
+            self.view = view_class(conn.type)(topic, classes="inspector-view")
+            self.view.styles.height = max(MIN_LINES, self.inspector.size.height - 3)
+            self.inspector.mount(self.view, before=self.before)
+            self._key = (topic, conn.type)
+        view = self.view
+        msg = decode_bag_message(conn, data)
+        view.call_after_refresh(view.show_message, msg, t_ns / 1e9)
+        return True
+
+    def clear(self) -> None:
+        """Remove the view."""
+        if self.view is not None:
+            self.view.remove()
+        self.view = None
+        self._key = None

@@ -1,0 +1,119 @@
+"""ViewApp: `rostui view TOPIC...`, each topic in a panel drawn by the view its type has in the registry.
+
+The app keeps one node registered with the master (a
+:class:`~rostui.apps.view.source.ViewSource`) and the panels subscribe on
+it while they are on screen.  :class:`ViewScreen` is the same grid of
+panels over another app's node (the monitor's Enter).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import ClassVar, Sequence
+
+from textual.app import ComposeResult
+from textual.binding import Binding, BindingType
+from textual.markup import escape
+from textual.screen import Screen
+from textual.widgets import Static
+
+from rostui.apps.terminal import terminal_missing
+from rostui.apps.view.panel import NodeOf, TypeOf, ViewGrid
+from rostui.apps.view.source import ViewSource
+from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.keys import key_line
+from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
+from rostui.core.network import master_uri_from_env
+from rostui.models.master_link import LinkStatus, SourceState
+
+__all__ = ["ViewApp", "ViewScreen", "run_app", "KEYS"]
+
+#: Key help at the bottom.
+KEYS = key_line("")
+#: Key help of the view opened over another app.
+SCREEN_KEYS = key_line("Esc back")
+
+
+class ViewApp(ReleasesOnExit, KeysApp):
+    """``topics`` of the master at ``master_uri`` (ROS_MASTER_URI by default), each in a panel."""
+
+    CSS_PATH = Path(__file__).with_name("app.tcss")
+    TITLE = "rostui view"
+
+    BINDINGS: ClassVar[list[BindingType]] = [Binding("q", "quit", "quit")]
+
+    def __init__(self, topics: Sequence[str], *, master_uri: str | None = None, period: float = 1.0,
+                 frame: str | None = None) -> None:
+        super().__init__()
+        self.master_uri = master_uri_from_env(master_uri)
+        self.source = ViewSource(self.master_uri, period=period, on_state=self._on_state)
+        self.topics = list(dict.fromkeys(topics))
+        self.grid = ViewGrid(self.topics, lambda: self.source.node, self.source.type_of, id="views",
+                             view_options={"frame": frame} if frame else None)
+
+    def compose(self) -> ComposeResult:
+        """The master line, the panels, the keys."""
+        yield Static(id="status")
+        yield self.grid
+        yield Static(KEYS, id="keys")
+
+    def on_mount(self) -> None:
+        """Start the node."""
+        quit_on_signals(self)
+        self._on_state(self.source.state)
+        self.run_worker(self.source.run(), group="source", exit_on_error=False)
+
+    def _on_state(self, state: SourceState) -> None:
+        if self.released:
+            return
+        text = state.text(marks=True)
+        if state.status is LinkStatus.WAITING:
+            text += "; start one with `rostui core` (retrying)"
+        for line in self.query("#status").results(Static):
+            line.update(escape(text))
+            line.set_class(state.status is not LinkStatus.CONNECTED, "problem")
+
+    async def release(self) -> None:
+        """Unsubscribe, leave the master."""
+        await self.grid.stop()
+        await self.source.stop()
+
+
+class ViewScreen(Screen[None]):
+    """The views of ``topics`` over another app, subscribed on its node; Escape goes back."""
+
+    DEFAULT_CSS = """
+    ViewScreen > #view-keys { height: 1; background: $panel; }
+    """
+
+    BINDINGS: ClassVar[list[BindingType]] = [Binding("escape", "back", "back")]
+
+    def __init__(self, topics: Sequence[str], node_of: NodeOf, type_of: TypeOf) -> None:
+        super().__init__()
+        self.grid = ViewGrid(topics, node_of, type_of)
+
+    def compose(self) -> ComposeResult:
+        """The panels and the keys."""
+        yield self.grid
+        yield Static(SCREEN_KEYS, id="view-keys")
+
+    async def action_back(self) -> None:
+        """Escape: unsubscribe and go back."""
+        await self.grid.stop()
+        self.dismiss(None)
+
+    async def on_unmount(self) -> None:
+        """However the screen goes, its subscriptions go with it."""
+        await self.grid.stop()
+
+
+def run_app(topics: Sequence[str], *, period: float = 1.0, frame: str | None = None) -> int:
+    """Run :class:`ViewApp` in this terminal; returns the exit status (1 without a TTY)."""
+    if terminal_missing("rostui view", "use `rostui topic echo` without one"):
+        return 1
+    from rostui.apps.view.image_view import detect_graphics
+
+    detect_graphics()  # the terminal is asked what it draws before Textual owns stdin
+    app = ViewApp(topics, period=period, frame=frame)
+    app.run()
+    return app.return_code or 0

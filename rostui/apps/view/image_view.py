@@ -1,0 +1,201 @@
+"""ImageView: sensor_msgs/Image and CompressedImage drawn in the terminal with textual-image.
+
+The pixels come from :func:`rostui.models.sensors.images.decode_image`,
+already shrunk to the panel's size (aspect kept), so textual-image only
+draws.  It draws with the kitty graphics protocol or sixel when the terminal
+said it has them (asked once, before Textual starts: :func:`detect_graphics`),
+else with half-block characters (two pixels a cell).  ``ROSTUI_VIEW_GRAPHICS``
+(``auto``, ``kitty``, ``sixel``, ``halfblock``) overrides the choice.  Above
+the picture one line gives the size, the encoding, the frame rates
+(received, drawn) and the latency (header stamp to arrival; in a bag, to recording).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+from typing import Any
+
+from PIL import Image as PILImage
+from textual.app import ComposeResult
+from textual.containers import Center
+from textual.markup import escape
+from textual.widget import Widget
+from textual.widgets import Static
+
+from rostui.apps.view.feed import Rate
+from rostui.apps.view.halfblock import HalfBlock
+from rostui.apps.view.registry import TopicView
+from rostui.models.sensors.images import ImageDecodeError, Picture, decode_image, fit
+
+__all__ = ["ImageView", "detect_graphics", "graphics", "GRAPHICS_ENV"]
+
+#: Environment variable that picks how images are drawn: auto, kitty, sixel or halfblock.
+GRAPHICS_ENV = "ROSTUI_VIEW_GRAPHICS"
+#: Seconds between repaints of the information line.
+INFO_EVERY = 0.5
+
+_detected: str | None = None
+
+
+def detect_graphics() -> str:
+    """Ask the terminal (once, before Textual owns it) what it draws: ``kitty``, ``sixel`` or ``halfblock``.
+
+    textual-image asks on import; without a terminal on stdout it asks
+    nothing and the answer is ``halfblock``.
+    """
+    global _detected
+    if _detected is None:
+        _detected = "halfblock"
+        if sys.__stdout__ is not None and sys.__stdout__.isatty() and sys.__stdin__ is not None \
+                and sys.__stdin__.isatty():
+            import textual_image.renderable as renderable
+            import textual_image.widget  # noqa: F401  (asks the cell size while it still can)
+
+            if renderable.Image is renderable.SixelImage:
+                _detected = "sixel"
+            elif renderable.Image is renderable.TGPImage:
+                _detected = "kitty"
+    return _detected
+
+
+def graphics() -> str:
+    """How images are drawn here: :data:`GRAPHICS_ENV` when set (not ``auto``), else what the terminal said."""
+    chosen = os.environ.get(GRAPHICS_ENV, "auto").strip().lower()
+    if chosen in ("kitty", "sixel", "halfblock"):
+        return chosen
+    return _detected or "halfblock"
+
+
+def _image_widget(kind: str) -> Widget:
+    if kind == "halfblock":
+        return HalfBlock()
+    from textual_image import widget
+
+    cls: type[Widget] = widget.SixelImage if kind == "sixel" else widget.TGPImage
+    return cls()
+
+
+def _cell_pixels() -> tuple[int, int]:
+    from textual_image._terminal import get_cell_size
+
+    size = get_cell_size()
+    return max(1, size.width), max(1, size.height)
+
+
+class ImageView(TopicView):
+    """The newest image of ``topic``, as large as the panel allows with its aspect kept, and a line of figures."""
+
+    DEFAULT_CSS = """
+    ImageView { height: 1fr; width: 1fr; }
+    ImageView > .image-info { height: 1; width: 1fr; }
+    ImageView > Center { height: 1fr; width: 1fr; }
+    ImageView .image-pixels { width: auto; height: auto; }
+    """
+
+    def __init__(self, topic: str, *, id: str | None = None, classes: str | None = None,
+                 kind: str | None = None) -> None:
+        super().__init__(topic, id=id, classes=classes)
+        self.kind = kind or graphics()
+        self.info = Static(classes="image-info")
+        self.pixels = _image_widget(self.kind)
+        self.pixels.add_class("image-pixels")
+        self.drawn = Rate()
+        self.received = Rate()
+        self.picture: Picture | None = None
+        self.latency: float | None = None
+        self.error = ""
+        self.cells = (0, 0)
+        self._last: tuple[Any, float] | None = None
+        #: The area (cells) the last picture was fitted to.
+        self.drawn_for = (0, 0)
+
+    def compose(self) -> ComposeResult:
+        """The information line over the picture."""
+        yield self.info
+        with Center():
+            yield self.pixels
+
+    def on_mount(self) -> None:
+        """Repaint the figures twice a second (rates fall to 0 when frames stop)."""
+        self.set_interval(INFO_EVERY, self.paint_info)
+        self.paint_info()
+
+    def area(self) -> tuple[int, int]:
+        """Cells the picture may use: the view's size less the information line."""
+        size = self.content_size
+        return max(1, size.width), max(1, size.height - 1)
+
+    def show_message(self, msg: Any, received: float) -> None:
+        """Decode ``msg`` at the size it is drawn and draw it."""
+        self.received.add(received)
+        self._last = (msg, received)
+        if self.laid_out() and self.draw(msg, received):
+            self.drawn.add(time.time())
+
+    def laid_out(self) -> bool:
+        """True once the view has a size (before, :meth:`on_resize` draws what came)."""
+        return self.content_size.width > 0 and self.content_size.height > 1
+
+    def on_resize(self) -> None:
+        """Draw the last image again at the new size (a latched camera sends no other)."""
+        if self._last is not None and self.laid_out():
+            if self.draw(*self._last) and self.drawn.count == 0:
+                self.drawn.add(time.time())
+            self.paint_info()
+
+    def draw(self, msg: Any, received: float) -> bool:
+        """Draw ``msg`` to fit the view; False (and the reason on the figures line) when it cannot be decoded."""
+        cols, rows = self.area()
+        self.drawn_for = (cols, rows)
+        if self.kind == "halfblock":
+            cell_w, cell_h = 1, 2
+        else:
+            cell_w, cell_h = _cell_pixels()
+        try:
+            picture = decode_image(msg, (cols * cell_w, rows * cell_h))
+        except ImageDecodeError as exc:
+            self.error = str(exc)
+            self.paint_info()
+            return False
+        first = self.picture is None or bool(self.error)
+        self.error = ""
+        self.picture = picture
+        stamp = getattr(getattr(msg, "header", None), "stamp", None)
+        seconds = stamp.to_sec() if stamp is not None and hasattr(stamp, "to_sec") else 0.0
+        self.latency = received - seconds if seconds > 0 else None
+        height, width = picture.rgb.shape[:2]
+        shown_w, shown_h = fit(width, height, cols * cell_w, rows * cell_h)
+        self.cells = (max(1, round(shown_w / cell_w)), max(1, round(shown_h / cell_h)))
+        if isinstance(self.pixels, HalfBlock):
+            self.pixels.set_pixels(picture.rgb)
+        else:
+            self.pixels.styles.width, self.pixels.styles.height = self.cells
+            self.pixels.image = PILImage.fromarray(picture.rgb, "RGB")  # type: ignore[attr-defined]
+        if first:
+            self.paint_info()
+        return True
+
+    def paint_info(self) -> None:
+        """The line of figures: size, encoding, rates, latency (or why the last frame was not drawn)."""
+        now = time.time()
+        if self.error:
+            self.info.update(f"[b red]{escape(self.error)}[/]")
+            return
+        picture = self.picture
+        if picture is None:
+            self.info.update("waiting for the first image")
+            return
+        parts = [f"{picture.width}x{picture.height} {picture.encoding}"]
+        received = self.arrivals or self.received
+        if received.count < 2:
+            parts.append(f"{received.count} frame")
+        else:
+            parts.append(f"{received.per_second(now):.1f} fps ({self.drawn.per_second(now):.1f} drawn)")
+        if self.latency is not None:
+            parts.append(f"latency {self.latency * 1000:.0f} ms")
+        if picture.depth_range is not None:
+            parts.append(f"depth {picture.depth_range[0]:.2f}–{picture.depth_range[1]:.2f} m")
+        parts.append(self.kind)
+        self.info.update(escape("  ".join(parts)))

@@ -1,0 +1,196 @@
+"""ViewPanel and ViewGrid: one bordered panel per topic, holding the view its type has in the registry.
+
+A panel learns its topic's type (from whoever owns the node: the master's
+topic types), mounts the registered view, and keeps a
+:class:`~rostui.apps.view.feed.TopicFeed` subscribed only while it is
+mounted.  Each arrival schedules one delivery; a delivery takes only the
+newest message, decodes it and hands it to the view, so frames that came
+while the screen was busy are dropped, not queued.  A
+:class:`~rostui.models.frame_budget.FrameBudget` spaces deliveries so the
+viewer stays within its share of a core however fast frames come.  A type no view shows
+is one line in the panel naming the types that can be shown.
+
+A view class with ``SHARED = True`` (the top-down view) draws several topics
+in one picture: the first panel of that class mounts the view, each later
+panel of the class hands its topic to that view (``add_topic``), delivers to
+it (``show_topic_message``) and hides itself.  ``view_options`` reach the
+views whose class lists them in ``OPTIONS`` (``--frame``).
+"""
+
+from __future__ import annotations
+
+import asyncio
+from typing import Any, Callable, Mapping, Sequence
+
+from textual.app import ComposeResult
+from textual.containers import Container, Vertical
+from textual.markup import escape
+from textual.widgets import Static
+
+from rostui.apps.view.feed import TopicFeed
+from rostui.apps.view.registry import TopicView, UnknownViewError, view_class
+from rostui.core.node import AsyncNode
+from rostui.models.frame_budget import FrameBudget
+from rostui.models.master_link import MASTER_ERRORS
+
+__all__ = ["ViewPanel", "ViewGrid", "NodeOf", "TypeOf"]
+
+#: Returns the node to subscribe with (None while no master answers).
+NodeOf = Callable[[], "AsyncNode | None"]
+#: Returns the type the master knows for a topic (None when it has no publisher or subscriber).
+TypeOf = Callable[[str], "str | None"]
+
+#: Seconds between checks of each panel's type and subscription.
+CHECK_EVERY = 0.5
+
+
+class ViewPanel(Vertical):
+    """The panel of ``topic``: a note line, and the registered view once the topic's type is known."""
+
+    DEFAULT_CSS = """
+    ViewPanel { border: round $primary; height: 1fr; width: 1fr; }
+    ViewPanel > .view-note { height: auto; color: $text-muted; }
+    ViewPanel > .view-note.problem { color: $error; }
+    """
+
+    def __init__(self, topic: str, *, msg_type: str | None = None,
+                 view_options: Mapping[str, Any] | None = None) -> None:
+        super().__init__(classes="view-panel")
+        self.topic = topic
+        self.msg_type = msg_type
+        self.view_options = dict(view_options or {})
+        self.joined = False
+        self.view: TopicView | None = None
+        self.budget = FrameBudget()
+        self.feed = TopicFeed(topic, self._arrived)
+        self.note = Static(classes="view-note")
+        self.problem = ""
+        self._delivery_pending = False
+        self.border_title = escape(topic)
+
+    def compose(self) -> ComposeResult:
+        """The note line; the view is mounted once the type is known."""
+        yield self.note
+
+    def on_mount(self) -> None:
+        """Say what the panel waits for."""
+        self.say(f"waiting for {self.topic} to be published")
+
+    def say(self, text: str, *, problem: bool = False) -> None:
+        """The panel's note line (red when ``problem``); empty hides it."""
+        self.note.update(escape(text))
+        self.note.set_class(problem, "problem")
+        self.note.display = bool(text)
+
+    async def check(self, node: AsyncNode | None, msg_type: str | None) -> None:
+        """Mount the view for ``msg_type`` once it is known, and keep the feed subscribed on ``node``."""
+        if msg_type and self.view is None and not self.problem:
+            self.msg_type = msg_type
+            try:
+                cls = view_class(msg_type)
+            except UnknownViewError as exc:
+                self.problem = f"{self.topic}: {exc}"
+                self.say(self.problem, problem=True)
+                return
+            host = self._shared_host(cls)
+            if host is not None:
+                host.add_topic(self.topic)  # type: ignore[attr-defined]
+                self.view, self.joined, self.display = host, True, False
+            else:
+                self.border_subtitle = escape(msg_type)
+                options = {k: v for k, v in self.view_options.items() if k in getattr(cls, "OPTIONS", ())}
+                self.view = cls(self.topic, **options)
+                self.view.arrivals = self.feed.received
+                await self.mount(self.view)
+                self.say("waiting for the first message")
+        if self.view is not None:
+            await self.feed.attach(node)
+
+    def _shared_host(self, cls: type[TopicView]) -> TopicView | None:
+        """The view of class ``cls`` another panel of this grid mounted, when ``cls`` shares one view."""
+        if not getattr(cls, "SHARED", False) or self.parent is None:
+            return None
+        for panel in self.parent.query_children(ViewPanel):
+            if panel is not self and not panel.joined and isinstance(panel.view, cls):
+                return panel.view
+        return None
+
+    async def stop(self) -> None:
+        """Unsubscribe."""
+        await self.feed.detach()
+
+    def _arrived(self) -> None:
+        if not self._delivery_pending and self.view is not None:
+            self._delivery_pending = True
+            wait = self.budget.wait()
+            if wait > 0:
+                self.set_timer(wait, self.deliver)
+            else:
+                self.call_later(self.deliver)
+
+    def deliver(self) -> None:
+        """Decode the newest message (only it) and hand it to the view."""
+        self._delivery_pending = False
+        taken = self.feed.take()
+        if taken is None or self.view is None:
+            return
+        raw, received = taken
+        from rostui.tools.topic.echo import decode
+
+        try:
+            msg = decode(raw)
+        except Exception as exc:  # a message its own definition cannot read: said, and the next one tried
+            self.say(f"cannot decode a message on {self.topic}: {str(exc).splitlines()[0] if str(exc) else exc!r}",
+                     problem=True)
+            return
+        if self.joined:
+            self.view.show_topic_message(self.topic, msg, received)  # type: ignore[attr-defined]
+            return
+        if self.note.display:
+            self.say("")
+        self.view.show_message(msg, received)
+
+
+class ViewGrid(Container):
+    """A panel per topic side by side; subscribes through ``node_of()``, learns types through ``type_of(topic)``."""
+
+    DEFAULT_CSS = """
+    ViewGrid { layout: horizontal; height: 1fr; }
+    """
+
+    def __init__(self, topics: Sequence[str], node_of: NodeOf, type_of: TypeOf, *, id: str | None = None,
+                 view_options: Mapping[str, Any] | None = None) -> None:
+        super().__init__(id=id)
+        self.topics = list(dict.fromkeys(topics))
+        self.node_of = node_of
+        self.type_of = type_of
+        self.panels = [ViewPanel(topic, view_options=view_options) for topic in self.topics]
+        self._checking = False
+
+    def compose(self) -> ComposeResult:
+        """One panel per topic."""
+        yield from self.panels
+
+    def on_mount(self) -> None:
+        """Check types and subscriptions now and every :data:`CHECK_EVERY` seconds."""
+        self.set_interval(CHECK_EVERY, self.check)
+        self.call_later(self.check)
+
+    async def check(self) -> None:
+        """Each panel: mount its view once its type is known, subscribe on the current node."""
+        if self._checking:
+            return
+        self._checking = True
+        try:
+            node = self.node_of()
+            for panel in self.panels:
+                try:
+                    await panel.check(node, self.type_of(panel.topic))
+                except MASTER_ERRORS:  # the master went while subscribing: the next check tries again
+                    await panel.stop()
+        finally:
+            self._checking = False
+
+    async def stop(self) -> None:
+        """Unsubscribe every panel."""
+        await asyncio.gather(*(panel.stop() for panel in self.panels), return_exceptions=True)

@@ -1,0 +1,176 @@
+"""TfTreeView: the frames of /tf and /tf_static as a tree (rqt_tf_tree, ``view_frames``) in the terminal.
+
+Each row is a frame under its parent with the edge's broadcaster (the node that publishes it),
+rate, age of the newest stamp and whether it is static. The row under the cursor is spelled
+out below the table: its transform in its parent and its pose in its tree's root.
+
+The view listens on its own node (a :class:`~rostui.models.tf.source.TfSource`) while it is
+mounted, not through the panel's newest-message feed: a tree needs every message of both
+topics and the name of the node that sent each.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any, Callable
+
+from rich.text import Text
+from textual.app import ComposeResult
+from textual.widgets import DataTable, Static
+
+from rostui.apps.view.registry import TopicView
+from rostui.models.master_link import LinkStatus
+from rostui.models.tf.buffer import TfBuffer, TfError
+from rostui.models.tf.source import TfSource
+from rostui.models.tf.transform import Transform
+from rostui.models.tf.tree import format_age, format_rate, summary, tree_rows
+
+__all__ = ["TfTreeView", "REFRESH_EVERY"]
+
+REFRESH_EVERY = 0.5
+"""Seconds between redraws of the table (rates and ages move even when no frame is added)."""
+
+COLUMNS = ("frame", "broadcaster", "rate", "age")
+
+STALE = 2.0
+"""Seconds after which a dynamic edge's age is drawn as a warning."""
+
+
+def _pose_text(tr: Transform) -> str:
+    x, y, z = (round(float(v), 3) + 0.0 for v in tr.translation)  # rounded, + 0.0: no "-0.0"
+    roll, pitch, yaw = (round(math.degrees(a), 1) + 0.0 for a in tr.rpy())
+    return f"xyz [{x:.3f}, {y:.3f}, {z:.3f}]  rpy° [{roll:.1f}, {pitch:.1f}, {yaw:.1f}]"
+
+
+class TfTreeView(TopicView):
+    """The tf tree of the master at ``master_uri`` (the app's, else ROS_MASTER_URI).
+
+    With ``buffer`` given the view draws that buffer and subscribes to nothing (tests,
+    snapshots, a bag's transforms); ``clock`` is "now" for ages.
+    """
+
+    DEFAULT_CSS = """
+    TfTreeView { height: 1fr; }
+    TfTreeView > #tf-summary { height: 1; }
+    TfTreeView > #tf-summary.problem { color: $error; }
+    TfTreeView > DataTable { height: 1fr; }
+    TfTreeView > #tf-detail { height: auto; max-height: 3; color: $text-muted; }
+    """
+
+    def __init__(self, topic: str = "/tf", *, master_uri: str | None = None, buffer: TfBuffer | None = None,
+                 clock: Callable[[], float] = time.time, refresh_every: float = REFRESH_EVERY,
+                 id: str | None = None, classes: str | None = None) -> None:
+        super().__init__(topic, id=id, classes=classes)
+        self.live = buffer is None
+        self.buffer = buffer if buffer is not None else TfBuffer()
+        self.clock = clock
+        self.refresh_every = refresh_every
+        self.master_uri = master_uri
+        self.source: TfSource | None = None
+        self.table: DataTable[Any] = DataTable(cursor_type="row", zebra_stripes=False, id="tf-table")
+        self.summary_line = Static(id="tf-summary")
+        self.detail = Static(id="tf-detail")
+        self._frames: list[str] = []
+
+    def compose(self) -> ComposeResult:
+        """Summary line, the table of frames, the selected frame's detail."""
+        yield self.summary_line
+        yield self.table
+        yield self.detail
+
+    def on_mount(self) -> None:
+        """Columns; in live mode start listening; redraw now and every :data:`REFRESH_EVERY` seconds."""
+        for name in COLUMNS:
+            self.table.add_column(name, key=name)
+        if self.live:
+            from rostui.core.network import master_uri_from_env
+
+            uri = master_uri_from_env(self.master_uri or getattr(self.app, "master_uri", None))
+            self.source = TfSource(uri, node_name="rostui_tf_tree", buffer=self.buffer, clock=self.clock)
+            self.run_worker(self.source.run(), group="tf-source", exit_on_error=False)
+            self.set_interval(self.refresh_every, self.redraw)
+        self.redraw()
+
+    async def on_unmount(self) -> None:
+        """Unsubscribe and leave the master."""
+        await self.stop()
+
+    async def stop(self) -> None:
+        """Stop listening (idempotent)."""
+        source, self.source = self.source, None
+        if source is not None:
+            await source.stop()
+
+    def show_message(self, msg: Any, received: float) -> None:
+        """Messages come through the view's own subscriptions (with their broadcasters); the panel's are not needed."""
+
+    def redraw(self) -> None:
+        """Rebuild the table from the buffer, keeping the cursor on the same frame."""
+        now = self.clock()
+        rows = tree_rows(self.buffer)
+        selected = self._frames[self.table.cursor_row] if 0 <= self.table.cursor_row < len(self._frames) else None
+        self.table.clear()
+        self._frames = [row.frame for row in rows]
+        for row in rows:
+            label = Text()
+            label.append(row.prefix, style="dim")
+            label.append(row.frame, style="bold" if row.depth == 0 else "")
+            if row.in_loop:
+                label.append("  (in a loop)", style="red")
+            edge = row.edge
+            rate = format_rate(edge)
+            self.table.add_row(
+                label,
+                Text(edge.broadcaster if edge else ""),
+                Text(rate, style="cyan" if rate == "static" else ""),
+                Text(format_age(edge, now), style="yellow" if edge and not edge.static and edge.age(now) > STALE
+                     else ""),
+                key=row.frame,
+            )
+        if selected in self._frames:
+            self.table.move_cursor(row=self._frames.index(selected), animate=False)
+        self._update_summary()
+        self._update_detail()
+
+    def _update_summary(self) -> None:
+        source = self.source
+        problem = False
+        if source is not None and source.state.status is not LinkStatus.CONNECTED:
+            text = source.state.text(marks=True)
+            problem = True
+        elif not self.buffer.frames():
+            text = "waiting for transforms on /tf and /tf_static"
+        else:
+            text = summary(self.buffer)
+        if source is not None and source.problems:
+            text += f"  ·  {source.problems[-1]}"
+            problem = True
+        self.summary_line.update(Text(text))
+        self.summary_line.set_class(problem, "problem")
+
+    def _update_detail(self) -> None:
+        row = self.table.cursor_row
+        if not 0 <= row < len(self._frames):
+            self.detail.update("")
+            return
+        frame = self._frames[row]
+        edge = self.buffer.edge(frame)
+        lines: list[str] = []
+        if edge is not None:
+            lines.append(f"{frame} in {edge.parent}: {_pose_text(edge.latest.transform)}"
+                         f"  ({edge.count} message{'' if edge.count == 1 else 's'})")
+            try:
+                root = self.buffer.chain(frame)[-1]
+                if root != edge.parent:
+                    lines.append(f"{frame} in {root}: {_pose_text(self.buffer.lookup_transform(root, frame).transform)}")
+            except TfError as exc:
+                lines.append(str(exc))
+        else:
+            kids = self.buffer.children(frame)
+            lines.append(f"{frame}: root, {len(kids)} child frame{'' if len(kids) == 1 else 's'}")
+        self.detail.update(Text("\n".join(lines)))
+
+    def on_data_table_row_highlighted(self, event: DataTable.RowHighlighted) -> None:
+        """The cursor moved: spell out the new frame."""
+        self._update_detail()

@@ -1,0 +1,359 @@
+"""TopDownView: laser scans, odometry, paths, poses, occupancy grids and point clouds from above, in braille.
+
+Several topics share one view and one fixed frame (:class:`~rostui.models.sensors.scene2d.Scene2D`
+does the geometry).  The widget's first row is the legend (each topic in its
+colour, with a note when it is not drawn), the last row a scale bar, the fixed
+frame and the grid spacing; the rows between are the canvas, 2 x 4 braille dots
+per cell.  Keys: ``+``/``-`` zoom, arrows pan, ``0`` back to the frame's origin,
+``c`` fits everything drawn.
+
+Only the newest message of each topic is kept; the picture is redrawn on a
+timer at most :attr:`TopDownView.FRAME_RATE` times a second, and only when a
+message came, tf changed or the view moved.
+
+In `rostui view` the first top-down topic's panel holds the view and every
+other top-down topic joins it (:attr:`TopDownView.SHARED`).  Without a given
+``lookup`` the view listens to /tf and /tf_static on its own node while it is
+mounted (a :class:`~rostui.models.tf.source.TfSource`), and ``f`` steps the
+fixed frame through every frame tf and the messages name.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, ClassVar
+
+import numpy as np
+from rich.segment import Segment
+from rich.style import Style
+from textual.binding import Binding, BindingType
+from textual.geometry import Region
+from textual.strip import Strip
+
+from rostui.apps.view.feed import Rate
+from rostui.apps.view.registry import TopicView
+from rostui.apps.widgets.terminal_colors import color_system, shown_in, style_rgb
+from rostui.models.contrast import RGB, keep_hue
+from rostui.models.sensors.canvas2d import BRAILLE_BASE, Viewport
+from rostui.models.sensors.scene2d import Lookup, Scene2D, same_frame_only
+from rostui.models.sensors.tf_lookup import buffer_lookup
+from rostui.models.tf.buffer import TfBuffer
+from rostui.models.tf.source import TfSource
+
+__all__ = ["TopDownView", "TOPIC_COLORS", "DEFAULT_SPAN"]
+
+#: Topic colours in the order topics are added (then round again).
+TOPIC_COLORS: tuple[RGB, ...] = ((255, 80, 80), (80, 220, 80), (90, 160, 255), (255, 200, 40), (230, 100, 255),
+                                 (40, 220, 220), (255, 150, 60), (200, 200, 200))
+
+#: The grid's colour: dim, under every topic.
+GRID_COLOR: RGB = (90, 90, 90)
+
+#: Metres across the canvas before any zoom.
+DEFAULT_SPAN = 10.0
+
+#: The character of each braille dot pattern (no dots: a space).
+GLYPHS = np.array([" "] + [chr(BRAILLE_BASE + bits) for bits in range(1, 256)])
+
+#: Each + or - zooms by this factor.
+ZOOM_STEP = 1.5
+
+
+class TopDownView(TopicView, can_focus=True):
+    """A top-down picture of ``topics`` in ``frame`` (None: the first message's frame).
+
+    ``lookup(target, source)`` gives the pose of frame ``source`` in ``target``;
+    None: tf from the master at ``master_uri`` (ROS_MASTER_URI by default),
+    listened to while the view is mounted in a `rostui view` panel (elsewhere,
+    as in the bag inspector, only messages in the fixed frame are drawn).
+    :attr:`frames` counts the frames drawn; the status line shows messages
+    received and frames drawn per second unless ``show_rates`` is False.
+    """
+
+    #: Every top-down topic of a `rostui view` joins the first one's view (see :meth:`add_topic`).
+    SHARED: ClassVar[bool] = True
+    #: Keyword options `rostui view` passes through (``--frame``).
+    OPTIONS: ClassVar[tuple[str, ...]] = ("frame",)
+
+    DEFAULT_CSS = """
+    TopDownView {
+        width: 1fr;
+        height: 1fr;
+        background: $background;
+    }
+    """
+
+    BINDINGS: ClassVar[list[BindingType]] = [
+        Binding("plus,equals_sign", "zoom(1)", "zoom in"),
+        Binding("minus", "zoom(-1)", "zoom out"),
+        Binding("left", "pan(-1,0)", "pan left", show=False),
+        Binding("right", "pan(1,0)", "pan right", show=False),
+        Binding("up", "pan(0,1)", "pan up", show=False),
+        Binding("down", "pan(0,-1)", "pan down", show=False),
+        Binding("0", "origin", "frame origin"),
+        Binding("c", "fit", "fit all"),
+        Binding("f", "next_frame", "fixed frame"),
+    ]
+
+    FRAME_RATE = 20.0
+
+    def __init__(self, topic: str | None = None, *, topics: tuple[str, ...] | list[str] = (),
+                 frame: str | None = None, lookup: Lookup | None = None, master_uri: str | None = None,
+                 show_rates: bool = True, id: str | None = None, classes: str | None = None) -> None:
+        names = ([topic] if topic else []) + [t for t in topics if t != topic]
+        super().__init__(names[0] if names else "", id=id, classes=classes)
+        self.tf_buffer: TfBuffer | None = None
+        self.tf_source: TfSource | None = None
+        self.master_uri = master_uri
+        self._tf_changes = 0
+        if lookup is None:
+            self.tf_buffer = TfBuffer()
+            lookup = buffer_lookup(self.tf_buffer)
+        self.scene = Scene2D(names, frame, lookup)
+        self._view: Viewport | None = None
+        self._drawn: tuple[int, int, str | None, Viewport | None, int, int] = (-1, -1, None, None, 0, 0)
+        self._strips: list[Strip] = []
+        self._rows: list[str] = []
+        self._owners: list[list[int]] = []
+        self._keys: list[tuple[str, tuple[int, ...]]] = []
+        self.frames = 0
+        self.show_rates = show_rates
+        self.received_rate = Rate()
+        self.drawn_rate = Rate()
+
+    # -- feeding ---------------------------------------------------------------------
+    def add_topic(self, topic: str) -> None:
+        """Draw ``topic`` too, in the next colour."""
+        self.scene.add(topic)
+
+    def show_message(self, msg: Any, received: float = 0.0) -> None:
+        """``msg`` is the newest message of this view's first topic."""
+        self.show_topic_message(self.topic, msg, received)
+
+    def show_topic_message(self, topic: str, msg: Any, received: float = 0.0) -> None:
+        """``msg`` is the newest message of ``topic`` (the one before it is dropped)."""
+        self.scene.offer(topic, msg, received)
+        self.received_rate.add(time.time())
+
+    # -- what tests and tools read -----------------------------------------------------
+    @property
+    def viewport(self) -> Viewport | None:
+        """The canvas' viewport (None before the widget has a size)."""
+        return self._view
+
+    @property
+    def canvas_top(self) -> int:
+        """The widget row of the canvas' first row (below the legend)."""
+        return 1
+
+    def row_text(self, y: int) -> str:
+        """The text of widget row ``y`` as last drawn."""
+        return self._rows[y] if 0 <= y < len(self._rows) else ""
+
+    def cell_topic(self, col: int, row: int) -> str | None:
+        """The topic whose colour canvas cell (``col``, ``row``) was drawn in: "" for the grid, None when empty."""
+        if not (0 <= row < len(self._owners) and 0 <= col < len(self._owners[row])):
+            return None
+        layer = self._owners[row][col]
+        if layer < 0:
+            return None
+        return "" if layer == 0 else self.scene.topics[layer - 1]
+
+    def topic_color(self, topic: str) -> RGB:
+        """The colour ``topic`` is drawn in (its palette colour, made readable on the background)."""
+        index = self.scene.topics.index(topic)
+        base = TOPIC_COLORS[index % len(TOPIC_COLORS)]
+        shown = shown_in(color_system(self.app.console.color_system if self.is_mounted else None))
+        return keep_hue(base, [self._background()], shown)
+
+    # -- keys -------------------------------------------------------------------------
+    def action_zoom(self, direction: int) -> None:
+        """Zoom in (1) or out (-1) about the centre."""
+        if self._view is not None:
+            self._view = self._view.zoomed(ZOOM_STEP if direction > 0 else 1 / ZOOM_STEP)
+            self.draw_frame()
+
+    def action_pan(self, right: int, up: int) -> None:
+        """Move the view an eighth of the canvas."""
+        if self._view is not None:
+            step_x, step_y = max(1, self._view.cols // 8), max(1, self._view.rows // 8)
+            self._view = self._view.panned(right * step_x, up * step_y)
+            self.draw_frame()
+
+    def action_origin(self) -> None:
+        """Back to the fixed frame's origin at the starting zoom."""
+        if self._view is not None:
+            self._view = self._home(self._view.cols, self._view.rows)
+            self.draw_frame()
+
+    def action_next_frame(self) -> None:
+        """Make the next frame (by name) that tf or a message names the fixed frame."""
+        frames = set(self.tf_buffer.frames()) if self.tf_buffer is not None else set()
+        for topic in self.scene.topics:
+            drawing = self.scene.drawing(topic)
+            if drawing is not None and drawing.frame:
+                frames.add(drawing.frame.lstrip("/"))
+        if not frames:
+            return
+        ordered = sorted(frames)
+        current = self.scene.fixed_frame
+        self.scene.fixed_frame = ordered[(ordered.index(current) + 1) % len(ordered)] if current in ordered \
+            else ordered[0]
+        self.draw_frame()
+
+    def action_fit(self) -> None:
+        """Centre and zoom so that everything drawn shows."""
+        if self._view is not None:
+            self._view = self._view.fitting(self.scene.world_points())
+            self.draw_frame()
+
+    # -- Textual hooks -------------------------------------------------------------------
+    def on_mount(self) -> None:
+        """Start the frame timer; take the keys unless another widget has them; listen to tf (see the class)."""
+        self.set_interval(1.0 / self.FRAME_RATE, self.draw_frame)
+        if self.screen.focused is None:
+            self.focus()
+        if self.tf_buffer is not None and not self._in_panel():
+            self.tf_buffer = None  # a recorded message (the bag inspector): drawn in its own frame, no live tf
+            self.scene.lookup = same_frame_only
+        if self.tf_buffer is not None:
+            from rostui.core.network import master_uri_from_env
+
+            uri = master_uri_from_env(self.master_uri or getattr(self.app, "master_uri", None))
+            self.tf_source = TfSource(uri, node_name="rostui_view_tf", buffer=self.tf_buffer,
+                                      on_change=self._tf_changed, clock=time.time)
+            self.run_worker(self.tf_source.run(), group="topdown-tf", exit_on_error=False)
+
+    def _in_panel(self) -> bool:
+        """True inside a `rostui view` panel (live topics), False elsewhere (the bag inspector)."""
+        from rostui.apps.view.panel import ViewPanel
+
+        return any(isinstance(node, ViewPanel) for node in self.ancestors)
+
+    def _tf_changed(self) -> None:
+        self._tf_changes += 1
+
+    async def on_unmount(self) -> None:
+        """Stop listening to tf."""
+        source, self.tf_source = self.tf_source, None
+        if source is not None:
+            await source.stop()
+
+    def on_resize(self) -> None:
+        """Keep centre and scale over the new size, and redraw at once."""
+        self.draw_frame()
+
+    def render_line(self, y: int) -> Strip:
+        """Line API: the stored strip of row ``y``."""
+        if not self._strips or len(self._strips) != self.size.height:
+            self.draw_frame()
+        if 0 <= y < len(self._strips):
+            return self._strips[y]
+        return Strip.blank(self.size.width)
+
+    # -- drawing -------------------------------------------------------------------------
+    def _home(self, cols: int, rows: int) -> Viewport:
+        return Viewport(cols, rows, 0.0, 0.0, DEFAULT_SPAN / max(1, 2 * cols))
+
+    def _background(self) -> RGB:
+        rgb = style_rgb(self.rich_style.bgcolor, foreground=False) if self.is_mounted else None
+        return rgb or (0, 0, 0)
+
+    def draw_frame(self) -> bool:
+        """Redraw when a message came, the view moved or the size changed; True if it did."""
+        width, height = self.size.width, self.size.height
+        cols, rows = width, max(0, height - 2)
+        if self._view is None:
+            if cols <= 0:
+                return False
+            self._view = self._home(cols, rows)
+        elif (self._view.cols, self._view.rows) != (cols, rows):
+            self._view = self._view.resized(cols, rows)
+        state = (self.scene.generation, self._tf_changes, self.scene.fixed_frame, self._view, width, height)
+        if state == self._drawn and self._strips:
+            self._update_status(self._view, width, height)
+            return False
+        resized = (width, height) != self._drawn[4:]
+        self._drawn = state
+        self.drawn_rate.add(time.time())
+        old = self._keys
+        self._draw(self._view, width, height)
+        self.frames += 1
+        if resized or len(old) != len(self._keys):
+            self.refresh()
+        else:
+            for y, (before, after) in enumerate(zip(old, self._keys)):
+                if before != after:  # only rows that changed go to the terminal
+                    self.refresh(Region(0, y, width, 1))
+        return True
+
+    def _update_status(self, view: Viewport, width: int, height: int) -> None:
+        """Rewrite only the status line when its text (the rates) changed."""
+        if height < 2 or len(self._strips) != height:
+            return
+        status = self._status(view)
+        if status != self._rows[-1]:
+            self._rows[-1] = status
+            self._keys[-1] = (status, ())
+            self._strips[-1] = Strip([Segment(status, self.rich_style)]).crop_extend(0, width, self.rich_style)
+            self.refresh(Region(0, height - 1, width, 1))
+
+    def _draw(self, view: Viewport, width: int, height: int) -> None:
+        base = self.rich_style
+        styles = [base + Style(color=f"rgb{GRID_COLOR}")]
+        styles += [base + Style(color="rgb({},{},{})".format(*self.topic_color(t))) for t in self.scene.topics]
+        texts: list[str] = []
+        strips: list[Strip] = []
+        legend = self._legend(styles, base)
+        texts.append("".join(s.text for s in legend))
+        strips.append(Strip(legend).crop_extend(0, width, base))
+        if view.rows > 0 and view.cols > 0:
+            bits, top = self.scene.render(view).compose()
+            self._owners = top.tolist()
+            chars = GLYPHS[bits]
+            for r in range(view.rows):
+                line = "".join(chars[r])
+                texts.append(line)
+                strips.append(Strip(self._runs(line, self._owners[r], styles, base), width))
+        else:
+            self._owners = []
+        if height >= 2:
+            status = self._status(view)
+            texts.append(status)
+            strips.append(Strip([Segment(status, base)]).crop_extend(0, width, base))
+        owners = [()] + [tuple(row) for row in self._owners] + [()]
+        self._rows, self._strips = texts[:height], strips[:height]
+        self._keys = [(text, owner) for text, owner in zip(self._rows, owners)]
+
+    def _runs(self, line: str, owner_list: list[int], styles: list[Style], base: Style) -> list[Segment]:
+        """Segments of equal colour along one canvas row."""
+        segments: list[Segment] = []
+        start = 0
+        for i in range(1, len(line) + 1):
+            if i == len(line) or owner_list[i] != owner_list[start]:
+                layer = owner_list[start]
+                segments.append(Segment(line[start:i], styles[layer] if layer >= 0 else base))
+                start = i
+        return segments
+
+    def _legend(self, styles: list[Style], base: Style) -> list[Segment]:
+        segments: list[Segment] = []
+        for i, topic in enumerate(self.scene.topics, start=1):
+            note = self.scene.note(topic)
+            segments.append(Segment("■ ", styles[i]))
+            segments.append(Segment(topic, styles[i]))
+            if note:
+                segments.append(Segment(f" ({note})", base + Style(italic=True)))
+            segments.append(Segment("  ", base))
+        return segments
+
+    def _status(self, view: Viewport) -> str:
+        step = self.scene.grid_step(view)
+        cells = max(2, round(step / (2 * view.scale)))
+        metres = f"{step:g} m" if step >= 1 else f"{step * 100:g} cm"
+        frame = self.scene.fixed_frame or "(waiting for a message)"
+        text = f"├{'─' * (cells - 2)}┤ {metres}   frame {frame}   centre {view.cx:.2f}, {view.cy:.2f}"
+        if self.show_rates:
+            now = time.time()
+            text += f"   {self.received_rate.per_second(now):.1f} msg/s ({self.drawn_rate.per_second(now):.1f} drawn)"
+        return text

@@ -1,0 +1,16 @@
+"""tf without a screen: rigid transforms and a transform buffer fed from /tf and /tf_static.
+
+:mod:`.transform` holds the maths (quaternions, composition, inverse, RPY);
+:mod:`.buffer` the frames, edges and lookups through the tree. No Textual here.
+"""
+
+from rostui.models.tf.buffer import (
+    ConnectivityError, Edge, ExtrapolationError, FrameNotFoundError, LoopError, StampedTransform, TfBuffer,
+    TfError,
+)
+from rostui.models.tf.transform import Transform, quat_from_rpy, quat_to_rpy
+
+__all__ = [
+    "ConnectivityError", "Edge", "ExtrapolationError", "FrameNotFoundError", "LoopError", "StampedTransform",
+    "TfBuffer", "TfError", "Transform", "quat_from_rpy", "quat_to_rpy",
+]

@@ -1,0 +1,65 @@
+"""FrameBudget: frames are spaced so the process's CPU per second stays within the share (fake clocks)."""
+
+from __future__ import annotations
+
+import pytest
+
+from rostui.models.frame_budget import FrameBudget
+
+
+class Clocks:
+    """A wall clock and a CPU clock the test moves by hand."""
+
+    def __init__(self) -> None:
+        self.wall = 0.0
+        self.cpu = 0.0
+
+
+def run(frame_cost: float, arrivals_hz: float, share: float, seconds: float) -> tuple[int, float]:
+    """Frames drawn and CPU seconds used when frames costing ``frame_cost`` arrive at ``arrivals_hz``.
+
+    As in the view's panel: a frame that arrives waits (only the newest is kept) until the budget lets
+    it be drawn; drawing costs CPU.  Time moves in 1 ms ticks.
+    """
+    clocks = Clocks()
+    budget = FrameBudget(share, wall=lambda: clocks.wall, cpu=lambda: clocks.cpu)
+    drawn = 0
+    period = 1.0 / arrivals_hz
+    next_arrival = 0.0
+    pending = False
+    for tick in range(int(seconds * 1000)):
+        clocks.wall = tick / 1000
+        if clocks.wall >= next_arrival:
+            pending, next_arrival = True, next_arrival + period
+        if pending and budget.wait() == 0.0:
+            clocks.cpu += frame_cost
+            drawn, pending = drawn + 1, False
+    return drawn, clocks.cpu
+
+
+def test_cheap_frames_are_all_drawn() -> None:
+    drawn, cpu = run(frame_cost=0.005, arrivals_hz=30, share=0.45, seconds=10)
+    assert drawn >= 299 and cpu / 10 < 0.45
+
+
+@pytest.mark.parametrize("cost", [0.016, 0.030, 0.100])
+def test_costly_frames_are_dropped_to_keep_the_share(cost: float) -> None:
+    drawn, cpu = run(frame_cost=cost, arrivals_hz=30, share=0.45, seconds=20)
+    assert cpu / 20 <= 0.45 + cost / 20  # within the share, give or take the frame in flight
+    assert drawn >= min(20 * 30, int(20 * 0.45 / cost)) * 0.95  # and no more frames dropped than the share needs
+
+
+def test_a_pause_buys_only_a_short_burst() -> None:
+    clocks = Clocks()
+    budget = FrameBudget(0.5, wall=lambda: clocks.wall, cpu=lambda: clocks.cpu)
+    assert budget.wait() == 0.0
+    clocks.wall = 60.0  # a minute with no frames
+    clocks.cpu = 0.5  # then frames worth 0.5 s of CPU at once
+    assert budget.wait() == pytest.approx(0.5)  # the reserve covered 0.25 s of it; 0.25 s is owed at 0.5/s
+
+
+def test_share_must_be_a_fraction_of_a_core() -> None:
+    with pytest.raises(ValueError):
+        FrameBudget(0)
+    with pytest.raises(ValueError):
+        FrameBudget(1.5)

@@ -1,0 +1,71 @@
+"""`rostui view` live with top-down topics: a real publisher of every top-down type (Debian's rospy, rostui's
+client), all drawn in ONE view, each in place.
+
+tests/peers/topdown_talker.py publishes LaserScan, Odometry, PoseStamped,
+PoseArray, Path, OccupancyGrid and a big-endian float64 PointCloud2 at 10 Hz
+in frame "map", plus a scan in frame "laser" placed by a latched /tf_static
+map -> laser.  The app (ViewApp with ``--frame map``) mounts one TopDownView
+for all of them; each topic's colour must appear where the talker put it
+(topdown_helpers.TALKER_SPOTS).  When the app quits, its subscriptions leave
+the master.
+"""
+
+from __future__ import annotations
+
+import sys
+import xmlrpc.client
+
+from conftest import SYSTEM_PYTHON, until
+from interop_helpers import PEERS, Spawn, spawn  # noqa: F401  (fixture)
+from rostui.apps.view.app import ViewApp
+from rostui.apps.view.panel import ViewPanel
+from rostui.apps.view.topdown_view import TopDownView
+from topdown_helpers import TALKER_SPOTS, sync
+
+TOPICS = list(TALKER_SPOTS)
+
+
+def subscriptions(env: dict[str, str]) -> set[str]:
+    """Topics the master lists some rostui view node as a subscriber of."""
+    _, _, (_, subs, _) = xmlrpc.client.ServerProxy(env["ROS_MASTER_URI"]).getSystemState("/topdown_test")
+    return {topic for topic, nodes in subs if any(n.startswith("/rostui_view") for n in nodes)}
+
+
+async def check_drawn(env: dict[str, str]) -> None:
+    app = ViewApp(TOPICS, period=0.3, frame="map")
+    async with app.run_test(size=(100, 30)) as pilot:
+        await until(lambda: len(app.query(TopDownView)) == 1, "the top-down view mounted")
+        view = app.query_one(TopDownView)
+
+        def owner(topic: str) -> str | None:
+            vp = view.viewport
+            cell = vp.cell_of(*TALKER_SPOTS[topic]) if vp is not None else None
+            return view.cell_topic(*cell) if cell is not None else None
+
+        await until(lambda: all(owner(t) == t for t in TOPICS),
+                    f"every topic drawn in place: {[(t, owner(t)) for t in TOPICS]} {view.row_text(0)!r} "
+                    f"size {view.size} panels {[(p.topic, p.display, p.joined) for p in app.query(ViewPanel)]}")
+        assert len(app.query(TopDownView)) == 1
+        assert [p.topic for p in app.query(ViewPanel) if p.display] == ["/scan"]  # the others joined its view
+        assert view.scene.fixed_frame == "map"
+        assert "no transform" not in view.row_text(0) and "cannot draw" not in view.row_text(0)
+        assert set(TOPICS) | {"/tf", "/tf_static"} <= subscriptions(env)
+        await pilot.press("q")
+    assert app.return_code == 0
+    assert subscriptions(env) == set()
+
+
+@sync
+async def test_rospy_publishers_on_rostui_core(ros_env: dict[str, str], rostui_core: object, spawn: Spawn,
+                                               rospy_available: None) -> None:
+    talker = spawn([SYSTEM_PYTHON, str(PEERS / "topdown_talker.py"), "rospy"], label="rospy topdown talker")
+    talker.wait_for("ready")
+    await check_drawn(ros_env)
+
+
+@sync
+async def test_rostui_client_publishers_on_real_roscore(ros_env: dict[str, str], real_roscore: object,
+                                                        spawn: Spawn) -> None:
+    talker = spawn([sys.executable, str(PEERS / "topdown_talker.py"), "rostui"], label="rostui topdown talker")
+    talker.wait_for("ready")
+    await check_drawn(ros_env)

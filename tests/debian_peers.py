@@ -68,6 +68,7 @@ MODULES: dict[str, str] = {
     "tf2_msgs": "python3-tf2-msgs",
     "rosgraph_msgs": "python3-rosgraph-msgs",
     "roscpp": "python3-roscpp-msg",
+    "numpy": "python3-numpy",
     "tf2_ros": "python3-tf2-ros",
 }
 

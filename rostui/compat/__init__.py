@@ -11,10 +11,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ["PYLIB", "ROSTUI_ROOT"]
+__all__ = ["PKGPY", "PYLIB", "ROSTUI_ROOT"]
 
 PYLIB: Path = Path(__file__).resolve().parent / "pylib"
 """The directory put first on a script's ``sys.path`` (its ``PYTHONPATH``)."""
+
+PKGPY: Path = Path(__file__).resolve().parent / "pkgpy"
+"""Python modules ROS message packages ship besides ``msg``/``srv`` (``sensor_msgs.point_cloud2``), one
+directory per package: the finder makes it the package's ``__path__``."""
 
 ROSTUI_ROOT: Path = Path(__file__).resolve().parent.parent.parent
 """The directory holding the ``rostui`` package, so an interpreter without rostui installed finds it."""

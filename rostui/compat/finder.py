@@ -4,7 +4,9 @@ Every ROS package rostui knows (``ROS_PACKAGE_PATH``, then the built-in ones)
 that defines messages or services becomes importable. The classes are
 rostui's own generated ones (:func:`rostui.core.msg.get_message_class`), built
 on first use; a module's ``__getattr__`` builds them, so ``import std_msgs.msg``
-costs nothing until a class is named. The finder sits last on
+costs nothing until a class is named. A package's other Python modules that
+rostui writes (``sensor_msgs.point_cloud2``) live in :data:`~rostui.compat.PKGPY`,
+found through the package's ``__path__``. The finder sits last on
 ``sys.meta_path``: a package that is really installed is found first, unless
 the user chose rostui's modules over a real ROS (then it sits first).
 """
@@ -18,6 +20,7 @@ from collections.abc import Callable, Sequence
 from types import ModuleType
 from typing import Any
 
+from rostui.compat import PKGPY
 from rostui.core import packages
 from rostui.core.msg import (
     MessageError,
@@ -142,7 +145,8 @@ class MessageModuleFinder(importlib.abc.MetaPathFinder):
     def _spec(fullname: str, package: str, kind: str | None, only: str | None) -> importlib.machinery.ModuleSpec:
         spec = importlib.machinery.ModuleSpec(fullname, _Loader(package, kind, only), is_package=only is None)
         if only is None:
-            spec.submodule_search_locations = []
+            extra = PKGPY / package
+            spec.submodule_search_locations = [str(extra)] if kind is None and extra.is_dir() else []
         return spec
 
 

@@ -30,7 +30,8 @@ from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.busypoll import BusyPoll, busy_poll_for
 from rostui.core.node.logging_link import NodeLogging
 from rostui.core.node.params import ParamCache
-from rostui.core.node.services import ServiceException, ServiceProxy, ServiceServer
+from rostui.core.node.services import ServiceException, ServiceProxy, ServiceServer, probe_header
+from rostui.core.tcpros import encode_header
 from rostui.core.node.slave import SlaveApi
 from rostui.core.node.topics import Publication, Subscription, TopicType
 from rostui.core.node.transport import InboundConnection, InboundHandler
@@ -614,6 +615,7 @@ class AsyncNode:
                 parsed = urlparse(uri)
                 _, writer = await asyncio.wait_for(
                     asyncio.open_connection(connect_host(parsed.hostname or ""), parsed.port), 1.0)
+                writer.write(encode_header(probe_header(self.name, resolved)))
                 writer.close()
                 return
             except (ServiceException, OSError, asyncio.TimeoutError) as exc:

@@ -76,6 +76,7 @@ class ServiceServer:
         self.handler = handler
         self.threaded = threaded
         self.calls = 0
+        self.header_fields: Callable[[], dict[str, str]] | None = None
 
     @property
     def type_name(self) -> str:
@@ -84,7 +85,9 @@ class ServiceServer:
         return name
 
     def reply_header(self) -> dict[str, str]:
-        """The header this server sends to every client."""
+        """The header this server sends to every client (``header_fields()`` when set, rospy's set for one)."""
+        if self.header_fields is not None:
+            return self.header_fields()
         return {
             "callerid": self.node.name,
             "md5sum": self.srv_class._md5sum,
@@ -106,12 +109,16 @@ class ServiceServer:
             return (f"request from [{header.get('callerid', '?')}]: md5sums do not match: "
                     f"[{md5}] vs. [{self.srv_class._md5sum}]")
         conn.write(encode_header(self.reply_header()))
-        return ServiceConnection(self, conn, persistent=header.get("persistent") == "1")
+        return ServiceConnection(self, conn, persistent=header.get("persistent") == "1", header=header)
 
-    async def handle(self, body: bytes) -> bytes:
-        """Run the handler on one request body; return the framed response."""
+    async def handle(self, body: bytes, header: dict[str, str] | None = None) -> bytes:
+        """Run the handler on one request body; return the framed response.
+
+        The request carries the client's connection *header* as ``_connection_header``.
+        """
         try:
             request = self.srv_class._request_class.deserialize(body)
+            request._connection_header = header or {}
             if self.threaded:
                 result = await self.node.loop.run_in_executor(None, self.handler, request)
             else:
@@ -150,8 +157,10 @@ class ServiceConnection:
 
     takes_frames = True
 
-    def __init__(self, server: ServiceServer, conn: InboundConnection, *, persistent: bool) -> None:
+    def __init__(self, server: ServiceServer, conn: InboundConnection, *, persistent: bool,
+                 header: dict[str, str] | None = None) -> None:
         self.server = server
+        self.header = header or {}
         self.conn = conn
         self.persistent = persistent
         self.pending: collections.deque[bytes] = collections.deque()
@@ -176,7 +185,7 @@ class ServiceConnection:
             while not pending:
                 arrived.clear()
                 await arrived.wait()
-            response = await self.server.handle(pending.popleft())
+            response = await self.server.handle(pending.popleft(), self.header)
             await writable.wait()  # the client reads its answers before it gets more
             self.conn.write(response)
             if not self.persistent:
@@ -217,6 +226,11 @@ async def read_header(reader: asyncio.StreamReader) -> dict[str, str]:
     return decode_header(await reader.readexactly(size))
 
 
+def probe_header(callerid: str, service: str) -> dict[str, str]:
+    """The header of a probe: asks a service server for its header and makes no call (rospy's wait_for_service)."""
+    return {"probe": "1", "md5sum": "*", "callerid": callerid, "service": service}
+
+
 async def probe_service(uri: str, service: str, callerid: str, timeout: float = 5.0) -> dict[str, str]:
     """Ask a service server for its header (type, md5sum) without calling it."""
     host, port = parse_rosrpc_uri(uri)
@@ -243,6 +257,7 @@ class ServiceProxy:
         self.headers = headers or {}
         self._stream: tuple[asyncio.StreamReader, asyncio.StreamWriter] | None = None
         self._lock: asyncio.Lock | None = None
+        self._reply_header: dict[str, str] = {}
 
     def build_request(self, *args: Any, **kwargs: Any) -> Any:
         """A request from a request instance, positional fields or keywords."""
@@ -271,6 +286,7 @@ class ServiceProxy:
         if "error" in reply:
             writer.close()
             raise ServiceException(f"service [{self.name}] refused the call: {reply['error']}")
+        self._reply_header = reply
         return reader, writer
 
     async def call(self, *args: Any, **kwargs: Any) -> Any:
@@ -280,6 +296,7 @@ class ServiceProxy:
             self._lock = asyncio.Lock()
         async with self._lock:
             stream = self._stream or await self._open()
+            reply_header = self._reply_header
             reader, writer = stream
             try:
                 payload = request.serialize()
@@ -301,7 +318,9 @@ class ServiceProxy:
         if not ok:
             raise ServiceException(
                 f"service [{self.name}] responded with an error: {body.decode(errors='replace')}")
-        return self.srv_class._response_class.deserialize(body)
+        response = self.srv_class._response_class.deserialize(body)
+        response._connection_header = reply_header
+        return response
 
     async def close(self) -> None:
         """Close a persistent connection."""

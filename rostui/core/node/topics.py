@@ -222,8 +222,25 @@ def _direct_socket(conn: InboundConnection) -> socket.socket | None:
         return None
 
 
+class PeerListener(Protocol):
+    """Told when a subscriber connects to or leaves a :class:`Publication` (rospy's SubscribeListener)."""
+
+    def peer_added(self, pub: "Publication", link: OutgoingLink) -> None:
+        """A remote subscriber connected (engine thread; *link* already receives what is published)."""
+
+    def peer_removed(self, pub: "Publication", remaining: int) -> None:
+        """A remote subscriber left; *remaining* remote subscribers are still connected (engine thread)."""
+
+
 class Publication:
-    """Every publisher handle of one topic in one node shares this object."""
+    """Every publisher handle of one topic in one node shares this object.
+
+    ``extra_header`` fields go into the header sent to every subscriber;
+    ``peer_listeners`` hear of subscribers coming and going; with
+    ``seq_when_connected`` a Header's ``seq`` counts from 1 and only messages
+    sent while a subscriber is connected, as rospy numbers them (otherwise
+    from 0, every message).
+    """
 
     def __init__(
         self, node: TopicHost, topic: str, topic_type: TopicType, *,
@@ -242,6 +259,9 @@ class Publication:
         self.handles = 0
         self.messages_published = 0
         self.seq = 0
+        self.extra_header: dict[str, str] = {}
+        self.peer_listeners: list[PeerListener] = []
+        self.seq_when_connected = False
         self._pending: collections.deque[tuple[bytes, Any]] = collections.deque(maxlen=self.queue_limit)
         self._flush_scheduled = False
         self.lock = threading.Lock()
@@ -268,17 +288,73 @@ class Publication:
             "message_definition": self.topic_type.definition,
             "latching": "1" if self.latch else "0",
             "topic": self.topic,
+            **self.extra_header,
         }
         conn.write(encode_header(reply))
+        listeners = list(self.peer_listeners)
         with self.lock:
             self.links = self.links + (link,)
-            if self.latch and self.latched_frame is not None:
-                link.send(self.latched_frame)
+            if not listeners:
+                self._send_latched(link)
+                return link
+        for listener in listeners:
+            self._tell(listener.peer_added, link)
+        with self.lock:
+            if link in self.links:
+                self._send_latched(link)
         return link
+
+    def _send_latched(self, link: OutgoingLink) -> None:
+        """Give a new subscriber the last message of a latched topic (under the lock)."""
+        if self.latch and self.latched_frame is not None:
+            link.send(self.latched_frame)
 
     def remove_link(self, link: OutgoingLink) -> None:
         """Drop a subscriber connection."""
+        before = len(self.links)
         self.links = tuple(x for x in self.links if x is not link)
+        if len(self.links) < before:
+            for listener in list(self.peer_listeners):
+                self._tell(listener.peer_removed, len(self.links))
+
+    def _tell(self, hook: Callable[..., None], arg: Any) -> None:
+        try:
+            hook(self, arg)
+        except Exception:  # a user's listener must not cost the connection
+            log.exception("error in subscriber listener of %s", self.topic)
+
+    def publish_to(self, link: OutgoingLink, msg: Any) -> None:
+        """Send *msg* to one subscriber only (any thread), numbered like :meth:`publish`.
+
+        On a latched topic it becomes the latched message, as in rospy.
+        """
+        self._number(msg)
+        payload = msg.serialize() if not isinstance(msg, AnyMsg) else msg._buff
+        data = LEN.pack(len(payload)) + payload
+        if self.latch:
+            with self.lock:
+                self.latched_frame, self.latched_msg = data, msg
+        if get_ident() == self.node.loop_thread_id:
+            self._send_one(link, data)
+        else:
+            self.node.loop.call_soon_threadsafe(self._send_one, link, data)
+
+    def _send_one(self, link: OutgoingLink, data: bytes) -> None:
+        with self.lock:
+            if link in self.links:
+                link.send(data)
+
+    def _number(self, msg: Any) -> None:
+        """Give a message with a Header the next sequence number."""
+        if not msg._has_header:
+            return
+        with self.lock:
+            if not self.seq_when_connected:
+                msg.header.seq = self.seq
+                self.seq += 1
+            elif self.links or self.local:
+                self.seq += 1
+                msg.header.seq = self.seq
 
     def add_local(self, sub: "Subscription") -> None:
         """Link a subscription of this process for direct delivery."""
@@ -306,10 +382,7 @@ class Publication:
 
         Messages with a Header get the next sequence number, as rospy does.
         """
-        if msg._has_header:
-            with self.lock:
-                msg.header.seq = self.seq
-                self.seq += 1
+        self._number(msg)
         payload = msg.serialize() if not isinstance(msg, AnyMsg) else msg._buff
         data = LEN.pack(len(payload)) + payload
         if get_ident() == self.node.loop_thread_id:
@@ -613,12 +686,13 @@ class Subscription:
         dispatch = self._dispatch
         topic = self.topic
 
-        def on_frame(data: bytes, _header: dict[str, str]) -> None:
+        def on_frame(data: bytes, header: dict[str, str]) -> None:
             try:
                 msg = deserialize(data)
             except Exception as exc:
                 log.warning("dropping undecodable message on %s: %s", topic, exc)
                 return
+            msg._connection_header = header
             dispatch(msg)
         return on_frame
 

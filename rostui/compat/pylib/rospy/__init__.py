@@ -32,6 +32,7 @@ from . import exceptions, msproxy, names, rostime
 from ._params import delete_param, get_param, get_param_names, has_param, search_param, set_param
 from ._callback_thread import CallbackThread
 from ._nodeless import caller as _nodeless_caller
+from ._peers import ListenerRelay, rospy_service_header
 from .exceptions import (
     ROSException, ROSInitException, ROSInternalException, ROSInterruptException, ROSSerializationException,
     ROSTimeMovedBackwardsException, ServiceException, TransportException, TransportInitError, TransportTerminated,
@@ -80,20 +81,20 @@ def __getattr__(name: str) -> Any:
 
 
 class SubscribeListener:
-    """The base class of a Publisher's *subscriber_listener* (rostui never calls it: see docs/rospy.md)."""
+    """The base class of a Publisher's *subscriber_listener*: told of each subscriber that comes or goes."""
 
     def peer_subscribe(self, topic_name: str, topic_publish: Callable[[Any], None],
                        peer_publish: Callable[[Any], None]) -> None:
-        """Called by rospy when a subscriber connects."""
+        """A subscriber connected: *topic_publish* sends to every subscriber, *peer_publish* to this one."""
 
     def peer_unsubscribe(self, topic_name: str, num_peers: int) -> None:
-        """Called by rospy when a subscriber disconnects."""
+        """A subscriber disconnected; *num_peers* are still connected."""
 
 
 def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = False,
               log_level: int | None = None, disable_rostime: bool = False, disable_rosout: bool = False,
               disable_signals: bool = False, xmlrpc_port: int = 0, tcpros_port: int = 0) -> None:
-    """Start this process's node, as rospy's ``init_node``.
+    """Start this process's node, as rospy's ``init_node``; its console lines look like rospy's.
 
     With the parameter ``/use_sim_time`` true the node follows ``/clock``
     unless *disable_rostime*.  *disable_rosout*, *xmlrpc_port* and
@@ -151,8 +152,11 @@ class _Topic(abc.ABC):
 class Publisher(_Topic):
     """Publish messages on a topic, as ``rospy.Publisher``; may be made before ``init_node``.
 
-    *subscriber_listener* is accepted; its ``peer_subscribe`` and
-    ``peer_unsubscribe`` are not called. *headers* are accepted and not sent.
+    *subscriber_listener* (a :class:`SubscribeListener`) is told of each
+    subscriber that connects or leaves; *headers* go into the connection
+    header every subscriber receives (``msg._connection_header`` there). A
+    message with a Header gets rospy's sequence numbers: from 1, counting
+    only messages sent while a subscriber is connected.
     """
 
     def __init__(self, name: str, data_class: Any, subscriber_listener: Any = None, tcp_nodelay: bool = False,
@@ -160,11 +164,17 @@ class Publisher(_Topic):
         self.name = self.resolved_name = resolve_name(name)
         self.data_class, self.type = data_class, data_class._type
         self.queue_size, self.latch, self.tcp_nodelay = queue_size, latch, tcp_nodelay
+        self._listener, self._headers = subscriber_listener, dict(headers or {})
         super().__init__()
 
     def _start(self) -> None:
         self._impl = _sync.Publisher(self.resolved_name, self.data_class, queue_size=self.queue_size,
                                      latch=self.latch, tcp_nodelay=self.tcp_nodelay)
+        publication = self._impl._publication
+        publication.seq_when_connected = True
+        publication.extra_header.update(self._headers)
+        if self._listener is not None:
+            publication.peer_listeners.append(ListenerRelay(self._listener, self.publish))
 
     def publish(self, *args: Any, **kwargs: Any) -> None:
         """Publish a message, or one built from its fields given positionally or as keywords."""
@@ -204,7 +214,9 @@ class Subscriber(_Topic):
 class Service(_sync.Service):
     """Serve a service, as ``rospy.Service``; the handler runs in a worker thread.
 
-    *buff_size* is accepted (rostui reads whole requests).  A handler that
+    The request carries the client's connection header as
+    ``_connection_header``; clients get rospy's server header. *buff_size*
+    is accepted (rostui reads whole requests).  A handler that
     raises anything but ServiceException has *error_handler* called as
     ``error_handler(exception, type, value, traceback)`` before the caller
     gets the error, as rospy does.
@@ -213,6 +225,7 @@ class Service(_sync.Service):
     def __init__(self, name: str, service_class: Any, handler: Callable[[Any], Any], buff_size: int = 65536,
                  error_handler: _sync.ErrorHandler | None = None) -> None:
         super().__init__(name, service_class, handler, error_handler=error_handler)
+        self._server.header_fields = rospy_service_header(self.resolved_name, service_class, get_caller_id())
 
 
 _initialized = names.is_initialized

@@ -16,7 +16,8 @@ from rostui.core import names as _names
 from rostui.core.localhost import connect_host
 from rostui.core.masteruri import master_uri_from_env
 from rostui.core.node.engine import Engine
-from rostui.core.node.services import ServiceException, parse_rosrpc_uri
+from rostui.core.node.services import ServiceException, parse_rosrpc_uri, probe_header
+from rostui.core.tcpros import encode_header
 from rostui.core.node.services import ServiceProxy as _AsyncProxy
 from rostui.core.node.sync import DetachedCaller
 
@@ -45,6 +46,7 @@ class Caller(DetachedCaller):
                 uri = await self.lookup_service(resolved)
                 host, port = parse_rosrpc_uri(uri)
                 _, writer = await asyncio.wait_for(asyncio.open_connection(connect_host(host), port), 1.0)
+                writer.write(encode_header(probe_header(self.name, resolved)))
                 writer.close()
                 return True
             except (ServiceException, OSError, ValueError, asyncio.TimeoutError):

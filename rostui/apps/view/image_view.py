@@ -71,10 +71,13 @@ def graphics() -> str:
 def _image_widget(kind: str) -> Widget:
     if kind == "halfblock":
         return HalfBlock()
+    if kind == "kitty":
+        from rostui.apps.view.kitty import KittyImage
+
+        return KittyImage()
     from textual_image import widget
 
-    cls: type[Widget] = widget.SixelImage if kind == "sixel" else widget.TGPImage
-    return cls()
+    return widget.SixelImage()
 
 
 def _cell_pixels() -> tuple[int, int]:

@@ -14,7 +14,9 @@ camera is replaced here:
   the terminal's image store.  Here each new frame frees the one before it
   (``a=d,d=I,i=<id>``), and quitting frees the last one;
 - it sends the image again on every repaint of the widget; here only when
-  the picture or its size changed.
+  the picture or its size changed;
+- it enlarges a small picture to the cells' pixels before encoding it;
+  here the terminal does (kitty fits the image to the placement's cells).
 """
 
 from __future__ import annotations
@@ -50,7 +52,12 @@ class KittyRenderable(tgp.Image):
 
     def _send_image_to_terminal(self, width: int, height: int) -> None:
         self.terminal_image_id = next(tgp.Image._image_id_counter) % (2**32 - 1) + 1
-        data = self._image_data.scaled(width, height).to_base64()
+        pixels = self._image_data
+        if pixels.width > width or pixels.height > height:
+            pixels = pixels.scaled(width, height)
+        # a smaller picture is sent as it is: the terminal enlarges it to the placement's cells,
+        # which costs neither PNG encoding nor bytes on the line
+        data = pixels.to_base64()
         parts = []
         while data:
             chunk, data = data[:4096], data[4096:]

@@ -96,7 +96,7 @@ class KittyImage(BaseImage, Renderable=KittyRenderable):
         if current is not None:
             current.cleanup()
         renderable = KittyRenderable(self._image, *size)
-        renderable.write = self._write  # type: ignore[method-assign]
+        renderable.write = self._write
         renderable._for = (id(self._image), size)  # type: ignore[attr-defined]
         self._renderable = renderable
         return renderable

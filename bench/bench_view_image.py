@@ -141,7 +141,8 @@ def main() -> int:
     core = subprocess.Popen([sys.executable, "-m", "rostui", "core", "-p", str(port)], env=env,
                             stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT, preexec_fn=pinned(others))
     procs.append(core)
-    results: dict[str, object] = {"graphics": args.graphics, "rate": args.rate, "seconds": args.seconds, "cols": args.cols, "rows": args.rows}
+    results: dict[str, object] = {"graphics": args.graphics, "rate": args.rate, "seconds": args.seconds,
+                                  "cols": args.cols, "rows": args.rows}
     try:
         wait_port(port)
         log = Path(home) / "publisher.log"

@@ -180,7 +180,8 @@ def check_kitty(term: Terminal) -> None:
     assert re.search(rb"64x48 rgb8 .*kitty", out)
     assert term.quit() == 0
     out = term.output()
-    broken = re.search(rb"\x1b\[(?=([0-?]*))\1(?=([ -/]*))\2(?![@-~])", out)  # an escape cut by another one written beside it
+    # an escape cut in two by another one written beside it
+    broken = re.search(rb"\x1b\[(?=([0-?]*))\1(?=([ -/]*))\2(?![@-~])", out)
     assert broken is None, out[max(0, broken.start() - 80):broken.start() + 80]
     images, others = kitty_images(out)
     freed = {int(keys["i"]) for keys in others if keys.get("a") == "d" and keys.get("d") == "I"}
@@ -193,7 +194,10 @@ def sixel_pictures(out: bytes) -> list[tuple[int, int, bytes]]:
 
 
 def sixel_decode(body: bytes, width: int, height: int) -> PILImage.Image:
-    """The picture a sixel body draws (palette entries ``#n;2;r;g;b`` in percent; ``$`` back to column 0; ``-`` next band)."""
+    """The picture a sixel body draws.
+
+    Palette entries are ``#n;2;r;g;b`` in percent; ``$`` goes back to column 0, ``-`` to the next band.
+    """
     picture = PILImage.new("RGB", (width, height))
     palette: dict[int, tuple[int, int, int]] = {}
     colour, x, band = (0, 0, 0), 0, 0

@@ -17,6 +17,9 @@ camera is replaced here:
   the picture or its size changed;
 - it enlarges a small picture to the cells' pixels before encoding it;
   here the terminal does (kitty fits the image to the placement's cells).
+
+This subclasses textual-image's renderable and widget internals, which is
+why pyproject.toml pins textual-image to 0.12.
 """
 
 from __future__ import annotations

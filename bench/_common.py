@@ -100,7 +100,8 @@ class PtyApp(ABC):
     def start(self) -> None:
         """Open the pty, size it, start the process on it (its own session) and the reading thread."""
         master, slave = pty.openpty()
-        fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", self.rows, self.cols, 0, 0))
+        winsize = struct.pack("HHHH", self.rows, self.cols, self.cols * 10, self.rows * 20)  # cells of 10x20 pixels
+        fcntl.ioctl(slave, termios.TIOCSWINSZ, winsize)
         pin = self.pin
 
         def setup() -> None:

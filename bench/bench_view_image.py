@@ -5,8 +5,10 @@ A publisher process (this script in ``publish`` mode: rostui's AsyncNode,
 60 precomputed frames of a moving scene, stamped) sends sensor_msgs/Image
 at ``--rate`` Hz on the CPUs other than CPU 0; the master (`rostui core`)
 runs there too.  The real `rostui view /camera/image_raw` runs on a
-``--cols`` x ``--rows`` pseudo-terminal pinned to CPU 0, drawing with half
-blocks (``ROSTUI_VIEW_GRAPHICS=halfblock``; a pty answers no graphics query).
+``--cols`` x ``--rows`` pseudo-terminal pinned to CPU 0 (cells of 10x20
+pixels, given in TIOCSWINSZ), drawing with ``--graphics``: half blocks
+(the default), ``kitty`` or ``sixel`` (``ROSTUI_VIEW_GRAPHICS``; a pty
+answers no graphics query, so the choice is forced).
 After a warm-up, over ``--seconds``:
 
 - the viewer's CPU (psutil user+system time of its process), as cores and per frame drawn;
@@ -123,12 +125,13 @@ def main() -> int:
     parser.add_argument("--warmup", type=float, default=5.0)
     parser.add_argument("--cols", type=int, default=100)
     parser.add_argument("--rows", type=int, default=40)
+    parser.add_argument("--graphics", choices=("halfblock", "kitty", "sixel"), default="halfblock")
     parser.add_argument("--json", type=Path)
     args = parser.parse_args()
 
     port = free_port()
     home = tempfile.mkdtemp(prefix="bench_view_")
-    env = ros_env(port, home, ROSTUI_VIEW_GRAPHICS="halfblock", TERM="xterm-256color", COLORTERM="truecolor")
+    env = ros_env(port, home, ROSTUI_VIEW_GRAPHICS=args.graphics, TERM="xterm-256color", COLORTERM="truecolor")
     others = other_cpus()
     procs: list[subprocess.Popen] = []
 
@@ -138,7 +141,8 @@ def main() -> int:
     core = subprocess.Popen([sys.executable, "-m", "rostui", "core", "-p", str(port)], env=env,
                             stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT, preexec_fn=pinned(others))
     procs.append(core)
-    results: dict[str, object] = {"rate": args.rate, "seconds": args.seconds, "cols": args.cols, "rows": args.rows}
+    results: dict[str, object] = {"graphics": args.graphics, "rate": args.rate, "seconds": args.seconds,
+                                  "cols": args.cols, "rows": args.rows}
     try:
         wait_port(port)
         log = Path(home) / "publisher.log"
@@ -194,7 +198,7 @@ def main() -> int:
 
     load = os.getloadavg()
     print(f"rostui view {TOPIC}: {WIDTH}x{HEIGHT} rgb8 at {args.rate:g} Hz, {args.cols}x{args.rows} terminal, "
-          f"half blocks, {args.seconds:g} s (load average {load[0]:.1f} {load[1]:.1f})")
+          f"{args.graphics}, {args.seconds:g} s (load average {load[0]:.1f} {load[1]:.1f})")
     print(f"  frames sent {results['sent_fps']:.1f}/s, received {results['received_fps']:.1f}/s, "
           f"drawn {results['drawn_fps']:.1f}/s")
     print(f"  viewer CPU {results['viewer_cores']:.2f} cores, {results['viewer_cpu_ms_per_frame_drawn']:.1f} ms "

@@ -47,7 +47,7 @@ class InspectorView:
             return False
         if self._key != (topic, conn.type) or self.view is None:
             self.clear()
-            self.view = view_class(conn.type)(topic, classes="inspector-view")
+            self.view = view_class(conn.type).for_bag(topic, classes="inspector-view")
             self.view.styles.height = max(MIN_LINES, self.inspector.size.height - 3)
             self.inspector.mount(self.view, before=self.before)
             self._key = (topic, conn.type)

@@ -71,10 +71,13 @@ def graphics() -> str:
 def _image_widget(kind: str) -> Widget:
     if kind == "halfblock":
         return HalfBlock()
+    if kind == "kitty":
+        from rostui.apps.view.kitty import KittyImage
+
+        return KittyImage()
     from textual_image import widget
 
-    cls: type[Widget] = widget.SixelImage if kind == "sixel" else widget.TGPImage
-    return cls()
+    return widget.SixelImage()
 
 
 def _cell_pixels() -> tuple[int, int]:
@@ -153,8 +156,12 @@ class ImageView(TopicView):
             cell_w, cell_h = 1, 2
         else:
             cell_w, cell_h = _cell_pixels()
+        box = (cols * cell_w, rows * cell_h)
+        source = (int(getattr(msg, "width", 0) or 0), int(getattr(msg, "height", 0) or 0))
+        if self.kind == "kitty" and min(source) > 0:
+            box = (min(box[0], source[0]), min(box[1], source[1]))  # the terminal enlarges it
         try:
-            picture = decode_image(msg, (cols * cell_w, rows * cell_h))
+            picture = decode_image(msg, box)
         except ImageDecodeError as exc:
             self.error = str(exc)
             self.paint_info()

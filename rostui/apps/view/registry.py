@@ -34,6 +34,14 @@ class TopicView(Widget):
         self.arrivals: Rate | None = None
         """Every message the topic delivered, drawn or dropped (set by the live panel; None in a bag)."""
 
+    @classmethod
+    def for_bag(cls, topic: str, *, classes: str | None = None) -> TopicView:
+        """The view as `bag view`'s inspector shows it: one message at a time, given to :meth:`show_message`.
+
+        Views that would otherwise listen on their own (the tf tree) override it to listen to nothing.
+        """
+        return cls(topic, classes=classes)
+
     def show_message(self, msg: Any, received: float) -> None:
         """Draw ``msg`` (a decoded message), which arrived at wall time ``received`` (seconds).
 

@@ -32,6 +32,8 @@ REFRESH_EVERY = 0.5
 """Seconds between redraws of the table (rates and ages move even when no frame is added)."""
 
 COLUMNS = ("frame", "broadcaster", "rate", "age")
+MESSAGE_COLUMNS = ("frame", "stamp")
+"""The columns of one message's tree (`bag view`'s inspector): no rates, no broadcasters."""
 
 STALE = 2.0
 """Seconds after which a dynamic edge's age is drawn as a warning."""
@@ -72,6 +74,17 @@ class TfTreeView(TopicView):
         self.summary_line = Static(id="tf-summary")
         self.detail = Static(id="tf-detail")
         self._frames: list[str] = []
+        self.one_message = False
+        """True in `bag view`'s inspector: the tree of the transforms of the message shown last, no rates."""
+        self._message_problems: list[str] = []
+        self._message_count = 0
+
+    @classmethod
+    def for_bag(cls, topic: str, *, classes: str | None = None) -> TfTreeView:
+        """The tree of one message's transforms (the message under the bag inspector's cursor); listens to nothing."""
+        view = cls(topic, buffer=TfBuffer(), classes=classes)
+        view.one_message = True
+        return view
 
     def compose(self) -> ComposeResult:
         """Summary line, the table of frames, the selected frame's detail."""
@@ -81,7 +94,7 @@ class TfTreeView(TopicView):
 
     def on_mount(self) -> None:
         """Columns; in live mode start listening; redraw now and every :data:`REFRESH_EVERY` seconds."""
-        for name in COLUMNS:
+        for name in MESSAGE_COLUMNS if self.one_message else COLUMNS:
             self.table.add_column(name, key=name)
         if self.live:
             from rostui.core.network import master_uri_from_env
@@ -103,7 +116,16 @@ class TfTreeView(TopicView):
             await source.stop()
 
     def show_message(self, msg: Any, received: float) -> None:
-        """Messages come through the view's own subscriptions (with their broadcasters); the panel's are not needed."""
+        """In a bag's inspector, the tree of ``msg``'s transforms; live, messages come through the view's own
+        subscriptions (with their broadcasters) and the panel's are not needed."""
+        if not self.one_message:
+            return
+        self.buffer.clear()
+        self._message_count = len(msg.transforms)
+        self._message_problems = self.buffer.add_message(msg, static=self.topic == "/tf_static", broadcaster="",
+                                                         received=received)
+        if self.is_mounted:
+            self.redraw()
 
     def redraw(self) -> None:
         """Rebuild the table from the buffer, keeping the cursor on the same frame."""
@@ -119,6 +141,10 @@ class TfTreeView(TopicView):
             if row.in_loop:
                 label.append("  (in a loop)", style="red")
             edge = row.edge
+            if self.one_message:
+                stamp = f"{edge.latest.stamp:.6f}" if edge is not None else ""
+                self.table.add_row(label, Text(stamp), key=row.frame)
+                continue
             rate = format_rate(edge)
             self.table.add_row(
                 label,
@@ -128,8 +154,10 @@ class TfTreeView(TopicView):
                      else ""),
                 key=row.frame,
             )
-        if selected in self._frames:
+        if selected in self._frames and not (self.one_message and self.buffer.edge(selected) is None):
             self.table.move_cursor(row=self._frames.index(selected), animate=False)
+        elif self.one_message and len(self._frames) > 1:
+            self.table.move_cursor(row=1, animate=False)  # the message's first transform, not its root
         self._update_summary()
         self._update_detail()
 
@@ -139,6 +167,12 @@ class TfTreeView(TopicView):
         if source is not None and source.state.status is not LinkStatus.CONNECTED:
             text = source.state.text(marks=True)
             problem = True
+        elif self.one_message:
+            count = self._message_count
+            text = f"{count} transform{'' if count == 1 else 's'} in this message: {summary(self.buffer)}"
+            if self._message_problems:
+                text += f"  ·  {self._message_problems[-1]}"
+                problem = True
         elif not self.buffer.frames():
             text = "waiting for transforms on /tf and /tf_static"
         else:
@@ -158,8 +192,8 @@ class TfTreeView(TopicView):
         edge = self.buffer.edge(frame)
         lines: list[str] = []
         if edge is not None:
-            lines.append(f"{frame} in {edge.parent}: {_pose_text(edge.latest.transform)}"
-                         f"  ({edge.count} message{'' if edge.count == 1 else 's'})")
+            count = "" if self.one_message else f"  ({edge.count} message{'' if edge.count == 1 else 's'})"
+            lines.append(f"{frame} in {edge.parent}: {_pose_text(edge.latest.transform)}{count}")
             try:
                 root = self.buffer.chain(frame)[-1]
                 if root != edge.parent:

@@ -32,18 +32,14 @@ import asyncio
 import json
 import os
 import re
-import shutil
 import signal
-import statistics
-import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
-import psutil
 
-from _common import APP_CPU, REPO, RecordingPty, free_port, other_cpus, ros_env, wait_port
+from _common import REPO
+from _view_common import measure_view, print_peer
 
 TOPIC = "/camera/image_raw"
 WIDTH, HEIGHT = 640, 480
@@ -103,21 +99,6 @@ async def publish(rate: float) -> None:
     await node.shutdown("done")
 
 
-# -- measuring -----------------------------------------------------------------------------
-def sent_between(log: Path, start: float, end: float) -> int:
-    """Frames the publisher sent between wall times ``start`` and ``end`` (from its "sent N T" lines)."""
-    points = [(float(t), int(n)) for n, t in re.findall(r"sent (\d+) ([\d.]+)", log.read_text())]
-    before = max((n for t, n in points if t <= start), default=0)
-    after = max((n for t, n in points if t <= end), default=0)
-    return after - before
-
-
-def cpu_seconds(pid: int) -> float:
-    """User + system CPU seconds of process ``pid``."""
-    times = psutil.Process(pid).cpu_times()
-    return times.user + times.system
-
-
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rate", type=float, default=30.0)
@@ -129,72 +110,11 @@ def main() -> int:
     parser.add_argument("--json", type=Path)
     args = parser.parse_args()
 
-    port = free_port()
-    home = tempfile.mkdtemp(prefix="bench_view_")
-    env = ros_env(port, home, ROSTUI_VIEW_GRAPHICS=args.graphics, TERM="xterm-256color", COLORTERM="truecolor")
-    others = other_cpus()
-    procs: list[subprocess.Popen] = []
-
-    def pinned(cpus: set[int]):  # noqa: ANN202
-        return lambda: os.sched_setaffinity(0, cpus)
-
-    core = subprocess.Popen([sys.executable, "-m", "rostui", "core", "-p", str(port)], env=env,
-                            stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT, preexec_fn=pinned(others))
-    procs.append(core)
     results: dict[str, object] = {"graphics": args.graphics, "rate": args.rate, "seconds": args.seconds,
                                   "cols": args.cols, "rows": args.rows}
-    try:
-        wait_port(port)
-        log = Path(home) / "publisher.log"
-        with log.open("w") as out:
-            publisher = subprocess.Popen([sys.executable, __file__, "publish", "--rate", str(args.rate)], env=env,
-                                         stdout=out, stderr=subprocess.STDOUT, preexec_fn=pinned(others))
-        procs.append(publisher)
-        deadline = time.time() + 30
-        while "advertised" not in log.read_text():
-            if time.time() > deadline or publisher.poll() is not None:
-                raise SystemExit(f"publisher did not start: {log.read_text()}")
-            time.sleep(0.1)
-
-        viewer = RecordingPty([sys.executable, "-m", "rostui", "view", TOPIC], env, args.cols, args.rows, pin={APP_CPU})
-        viewer.start()
-        assert viewer.proc is not None
-        time.sleep(args.warmup)
-        offset, cpu0, t0 = viewer.size, cpu_seconds(viewer.proc.pid), time.time()
-        time.sleep(args.seconds)
-        written, cpu1, t1 = viewer.size - offset, cpu_seconds(viewer.proc.pid), time.time()
-        window = viewer.since(offset)
-        viewer.quit()
-        rates = [(float(a), float(b)) for a, b in RATES.findall(window)]
-        span = t1 - t0
-        sent = sent_between(log, t0, t1)
-        received_fps = statistics.mean(r for r, _ in rates) if rates else 0.0
-        drawn_fps = statistics.mean(d for _, d in rates) if rates else 0.0
-        cpu = cpu1 - cpu0
-        results.update({
-            "viewer_cores": cpu / span, "viewer_cpu_ms_per_frame_drawn": 1000 * cpu / max(1.0, drawn_fps * span),
-            "bytes_per_second": written / span, "sent_fps": sent / span,
-            "received_fps": received_fps, "drawn_fps": drawn_fps,
-        })
-
-        if shutil.which("rostopic"):
-            hz = subprocess.Popen(["rostopic", "hz", TOPIC], env=env, stdout=subprocess.DEVNULL,
-                                  stderr=subprocess.DEVNULL, preexec_fn=pinned({APP_CPU}))
-            procs.append(hz)
-            time.sleep(args.warmup)
-            c0, h0 = cpu_seconds(hz.pid), time.time()
-            time.sleep(args.seconds)
-            results["rostopic_hz_cores"] = (cpu_seconds(hz.pid) - c0) / (time.time() - h0)
-    finally:
-        for proc in reversed(procs):
-            if proc.poll() is None:
-                proc.send_signal(signal.SIGINT)
-                try:
-                    proc.wait(timeout=10)
-                except subprocess.TimeoutExpired:
-                    proc.kill()
-                    proc.wait()
-        shutil.rmtree(home, ignore_errors=True)
+    figures = measure_view(__file__, TOPIC, RATES, rate=args.rate, seconds=args.seconds, warmup=args.warmup,
+                           cols=args.cols, rows=args.rows, ROSTUI_VIEW_GRAPHICS=args.graphics)
+    results.update(figures)
 
     load = os.getloadavg()
     print(f"rostui view {TOPIC}: {WIDTH}x{HEIGHT} rgb8 at {args.rate:g} Hz, {args.cols}x{args.rows} terminal, "
@@ -204,10 +124,7 @@ def main() -> int:
     print(f"  viewer CPU {results['viewer_cores']:.2f} cores, {results['viewer_cpu_ms_per_frame_drawn']:.1f} ms "
           f"per frame drawn (target: under 0.5 cores)")
     print(f"  written to the terminal {results['bytes_per_second'] / 1e6:.2f} MB/s")
-    if "rostopic_hz_cores" in results:
-        hz_cores = float(results["rostopic_hz_cores"])  # type: ignore[arg-type]
-        print(f"  rostopic hz (rospy) on the same topic: {hz_cores:.2f} cores; "
-              f"view/rostopic hz {float(results['viewer_cores']) / max(hz_cores, 1e-9):.2f}x")  # type: ignore[arg-type]
+    print_peer(figures)
     if args.json:
         args.json.write_text(json.dumps(results, indent=2))
     return 0

@@ -14,7 +14,9 @@ A view class with ``SHARED = True`` (the top-down view) draws several topics
 in one picture: the first panel of that class mounts the view, each later
 panel of the class hands its topic to that view (``add_topic``), delivers to
 it (``show_topic_message``) and hides itself.  ``view_options`` reach the
-views whose class lists them in ``OPTIONS`` (``--frame``).
+views whose class lists them in ``OPTIONS`` (``--frame``).  A view class with
+``OWN_SUBSCRIPTIONS = True`` (the tf tree, which needs every message with its
+publisher's name) subscribes itself; its panel subscribes to nothing.
 """
 
 from __future__ import annotations
@@ -102,9 +104,14 @@ class ViewPanel(Vertical):
                 self.view = cls(self.topic, **options)
                 self.view.arrivals = self.feed.received
                 await self.mount(self.view)
-                self.say("waiting for the first message")
-        if self.view is not None:
+                self.say("" if self.own_subscriptions else "waiting for the first message")
+        if self.view is not None and not self.own_subscriptions:
             await self.feed.attach(node)
+
+    @property
+    def own_subscriptions(self) -> bool:
+        """True when the mounted view subscribes itself (the panel's feed stays detached)."""
+        return bool(getattr(type(self.view), "OWN_SUBSCRIPTIONS", False))
 
     def _shared_host(self, cls: type[TopicView]) -> TopicView | None:
         """The view of class ``cls`` another panel of this grid mounted, when ``cls`` shares one view."""

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Any, Callable
+from typing import ClassVar, Any, Callable
 
 from rich.text import Text
 from textual.app import ComposeResult
@@ -51,6 +51,9 @@ class TfTreeView(TopicView):
     With ``buffer`` given the view draws that buffer and subscribes to nothing (tests,
     snapshots, a bag's transforms); ``clock`` is "now" for ages.
     """
+
+    OWN_SUBSCRIPTIONS: ClassVar[bool] = True
+    """Live, the tree subscribes to /tf and /tf_static itself (each message with its broadcaster)."""
 
     DEFAULT_CSS = """
     TfTreeView { height: 1fr; }

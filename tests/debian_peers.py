@@ -28,6 +28,7 @@ COMMANDS: dict[str, str] = {
     "ssh": "openssh-client",
     "ssh-keygen": "openssh-client",
     "ip": "iproute2",
+    "nsenter": "util-linux",
     "chromium": "chromium",
     "chromedriver": "chromium-driver",
 }

@@ -49,7 +49,7 @@ class NetnsHost:
 
     def command(self, argv: list[str]) -> list[str]:
         """``argv`` run inside this host's network namespace."""
-        return ["ip", "netns", "exec", self.namespace, *argv]
+        return in_namespace(self.namespace, argv)
 
     def popen(self, argv: list[str], env: dict[str, str], **kwargs: object) -> subprocess.Popen:
         """Start ``argv`` on this host."""
@@ -103,13 +103,30 @@ class NetnsHosts:
         return env
 
 
+def in_namespace(namespace: str, argv: list[str]) -> list[str]:
+    """``argv`` run in the network namespace ``namespace`` (made by ``ip netns add``).
+
+    ``nsenter --net`` enters the network namespace only.  ``ip netns exec`` and
+    ``ip -n`` also make ``/`` a slave mount first, which fails where ``/`` is
+    not a mount point (a chroot, as a fresh CI root is).
+    """
+    return ["nsenter", f"--net=/run/netns/{namespace}", *argv]
+
+
 def _ip(*args: str) -> None:
-    subprocess.run(["ip", *args], check=True, capture_output=True, timeout=30)
+    if args[0] == "-n":
+        command = in_namespace(args[1], ["ip", *args[2:]])
+    else:
+        command = ["ip", *args]
+    done = subprocess.run(command, capture_output=True, text=True, timeout=30)
+    if done.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)}: {done.stderr.strip() or f'exit {done.returncode}'}")
 
 
 def have_netns() -> bool:
     """True when this process may create network namespaces and run sshd (root, iproute2, openssh)."""
-    return (os.geteuid() == 0 and shutil.which("ip") is not None and Path(SSHD).exists()
+    return (os.geteuid() == 0 and shutil.which("ip") is not None and shutil.which("nsenter") is not None
+            and Path(SSHD).exists()
             and shutil.which("ssh") is not None and shutil.which("ssh-keygen") is not None)
 
 
@@ -158,7 +175,7 @@ def make_hosts(tmp_path: Path, names: list[str], unreachable: list[str] | None =
     Each name in ``unreachable`` gets an address on the same subnet that no
     namespace answers (for a host that does not answer).
     """
-    need_peer(have_netns(), "root with ip (iproute2), sshd (openssh-server) and ssh (openssh-client)")
+    need_peer(have_netns(), "root with ip (iproute2), nsenter (util-linux), sshd (openssh-server) and ssh (openssh-client)")
     tag = secrets.token_hex(3)
     subnet = f"10.{200 + secrets.randbelow(50)}.{secrets.randbelow(250)}"
     switch = f"rt{tag}sw"
@@ -227,4 +244,4 @@ def make_hosts(tmp_path: Path, names: list[str], unreachable: list[str] | None =
 @pytest.fixture
 def netns_required() -> None:
     """Skip (locally) or fail (in CI) when network namespaces cannot be made."""
-    need_peer(have_netns(), "root with ip (iproute2), sshd (openssh-server) and ssh (openssh-client)")
+    need_peer(have_netns(), "root with ip (iproute2), nsenter (util-linux), sshd (openssh-server) and ssh (openssh-client)")

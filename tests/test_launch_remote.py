@@ -456,7 +456,7 @@ def test_a_host_cut_off_the_network_stops_its_nodes(three_hosts: NetnsHosts, tmp
                     tmp_path / "launch.out")
     try:
         run.wait_for(r"process\[pubvel-\d+\]: started with pid", "pubvel to start on B")
-        subprocess.run(["ip", "-n", b.namespace, "link", "set", "eth0", "down"], check=True)
+        subprocess.run(b.command(["ip", "link", "set", "eth0", "down"]), check=True)
         wait_until(lambda: not node_pids(b, "pubvel") and not node_pids(b, "launch --child"),
                    "the child on B to stop its node and exit", 120)
         run.wait_for(r"the connection to machine \[hostb\] closed", "A to report the lost connection", 120)

@@ -21,6 +21,10 @@ from typing import Callable, Iterator
 import pytest
 
 SYSTEM_PYTHON = "/usr/bin/python3"
+
+#: Real scripts kept as test data (run by the tests as programs, never imported by pytest:
+#: ros_comm's and others' names such as ``timer_test.py`` look like test modules).
+collect_ignore_glob = ["python_compat/*"]
 REPO = Path(__file__).resolve().parent.parent
 
 

@@ -160,6 +160,9 @@ def test_several_transforms_in_one_message(tmp_path: Path) -> None:
 
 def test_snapshot_chain_message(snap_compare: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """The chain message under the cursor, laser selected: the tree, its stamps, laser in base_link and in map."""
+    monkeypatch.setenv("COLORTERM", "truecolor")  # the terminal the other bag view snapshots are taken in
+    monkeypatch.setenv("TERM", "xterm-256color")
+    monkeypatch.delenv("NO_COLOR", raising=False)
     monkeypatch.setenv("TZ", "UTC")
     time.tzset()
     path = write_chain_bag(tmp_path / "chain.bag")

@@ -8,15 +8,13 @@ that tree with the broadcasters, a rate and "static", and q must return to the s
 from __future__ import annotations
 
 import re
-import shlex
-import sys
 from typing import Any, Iterator
 
 import pytest
 
 from interop_helpers import Spawn, spawn  # noqa: F401  (fixture)
 from tf_chain import BROADCASTERS
-from tmux_helpers import Pane, shell_pane
+from tmux_helpers import Pane, rostui_line, shell_pane
 
 EXIT_MARK = "TF_EXIT="
 
@@ -30,11 +28,7 @@ def pane() -> Iterator[Pane]:
 
 def command(env: dict[str, str], *args: str) -> str:
     """The shell line that runs `rostui ARGS` with the test's ROS environment, then prints its exit status."""
-    values = {key: env[key] for key in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")}
-    values["TERM"] = "xterm-256color"
-    assignments = " ".join(f"{k}={shlex.quote(v)}" for k, v in values.items())
-    return (f"env {assignments} {shlex.quote(sys.executable)} -m rostui {' '.join(map(shlex.quote, args))}; "
-            f"echo {EXIT_MARK}$?")
+    return rostui_line(env, EXIT_MARK, *args)
 
 
 def tree_drawn(screen: str) -> bool:

@@ -9,7 +9,9 @@ or the user's.
 from __future__ import annotations
 
 import os
+import shlex
 import subprocess
+import sys
 import uuid
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -110,3 +112,12 @@ def shell_pane(session: str, width: int, height: int, kind: type[PaneT] = Pane) 
         yield pane
     finally:
         pane.close()
+
+
+def rostui_line(env: dict[str, str], exit_mark: str, *args: str) -> str:
+    """The shell line that runs `rostui ARGS` with the test's ROS environment, then ``exit_mark`` and its status."""
+    values = {key: env[key] for key in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")}
+    values["TERM"] = "xterm-256color"
+    assignments = " ".join(f"{k}={shlex.quote(v)}" for k, v in values.items())
+    return (f"env {assignments} {shlex.quote(sys.executable)} -m rostui {' '.join(map(shlex.quote, args))}; "
+            f"echo {exit_mark}$?")

@@ -25,9 +25,10 @@ SERIALIZE = SCRIPTS / "serialize_types.py"
 CUSTOM_ROOTS = (REPO / "tests" / "msg_corpus", REPO / "tests" / "msg_odd")
 BUILTIN_SHARE = REPO / "rostui" / "share"
 
-# Every msg and srv module the system Python's ROS message packages hold, as [kind, "pkg/Name"].
+# Every msg and srv module the system Python's ROS message packages hold, as [kind, "pkg/Name", [message
+# types its definition uses, from genpy's _full_text]].
 _LIST_DEBIAN_TYPES = r'''
-import json, os, site
+import importlib, json, os, site
 types = []
 for sp in site.getsitepackages():
     if not os.path.isdir(sp):
@@ -36,8 +37,15 @@ for sp in site.getsitepackages():
         for kind in ("msg", "srv"):
             d = os.path.join(sp, pkg, kind)
             if os.path.isfile(os.path.join(d, "__init__.py")):
-                types += [[kind, pkg + "/" + f[1:-3]] for f in sorted(os.listdir(d))
-                          if f.startswith("_") and not f.startswith("__") and f.endswith(".py")]
+                for f in sorted(os.listdir(d)):
+                    if f.startswith("_") and not f.startswith("__") and f.endswith(".py"):
+                        module = importlib.import_module(f"{pkg}.{kind}.{f[:-3]}")
+                        cls = getattr(module, f[1:-3])
+                        texts = [cls._request_class._full_text, cls._response_class._full_text] \
+                            if kind == "srv" else [cls._full_text]
+                        uses = sorted({line[5:].strip() for text in texts for line in text.splitlines()
+                                       if line.startswith("MSG: ")})
+                        types.append([kind, pkg + "/" + f[1:-3], uses])
 print(json.dumps(types))
 '''
 
@@ -82,15 +90,19 @@ def debian_types(tmp_path_factory: pytest.TempPathFactory) -> Path:
     listing = system_python(["-c", _LIST_DEBIAN_TYPES])
     assert listing.returncode == 0, listing.stderr
     path = tmp_path_factory.mktemp("types") / "debian.json"
-    path.write_text(json.dumps([t for t in json.loads(listing.stdout) if _definition_installed(*t)]))
+    listed = json.loads(listing.stdout)
+    path.write_text(json.dumps([[kind, name] for kind, name, uses in listed
+                                if _definition_installed(kind, name) and all(_definition_installed("msg", u)
+                                                                             for u in uses)]))
     return path
 
 
 def _definition_installed(kind: str, type_name: str) -> bool:
     """True when Debian installs the type's .msg/.srv file or rostui has it built in.
 
-    Some Debian packages ship only the generated Python (python3-move-base-msgs has no .msg anywhere):
-    no tool without that ROS Python can know those types.
+    Some Debian packages ship only the generated Python (python3-move-base-msgs has no .msg anywhere,
+    python3-actionlib needs actionlib_msgs' files from a -dev package): no tool without that ROS Python
+    can know those types, or the types they use.
     """
     pkg, name = type_name.split("/")
     return any((share / pkg / kind / f"{name}.{kind}").is_file() for share in (Path("/usr/share"), BUILTIN_SHARE))

@@ -63,7 +63,10 @@ def launch_env(tmp_path: Path, ros_env: dict[str, str]) -> dict[str, str]:
     (root / "launch" / "forced.launch").write_text(FORCED)
     bin_dir = tmp_path / "bin"
     bin_dir.mkdir()
-    (bin_dir / "python").symlink_to(sys.executable)
+    # A script, not a symlink: a venv made from Debian's python3 (as CI's is) found through a symlink
+    # elsewhere would miss its pyvenv.cfg and import Debian's rospy.
+    (bin_dir / "python").write_text(f'#!/bin/sh\nexec {sys.executable} "$@"\n')
+    (bin_dir / "python").chmod(0o755)
     env = {k: v for k, v in ros_env.items() if k != "PYTHONPATH" and not k.startswith("ROSTUI_PYTHON")}
     env["ROS_PACKAGE_PATH"] = str(tmp_path / "pkgs")
     env["PATH"] = os.pathsep.join([str(bin_dir), env.get("PATH", os.defpath)])

@@ -276,7 +276,13 @@ def test_rospy_clock_publisher(any_master: str, envs: dict[str, dict[str, str]],
     periods = [dt for dt in _echoed(started, UPDATE_DT[consumer]) if dt > 0]
     assert all(0.7 <= dt <= 1.3 for dt in periods), periods
     talker.send_signal(2)
-    talker.wait(timeout=60)
+    try:
+        talker.wait(timeout=60)
+    except subprocess.TimeoutExpired:
+        if consumer == "shim":  # rostui's rospy must end on Ctrl-C; how fast Debian's does is not ours to test
+            raise
+        talker.terminate()
+        talker.wait(timeout=30)
     now = time.time()
     times = [t for t in _hello_times(started.output("talker")) if t > 0]
     assert len(times) >= 20 and all(abs(t - now) < 120 for t in times), (times, now)

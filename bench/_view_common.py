@@ -20,7 +20,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
-from typing import Callable
+from typing import Any, Callable
 
 import psutil
 
@@ -121,3 +121,42 @@ def print_peer(results: dict[str, float]) -> None:
         hz_cores = results["rostopic_hz_cores"]
         print(f"  rostopic hz (rospy) on the same topic: {hz_cores:.2f} cores; "
               f"view/rostopic hz {results['viewer_cores'] / max(hz_cores, 1e-9):.2f}x")
+
+
+async def publish_at(rate: float, node_name: str, topic: str, type_name: str,
+                     make: Callable[[Any, int, float], Any]) -> None:
+    """Publish ``make(msg_class, n, period)`` on ``topic`` at ``rate`` Hz until SIGINT (the publisher half).
+
+    Prints ``advertised`` once, then ``sent N T`` once a second, which
+    :func:`measure_view` reads; each message is stamped with the wall time.
+    """
+    import asyncio
+
+    from rostui.core.msg import get_message_class
+    from rostui.core.node import AsyncNode
+    from rostui.core.rostime import Time
+
+    stop = asyncio.Event()
+    loop = asyncio.get_running_loop()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(sig, stop.set)
+    node = await AsyncNode(node_name, anonymous=True, argv=[]).start(publish_rosout=False)
+    msg_class = get_message_class(type_name)
+    pub = await node.advertise(topic, msg_class, queue_size=1)
+    print("advertised", flush=True)
+    period = 1.0 / rate
+    due = loop.time()
+    sent = 0
+    while not stop.is_set():
+        msg = make(msg_class, sent, period)
+        msg.header.stamp = Time.from_sec(time.time())
+        pub.publish(msg)
+        sent += 1
+        if sent % int(rate) == 0:
+            print(f"sent {sent} {time.time():.3f}", flush=True)
+        due += period
+        try:
+            await asyncio.wait_for(stop.wait(), max(0.0, due - loop.time()))
+        except asyncio.TimeoutError:
+            pass
+    await node.shutdown("done")

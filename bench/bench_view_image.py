@@ -32,14 +32,13 @@ import asyncio
 import json
 import os
 import re
-import signal
 import sys
-import time
 from pathlib import Path
+from typing import Any
 
 
 from _common import REPO
-from _view_common import measure_view, print_peer
+from _view_common import measure_view, print_peer, publish_at
 
 TOPIC = "/camera/image_raw"
 WIDTH, HEIGHT = 640, 480
@@ -66,37 +65,15 @@ def scene(count: int) -> list[bytes]:
 
 async def publish(rate: float) -> None:
     """Publish the scene on :data:`TOPIC` at ``rate`` Hz until SIGINT; print how many frames went out."""
-    from rostui.core.msg import get_message_class
-    from rostui.core.node import AsyncNode
-    from rostui.core.rostime import Time
-
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(sig, stop.set)
-    node = await AsyncNode("bench_camera", anonymous=True, argv=[]).start(publish_rosout=False)
-    image = get_message_class("sensor_msgs/Image")
-    pub = await node.advertise(TOPIC, image, queue_size=1)
     frames = scene(60)
-    print("advertised", flush=True)
-    period = 1.0 / rate
-    due = loop.time()
-    sent = 0
-    while not stop.is_set():
+
+    def make(image: Any, n: int, period: float) -> Any:
         msg = image(height=HEIGHT, width=WIDTH, encoding="rgb8", is_bigendian=0, step=WIDTH * 3,
-                    data=frames[sent % len(frames)])
-        msg.header.stamp = Time.from_sec(time.time())
+                    data=frames[n % len(frames)])
         msg.header.frame_id = "camera"
-        pub.publish(msg)
-        sent += 1
-        if sent % int(rate) == 0:
-            print(f"sent {sent} {time.time():.3f}", flush=True)
-        due += period
-        try:
-            await asyncio.wait_for(stop.wait(), max(0.0, due - loop.time()))
-        except asyncio.TimeoutError:
-            pass
-    await node.shutdown("done")
+        return msg
+
+    await publish_at(rate, "bench_camera", TOPIC, "sensor_msgs/Image", make)
 
 
 def main() -> int:

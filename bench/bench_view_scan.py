@@ -30,14 +30,13 @@ import asyncio
 import json
 import os
 import re
-import signal
 import sys
-import time
 from pathlib import Path
+from typing import Any
 
 
 from _common import REPO
-from _view_common import measure_view, print_peer
+from _view_common import measure_view, print_peer, publish_at
 
 TOPIC = "/scan"
 BEAMS = 720
@@ -64,38 +63,16 @@ async def publish(rate: float) -> None:
     """Publish scans on :data:`TOPIC` at ``rate`` Hz until SIGINT; print how many went out."""
     import math
 
-    from rostui.core.msg import get_message_class
-    from rostui.core.node import AsyncNode
-    from rostui.core.rostime import Time
-
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(sig, stop.set)
-    node = await AsyncNode("bench_laser", anonymous=True, argv=[]).start(publish_rosout=False)
-    scan_type = get_message_class("sensor_msgs/LaserScan")
-    pub = await node.advertise(TOPIC, scan_type, queue_size=1)
     scans = [room_ranges(i) for i in range(250)]
-    print("advertised", flush=True)
-    period = 1.0 / rate
-    due = loop.time()
-    sent = 0
-    while not stop.is_set():
+
+    def make(scan_type: Any, n: int, period: float) -> Any:
         msg = scan_type(angle_min=-math.pi, angle_max=math.pi - 2 * math.pi / BEAMS,
                         angle_increment=2 * math.pi / BEAMS, time_increment=0.0, scan_time=period,
-                        range_min=0.05, range_max=30.0, ranges=scans[sent % len(scans)])
-        msg.header.stamp = Time.from_sec(time.time())
+                        range_min=0.05, range_max=30.0, ranges=scans[n % len(scans)])
         msg.header.frame_id = "laser"
-        pub.publish(msg)
-        sent += 1
-        if sent % int(rate) == 0:
-            print(f"sent {sent} {time.time():.3f}", flush=True)
-        due += period
-        try:
-            await asyncio.wait_for(stop.wait(), max(0.0, due - loop.time()))
-        except asyncio.TimeoutError:
-            pass
-    await node.shutdown("done")
+        return msg
+
+    await publish_at(rate, "bench_laser", TOPIC, "sensor_msgs/LaserScan", make)
 
 
 def main() -> int:

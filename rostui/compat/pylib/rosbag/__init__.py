@@ -9,16 +9,7 @@ bag's own message definitions for types rostui does not know.
 
 from __future__ import annotations
 
-from .bag import (
-    Bag,
-    BagMessage,
-    BagMessageWithConnectionHeader,
-    Compression,
-    ROSBagEncryptNotSupportedException,
-    ROSBagException,
-    ROSBagFormatException,
-    ROSBagUnindexedException,
-)
+from . import bag
+from .bag import *  # noqa: F401,F403  (the names rosbag.bag has)
 
-__all__ = ["Bag", "BagMessage", "BagMessageWithConnectionHeader", "Compression", "ROSBagException",
-           "ROSBagFormatException", "ROSBagUnindexedException", "ROSBagEncryptNotSupportedException"]
+__all__ = list(bag.__all__)

@@ -20,6 +20,7 @@ import pytest
 from rostui.compat import PYLIB
 
 from conftest import REPO, SYSTEM_PYTHON, need_peer, have_rospy, rostui_cmd, stop_process, wait_until
+from rospy_scripts import Running, script_command
 
 REAL = REPO / "tests" / "python_compat" / "real"
 PACKAGE_PATH = REAL / "ros_package_path"
@@ -73,29 +74,6 @@ def envs(ros_env: dict[str, str], tmp_path: Path) -> dict[str, dict[str, str]]:
     return {"shim": shim, "real": real}
 
 
-def _command(side: str, script: Path, *args: str) -> list[str]:
-    if side == "shim":
-        return rostui_cmd("python", "--rostui", str(script), *args)
-    return [SYSTEM_PYTHON, str(script), *args]
-
-
-class Running:
-    """A script running in the background with its output collected in a file."""
-
-    def __init__(self, cmd: list[str], env: dict[str, str], log: Path) -> None:
-        self.log = log
-        self.proc = subprocess.Popen(cmd, env=env, stdout=log.open("w"), stderr=subprocess.STDOUT, text=True)
-
-    def output(self) -> str:
-        """What it printed so far."""
-        return self.log.read_text(errors="replace")
-
-    def wait_for(self, text: str) -> None:
-        """Wait until *text* is in its output."""
-        wait_until(lambda: text in self.output() or self.proc.poll() is not None, f"{text!r} printed")
-        assert text in self.output(), self.output()
-
-
 @pytest.fixture
 def running(tmp_path: Path):
     """Start scripts in the background; stops them all at the end."""
@@ -121,8 +99,8 @@ def test_talker_listener(any_master: str, envs: dict[str, dict[str, str]], runni
                          listener: str) -> None:
     """Talker and listener: the listener prints "I heard hello world <time>" from the talker."""
     scripts = CORPORA[corpus]
-    heard = running(_command(listener, scripts.script("listener")), envs[listener], "listener")
-    said = running(_command(talker, scripts.script("talker")), envs[talker], "talker")
+    heard = running(script_command(listener, scripts.script("listener")), envs[listener], "listener")
+    said = running(script_command(talker, scripts.script("talker")), envs[talker], "talker")
     said.wait_for("hello world")
     heard.wait_for("I heard hello world")
     assert "Traceback" not in said.output() + heard.output()
@@ -131,7 +109,7 @@ def test_talker_listener(any_master: str, envs: dict[str, dict[str, str]], runni
 @pytest.mark.parametrize("any_master", ["rostui", "real"], indirect=True)
 def test_shim_talker_heard_by_rostopic_echo(any_master: str, envs: dict[str, dict[str, str]], running) -> None:
     """rostopic echo (real rospy) prints the shim talker's std_msgs/String."""
-    running(_command("shim", CORPORA["ros_tutorials"].script("talker")), envs["shim"], "talker")
+    running(script_command("shim", CORPORA["ros_tutorials"].script("talker")), envs["shim"], "talker")
     echo = subprocess.run(["rostopic", "echo", "-n", "1", "/chatter"], env=envs["real"], capture_output=True,
                           text=True, timeout=60)
     assert echo.stdout.startswith('data: "hello world '), echo.stdout + echo.stderr
@@ -144,8 +122,8 @@ def test_add_two_ints(any_master: str, envs: dict[str, dict[str, str]], running,
                       client: str) -> None:
     """add_two_ints: the client (no init_node; ros_tutorials' also calls with a request object) prints 3 + 4 = 7."""
     scripts = CORPORA[corpus]
-    serving = running(_command(server, scripts.script("server")), envs[server], "server")
-    out = subprocess.run(_command(client, scripts.script("client"), "3", "4"), env=envs[client],
+    serving = running(script_command(server, scripts.script("server")), envs[server], "server")
+    out = subprocess.run(script_command(client, scripts.script("client"), "3", "4"), env=envs[client],
                          capture_output=True, text=True, timeout=60)
     assert out.returncode == 0, out.stdout + out.stderr
     assert out.stdout.splitlines()[-2:] == ["Requesting 3+4", "3 + 4 = 7"], out.stdout
@@ -155,7 +133,7 @@ def test_add_two_ints(any_master: str, envs: dict[str, dict[str, str]], running,
 @pytest.mark.parametrize("any_master", ["rostui", "real"], indirect=True)
 def test_shim_server_called_by_rosservice(any_master: str, envs: dict[str, dict[str, str]], running) -> None:
     """`rosservice call` (real) gets the shim add_two_ints_server's sum."""
-    running(_command("shim", CORPORA["ros_tutorials"].script("server")), envs["shim"], "server")
+    running(script_command("shim", CORPORA["ros_tutorials"].script("server")), envs["shim"], "server")
     wait_until(lambda: subprocess.run(["rosservice", "list"], env=envs["real"], capture_output=True,
                                       text=True).stdout.count("/add_two_ints") > 0, "add_two_ints registered")
     out = subprocess.run(["rosservice", "call", "/add_two_ints", "5", "6"], env=envs["real"], capture_output=True,
@@ -179,7 +157,7 @@ def test_api_script_same_under_both(any_master: str, envs: dict[str, dict[str, s
     args = ("__name:=renamed", "from_here:=/to_there", "keep", "_private:=3")
     said = {}
     for side in ("real", "shim"):
-        out = subprocess.run(_command(side, script, *args), env=envs[side], capture_output=True, text=True,
+        out = subprocess.run(script_command(side, script, *args), env=envs[side], capture_output=True, text=True,
                              timeout=120)
         assert out.returncode == 0, out.stdout + out.stderr
         said[side] = [line for line in out.stdout.splitlines() if line.startswith("= ")]

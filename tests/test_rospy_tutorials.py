@@ -13,14 +13,14 @@ from __future__ import annotations
 
 import os
 import re
-import signal
 import subprocess
 from pathlib import Path
 from typing import Callable, Iterator
 
 import pytest
 
-from conftest import REPO, SYSTEM_PYTHON, have_rospy, need_peer, rostui_cmd, stop_process, wait_until
+from conftest import REPO, SYSTEM_PYTHON, have_rospy, need_peer, stop_process, wait_until
+from rospy_scripts import Running, script_command
 
 REAL = REPO / "tests" / "python_compat" / "real"
 TUT = REAL / "rospy_tutorials"
@@ -59,43 +59,6 @@ def envs(ros_env: dict[str, str], tmp_path: Path) -> dict[str, dict[str, str]]:
     return {"shim": shim, "real": real}
 
 
-def _command(side: str, script: Path, *args: str) -> list[str]:
-    if side == "shim":
-        return rostui_cmd("python", "--rostui", str(script), *args)
-    return [SYSTEM_PYTHON, str(script), *args]
-
-
-class Running:
-    """A process running in the background, its output collected in a file."""
-
-    def __init__(self, cmd: list[str], env: dict[str, str], log: Path) -> None:
-        self.log = log
-        self.proc = subprocess.Popen(cmd, env=env, stdout=log.open("w"), stderr=subprocess.STDOUT, text=True)
-
-    def output(self) -> str:
-        """What it printed so far."""
-        return self.log.read_text(errors="replace")
-
-    def wait_for(self, text: str, count: int = 1) -> None:
-        """Wait until *text* is in its output *count* times; fail with its output when it never is."""
-        try:
-            wait_until(lambda: self.output().count(text) >= count or self.proc.poll() is not None,
-                       f"{text!r} printed {count} times", timeout=60)
-        except AssertionError as exc:
-            raise AssertionError(f"{exc}; {self.proc.args} printed:\n{self.output()}") from None
-        assert self.output().count(text) >= count, self.output()
-
-    def interrupt(self) -> str:
-        """Ctrl-C it, wait for it to end, and return everything it printed."""
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-            try:
-                self.proc.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                stop_process(self.proc)
-        return self.output()
-
-
 Start = Callable[..., Running]
 
 
@@ -105,7 +68,7 @@ def start(tmp_path: Path, envs: dict[str, dict[str, str]]) -> Iterator[Start]:
     started: list[Running] = []
 
     def run(side: str, script: Path | str, *args: str, name: str) -> Running:
-        cmd = [str(script), *args] if side == "cmd" else _command(side, Path(script), *args)
+        cmd = [str(script), *args] if side == "cmd" else script_command(side, Path(script), *args)
         proc = Running(cmd, envs["real" if side == "cmd" else side], tmp_path / f"{name}-{len(started)}.log")
         started.append(proc)
         return proc
@@ -305,7 +268,7 @@ def test_connection_header_service(any_master: str, start: Start, envs: dict[str
         server = start(side if script == "server" else "real", here / "server_connection_header.py",
                        name="server")
         client_side = side if script == "client" else "real"
-        out = subprocess.run(_command(client_side, here / "client_connection_header.py"), env=envs[client_side],
+        out = subprocess.run(script_command(client_side, here / "client_connection_header.py"), env=envs[client_side],
                              capture_output=True, text=True, timeout=60)
         assert out.returncode == 0, out.stdout + out.stderr
         server.wait_for("Returning [")
@@ -421,7 +384,7 @@ def test_point_cloud2_module_same_as_debians(envs: dict[str, dict[str, str]]) ->
     """rostui's sensor_msgs.point_cloud2 packs and reads clouds as Debian's does: padding, counts, NaNs, uvs."""
     said = {}
     for side in SIDES:
-        out = subprocess.run(_command(side, Path("-c"), POINT_CLOUD2_SCRIPT), env=envs[side],
+        out = subprocess.run(script_command(side, Path("-c"), POINT_CLOUD2_SCRIPT), env=envs[side],
                              capture_output=True, text=True, timeout=60)
         assert out.returncode == 0, out.stderr
         said[side] = out.stdout

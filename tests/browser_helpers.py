@@ -11,6 +11,7 @@ visible rows with that API (``buffer.active.getLine(y).translateToString()``).
 from __future__ import annotations
 
 import shutil
+import tempfile
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -48,22 +49,33 @@ return rows.join("\\n");"""
 
 @contextmanager
 def headless_chromium(width: int = 1200, height: int = 800) -> Iterator[Any]:
-    """A selenium WebDriver on Debian's headless chromium (chromium-driver), quit on leaving."""
+    """A selenium WebDriver on Debian's headless chromium (chromium-driver), quit on leaving.
+
+    Each browser has a profile of its own in a new temporary folder (removed on leaving), so browsers of
+    tests running side by side share no cookies, cache or lock file.
+    """
     need_command("chromium")
     need_command("chromedriver")
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
 
+    profile = tempfile.mkdtemp(prefix="rostui-chromium-")
     options = webdriver.ChromeOptions()
     options.binary_location = str(shutil.which("chromium"))
     for flag in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--disable-gpu",
-                 f"--window-size={width},{height}", "--no-first-run", "--disable-extensions"):
+                 f"--window-size={width},{height}", "--no-first-run", "--disable-extensions",
+                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                 f"--user-data-dir={profile}"):
         options.add_argument(flag)
-    driver = webdriver.Chrome(service=Service(executable_path=str(shutil.which("chromedriver"))), options=options)
     try:
-        yield driver
+        driver = webdriver.Chrome(service=Service(executable_path=str(shutil.which("chromedriver"))),
+                                  options=options)
+        try:
+            yield driver
+        finally:
+            driver.quit()
     finally:
-        driver.quit()
+        shutil.rmtree(profile, ignore_errors=True)
 
 
 @dataclass

@@ -28,11 +28,34 @@ collect_ignore_glob = ["python_compat/*"]
 REPO = Path(__file__).resolve().parent.parent
 
 
+#: Test ports come from a block of their own for each pytest-xdist worker, below the kernel's ephemeral
+#: range (32768 and up on Linux): the ports that bind(0) and outgoing connections take, in this worker and
+#: in every other, never land on a port a test has picked but not yet listened on.
+PORT_BLOCK = 1400
+PORT_BASE = 20000
+_next_port = 0
+
+
+def _worker_index() -> int:
+    """This pytest-xdist worker's number (gw0 is 0); 0 when the suite runs in one process."""
+    worker = os.environ.get("PYTEST_XDIST_WORKER", "gw0")
+    return int(worker[2:]) if worker[2:].isdigit() else 0
+
+
 def free_port() -> int:
-    """Return a TCP port on 127.0.0.1 that nothing listens on right now."""
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+    """Return a TCP port on 127.0.0.1 that nothing listens on right now, from this worker's own block."""
+    global _next_port
+    first = PORT_BASE + (_worker_index() % 8) * PORT_BLOCK
+    for _ in range(PORT_BLOCK):
+        port = first + _next_port
+        _next_port = (_next_port + 1) % PORT_BLOCK
+        with socket.socket() as s:
+            try:
+                s.bind(("127.0.0.1", port))
+            except OSError:
+                continue
+            return port
+    raise RuntimeError(f"no free port in {first}..{first + PORT_BLOCK - 1}")
 
 
 def interop_required() -> bool:
@@ -122,6 +145,32 @@ def stop_process(proc: subprocess.Popen, timeout: float = 10.0) -> None:
     except subprocess.TimeoutExpired:
         proc.kill()
         proc.wait()
+
+
+def shared_build(tmp_path_factory: pytest.TempPathFactory, name: str, build: Callable[[Path], None]) -> Path:
+    """A folder ``build`` fills once per test run, shared read-only by every pytest-xdist worker.
+
+    The first worker to ask builds it under a lock in the run's common temporary folder; the others wait
+    for that lock and reuse the result.  A build that fails leaves no folder, so each asker sees the failure.
+    """
+    import fcntl
+
+    base = tmp_path_factory.getbasetemp()
+    if "PYTEST_XDIST_WORKER" in os.environ:
+        base = base.parent
+    folder = base / f"shared-{name}"
+    with open(base / f"shared-{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not (folder / ".built").exists():
+            shutil.rmtree(folder, ignore_errors=True)
+            folder.mkdir()
+            try:
+                build(folder)
+            except BaseException:
+                shutil.rmtree(folder, ignore_errors=True)
+                raise
+            (folder / ".built").touch()
+    return folder
 
 
 @pytest.hookimpl(hookwrapper=True)

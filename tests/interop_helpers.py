@@ -19,7 +19,7 @@ from typing import Callable, Iterator, Sequence
 
 import pytest
 
-from conftest import REPO, SYSTEM_PYTHON, need_command, need_peer, stop_process, wait_until  # noqa: F401  (re-exported)
+from conftest import REPO, SYSTEM_PYTHON, need_command, need_peer, shared_build, stop_process, wait_until  # noqa: F401  (re-exported)
 from debian_peers import describe
 
 PEERS = Path(__file__).resolve().parent / "peers"
@@ -179,10 +179,13 @@ def roscpp_peer_bin(tmp_path_factory: pytest.TempPathFactory) -> Path:
     need_peer(Path("/usr/include/ros/ros.h").exists(), describe("/usr/include/ros/ros.h"))
     if not ROSCPP_SOURCE.exists():
         pytest.fail(f"{ROSCPP_SOURCE} does not exist")
-    out = tmp_path_factory.mktemp("roscpp") / "roscpp_peer"
-    cmd = ["g++", "-O2", str(ROSCPP_SOURCE), "-o", str(out), "-I/usr/include", "-lroscpp", "-lrosconsole",
-           "-lroscpp_serialization", "-lrostime", "-lxmlrpcpp", "-lcpp_common", "-lboost_system"]
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
-    if proc.returncode != 0:
-        pytest.fail(f"compiling {ROSCPP_SOURCE.name} failed:\n{proc.stderr[-4000:]}")
-    return out
+
+    def compile_peer(folder: Path) -> None:
+        cmd = ["g++", "-O2", str(ROSCPP_SOURCE), "-o", str(folder / "roscpp_peer"), "-I/usr/include",
+               "-lroscpp", "-lrosconsole", "-lroscpp_serialization", "-lrostime", "-lxmlrpcpp", "-lcpp_common",
+               "-lboost_system"]
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+        if proc.returncode != 0:
+            pytest.fail(f"compiling {ROSCPP_SOURCE.name} failed:\n{proc.stderr[-4000:]}")
+
+    return shared_build(tmp_path_factory, "roscpp", compile_peer) / "roscpp_peer"

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import SYSTEM_PYTHON, need_peer
+from conftest import SYSTEM_PYTHON, need_peer, shared_build
 from interop_helpers import run_tool, spawn, wait_until  # noqa: F401
 from rostui.core.msg import get_message_class, get_service_class
 from rostui.turtlesim.world import WORLD_SIZE
@@ -37,27 +37,31 @@ def turtlesim_python(tmp_path_factory: pytest.TempPathFactory) -> dict[str, str]
     need_peer(GENMSG.exists() and GENSRV.exists(), "genpy generators (Debian python3-genpy)")
     need_peer(shutil.which("rostopic") is not None and shutil.which("rosservice") is not None,
               "rostopic and rosservice (Debian ros-core)")
-    root = tmp_path_factory.mktemp("turtlesim_genpy")
+
+    def build(root: Path) -> None:
+        python_dir, packages = root / "python", root / "packages"
+        out_msg, out_srv = python_dir / "turtlesim" / "msg", python_dir / "turtlesim" / "srv"
+        includes = [f"-Iturtlesim:{SHARE / 'turtlesim' / 'msg'}", "-Istd_msgs:/usr/share/std_msgs/msg"]
+
+        def generate(argv: list[str]) -> None:
+            proc = subprocess.run([SYSTEM_PYTHON, *argv], capture_output=True, text=True)
+            if proc.returncode != 0:
+                pytest.fail(f"genpy refused {argv[-1]}:\n{proc.stdout}{proc.stderr}")
+
+        for name in MSGS:
+            generate([str(GENMSG), "-p", "turtlesim", *includes, "-o", str(out_msg),
+                      str(SHARE / "turtlesim" / "msg" / f"{name}.msg")])
+        for name in SRVS:
+            generate([str(GENSRV), "-p", "turtlesim", *includes, "-o", str(out_srv),
+                      str(SHARE / "turtlesim" / "srv" / f"{name}.srv")])
+        generate([str(GENMSG), "--initpy", "-p", "turtlesim", "-o", str(out_msg)])
+        generate([str(GENSRV), "--initpy", "-p", "turtlesim", "-o", str(out_srv)])
+        (python_dir / "turtlesim" / "__init__.py").write_text("")
+        packages.mkdir()
+        (packages / "turtlesim").symlink_to(SHARE / "turtlesim", target_is_directory=True)
+
+    root = shared_build(tmp_path_factory, "turtlesim_genpy", build)
     python_dir, packages = root / "python", root / "packages"
-    out_msg, out_srv = python_dir / "turtlesim" / "msg", python_dir / "turtlesim" / "srv"
-    includes = [f"-Iturtlesim:{SHARE / 'turtlesim' / 'msg'}", "-Istd_msgs:/usr/share/std_msgs/msg"]
-
-    def generate(argv: list[str]) -> None:
-        proc = subprocess.run([SYSTEM_PYTHON, *argv], capture_output=True, text=True)
-        if proc.returncode != 0:
-            pytest.fail(f"genpy refused {argv[-1]}:\n{proc.stdout}{proc.stderr}")
-
-    for name in MSGS:
-        generate([str(GENMSG), "-p", "turtlesim", *includes, "-o", str(out_msg),
-                  str(SHARE / "turtlesim" / "msg" / f"{name}.msg")])
-    for name in SRVS:
-        generate([str(GENSRV), "-p", "turtlesim", *includes, "-o", str(out_srv),
-                  str(SHARE / "turtlesim" / "srv" / f"{name}.srv")])
-    generate([str(GENMSG), "--initpy", "-p", "turtlesim", "-o", str(out_msg)])
-    generate([str(GENSRV), "--initpy", "-p", "turtlesim", "-o", str(out_srv)])
-    (python_dir / "turtlesim" / "__init__.py").write_text("")
-    packages.mkdir()
-    (packages / "turtlesim").symlink_to(SHARE / "turtlesim", target_is_directory=True)
     return {"PYTHONPATH": str(python_dir), "ROS_PACKAGE_PATH": str(packages)}
 
 

@@ -11,6 +11,7 @@ from typing import Any, Iterator
 import pytest
 import yaml
 
+from conftest import free_port
 from rostui.core.xmlrpc import XmlRpcConnectionError, XmlRpcFault, XmlRpcProtocolError, call_sync
 from rostui.core.xmlrpc.quick import quick_call
 from rostui.tools.param_quick import simple_value_text
@@ -87,9 +88,7 @@ def test_same_errors_as_call_sync(one_shot_server: tuple[str, list[bytes], list[
 
 
 def test_refused_is_a_connection_error() -> None:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        dead = f"http://127.0.0.1:{s.getsockname()[1]}/"
+    dead = f"http://127.0.0.1:{free_port()}/"
     with pytest.raises(XmlRpcConnectionError, match="refused"):
         quick_call(dead, "getParam", "/rosparam", "/x")
 

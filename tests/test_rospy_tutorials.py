@@ -287,18 +287,29 @@ def test_connection_header_service(any_master: str, start: Start, envs: dict[str
 
 @MASTERS
 def test_publish_on_shutdown(any_master: str, start: Start, envs: dict[str, dict[str, str]]) -> None:
-    """008 publish_on_shutdown.py: Ctrl-C runs its on_shutdown hook, whose message still reaches listener.py."""
+    """008 publish_on_shutdown.py: Ctrl-C runs its on_shutdown hook, whose message still reaches listener.py.
+
+    Both rospys print the same; only rostui's is held to delivering the hook's message.  Debian's rospy queues
+    it (the script's ``queue_size=10``) and closes its connections right after the hook returns, so on a busy
+    machine its queue thread may not have written it yet: the listener then never hears it (seen here under
+    four test workers on two cores).  rostui's publisher writes in the hook and its close flushes what is
+    written.
+    """
+    heard: list[str] = []
+
     def scenario(side: str) -> str:
         listener = start("real", REAL / "ros_tutorials" / "listener.py", name="listener")
         talker = start(side, TUT / "008_on_shutdown" / "publish_on_shutdown.py", name="talker")
         talker.wait_for("Hit ctrl-C")
         wait_until(lambda: _connected(envs["real"], "/talker_"), "listener.py connected to the talker")
         said = talker.interrupt()
-        listener.wait_for("I heard I'm dead!")
-        return said + listener.interrupt()
+        if side == "shim":
+            listener.wait_for("I heard I'm dead!")
+            heard.extend(masked(listener.interrupt()))
+        return said
 
-    assert both(scenario) == ["Hit ctrl-C to see on_shutdown example", "I'm dead!",
-                              "[INFO] /listener_ANONI heard I'm dead!"]
+    assert both(scenario) == ["Hit ctrl-C to see on_shutdown example", "I'm dead!"]
+    assert heard == ["[INFO] /listener_ANONI heard I'm dead!"]
 
 
 def _connected(env: dict[str, str], prefix: str) -> bool:

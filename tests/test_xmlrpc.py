@@ -9,6 +9,7 @@ from typing import Any, Awaitable, Callable
 
 import pytest
 
+from conftest import free_port
 from rostui.core.xmlrpc import (
     RosApiError, XmlRpcClient, XmlRpcConnectionError, XmlRpcFault, XmlRpcProtocolError,
     XmlRpcServer, call_sync, ros_result,
@@ -135,9 +136,7 @@ def test_call_sync_and_errors() -> None:
         with pytest.raises(XmlRpcFault):
             await asyncio.to_thread(call_sync, server.uri, "nope")
     run_with_server(t)
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        dead = f"http://127.0.0.1:{s.getsockname()[1]}/"
+    dead = f"http://127.0.0.1:{free_port()}/"
     with pytest.raises(XmlRpcConnectionError, match="refused") as err:
         call_sync(dead, "getUri", "/x")
     assert dead in str(err.value)

@@ -25,6 +25,12 @@ DEADLINE = 30.0
 """Seconds a test waits for a condition before it fails (generous: CI machines are slow)."""
 
 
+def wait_for_service(env: dict[str, str], service: str, timeout: float = DEADLINE) -> None:
+    """Wait until the master at ``env``'s ROS_MASTER_URI knows a provider of ``service``."""
+    master = xmlrpc.client.ServerProxy(env["ROS_MASTER_URI"])
+    wait_until(lambda: master.lookupService("/test", service)[0] == 1, f"{service} registered", timeout)
+
+
 
 
 class Recording:

@@ -16,7 +16,7 @@ from typing import Any, Iterator
 
 import pytest
 
-from live_helpers import Program, Watcher
+from live_helpers import Program, Watcher, wait_for_service
 from tmux_helpers import Pane, shell_pane
 
 EXIT_MARK = "LOGGERS_EXIT="
@@ -48,6 +48,8 @@ def test_loggers_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str], 
     count = Program(ros_env, tmp_path, "agitr", "count")
     watcher = None
     try:
+        for service in ("get_loggers", "set_logger_level"):  # listed, so first in the list when the app opens
+            wait_for_service(ros_env, f"/count_and_log/{service}")
         pane.type(f"{loggers_command(ros_env)}; echo {EXIT_MARK}$?")
         pane.wait_until(lambda: pane.shows("/count_and_log", "/rosout", "2 nodes serve"), "the node list")
         pane.wait_until(lambda: pane.shows("Loggers · /count_and_log", "ros.agitr", "2 loggers"),

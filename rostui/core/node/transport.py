@@ -81,6 +81,10 @@ class ConnectionRouter(Protocol):
 
     busy_poll: BusyPoll | None
 
+    @property
+    def is_shutdown(self) -> bool:
+        """True once the node began shutting down (its topics and services are going away)."""
+
     def route_inbound(self, header: dict[str, str], conn: "InboundConnection") -> "InboundHandler | str":
         """Return a handler for the connection, or an error string to refuse it."""
 
@@ -245,8 +249,13 @@ class InboundConnection(asyncio.Protocol):
             self.transport.write(data)
 
     def refuse(self, reason: str) -> None:
-        """Send an ``error=`` header and close, as ROS does for a bad peer."""
-        log.warning("refusing TCPROS connection from %s: %s", self.peer, reason)
+        """Send an ``error=`` header and close, as ROS does for a bad peer.
+
+        A node shutting down says so only at debug level: peers that connect to a topic it has just closed
+        (rosout, most often) are expected then, and are no one's mistake.
+        """
+        level = logging.DEBUG if self.router.is_shutdown else logging.WARNING
+        log.log(level, "refusing TCPROS connection from %s: %s", self.peer, reason)
         self.write(encode_header({"error": reason}))
         self.close()
 

@@ -19,7 +19,7 @@ import pytest
 
 from rostui.compat import PYLIB
 
-from conftest import REPO, SYSTEM_PYTHON, need_peer, have_rospy, rostui_cmd, stop_process, wait_until
+from conftest import REPO, SYSTEM_PYTHON, have_rospy, need_peer, rostui_cmd, shared_build, stop_process, wait_until
 from rospy_scripts import Running, script_command
 
 REAL = REPO / "tests" / "python_compat" / "real"
@@ -62,12 +62,16 @@ def _generate_real_srv(out: Path) -> None:
         (out / package / "__init__.py").write_text("")
 
 
-@pytest.fixture
-def envs(ros_env: dict[str, str], tmp_path: Path) -> dict[str, dict[str, str]]:
-    """The environment of each side: ``shim`` (rostui python --rostui) and ``real`` (Debian's rospy)."""
+@pytest.fixture(scope="session")
+def generated(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The tutorial packages' generated srv modules, made once for the whole run (every worker reads the same)."""
     need_peer(have_rospy() and Path(GENSRV).exists(), "rospy and genpy (Debian python3-rospy, python3-genpy)")
-    generated = tmp_path / "generated"
-    _generate_real_srv(generated)
+    return shared_build(tmp_path_factory, "tutorial_srv_genpy", _generate_real_srv)
+
+
+@pytest.fixture
+def envs(ros_env: dict[str, str], generated: Path) -> dict[str, dict[str, str]]:
+    """The environment of each side: ``shim`` (rostui python --rostui) and ``real`` (Debian's rospy)."""
     shim = dict(ros_env, ROS_PACKAGE_PATH=os.pathsep.join([str(PACKAGE_PATH), ros_env.get("ROS_PACKAGE_PATH", "")]))
     real = dict(ros_env, PYTHONPATH=os.pathsep.join(filter(None, [str(generated), ros_env.get("PYTHONPATH")])))
     real.pop("ROSTUI_PYTHON", None)

@@ -19,7 +19,7 @@ from typing import Callable, Iterator
 
 import pytest
 
-from conftest import REPO, SYSTEM_PYTHON, have_rospy, need_peer, stop_process, wait_until
+from conftest import REPO, SYSTEM_PYTHON, have_rospy, need_peer, shared_build, stop_process, wait_until
 from rospy_scripts import Running, script_command
 
 REAL = REPO / "tests" / "python_compat" / "real"
@@ -44,14 +44,18 @@ def _generate(out: Path) -> None:
     (out / "rospy_tutorials" / "__init__.py").write_text("")
 
 
-@pytest.fixture
-def envs(ros_env: dict[str, str], tmp_path: Path) -> dict[str, dict[str, str]]:
-    """The environment of each side: ``shim`` (rostui python --rostui) and ``real`` (Debian's rospy)."""
+@pytest.fixture(scope="session")
+def generated(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """rospy_tutorials' generated modules, made once for the whole run (every worker reads the same)."""
     need_peer(have_rospy() and Path(GENMSG).exists(), "rospy and genpy (Debian python3-rospy, python3-genpy)")
     need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import numpy"], capture_output=True).returncode == 0,
               "numpy under the system Python (Debian python3-numpy)")
-    generated = tmp_path / "generated"
-    _generate(generated)
+    return shared_build(tmp_path_factory, "rospy_tutorials_genpy", _generate)
+
+
+@pytest.fixture
+def envs(ros_env: dict[str, str], generated: Path) -> dict[str, dict[str, str]]:
+    """The environment of each side: ``shim`` (rostui python --rostui) and ``real`` (Debian's rospy)."""
     path = os.pathsep.join(filter(None, [str(PACKAGE_PATH), ros_env.get("ROS_PACKAGE_PATH")]))
     shim = dict(ros_env, ROS_PACKAGE_PATH=path, PYTHONUNBUFFERED="1")
     real = dict(shim, PYTHONPATH=os.pathsep.join(filter(None, [str(generated), ros_env.get("PYTHONPATH")])))

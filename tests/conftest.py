@@ -9,7 +9,9 @@ test instead of skipping it.
 from __future__ import annotations
 
 import asyncio
+import collections
 import os
+import random
 import shutil
 import socket
 import subprocess
@@ -30,10 +32,14 @@ REPO = Path(__file__).resolve().parent.parent
 
 #: Test ports come from a block of their own for each pytest-xdist worker, below the kernel's ephemeral
 #: range (32768 and up on Linux): the ports that bind(0) and outgoing connections take, in this worker and
-#: in every other, never land on a port a test has picked but not yet listened on.
+#: in every other, never land on a port a test has picked but not yet listened on.  Within its block a worker
+#: picks at random, so two test runs on one machine rarely meet either.
 PORT_BLOCK = 1400
 PORT_BASE = 20000
-_next_port = 0
+#: Ports this worker handed out lately: a test may not have bound its port yet when it asks for another.
+_recent_ports: collections.deque[int] = collections.deque(maxlen=PORT_BLOCK // 4)
+#: A generator of its own: tests that seed the ``random`` module do not make two runs pick alike.
+_port_choice = random.Random()
 
 
 def _worker_index() -> int:
@@ -44,17 +50,18 @@ def _worker_index() -> int:
 
 def free_port() -> int:
     """Return a TCP port on 127.0.0.1 that nothing listens on right now, from this worker's own block."""
-    global _next_port
     first = PORT_BASE + (_worker_index() % 8) * PORT_BLOCK
-    for _ in range(PORT_BLOCK):
-        port = first + _next_port
-        _next_port = (_next_port + 1) % PORT_BLOCK
+    for _ in range(4 * PORT_BLOCK):
+        port = first + _port_choice.randrange(PORT_BLOCK)
+        if port in _recent_ports:
+            continue
         with socket.socket() as s:
             try:
                 s.bind(("127.0.0.1", port))
             except OSError:
                 continue
-            return port
+        _recent_ports.append(port)
+        return port
     raise RuntimeError(f"no free port in {first}..{first + PORT_BLOCK - 1}")
 
 
@@ -87,22 +94,29 @@ def have_rospy() -> bool:
     return r.returncode == 0
 
 
-def wait_until(predicate: Callable[[], bool], what: str, timeout: float = 30.0) -> None:
-    """Poll ``predicate`` until it holds; fail with ``what`` when it never does (generous: CI machines are slow)."""
+def _said(what: str | Callable[[], str]) -> str:
+    return what() if callable(what) else what
+
+
+def wait_until(predicate: Callable[[], bool], what: str | Callable[[], str], timeout: float = 30.0) -> None:
+    """Poll ``predicate`` until it holds; fail with ``what`` when it never does (generous: CI machines are slow).
+
+    ``what`` may be a function: its text is then made at the time-out, so it can show the state that failed.
+    """
     deadline = time.monotonic() + timeout
     while not predicate():
         if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
+            raise AssertionError(f"timed out waiting for {_said(what)}")
         time.sleep(0.05)
 
 
-async def until(predicate: Callable[[], bool], what: str, timeout: float = 30.0) -> None:
+async def until(predicate: Callable[[], bool], what: str | Callable[[], str], timeout: float = 30.0) -> None:
     """``wait_until`` on a running event loop: poll ``predicate`` without blocking the loop."""
     loop = asyncio.get_running_loop()
     deadline = loop.time() + timeout
     while not predicate():
         if loop.time() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
+            raise AssertionError(f"timed out waiting for {_said(what)}")
         await asyncio.sleep(0.02)
 
 

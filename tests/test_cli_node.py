@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import os
 import re
-import signal
+import xmlrpc.client
 
 import pytest
 
 from cli_helpers import normalize, rostui
+from conftest import free_port
 from interop_helpers import example, run_tool, spawn, wait_for_node, wait_until  # noqa: F401
 
 
@@ -105,12 +105,19 @@ def test_kill(graph, spawn, ros_env):
     assert (ours.stdout, ours.stderr, ours.returncode) == (theirs.stdout, theirs.stderr, 1)
 
 
+def register_dead_node(env, name):
+    """Leave ``name`` on the master as a node killed without unregistering leaves it: a publisher of /chatter
+    whose slave URI no one answers.  The port is from this worker's own block, which nothing else binds; a
+    killed process's own port is an ephemeral one, which another test's node may take (and answer on) at
+    once."""
+    master = xmlrpc.client.ServerProxy(env["ROS_MASTER_URI"])
+    code, status, _ = master.registerPublisher(name, "/chatter", "std_msgs/String", f"http://127.0.0.1:{free_port()}/")
+    assert code == 1, status
+
+
 def test_cleanup(graph, spawn, ros_env):
-    for name in ("deadA", "deadB"):
-        peer = spawn(example("talker.py", f"__name:={name}"), label=name)
-        wait_for_node(ros_env, f"/{name}")
-        os.kill(peer.proc.pid, signal.SIGKILL)
-        peer.proc.wait()
+    for name in ("/deadA", "/deadB"):
+        register_dead_node(ros_env, name)
     # "n": nothing purged, rosnode's words.
     ours = rostui(["node", "cleanup"], ros_env, input="n\n")
     theirs = run_tool_input(["rosnode", "cleanup"], ros_env, "n\n")

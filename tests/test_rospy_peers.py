@@ -10,7 +10,7 @@ from __future__ import annotations
 import subprocess
 
 from conftest import REPO
-from test_rospy_tutorials import MASTERS, SIDES, Start, envs, start  # noqa: F401  (fixtures)
+from test_rospy_tutorials import MASTERS, SIDES, Start, envs, generated, start  # noqa: F401  (fixtures)
 
 SCRIPT = REPO / "tests" / "python_compat" / "rospy_latched_listener.py"
 

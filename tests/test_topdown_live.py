@@ -43,8 +43,9 @@ async def check_drawn(env: dict[str, str]) -> None:
             return view.cell_topic(*cell) if cell is not None else None
 
         await until(lambda: all(owner(t) == t for t in TOPICS),
-                    f"every topic drawn in place: {[(t, owner(t)) for t in TOPICS]} {view.row_text(0)!r} "
-                    f"size {view.size} panels {[(p.topic, p.display, p.joined) for p in app.query(ViewPanel)]}")
+                    lambda: f"every topic drawn in place: {[(t, owner(t)) for t in TOPICS]} {view.row_text(0)!r} "
+                    f"size {view.size} {view.viewport} "
+                    f"panels {[(p.topic, p.display, p.joined) for p in app.query(ViewPanel)]}")
         assert len(app.query(TopDownView)) == 1
         assert [p.topic for p in app.query(ViewPanel) if p.display] == ["/scan"]  # the others joined its view
         assert view.scene.fixed_frame == "map"

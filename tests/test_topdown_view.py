@@ -57,6 +57,27 @@ async def test_zoom_pan_origin_and_fit_move_the_wall() -> None:
 
 
 @sync
+async def test_a_view_not_moved_yet_keeps_the_starting_zoom_when_it_grows() -> None:
+    """First laid out 12 columns wide (as beside seven other panels, before they join it), then 80: still 10 m
+    across, so the wall lands where it would have at 80 columns; once zoomed, a resize keeps the zoom."""
+    app = ViewTestApp(["/scan"])
+    async with app.run_test(size=(12, 24)) as pilot:
+        view = app.view
+        view.show_topic_message("/scan", wall_scan(2.05))
+        await pilot.pause(0.15)
+        assert view.viewport is not None and view.viewport.cols == 12
+        await pilot.resize_terminal(80, 24)
+        await pilot.pause(0.15)
+        assert scan_cells(view) == {(56, r) for r in range(2, 20)}
+        await pilot.press("plus")
+        zoomed = view.viewport
+        assert zoomed is not None
+        await pilot.resize_terminal(100, 24)
+        await pilot.pause(0.15)
+        assert view.viewport is not None and view.viewport.scale == zoomed.scale
+
+
+@sync
 async def test_scale_bar_follows_the_zoom() -> None:
     app = ViewTestApp(["/scan"])
     async with app.run_test(size=(80, 24)) as pilot:

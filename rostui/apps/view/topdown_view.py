@@ -268,7 +268,10 @@ class TopDownView(TopicView, can_focus=True):
                 return False
             self._view = self._home(cols, rows)
         elif (self._view.cols, self._view.rows) != (cols, rows):
-            self._view = self._view.resized(cols, rows)
+            # Not moved since it opened (its first size may be a passing one, as when panels join this
+            # view): the starting zoom for the new size.  Moved by the user: the same centre and scale.
+            at_home = self._view == self._home(self._view.cols, self._view.rows)
+            self._view = self._home(cols, rows) if at_home else self._view.resized(cols, rows)
         state = (self.scene.generation, self._tf_changes, self.scene.fixed_frame, self._view, width, height)
         if state == self._drawn and self._strips:
             self._update_status(self._view, width, height)

@@ -13,6 +13,7 @@ import collections
 import os
 import random
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -23,6 +24,11 @@ from typing import Callable, Iterator
 import pytest
 
 SYSTEM_PYTHON = "/usr/bin/python3"
+
+# A run started in the background of a shell without job control inherits SIGINT ignored, and would hand that
+# on to every process the tests start; the tests press Ctrl-C (SIGINT) as a user's terminal does.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 #: Real scripts kept as test data (run by the tests as programs, never imported by pytest:
 #: ros_comm's and others' names such as ``timer_test.py`` look like test modules).

@@ -21,15 +21,22 @@ from textual.widgets import DataTable, Static
 
 from rostui.apps.view.registry import TopicView
 from rostui.models.master_link import LinkStatus
-from rostui.models.tf.buffer import TfBuffer, TfError
+from rostui.models.frame_budget import FrameBudget
+from rostui.models.tf.buffer import Edge, TfBuffer, TfError
 from rostui.models.tf.source import TfSource
 from rostui.models.tf.transform import Transform
-from rostui.models.tf.tree import format_age, format_rate, summary, tree_rows
+from rostui.models.tf.tree import TreeRow, format_age, format_rate, summary, tree_rows
 
 __all__ = ["TfTreeView", "REFRESH_EVERY"]
 
 REFRESH_EVERY = 0.5
 """Seconds between redraws of the table (rates and ages move even when no frame is added)."""
+
+FILL_BATCH = 200
+"""Rows added to the table at a time: a tree of thousands of frames fills in batches, the app answering between."""
+
+FILL_PAUSE = 0.01
+"""Seconds at least between two batches."""
 
 COLUMNS = ("frame", "broadcaster", "rate", "age")
 MESSAGE_COLUMNS = ("frame", "stamp")
@@ -77,6 +84,15 @@ class TfTreeView(TopicView):
         self.summary_line = Static(id="tf-summary")
         self.detail = Static(id="tf-detail")
         self._frames: list[str] = []
+        self._rows: list[TreeRow] = []
+        self._shape = -1
+        self._selected: str | None = None
+        self._fills = 0
+        self._filling = False
+        self._placing = False
+        self._shown: dict[int, tuple[str, ...]] = {}
+        self.budget = FrameBudget()
+        """The view's own CPU account: rebuilding the table of a large tree is spread out to stay within it."""
         self.one_message = False
         """True in `bag view`'s inspector: the tree of the transforms of the message shown last, no rates."""
         self._message_problems: list[str] = []
@@ -105,7 +121,7 @@ class TfTreeView(TopicView):
             uri = master_uri_from_env(self.master_uri or getattr(self.app, "master_uri", None))
             self.source = TfSource(uri, node_name="rostui_tf_tree", buffer=self.buffer, clock=self.clock)
             self.run_worker(self.source.run(), group="tf-source", exit_on_error=False)
-            self.set_interval(self.refresh_every, self.redraw)
+            self.set_interval(self.refresh_every, self.tick)
         self.redraw()
 
     async def on_unmount(self) -> None:
@@ -131,40 +147,107 @@ class TfTreeView(TopicView):
             self.redraw()
 
     def redraw(self) -> None:
-        """Rebuild the table from the buffer, keeping the cursor on the same frame."""
-        now = self.clock()
-        rows = tree_rows(self.buffer)
-        selected = self._frames[self.table.cursor_row] if 0 <= self.table.cursor_row < len(self._frames) else None
-        self.table.clear()
-        self._frames = [row.frame for row in rows]
-        for row in rows:
-            label = Text()
-            label.append(row.prefix, style="dim")
-            label.append(row.frame, style="bold" if row.depth == 0 else "")
-            if row.in_loop:
-                label.append("  (in a loop)", style="red")
-            edge = row.edge
-            if self.one_message:
-                stamp = f"{edge.latest.stamp:.6f}" if edge is not None else ""
-                self.table.add_row(label, Text(stamp), key=row.frame)
-                continue
-            rate = format_rate(edge)
-            self.table.add_row(
-                label,
-                Text(edge.broadcaster if edge else ""),
-                Text(rate, style="cyan" if rate == "static" else ""),
-                Text(format_age(edge, now), style="yellow" if edge and not edge.static and edge.age(now) > STALE
-                     else ""),
-                key=row.frame,
-            )
-        if selected in self._frames and not (self.one_message and self.buffer.edge(selected) is None):
-            self.table.move_cursor(row=self._frames.index(selected), animate=False)
-        elif self.one_message and len(self._frames) > 1:
-            self.table.move_cursor(row=1, animate=False)  # the message's first transform, not its root
-        self._update_summary()
+        """Show the buffer now: its rows again when the tree's shape changed (the first :data:`FILL_BATCH` at
+        once, the rest a batch at a time, the cursor kept on its frame), else the figures of the rows on screen."""
+        if self.buffer.structure != self._shape:
+            self._rebuild()
+        else:
+            self._refresh_shown()
+        self._update_summary(self._rows)
         self._update_detail()
 
-    def _update_summary(self) -> None:
+    def tick(self) -> None:
+        """The periodic redraw: as :meth:`redraw`, but a new shape waits for the table being filled and for the
+        view's CPU budget (a tree that keeps changing shape is rebuilt only as often as its share allows)."""
+        if self.buffer.structure != self._shape and (self._filling or self.budget.wait() > 0):
+            self._refresh_shown()
+            self._update_summary(self._rows)
+            return
+        self.redraw()
+
+    def _rebuild(self) -> None:
+        with self.budget.spending():
+            self._shape = self.buffer.structure
+            rows = tree_rows(self.buffer)
+            cursor = self.table.cursor_row
+            if self.table.row_count and 0 <= cursor < len(self._frames):
+                self._selected = self._frames[cursor]
+            self._placing = True
+            self._rows, self._frames = rows, [row.frame for row in rows]
+            self._shown = {}
+            self.table.clear()
+            self._fills += 1
+            self._fill(self._fills, self.clock())
+
+    def _fill(self, fill: int, now: float) -> None:
+        """Add the next batch of rows (``fill`` names the rebuild they belong to; a newer one drops them)."""
+        if fill != self._fills:
+            return
+        with self.budget.spending():
+            start = self.table.row_count
+            for row in self._rows[start:start + FILL_BATCH]:
+                self.table.add_row(*self._cells(row, now), key=row.frame)
+            self._filling = self.table.row_count < len(self._rows)
+            self._place_cursor()
+        if self._filling:
+            self.set_timer(max(FILL_PAUSE, self.budget.wait()), lambda: self._fill(fill, self.clock()))
+
+    def _place_cursor(self) -> None:
+        """The cursor back on the frame it was on (once its row is in), or on a message's first transform."""
+        if not self._placing:
+            return
+        selected = self._selected
+        if selected in self._frames and not (self.one_message and self.buffer.edge(selected) is None):
+            index = self._frames.index(selected)
+            if index < self.table.row_count:
+                self.table.move_cursor(row=index, animate=False)
+                self._placing = False
+        elif self.one_message and len(self._frames) > 1:
+            if self.table.row_count > 1:
+                self.table.move_cursor(row=1, animate=False)  # the message's first transform, not its root
+                self._placing = False
+        else:
+            self._placing = False
+
+    def _cells(self, row: TreeRow, now: float) -> list[Text]:
+        label = Text()
+        label.append(row.prefix, style="dim")
+        label.append(row.frame, style="bold" if row.depth == 0 else "")
+        if row.in_loop:
+            label.append("  (in a loop)", style="red")
+        edge = row.edge
+        if self.one_message:
+            return [label, Text(f"{edge.latest.stamp:.6f}" if edge is not None else "")]
+        return [label, *self._figures(edge, now)]
+
+    def _figures(self, edge: Edge | None, now: float) -> list[Text]:
+        """The broadcaster, rate and age cells of a row."""
+        rate = format_rate(edge)
+        return [
+            Text(edge.broadcaster if edge else ""),
+            Text(rate, style="cyan" if rate == "static" else ""),
+            Text(format_age(edge, now), style="yellow" if edge and not edge.static and edge.age(now) > STALE
+                 else ""),
+        ]
+
+    def _refresh_shown(self) -> None:
+        """New broadcasters, rates and ages for the rows on screen (the others are redrawn when scrolled to)."""
+        if self.one_message or not self.table.row_count:
+            return
+        now = self.clock()
+        first = max(0, int(self.table.scroll_offset.y))
+        for index in range(first, min(self.table.row_count, first + self.table.size.height + 1)):
+            row = self._rows[index]
+            edge = self.buffer.edge(row.frame)
+            cells = self._figures(edge, now)
+            key = tuple(cell.plain for cell in cells)
+            if self._shown.get(index) == key:
+                continue
+            self._shown[index] = key
+            for column, cell in zip(COLUMNS[1:], cells):
+                self.table.update_cell(row.frame, column, cell)
+
+    def _update_summary(self, rows: list[TreeRow]) -> None:
         source = self.source
         problem = False
         if source is not None and source.state.status is not LinkStatus.CONNECTED:
@@ -172,14 +255,14 @@ class TfTreeView(TopicView):
             problem = True
         elif self.one_message:
             count = self._message_count
-            text = f"{count} transform{'' if count == 1 else 's'} in this message: {summary(self.buffer)}"
+            text = f"{count} transform{'' if count == 1 else 's'} in this message: {summary(self.buffer, rows)}"
             if self._message_problems:
                 text += f"  ·  {self._message_problems[-1]}"
                 problem = True
         elif not self.buffer.frames():
             text = "waiting for transforms on /tf and /tf_static"
         else:
-            text = summary(self.buffer)
+            text = summary(self.buffer, rows)
         if source is not None and source.problems:
             text += f"  ·  {source.problems[-1]}"
             problem = True

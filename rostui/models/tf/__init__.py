@@ -5,12 +5,12 @@
 """
 
 from rostui.models.tf.buffer import (
-    ConnectivityError, Edge, ExtrapolationError, FrameNotFoundError, LoopError, StampedTransform, TfBuffer,
-    TfError,
+    ConnectivityError, DepthError, Edge, ExtrapolationError, FrameNotFoundError, LoopError, StampedTransform,
+    TfBuffer, TfError,
 )
 from rostui.models.tf.transform import Transform, quat_from_rpy, quat_to_rpy
 
 __all__ = [
-    "ConnectivityError", "Edge", "ExtrapolationError", "FrameNotFoundError", "LoopError", "StampedTransform",
-    "TfBuffer", "TfError", "Transform", "quat_from_rpy", "quat_to_rpy",
+    "ConnectivityError", "DepthError", "Edge", "ExtrapolationError", "FrameNotFoundError", "LoopError",
+    "StampedTransform", "TfBuffer", "TfError", "Transform", "quat_from_rpy", "quat_to_rpy",
 ]

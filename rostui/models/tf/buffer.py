@@ -26,7 +26,15 @@ MAX_FRAMES = 10_000
 MAX_SAMPLES = 20_000
 """Samples one dynamic edge keeps at most (2 kHz for ten seconds); past it the oldest go first."""
 
+MAX_GRAPH_DEPTH = 1000
+"""Links a lookup walks up from a frame before it gives up, as tf2's BufferCore (deeper is taken for a loop)."""
+
+LOOP_TEXT = "The tf tree is invalid because it contains a loop."
+"""tf2's sentence for a loop, and for a chain deeper than :data:`MAX_GRAPH_DEPTH`."""
+
 _MAX_RECEIPTS = 4096
+#: Frames of a loop named in its error; a longer loop is shortened in the middle.
+_LOOP_NAMES_SHOWN = 6
 
 
 class TfError(Exception):
@@ -43,6 +51,10 @@ class ConnectivityError(TfError):
 
 class LoopError(TfError):
     """The parent links of a frame go round in a circle."""
+
+
+class DepthError(LoopError):
+    """A frame more than :data:`MAX_GRAPH_DEPTH` links below its root: tf2 takes it for a loop, and so do lookups."""
 
 
 class ExtrapolationError(TfError):
@@ -127,6 +139,14 @@ class Edge:
         return before.transform.interpolate(after.transform, fraction)
 
 
+def _loop_text(loop: list[str]) -> str:
+    """``a -> b -> a``; a long loop keeps its first and last frames and says how many are left out."""
+    if len(loop) > _LOOP_NAMES_SHOWN:
+        left_out = len(loop) - _LOOP_NAMES_SHOWN
+        loop = loop[:_LOOP_NAMES_SHOWN - 2] + [f"({left_out} more)"] + loop[-2:]
+    return " -> ".join(loop)
+
+
 @dataclass(frozen=True)
 class StampedTransform:
     """A lookup's answer: ``transform`` maps points in ``source`` into ``target``, valid at ``stamp``."""
@@ -152,6 +172,8 @@ class TfBuffer:
         self.max_frames = max_frames
         self._edges: dict[str, Edge] = {}
         self._frames: set[str] = set()
+        self.structure = 0
+        """Counts changes of the tree's shape (a frame or an edge added, a parent or kind changed, cleared)."""
 
     # -- feeding ---------------------------------------------------------------------------
     def add_message(self, msg: Any, *, static: bool, broadcaster: str, received: float) -> list[str]:
@@ -183,6 +205,7 @@ class TfBuffer:
         if edge is None or edge.parent != parent or edge.static != static:
             edge = Edge(child, parent, static, broadcaster)
             self._edges[child] = edge
+            self.structure += 1
         edge.broadcaster = broadcaster
         edge.count += 1
         edge.receipts.append(received)
@@ -222,6 +245,7 @@ class TfBuffer:
         """Forget every frame and edge."""
         self._edges.clear()
         self._frames.clear()
+        self.structure += 1
 
     # -- the tree --------------------------------------------------------------------------
     def frames(self) -> list[str]:
@@ -254,19 +278,30 @@ class TfBuffer:
         """Whether some transform names ``frame``."""
         return strip_frame(frame) in self._frames
 
-    def chain(self, frame: str) -> list[str]:
-        """``frame`` and its ancestors up to its root; raises :class:`LoopError` if they go round."""
-        frame = strip_frame(frame)
-        path = [frame]
-        seen = {frame}
-        edge = self._edges.get(frame)
-        while edge is not None:
-            if edge.parent in seen:
-                loop = path[path.index(edge.parent):] + [edge.parent]
-                raise LoopError("The tf tree is invalid because it contains a loop: " + " -> ".join(loop))
-            path.append(edge.parent)
-            seen.add(edge.parent)
-            edge = self._edges.get(edge.parent)
+    def chain(self, frame: str, max_depth: int | None = MAX_GRAPH_DEPTH) -> list[str]:
+        """``frame`` and its ancestors up to its root.
+
+        Raises :class:`LoopError` if they go round, :class:`DepthError` past ``max_depth`` links (None: no
+        limit; tf2 walks at most :data:`MAX_GRAPH_DEPTH`).
+        """
+        return self._walk_up(strip_frame(frame), (), max_depth)
+
+    def _walk_up(self, start: str, stops: tuple[str, ...], max_depth: int | None = MAX_GRAPH_DEPTH) -> list[str]:
+        """``start`` and its ancestors up to the first of ``stops`` or the root, without recursion."""
+        path = [start]
+        seen = {start}
+        frame = start
+        while frame not in stops:
+            edge = self._edges.get(frame)
+            if edge is None:
+                break
+            frame = edge.parent
+            if frame in seen:
+                raise LoopError(f"{LOOP_TEXT} ({_loop_text(path[path.index(frame):] + [frame])})")
+            if max_depth is not None and len(path) > max_depth:
+                raise DepthError(f"{LOOP_TEXT} (more than {max_depth} links up from {start}; tf2 walks no further)")
+            path.append(frame)
+            seen.add(frame)
         return path
 
     def all_frames_as_string(self) -> str:
@@ -275,19 +310,26 @@ class TfBuffer:
 
     # -- lookups ---------------------------------------------------------------------------
     def _path(self, target: str, source: str) -> tuple[list[str], list[str]]:
-        """The source's frames up to the common ancestor, and the target's (each starting at itself)."""
+        """The source's frames up to where the two meet, and the target's (each starting at itself).
+
+        Walked as tf2 walks them: the source up to the target or its root, then the target up to that root
+        or the source, each at most :data:`MAX_GRAPH_DEPTH` links, so a lookup answers, or fails, as tf2's.
+        """
         for frame, arg in ((target, "target_frame"), (source, "source_frame")):
             if frame not in self._frames:
                 raise FrameNotFoundError(f'"{frame}" passed to lookupTransform argument {arg} does not exist. ')
-        up_source = self.chain(source)
-        up_target = self.chain(target)
-        on_target = {f: i for i, f in enumerate(up_target)}
-        for i, frame in enumerate(up_source):
-            if frame in on_target:
-                return up_source[:i + 1], up_target[:on_target[frame] + 1]
-        raise ConnectivityError(
-            f"Could not find a connection between '{target}' and '{source}' because they are not part of the "
-            "same tree.Tf has two or more unconnected trees.")
+        up_source = self._walk_up(source, (target,))
+        if up_source[-1] == target:
+            return up_source, [target]
+        top = up_source[-1]
+        up_target = self._walk_up(target, (top, source))
+        if up_target[-1] == source:
+            return [source], up_target
+        if up_target[-1] != top:
+            raise ConnectivityError(
+                f"Could not find a connection between '{target}' and '{source}' because they are not part of the "
+                "same tree.Tf has two or more unconnected trees.")
+        return up_source, up_target
 
     def latest_common_time(self, target: str, source: str) -> float:
         """The newest time every dynamic edge between the frames has data for (0.0 if all are static)."""

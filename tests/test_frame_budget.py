@@ -1,6 +1,10 @@
-"""FrameBudget: frames are spaced so the process's CPU per second stays within the share (fake clocks)."""
+"""FrameBudget: frames are spaced so one panel's CPU per second stays within the share (fake clocks), and
+what another panel (or thread) spends is never charged to it."""
 
 from __future__ import annotations
+
+import threading
+import time
 
 import pytest
 
@@ -19,7 +23,7 @@ def run(frame_cost: float, arrivals_hz: float, share: float, seconds: float) -> 
     """Frames drawn and CPU seconds used when frames costing ``frame_cost`` arrive at ``arrivals_hz``.
 
     As in the view's panel: a frame that arrives waits (only the newest is kept) until the budget lets
-    it be drawn; drawing costs CPU.  Time moves in 1 ms ticks.
+    it be drawn; drawing costs CPU, measured around the frame.  Time moves in 1 ms ticks.
     """
     clocks = Clocks()
     budget = FrameBudget(share, wall=lambda: clocks.wall, cpu=lambda: clocks.cpu)
@@ -32,7 +36,8 @@ def run(frame_cost: float, arrivals_hz: float, share: float, seconds: float) -> 
         if clocks.wall >= next_arrival:
             pending, next_arrival = True, next_arrival + period
         if pending and budget.wait() == 0.0:
-            clocks.cpu += frame_cost
+            with budget.spending():
+                clocks.cpu += frame_cost
             drawn, pending = drawn + 1, False
     return drawn, clocks.cpu
 
@@ -54,8 +59,46 @@ def test_a_pause_buys_only_a_short_burst() -> None:
     budget = FrameBudget(0.5, wall=lambda: clocks.wall, cpu=lambda: clocks.cpu)
     assert budget.wait() == 0.0
     clocks.wall = 60.0  # a minute with no frames
-    clocks.cpu = 0.5  # then frames worth 0.5 s of CPU at once
+    budget.charge(0.5)  # then frames worth 0.5 s of CPU at once
     assert budget.wait() == pytest.approx(0.5)  # the reserve covered 0.25 s of it; 0.25 s is owed at 0.5/s
+
+
+def test_each_panel_is_charged_only_its_own_frames() -> None:
+    """Two panels in one process: the heavy one's frames overdraw its account, never its neighbour's (before,
+    every panel was charged the whole process's CPU, so one heavy topic held every other panel back)."""
+    clocks = Clocks()
+    heavy = FrameBudget(0.45, wall=lambda: clocks.wall, cpu=lambda: clocks.cpu)
+    light = FrameBudget(0.45, wall=lambda: clocks.wall, cpu=lambda: clocks.cpu)
+    light_drawn = 0
+    for tick in range(1, 101):  # ten seconds: a 1 s frame on the heavy panel whenever it may, a 10 Hz light one
+        clocks.wall = tick / 10
+        if heavy.wait() == 0.0:
+            with heavy.spending():
+                clocks.cpu += 1.0
+        if light.wait() == 0.0:
+            with light.spending():
+                clocks.cpu += 0.002
+            light_drawn += 1
+    assert light_drawn == 100
+    assert heavy.spent <= 10 * 0.45 + 1.0
+
+
+def test_the_cpu_of_other_threads_is_not_charged() -> None:
+    budget = FrameBudget(0.45)
+    done = threading.Event()
+
+    def spin() -> None:
+        end = time.process_time() + 0.3
+        while time.process_time() < end:
+            pass
+        done.set()
+
+    with budget.spending():
+        worker = threading.Thread(target=spin)
+        worker.start()
+        done.wait()
+        worker.join()
+    assert budget.spent < 0.1  # the other thread's 0.3 s is not this panel's
 
 
 def test_share_must_be_a_fraction_of_a_core() -> None:

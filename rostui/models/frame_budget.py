@@ -1,19 +1,21 @@
-"""FrameBudget: whether a view may draw its next frame now, so the process stays within a share of one core.
+"""FrameBudget: whether one panel may draw its next frame now, so its own frames stay within a share of one core.
 
 A camera can send more frames than a terminal can show for the CPU a user
-would grant a viewer.  The budget keeps an account of CPU time: it earns
+would grant a viewer.  Each panel keeps its own account of CPU time: it earns
 ``share`` seconds of CPU per second of wall time (up to a small reserve, so
-a pause does not buy a long burst) and spends what the whole process really
-used (decoding, drawing, writing to the terminal, receiving, on every
-thread).  A frame may be drawn while the account is not overdrawn; frames
-that arrive meanwhile are dropped by the caller, never queued.  On a loaded
-machine each frame costs more, so fewer are drawn and the share holds.
+a pause does not buy a long burst) and spends what its own frames cost:
+the CPU time of the thread that decodes and draws them, measured around
+each frame with :meth:`FrameBudget.spending`.  A frame may be drawn while
+the account is not overdrawn; frames that arrive meanwhile are dropped by
+the caller, never queued.  A heavy topic thus drops its own frames, not its
+neighbours': what another panel spends is never charged here.
 """
 
 from __future__ import annotations
 
 import time
-from typing import Callable
+from contextlib import contextmanager
+from typing import Callable, Iterator
 
 __all__ = ["FrameBudget", "VIEW_CPU_SHARE"]
 
@@ -25,10 +27,14 @@ RESERVE_SECONDS = 0.5
 
 
 class FrameBudget:
-    """An account of the process's CPU time against ``share`` of a core."""
+    """An account of one panel's CPU time against ``share`` of a core.
+
+    ``cpu`` is the clock :meth:`spending` reads (the calling thread's CPU time: other threads' and other
+    panels' work is not this panel's); ``wall`` the clock the account earns by.
+    """
 
     def __init__(self, share: float = VIEW_CPU_SHARE, *, wall: Callable[[], float] = time.monotonic,
-                 cpu: Callable[[], float] = time.process_time) -> None:
+                 cpu: Callable[[], float] = time.thread_time) -> None:
         if not 0 < share <= 1:
             raise ValueError(f"CPU share must be in (0, 1], not {share}")
         self.share = share
@@ -36,15 +42,31 @@ class FrameBudget:
         self._cpu = cpu
         self._balance = 0.0
         self._at_wall = wall()
-        self._at_cpu = cpu()
+        self.spent = 0.0
+        """CPU seconds charged so far."""
 
     def balance(self) -> float:
-        """CPU seconds in hand now: earned at ``share`` per wall second, less what the process used."""
-        wall, cpu = self._wall(), self._cpu()
+        """CPU seconds in hand now: earned at ``share`` per wall second, less what was charged."""
+        wall = self._wall()
         earned = (wall - self._at_wall) * self.share
-        self._balance = min(self._balance + earned, RESERVE_SECONDS * self.share) - max(0.0, cpu - self._at_cpu)
-        self._at_wall, self._at_cpu = wall, cpu
+        self._balance = min(self._balance + earned, RESERVE_SECONDS * self.share)
+        self._at_wall = wall
         return self._balance
+
+    def charge(self, seconds: float) -> None:
+        """Take ``seconds`` of CPU from the account (what one frame cost)."""
+        self.balance()
+        self._balance -= max(0.0, seconds)
+        self.spent += max(0.0, seconds)
+
+    @contextmanager
+    def spending(self) -> Iterator[None]:
+        """Charge the CPU time the ``with`` block takes on this thread."""
+        start = self._cpu()
+        try:
+            yield
+        finally:
+            self.charge(self._cpu() - start)
 
     def wait(self) -> float:
         """Seconds to wait before the next frame may be drawn (0: draw now)."""

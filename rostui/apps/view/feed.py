@@ -53,6 +53,8 @@ class TopicFeed:
         self._handle: Subscriber | None = None
         self._newest: AnyMsg | None = None
         self._arrived = 0.0
+        self.dropped = 0
+        """Messages replaced by a newer one before they were taken (never drawn)."""
 
     @property
     def subscribed(self) -> bool:
@@ -79,10 +81,17 @@ class TopicFeed:
                 pass
 
     def _on_message(self, raw: Any) -> None:
+        if self._newest is not None:
+            self.dropped += 1
         self._newest = raw
         self._arrived = self.clock()
         self.received.add(self._arrived)
         self.on_arrival()
+
+    @property
+    def waiting(self) -> bool:
+        """True when a message came that was not taken yet."""
+        return self._newest is not None
 
     def take(self) -> tuple[Any, float] | None:
         """The newest message not taken yet and its arrival time (wall seconds), or None."""

@@ -15,7 +15,8 @@ from __future__ import annotations
 import os
 import sys
 import time
-from typing import Any
+from dataclasses import dataclass
+from typing import Any, Callable
 
 from PIL import Image as PILImage
 from textual.app import ComposeResult
@@ -87,6 +88,35 @@ def _cell_pixels() -> tuple[int, int]:
     return max(1, size.width), max(1, size.height)
 
 
+@dataclass(frozen=True)
+class _Layout:
+    """Where a picture goes: ``cols`` x ``rows`` cells of ``cell_w`` x ``cell_h`` pixels, decoded to ``box``."""
+
+    cols: int
+    rows: int
+    cell_w: int
+    cell_h: int
+    box: tuple[int, int]
+
+
+@dataclass(frozen=True)
+class _Decoded:
+    """A message decoded off the loop for ``layout``: its picture, or why there is none."""
+
+    msg: Any
+    layout: _Layout
+    picture: Picture | None
+    error: str
+
+
+def _decode(msg: Any, box: tuple[int, int]) -> tuple[Picture | None, str]:
+    """``msg`` decoded to fit ``box``, or None and the one line saying why not (safe on any thread)."""
+    try:
+        return decode_image(msg, box), ""
+    except ImageDecodeError as exc:
+        return None, str(exc)
+
+
 class ImageView(TopicView):
     """The newest image of ``topic``, as large as the panel allows with its aspect kept, and a line of figures."""
 
@@ -148,10 +178,29 @@ class ImageView(TopicView):
                 self.drawn.add(time.time())
             self.paint_info()
 
-    def draw(self, msg: Any, received: float) -> bool:
-        """Draw ``msg`` to fit the view; False (and the reason on the figures line) when it cannot be decoded."""
+    def off_loop(self, msg: Any, received: float) -> Callable[[], Any] | None:
+        """Decoding, for a worker thread: ``msg`` fitted to the view's size now (None before it has one)."""
+        if not self.laid_out():
+            return None
+        layout = self._layout(msg)
+        return lambda: _Decoded(msg, layout, *_decode(msg, layout.box))
+
+    def show_prepared(self, prepared: Any, received: float) -> None:
+        """Draw a frame decoded off the loop (again, here, if the view changed size meanwhile)."""
+        assert isinstance(prepared, _Decoded)
+        self.received.add(received)
+        self._last = (prepared.msg, received)
+        if not self.laid_out():
+            return
+        layout = self._layout(prepared.msg)
+        drawn = (self._present(prepared.msg, received, layout, prepared.picture, prepared.error)
+                 if layout == prepared.layout else self.draw(prepared.msg, received))
+        if drawn:
+            self.drawn.add(time.time())
+
+    def _layout(self, msg: Any) -> _Layout:
+        """Where ``msg`` is drawn: the cells it may use and the pixels it is decoded to."""
         cols, rows = self.area()
-        self.drawn_for = (cols, rows)
         if self.kind == "halfblock":
             cell_w, cell_h = 1, 2
         else:
@@ -160,10 +209,18 @@ class ImageView(TopicView):
         source = (int(getattr(msg, "width", 0) or 0), int(getattr(msg, "height", 0) or 0))
         if self.kind == "kitty" and min(source) > 0:
             box = (min(box[0], source[0]), min(box[1], source[1]))  # the terminal enlarges it
-        try:
-            picture = decode_image(msg, box)
-        except ImageDecodeError as exc:
-            self.error = str(exc)
+        return _Layout(cols, rows, cell_w, cell_h, box)
+
+    def draw(self, msg: Any, received: float) -> bool:
+        """Draw ``msg`` to fit the view; False (and the reason on the figures line) when it cannot be decoded."""
+        layout = self._layout(msg)
+        return self._present(msg, received, layout, *_decode(msg, layout.box))
+
+    def _present(self, msg: Any, received: float, layout: _Layout, picture: Picture | None, error: str) -> bool:
+        """Show a decoded ``picture`` (or why there is none) in ``layout``."""
+        self.drawn_for = (layout.cols, layout.rows)
+        if picture is None:
+            self.error = error
             self.paint_info()
             return False
         first = self.picture is None or bool(self.error)
@@ -172,8 +229,9 @@ class ImageView(TopicView):
         stamp = getattr(getattr(msg, "header", None), "stamp", None)
         seconds = stamp.to_sec() if stamp is not None and hasattr(stamp, "to_sec") else 0.0
         self.latency = received - seconds if seconds > 0 else None
+        cell_w, cell_h = layout.cell_w, layout.cell_h
         height, width = picture.rgb.shape[:2]
-        shown_w, shown_h = fit(width, height, cols * cell_w, rows * cell_h)
+        shown_w, shown_h = fit(width, height, layout.cols * cell_w, layout.rows * cell_h)
         self.cells = (max(1, round(shown_w / cell_w)), max(1, round(shown_h / cell_h)))
         if isinstance(self.pixels, HalfBlock):
             self.pixels.set_pixels(picture.rgb)

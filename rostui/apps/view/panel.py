@@ -4,10 +4,13 @@ A panel learns its topic's type (from whoever owns the node: the master's
 topic types), mounts the registered view, and keeps a
 :class:`~rostui.apps.view.feed.TopicFeed` subscribed only while it is
 mounted.  Each arrival schedules one delivery; a delivery takes only the
-newest message, decodes it and hands it to the view, so frames that came
-while the screen was busy are dropped, not queued.  A
-:class:`~rostui.models.frame_budget.FrameBudget` spaces deliveries so the
-viewer stays within its share of a core however fast frames come.  A type no view shows
+newest message, decodes it (lazily: numeric arrays stay numpy views over the
+received bytes, :mod:`rostui.models.sensors.lazy_msg`) and hands it to the
+view, so frames that came while the screen was busy are dropped, not queued.
+Each panel's :class:`~rostui.models.frame_budget.FrameBudget` is charged the
+CPU its own deliveries take and spaces them so the panel stays within its
+share of a core however fast or heavy its frames come; a heavy topic drops
+its own frames, never its neighbours'.  A type no view shows
 is one line in the panel naming the types that can be shown.
 
 A view class with ``SHARED = True`` (the top-down view) draws several topics
@@ -22,6 +25,7 @@ publisher's name) subscribes itself; its panel subscribes to nothing.
 from __future__ import annotations
 
 import asyncio
+import time
 from typing import Any, Callable, Mapping, Sequence
 
 from textual.app import ComposeResult
@@ -35,7 +39,7 @@ from rostui.core.node import AsyncNode
 from rostui.models.frame_budget import FrameBudget
 from rostui.models.master_link import MASTER_ERRORS
 
-__all__ = ["ViewPanel", "ViewGrid", "NodeOf", "TypeOf"]
+__all__ = ["ViewPanel", "ViewGrid", "NodeOf", "TypeOf", "decode_for_view"]
 
 #: Returns the node to subscribe with (None while no master answers).
 NodeOf = Callable[[], "AsyncNode | None"]
@@ -44,6 +48,19 @@ TypeOf = Callable[[str], "str | None"]
 
 #: Seconds between checks of each panel's type and subscription.
 CHECK_EVERY = 0.5
+
+
+def decode_for_view(raw: Any) -> Any:
+    """A received message as the views read it: lazily (arrays as numpy views) when rostui knows its type and
+    md5sum, else with the class its publisher's definition builds."""
+    from rostui.models.sensors.lazy_msg import decode_lazily
+
+    msg = decode_lazily(raw)
+    if msg is None:
+        from rostui.tools.topic.echo import decode
+
+        msg = decode(raw)
+    return msg
 
 
 class ViewPanel(Vertical):
@@ -136,25 +153,65 @@ class ViewPanel(Vertical):
                 self.call_later(self.deliver)
 
     def deliver(self) -> None:
-        """Decode the newest message (only it) and hand it to the view."""
-        self._delivery_pending = False
+        """Decode the newest message (only it) and hand it to the view, charging the CPU it takes to this panel.
+
+        A view with work to do off the event loop (:meth:`TopicView.off_loop`: decoding a compressed image)
+        gets it done on a worker thread, so a heavy frame does not hold the other panels' frames back; the
+        next frame is taken once it is drawn.
+        """
         taken = self.feed.take()
         if taken is None or self.view is None:
+            self._delivery_pending = False
             return
         raw, received = taken
-        from rostui.tools.topic.echo import decode
+        with self.budget.spending():
+            msg = self._decode(raw)
+            job = None if msg is None or self.joined else self.view.off_loop(msg, received)
+            if job is None:
+                self._delivery_pending = False
+                if msg is not None:
+                    self._show(msg, received)
+                return
+        self.run_worker(self._deliver_off_loop(job, received), group="panel-deliver", exit_on_error=False)
+
+    async def _deliver_off_loop(self, job: Callable[[], Any], received: float) -> None:
+        """Run ``job`` on a worker thread (its CPU charged to this panel), then draw what it made on the loop."""
+        def timed() -> tuple[Any, float]:
+            start = time.thread_time()
+            result = job()
+            return result, time.thread_time() - start
 
         try:
-            msg = decode(raw)
+            prepared, cost = await asyncio.to_thread(timed)
+            self.budget.charge(cost)
+            if self.view is not None:
+                with self.budget.spending():
+                    self._clear_note()
+                    self.view.show_prepared(prepared, received)
+        finally:
+            self._delivery_pending = False
+            if self.feed.waiting:
+                self._arrived()
+
+    def _decode(self, raw: Any) -> Any:
+        """The message the view reads (None, and the reason on the note line, when it cannot be decoded)."""
+        try:
+            return decode_for_view(raw)
         except Exception as exc:  # a message its own definition cannot read: said, and the next one tried
             self.say(f"cannot decode a message on {self.topic}: {str(exc).splitlines()[0] if str(exc) else exc!r}",
                      problem=True)
-            return
+            return None
+
+    def _clear_note(self) -> None:
+        if self.note.display:
+            self.say("")
+
+    def _show(self, msg: Any, received: float) -> None:
+        assert self.view is not None
         if self.joined:
             self.view.show_topic_message(self.topic, msg, received)  # type: ignore[attr-defined]
             return
-        if self.note.display:
-            self.say("")
+        self._clear_note()
         self.view.show_message(msg, received)
 
 

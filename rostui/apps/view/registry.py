@@ -8,7 +8,9 @@ be shown costs nothing.
 A view is a :class:`TopicView`: a Textual widget created with the topic's
 name (``cls(topic)``, or ``cls(topic, classes=...)`` in the bag inspector:
 keep that signature) that gets each decoded message through
-:meth:`TopicView.show_message`.  Callers hand it only the newest message,
+:meth:`TopicView.show_message`, or, when it has costly work that needs no
+screen (decoding an image), through :meth:`TopicView.off_loop` (the work,
+run by a live panel on a worker thread) and :meth:`TopicView.show_prepared`.  Callers hand it only the newest message,
 when they are ready to draw (frames are dropped, never queued); the panel
 around it subscribes only while it is on screen.
 """
@@ -16,7 +18,7 @@ around it subscribes only while it is on screen.
 from __future__ import annotations
 
 import importlib
-from typing import Any
+from typing import Any, Callable
 
 from textual.widget import Widget
 
@@ -48,6 +50,18 @@ class TopicView(Widget):
         Views override it; the base draws nothing, so a subclass that forgets it shows nothing.
         """
         raise NotImplementedError(f"{type(self).__name__} must define show_message")
+
+    def off_loop(self, msg: Any, received: float) -> Callable[[], Any] | None:
+        """Work on ``msg`` that needs no screen, for a live panel to run on a worker thread (called on the loop;
+        None: nothing to do off the loop, :meth:`show_message` is called instead).
+
+        What the returned callable makes is handed to :meth:`show_prepared` on the loop.
+        """
+        return None
+
+    def show_prepared(self, prepared: Any, received: float) -> None:
+        """Draw what the callable of :meth:`off_loop` made."""
+        raise NotImplementedError(f"{type(self).__name__} must define show_prepared with off_loop")
 
 
 #: (message types, "module:Class") for each view; one entry per view module.

@@ -3,6 +3,9 @@
 Any field layout is read: x and y of any PointField datatype, at any offset,
 in either byte order, with any ``point_step`` and ``row_step`` (padding
 between rows is skipped).  Points whose x or y is NaN or infinite are left out.
+The data is read in place through strides, and a cloud of more than
+:data:`~rostui.models.sensors.pose2d.MAX_POINTS` points with a stride over its
+points: only the points drawn are touched, however many rows it has.
 """
 
 from __future__ import annotations
@@ -11,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from rostui.models.sensors.pose2d import Points
+from rostui.models.sensors.pose2d import MAX_POINTS, Points, every
 
 __all__ = ["CloudError", "DATATYPES", "cloud_points"]
 
@@ -33,8 +36,9 @@ def _field(cloud: Any, name: str) -> tuple[int, str]:
     raise CloudError(f"no {name} field (fields: {', '.join(f.name for f in cloud.fields) or 'none'})")
 
 
-def cloud_points(cloud: Any) -> Points:
-    """The (x, y) of every point of ``cloud`` with finite x and y, as an N x 2 float64 array in its frame.
+def cloud_points(cloud: Any, max_points: int = MAX_POINTS) -> Points:
+    """The (x, y) of the points of ``cloud`` (at most ``max_points``, evenly strided) with finite x and y, as an
+    N x 2 float64 array in its frame.
 
     Raises :class:`CloudError` when the cloud cannot be read.
     """
@@ -47,13 +51,17 @@ def cloud_points(cloud: Any) -> Points:
     size_x, size_y = np.dtype(xt).itemsize, np.dtype(yt).itemsize
     if step < max(xo + size_x, yo + size_y) or row_step < width * step:
         raise CloudError(f"point_step {step} / row_step {row_step} too small for fields at {xo} and {yo}")
-    data = bytes(cloud.data)
+    data = np.frombuffer(cloud.data, dtype=np.uint8)
     need = row_step * (height - 1) + width * step
-    if len(data) < need:
-        raise CloudError(f"{len(data)} bytes of data, {need} needed for {width} x {height} points")
-    dtype = np.dtype({"names": ["x", "y"], "formats": [order + xt, order + yt], "offsets": [xo, yo],
-                      "itemsize": step})
-    rows = [np.frombuffer(data, dtype=dtype, count=width, offset=r * row_step) for r in range(height)]
-    pts = rows[0] if height == 1 else np.concatenate(rows)
-    xy = np.column_stack((pts["x"].astype(np.float64), pts["y"].astype(np.float64)))
+    if data.size < need:
+        raise CloudError(f"{data.size} bytes of data, {need} needed for {width} x {height} points")
+    picked = np.arange(0, width * height, every(width * height, max_points), dtype=np.int64)
+    rows, cols = np.divmod(picked, width)
+
+    def column(offset: int, code: str) -> np.ndarray:
+        grid = np.ndarray((height, width), dtype=np.dtype(order + code), buffer=data, offset=offset,
+                          strides=(row_step, step))
+        return grid[rows, cols].astype(np.float64)
+
+    xy = np.column_stack((column(xo, xt), column(yo, yt)))
     return xy[np.isfinite(xy).all(axis=1)]

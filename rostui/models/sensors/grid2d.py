@@ -56,7 +56,7 @@ def grid_of(msg: Any) -> Grid2D:
     info = msg.info
     width, height, resolution = int(info.width), int(info.height), float(info.resolution)
     raw = msg.data
-    values = (np.frombuffer(raw, dtype=np.int8) if isinstance(raw, (bytes, bytearray))
+    values = (np.frombuffer(raw, dtype=np.int8) if isinstance(raw, (bytes, bytearray, memoryview, np.ndarray))
               else np.asarray(raw, dtype=np.int64).astype(np.int8))
     if values.size != width * height:
         raise GridError(f"{values.size} cells of data for a {width} x {height} grid")

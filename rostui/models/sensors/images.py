@@ -5,9 +5,13 @@
 frame shown in a 100x40 terminal is cut down before anything else touches
 it.  Raw images are subsampled by striding the array (no copy of the full
 frame), then resized by Pillow (box filter); JPEGs are decoded at a reduced scale
-(Pillow's ``draft``).  Depth images (16UC1 in millimetres, 32FC1 in metres)
-are coloured with a blue-to-red map over their finite non-zero range; zero
-and NaN are black.  Bad input raises :class:`ImageDecodeError` with one line.
+(Pillow's ``draft``).  A compressed image's size is read from its header
+first: one that would still take more than :data:`MAX_DECODE_PIXELS` pixels
+to decode (a PNG cannot be decoded smaller) is refused before any pixel is
+inflated, so a 25 kB PNG cannot claim a gigabyte.  Depth images (16UC1 in
+millimetres, 32FC1 in metres) are coloured with a blue-to-red map over their
+finite non-zero range; zero and NaN are black.  Bad input raises
+:class:`ImageDecodeError` with one line.
 """
 
 from __future__ import annotations
@@ -19,7 +23,8 @@ from typing import Any
 import numpy as np
 from PIL import Image as PILImage
 
-__all__ = ["Picture", "ImageDecodeError", "ENCODINGS", "COMPRESSED_FORMATS", "decode_image", "fit", "colour_map"]
+__all__ = ["Picture", "ImageDecodeError", "ENCODINGS", "COMPRESSED_FORMATS", "MAX_DECODE_PIXELS", "decode_image",
+           "fit", "colour_map"]
 
 #: Raw encodings shown, with (channels, numpy dtype).
 ENCODINGS: dict[str, tuple[int, str]] = {
@@ -28,6 +33,12 @@ ENCODINGS: dict[str, tuple[int, str]] = {
 }
 #: Compressed formats shown (the first word of CompressedImage.format, or after "compressed").
 COMPRESSED_FORMATS = ("jpeg", "jpg", "png")
+#: Most pixels a compressed image may take once decoded (a JPEG after its reduced-scale decoding): 4096 x 4096.
+MAX_DECODE_PIXELS = 1 << 24
+
+# Pillow's own cap counts the pixels before a JPEG's reduced-scale decoding (and warns on stderr, under the
+# terminal app, below it); :data:`MAX_DECODE_PIXELS`, checked before any pixel is decoded, takes its place.
+PILImage.MAX_IMAGE_PIXELS = None
 
 #: Anchors of the depth colour map, near to far: dark blue, cyan, green, yellow, red.
 _MAP = np.array([[0, 0, 160], [0, 200, 255], [40, 220, 40], [255, 230, 0], [220, 20, 20]], dtype=np.float32)
@@ -93,14 +104,13 @@ def _decode_raw(msg: Any, max_size: tuple[int, int]) -> Picture:
     row_bytes = width * channels * itemsize
     if step < row_bytes:
         raise ImageDecodeError(f"step {step} is less than a row of {width} {encoding} pixels ({row_bytes} bytes)")
-    data = msg.data if isinstance(msg.data, (bytes, bytearray, memoryview)) else bytes(msg.data)
-    if len(data) < step * (height - 1) + row_bytes:
-        raise ImageDecodeError(f"{len(data)} bytes of data for {height} rows of {step} bytes ({width}x{height} {encoding})")
+    data = msg.data if isinstance(msg.data, (bytes, bytearray, memoryview, np.ndarray)) else bytes(msg.data)
+    data = np.frombuffer(data, dtype=np.uint8)
+    if data.size < step * (height - 1) + row_bytes:
+        raise ImageDecodeError(f"{data.size} bytes of data for {height} rows of {step} bytes ({width}x{height} {encoding})")
     dtype = np.dtype(kind).newbyteorder(">" if msg.is_bigendian else "<") if itemsize > 1 else np.dtype(kind)
-    rows = np.frombuffer(data, dtype=np.uint8, count=step * (height - 1) + row_bytes)
-    if len(rows) < step * height:
-        rows = np.concatenate([rows, np.zeros(step * height - len(rows), dtype=np.uint8)])
-    grid = rows.reshape(height, step)[:, :row_bytes]
+    # the rows in place (a row every ``step`` bytes), whether or not the last row has its padding
+    grid = np.ndarray((height, row_bytes), dtype=np.uint8, buffer=data, strides=(step, 1))
     pixels = grid.view(dtype).reshape(height, width, channels) if itemsize > 1 else grid.reshape(height, width, channels)
     # keep a whole number of source pixels per shown pixel, twice the size shown (Pillow smooths the rest)
     target = fit(width, height, *max_size)
@@ -130,17 +140,36 @@ def _decode_compressed(msg: Any, max_size: tuple[int, int]) -> Picture:
     if kind is None or "compressedDepth" in words:
         raise ImageDecodeError(f"compressed format {fmt!r} is not shown; rostui view shows jpeg and png")
     try:
-        opened = PILImage.open(io.BytesIO(bytes(msg.data)))
+        opened = PILImage.open(io.BytesIO(bytes(msg.data)), formats=("JPEG", "PNG"))
         width, height = opened.size
         target = fit(width, height, *max_size)
         if opened.format == "JPEG":
             opened.draft("RGB", (target[0] * 2, target[1] * 2))
-        image = opened.convert("RGB")
-    except (OSError, ValueError, PILImage.DecompressionBombError) as exc:
+        decoded_w, decoded_h = opened.size  # a JPEG's reduced scale; anything else decodes whole
+        if decoded_w * decoded_h > MAX_DECODE_PIXELS:
+            raise ImageDecodeError(f"{kind} of {width}x{height} pixels not drawn: more than {MAX_DECODE_PIXELS} "
+                                   "pixels to decode")
+        image = _reduced(opened, target)
+    except (OSError, ValueError) as exc:
+        if isinstance(exc, ImageDecodeError):
+            raise
         raise ImageDecodeError(f"{kind} data cannot be decoded: {str(exc).splitlines()[0] if str(exc) else exc!r}") from None
+    return Picture(np.asarray(image), width, height, kind.lower())
+
+
+def _reduced(image: PILImage.Image, target: tuple[int, int]) -> PILImage.Image:
+    """``image`` as RGB at ``target`` (w, h), shrunk in its own mode first: no full-size RGB copy is made."""
+    if image.mode == "1":
+        image = image.convert("L")
+    elif image.mode in ("P", "PA"):
+        if image.size != target:
+            image = image.resize(target, PILImage.Resampling.NEAREST)  # palette indices cannot be averaged
+        image = image.convert("RGBA" if "transparency" in image.info or image.mode == "PA" else "RGB")
+    elif image.mode not in ("L", "LA", "RGB", "RGBA"):
+        image = image.convert("RGB")
     if image.size != target:
         image = image.resize(target, _filter(image.size, target), reducing_gap=2.0)
-    return Picture(np.asarray(image), width, height, kind.lower())
+    return image.convert("RGB")
 
 
 def _shrink(rgb: np.ndarray, target: tuple[int, int]) -> np.ndarray:

@@ -14,10 +14,21 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["Planar", "Points", "Pose2D", "yaw_of", "pose_of"]
+__all__ = ["MAX_POINTS", "MAX_POSES", "Planar", "Points", "Pose2D", "every", "yaw_of", "pose_of"]
 
 #: An N x 2 float64 array of (x, y) in metres.
 Points = npt.NDArray[np.float64]
+
+#: Most points one message is drawn with (more than a terminal's dots); a larger scan or cloud is strided.
+MAX_POINTS = 1 << 17
+
+#: Most poses (arrows) or path vertices one message is drawn with; a longer array is strided.
+MAX_POSES = 1 << 12
+
+
+def every(count: int, most: int) -> int:
+    """The stride that keeps at most ``most`` of ``count`` items (1: keep all)."""
+    return max(1, -(-count // max(1, most)))
 
 
 def yaw_of(q: Any) -> float:

@@ -1,7 +1,9 @@
 """The top-down scene: the newest message of each topic, as geometry in one fixed frame (numpy; no screen).
 
 :class:`Scene2D` keeps only the newest message of each topic (older ones are
-dropped, never queued) and turns it into :class:`Drawing` geometry once.  At
+dropped, never queued) and turns it into :class:`Drawing` geometry once, when
+it is offered (a scan or cloud strided to at most
+:data:`~rostui.models.sensors.pose2d.MAX_POINTS` points).  At
 each frame it carries every drawing into the fixed frame (``--frame``, or the
 first message's ``header.frame_id``) with a transform lookup and rasterises it
 into one braille layer per topic, over a dotted metric grid.  A topic whose
@@ -110,7 +112,8 @@ class Scene2D:
         self._topics.setdefault(topic, _Topic(topic))
 
     def offer(self, topic: str, msg: Any, received: float = 0.0) -> None:
-        """``msg`` is ``topic``'s newest message (the one before it is dropped, drawn or not)."""
+        """``msg`` is ``topic``'s newest message (the one before it is dropped, drawn or not); its geometry is
+        made now, so the cost of reading it falls on whoever offers it (a panel, within its own budget)."""
         self.add(topic)
         entry = self._topics[topic]
         entry.msg, entry.received = msg, received
@@ -119,6 +122,7 @@ class Scene2D:
             frame = str(getattr(getattr(msg, "header", None), "frame_id", "")).lstrip("/")
             self.fixed_frame = frame or None
         self.generation += 1
+        self.drawing(topic)
 
     def received(self, topic: str) -> int:
         """How many messages ``topic`` has offered so far."""

@@ -6,6 +6,17 @@ fields share one precompiled :class:`struct.Struct`.  Strings, byte arrays and
 variable arrays are length-checked before slicing, so a truncated or hostile
 buffer raises :class:`DeserializationError` instead of over-allocating.
 
+Decoding is budgeted per message, tied to the bytes received (ROS has no such
+rule: genpy makes whatever a definition asks for).  An array of N elements of
+a type at least k bytes long is read only when N*k bytes remain.  Each byte
+then pays for one object; the objects no byte pays for (elements of a type
+with no fields, or with more fields than bytes; see :func:`unpaid_objects`)
+may number at most :data:`UNPAID_OBJECTS_FLOOR` (65,536: thousands of
+``std_msgs/Empty`` in any message) plus :data:`UNPAID_OBJECTS_PER_BYTE` per
+byte of the message, so a message decodes into about two objects per byte it
+holds at most, as a ``bool[]`` does.  Past either bound the deserialiser
+raises :class:`DeserializationError` (one line) before it makes the objects.
+
 Definitions may come from any peer (a publisher's ``message_definition``, a
 bag), so :func:`check_spec` refuses, before any code is written, every name
 that is not ROS's grammar (or that Python cannot use as an attribute) and
@@ -25,8 +36,9 @@ from .errors import DeserializationError, MessageSpecError, SerializationError
 from .message import Message, hybridmethod
 from .spec import BUILTIN_TYPES, Field, MsgSpec, is_valid_name, is_valid_type_name, shown
 
-__all__ = ["attribute_name", "build_message_class", "check_spec", "min_size", "PRIMITIVE_STRUCT", "RESERVED_NAMES",
-           "MAX_INLINED_FIELDS", "MAX_DEFAULT_COST"]
+__all__ = ["attribute_name", "build_message_class", "check_spec", "min_size", "unpaid_objects", "PRIMITIVE_STRUCT",
+           "RESERVED_NAMES", "MAX_INLINED_FIELDS", "MAX_DEFAULT_COST", "UNPAID_OBJECTS_FLOOR", "UNPAID_OBJECTS_PER_BYTE",
+           "element_objects"]
 
 PRIMITIVE_STRUCT: dict[str, tuple[str, int]] = {
     "bool": ("B", 1), "int8": ("b", 1), "uint8": ("B", 1), "byte": ("b", 1), "char": ("B", 1),
@@ -36,7 +48,6 @@ PRIMITIVE_STRUCT: dict[str, tuple[str, int]] = {
 """struct format char and byte size of each fixed-size primitive (serialization side)."""
 
 _FLOATS = ("float32", "float64")
-_MAX_EMPTY_ELEMENTS = 1 << 20  # cap for arrays whose elements may take zero bytes
 
 RESERVED_NAMES: frozenset[str] = frozenset({"serialize", "deserialize"})
 """Field and constant names a generated class cannot have (its methods)."""
@@ -44,6 +55,10 @@ MAX_INLINED_FIELDS = 1 << 14
 """Most fields one class's (de)serializer may hold once nested messages are inlined."""
 MAX_DEFAULT_COST = 1 << 23
 """Most machine words (roughly) a default-constructed message may take (fixed arrays are built whole)."""
+UNPAID_OBJECTS_FLOOR = 1 << 16
+"""Objects that no byte pays for which any message may decode, however short (thousands of ``std_msgs/Empty``)."""
+UNPAID_OBJECTS_PER_BYTE = 1
+"""Unpaid objects a message may decode per byte it holds, beyond the floor (an array of ``std_msgs/Bool``)."""
 
 
 def _deser_char(t: str) -> str:
@@ -76,6 +91,33 @@ def _elem_min_size(t: str, get_spec: Callable[[str], MsgSpec], memo: dict[str, i
     if t in ("time", "duration"):
         return 8
     return min_size(get_spec(t), get_spec, memo)
+
+
+def element_objects(t: str, get_spec: Callable[[str], MsgSpec], memo: dict[str, int] | None = None) -> int:
+    """The Python objects one decoded element of type *t* makes: itself and each field, nested messages'
+    fields too; an array field counts as its list (its elements are charged when it is read)."""
+    if t in BUILTIN_TYPES:
+        return 1
+    memo = {} if memo is None else memo
+    cached = memo.get(t)
+    if cached is not None:
+        return cached
+    total = 1
+    for f in get_spec(t).fields:
+        total += 1 if f.is_array or f.is_builtin else element_objects(f.base_type, get_spec, memo)
+    memo[t] = total
+    return total
+
+
+def unpaid_objects(t: str, get_spec: Callable[[str], MsgSpec], objects: dict[str, int] | None = None,
+                   sizes: dict[str, int] | None = None) -> int:
+    """How many objects of one element of type *t* no byte pays for: its objects beyond its fewest bytes.
+
+    0 for primitives, strings, times and most messages (a ``geometry_msgs/Point``: 4 objects in 24 bytes);
+    1 for ``std_msgs/Empty`` and ``std_msgs/Bool`` (2 objects in 1 byte).  Arrays of a type with unpaid
+    objects draw on the message's budget.
+    """
+    return max(0, element_objects(t, get_spec, objects) - _elem_min_size(t, get_spec, sizes))
 
 
 def _lit(text: str) -> str:
@@ -307,8 +349,11 @@ class _SerWalker(_Gen):
             s = self.struct("2I" if t == "time" else "2i")
             self.emit(ind + 1, f"_w({s}.pack({it}.secs, {it}.nsecs))")
         else:
+            body = len(self.lines)
             self.fields(self.get_spec(t), it, ind + 1)
             self.flush(ind + 1)
+            if len(self.lines) == body:  # a type with no fields writes nothing
+                self.emit(ind + 1, "pass")
 
 
 class _DeserWalker(_Gen):
@@ -318,6 +363,7 @@ class _DeserWalker(_Gen):
         super().__init__(*a)
         self.run: list[tuple[str, str]] = []
         self.post: list[str] = []
+        self.objects: dict[str, int] = {}
 
     def flush(self, ind: int) -> None:
         if not self.run:
@@ -343,17 +389,27 @@ class _DeserWalker(_Gen):
             return "_new(_Duration)"
         return f"_new({self.cls_var(t)})"
 
-    def count(self, f: Field, ind: int, elem_min: int) -> str:
-        """Emit code leaving the element count in a fresh variable (checked against the buffer)."""
-        if f.array_len is not None:
-            return str(f.array_len)
+    def count(self, f: Field, ind: int, elem_min: int, unpaid: int = 0) -> str:
+        """Emit code leaving the element count in a fresh variable, checked against the bytes left and, for
+        elements with *unpaid* objects, charged to the message's budget ``_bud``."""
+        n = f.array_len
+        if n is not None:
+            if elem_min > 0 or unpaid > 0:
+                self.flush(ind)
+            if elem_min > 0:
+                self.emit(ind, f"if {n * elem_min} > _n - _o: raise _DeserErr({_lit(f'{f.name}: {n} elements run past the end of the buffer')})")
+            if unpaid > 0:
+                self.emit(ind, f"_bud -= {n * unpaid}")
+                self.emit(ind, f"if _bud < 0: raise _DeserErr({_lit(f'{f.name}: {n} elements exceed the decoding budget of a %d-byte message')} % _n)")
+            return str(n)
         c = self.var("_c")
         self.run.append(("I", c))
         self.flush(ind)
         if elem_min > 0:
             self.emit(ind, f"if {c} * {elem_min} > _n - _o: raise _DeserErr({_lit(f'{f.name}: array length %d exceeds buffer')} % {c})")
-        else:
-            self.emit(ind, f"if {c} > {_MAX_EMPTY_ELEMENTS}: raise _DeserErr({_lit(f'{f.name}: implausible array length %d')} % {c})")
+        if unpaid > 0:
+            self.emit(ind, f"_bud -= {c} * {unpaid}")
+            self.emit(ind, f"if _bud < 0: raise _DeserErr({_lit(f'{f.name}: %d elements exceed the decoding budget of a %d-byte message')} % ({c}, _n))")
         return c
 
     def field(self, f: Field, p: str, ind: int) -> None:
@@ -410,7 +466,7 @@ class _DeserWalker(_Gen):
         elem_min = _elem_min_size(t, self.get_spec, self.sizes)
         if n is not None:
             self.flush(ind)
-        c = self.count(f, ind, elem_min)
+        c = self.count(f, ind, elem_min, unpaid_objects(t, self.get_spec, self.objects, self.sizes))
         a = self.var("_a")
         self.emit(ind, f"{a} = []")
         self.emit(ind, f"_ap{a} = {a}.append")
@@ -530,6 +586,7 @@ def build_message_class(
     lines.append("    if _buf.__class__ is not bytes: _buf = bytes(_buf)")
     lines.append("    _n = len(_buf)")
     lines.append("    _o = 0")
+    lines.append(f"    _bud = {UNPAID_OBJECTS_FLOOR} + _n * {UNPAID_OBJECTS_PER_BYTE}")
     lines.append("    self = _new(cls)")
     lines.append("    try:")
     lines.extend(dw.lines or ["        pass"])
@@ -557,6 +614,7 @@ def build_message_class(
         "_slot_types": [f.type for f in fields],
         "_defaults": ns["_defaults"],
         "_spec": spec,
+        "_field_classes": {t: ns[name] for t, name in cls_vars.items()},
         "_source": source,
         "serialize": ns["serialize"],
         "deserialize": hybridmethod(ns["_deser"]),

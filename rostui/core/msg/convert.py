@@ -46,14 +46,9 @@ def _split_type(t: str) -> tuple[str, bool, int | None]:
 
 
 def _field_class(msg: Message | type[Message], base: str) -> type[Message]:
-    """The class of a nested field type, preferring the store that built *msg*'s class."""
-    init = getattr(msg, "__init__", None)
-    globs: dict[str, object] | None = getattr(init, "__globals__", None)
-    if msg._spec is not None and globs is not None:
-        cls = globs.get("_C_" + base.replace("/", "__"))
-        if isinstance(cls, type) and issubclass(cls, Message):
-            return cls
-    return get_message_class(base)
+    """The class of a nested field type, from the definition that built *msg*'s class (a peer's may differ)."""
+    cls = getattr(msg, "_field_classes", {}).get(base)
+    return cls if isinstance(cls, type) and issubclass(cls, Message) else get_message_class(base)
 
 
 # ----------------------------------------------------------------------------- dict view

@@ -92,6 +92,8 @@ class Message:
     """For each field, a function building its default value."""
     _spec: ClassVar[MsgSpec | None] = None
     """The parsed definition the class was generated from."""
+    _field_classes: ClassVar[dict[str, type[Message]]] = {}
+    """The class of each message type its fields hold, by type name (from the same definition as this one)."""
     _source: ClassVar[str]
     """The generated Python source of ``__init__``, ``serialize`` and ``deserialize``."""
 

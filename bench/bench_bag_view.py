@@ -133,15 +133,16 @@ def _templates() -> dict[str, Any]:
     """Filled-in serialized messages per type (built with rostui's message classes from the definitions)."""
     import numpy as np
 
-    from rostui.core.msg import get_message_class, register_types_from_definition
+    from rostui.core.msg import MessageError, connection_class, get_message_class
 
     rng = np.random.default_rng(18)
     out: dict[str, Any] = {}
     classes = {}
     for name, (md5, text) in DEFINITIONS.items():
-        cls = classes[name] = register_types_from_definition(name, text)
-        if cls._md5sum != md5:
-            raise SystemExit(f"the definition of {name} gives md5 {cls._md5sum}, not {md5}")
+        try:
+            classes[name] = connection_class(name, md5, text)
+        except MessageError as exc:
+            raise SystemExit(f"the definition of {name}: {exc}") from None
     scan = classes["sensor_msgs/LaserScan"]()
     scan.header.frame_id = "laser"
     scan.angle_min, scan.angle_max, scan.angle_increment = -2.356, 2.356, 0.004363

@@ -18,17 +18,29 @@ import pytest
 
 from conftest import wait_until
 from rostui.core.msg import (
+    Message,
     MessageError,
     MessageSpecError,
     UnknownMessageTypeError,
     clear_cache,
+    connection_class,
+    definition_md5,
     get_message_class,
-    register_types_from_definition,
 )
 
 SEP = "\n" + "=" * 80 + "\n"
 #: Runs a shell command when pasted into generated source as a class variable's name (or a type's name).
 PAYLOAD = 'x if __import__("os").system("touch pwned") else _C_x'
+
+
+def from_definition(type_name: str, definition: str) -> type[Message]:
+    """The class a peer gets by sending ``definition`` with the md5sum it hashes to (any md5sum, when the text
+    cannot be hashed: the checks before hashing are what is tested then)."""
+    try:
+        md5 = definition_md5(type_name, definition)
+    except MessageError:
+        md5 = "0123456789abcdef0123456789abcdef"
+    return connection_class(type_name, md5, definition)
 
 
 def poisoned_definition(marker_cmd: str = "touch pwned") -> tuple[str, str]:
@@ -51,7 +63,7 @@ def test_section_named_with_code_is_refused_and_never_run(fresh_types: Path) -> 
     """Before the fix the ``MSG:`` sections were registered under their names, and naming one later ran it."""
     definition, later_name = poisoned_definition()
     with pytest.raises(MessageSpecError, match="not a valid pkg/Type name"):
-        register_types_from_definition("evil_pkg/Evil", definition)
+        from_definition("evil_pkg/Evil", definition)
     with pytest.raises(UnknownMessageTypeError):
         get_message_class(later_name).deserialize(b"\0\0\0\0")
     assert not (fresh_types / "pwned").exists()
@@ -72,7 +84,7 @@ def test_section_named_with_code_is_refused_and_never_run(fresh_types: Path) -> 
 ])
 def test_hostile_definition_is_refused_with_one_message_error(type_name: str, definition: str, why: str) -> None:
     with pytest.raises(MessageError) as caught:
-        register_types_from_definition(type_name, definition)
+        from_definition(type_name, definition)
     text = str(caught.value)
     assert why in text
     assert "\n" not in text and "\r" not in text  # one line, control characters quoted
@@ -80,7 +92,7 @@ def test_hostile_definition_is_refused_with_one_message_error(type_name: str, de
 
 def test_a_field_named_like_a_python_keyword_gets_genpys_name() -> None:
     """genpy names a field ``lambda`` (or ``self``) ``lambda_`` on its class; the wire and the md5 keep ``lambda``."""
-    Keyed = register_types_from_definition("kw_pkg/Keyed", "float64[] lambda\nint32 self\nint32 class=3\n")
+    Keyed = from_definition("kw_pkg/Keyed", "float64[] lambda\nint32 self\nint32 class=3\n")
     assert Keyed.__slots__ == ["lambda_", "self_"] and Keyed.class_ == 3
     msg = Keyed(lambda_=[1.5], self_=2)
     assert Keyed.deserialize(msg.serialize()) == msg
@@ -90,7 +102,7 @@ def test_a_field_named_like_a_python_keyword_gets_genpys_name() -> None:
 def test_nesting_too_deep_is_refused_not_a_recursion_error() -> None:
     parts = ["T0 a\n"] + [f"MSG: z/T{i}\n" + (f"T{i + 1} a\n" if i < 599 else "int32 x\n") for i in range(600)]
     with pytest.raises(MessageSpecError, match="nesting too deep"):
-        register_types_from_definition("z/Top", SEP.join(parts))
+        from_definition("z/Top", SEP.join(parts))
 
 
 @pytest.mark.timeout(120)
@@ -99,13 +111,13 @@ def test_exponential_inlining_is_refused() -> None:
     parts = ["T0 a\nT0 b\n"] + [f"MSG: z/T{i}\n" + (f"T{i + 1} a\nT{i + 1} b\n" if i < 39 else "int32 x\n")
                                  for i in range(40)]
     with pytest.raises(MessageSpecError, match="too many fields"):
-        register_types_from_definition("z/Top", SEP.join(parts))
+        from_definition("z/Top", SEP.join(parts))
 
 
 def test_nested_types_never_share_a_class_variable() -> None:
     """``p__q/T`` and ``p/q__T`` once mapped to the same variable of the generated code: the wrong class."""
     definition = ("p__q/T a\np/q__T b\n" + SEP + "MSG: p__q/T\nint32 x\n" + SEP + "MSG: p/q__T\nstring y\n")
-    Outer = register_types_from_definition("z/Outer", definition)
+    Outer = from_definition("z/Outer", definition)
     msg = Outer()
     assert (msg.a._type, msg.b._type) == ("p__q/T", "p/q__T")
     assert Outer.deserialize(msg.serialize()) == msg
@@ -116,7 +128,7 @@ def test_legal_definitions_still_build() -> None:
     definition = ("Header header\nint32 CONST_a=3\nstring S=a'b\"c\ntime self\nInner[2] in_\nuint8[4] raw\n"
                   + SEP + "MSG: std_msgs/Header\nuint32 seq\ntime stamp\nstring frame_id\n"
                   + SEP + "MSG: z/Inner\nfloat64[9] covariance\n")
-    cls = register_types_from_definition("z/Odd", definition)
+    cls = from_definition("z/Odd", definition)
     msg = cls()
     assert cls.S == "a'b\"c" and cls.CONST_a == 3
     assert cls.deserialize(msg.serialize()) == msg
@@ -170,7 +182,7 @@ def serve(conn):
         size = struct.unpack("<I", conn.recv(4, socket.MSG_WAITALL))[0]
         conn.recv(size, socket.MSG_WAITALL)
         header = b"".join(field(k, v) for k, v in (
-            ("callerid", name), ("topic", topic), ("type", header_type), ("md5sum", "*"),
+            ("callerid", name), ("topic", topic), ("type", header_type), ("md5sum", "0123456789abcdef0123456789abcdef"),
             ("message_definition", definition), ("latching", "0")))
         conn.sendall(struct.pack("<I", len(header)) + header)
         time.sleep(float(delay))

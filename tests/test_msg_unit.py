@@ -19,8 +19,10 @@ from rostui.core.msg import (
     get_service_class,
     parse_msg_text,
     parse_srv_text,
-    register_types_from_definition,
+    connection_class,
+    definition_md5,
 )
+from rostui.core.msg.errors import Md5MismatchError
 from rostui.core.msg.convert import (
     default_yaml_template,
     fill_message,
@@ -193,18 +195,19 @@ def test_garbage_lengths_do_not_allocate_or_hang() -> None:
 
 
 # --------------------------------------------------------------------------- dynamic types
-def test_register_types_from_definition_round_trip() -> None:
+def test_classes_from_a_definition_round_trip() -> None:
     Log = get_message_class("rosgraph_msgs/Log")
-    cls = register_types_from_definition("rosgraph_msgs/Log", Log._full_text)
+    cls = connection_class("rosgraph_msgs/Log", Log._md5sum, Log._full_text)
     assert cls is Log
     definition = (
         "Header header\nfoo_pkg/Inner[] items\nstring note\n"
         + "=" * 80 + "\nMSG: std_msgs/Header\nuint32 seq\ntime stamp\nstring frame_id\n"
         + "=" * 80 + "\nMSG: foo_pkg/Inner\nint32 K=3\nfloat32 v\nduration d\n"
     )
-    Outer = register_types_from_definition("foo_pkg/Outer", definition)
-    assert Outer._md5sum == register_types_from_definition("foo_pkg/Outer", definition)._md5sum
-    Inner = get_message_class("foo_pkg/Inner")
+    md5 = definition_md5("foo_pkg/Outer", definition)
+    Outer = connection_class("foo_pkg/Outer", md5, definition)
+    assert Outer._md5sum == md5
+    Inner = Outer._field_classes["foo_pkg/Inner"]
     assert Inner.K == 3
     o = Outer(note="n", items=[Inner(v=1.5, d=Duration(-1))])
     back = Outer.deserialize(o.serialize())
@@ -212,15 +215,13 @@ def test_register_types_from_definition_round_trip() -> None:
     assert "MSG: foo_pkg/Inner" in Outer._full_text
     # a sender's definition with comments gives the same md5 as our files
     commented = "# the text\nstring data # payload\n"
-    assert register_types_from_definition("std_msgs/String", commented)._md5sum == \
-        get_message_class("std_msgs/String")._md5sum
+    assert definition_md5("std_msgs/String", commented) == get_message_class("std_msgs/String")._md5sum
 
 
-def test_register_conflicting_definition_builds_private_class() -> None:
-    cls = register_types_from_definition("std_msgs/String", "int32 data\n")
-    assert cls is not get_message_class("std_msgs/String")
-    assert cls._md5sum != get_message_class("std_msgs/String")._md5sum
-    assert cls.deserialize(cls(data=5).serialize()).data == 5
+def test_a_conflicting_definition_of_a_type_we_know_is_refused() -> None:
+    """It once built a private class; rostui's type now wins, as in ROS (the md5sums differ)."""
+    with pytest.raises(Md5MismatchError, match="but our version has"):
+        connection_class("std_msgs/String", definition_md5("std_msgs/String", "int32 data\n"), "int32 data\n")
 
 
 # --------------------------------------------------------------------------- conversions

@@ -25,7 +25,7 @@ from rostui.core.bag.files import Reader, Writer, open_reader, open_writer, time
 from rostui.core.bag.mcapfile import MAGIC as MCAP_MAGIC
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.rosbag2_0 import BagWriter
-from rostui.core.msg import Message, register_types_from_definition
+from rostui.core.msg import Message, MessageError, connection_class
 from rostui.core.rostime import Time
 
 from .lookup import get_message_class
@@ -179,7 +179,7 @@ class Bag:
         self._writer: Writer | None = None
         self._stale = False  # the writer wrote since self._reader was opened on its file
         self._topic_ids: dict[str, int] = {}
-        self._classes: dict[tuple[str, str], type[Message]] = {}
+        self._classes: dict[tuple[str, str, str], type[Message]] = {}
         self._open = False
         try:
             self._target: BagTarget = open_target(f, mode)
@@ -459,21 +459,20 @@ class Bag:
                            index.chunks[rows].tolist(), index.offsets[rows].tolist())
 
     def _message_class(self, conn: Connection) -> type[Message]:
-        key = (conn.type, conn.definition)
+        """The class of ``conn``'s messages: the script's own when its md5sum is the bag's, else the class the
+        bag's type, md5sum and definition describe, once checked (rostui's own type wins)."""
+        key = (conn.type, conn.md5sum, conn.definition)
         cls = self._classes.get(key)
         if cls is None:
             found = get_message_class(conn.type)
             if found is not None and found._md5sum == conn.md5sum:
                 cls = found
-            elif conn.definition:
-                try:
-                    cls = register_types_from_definition(conn.type, conn.definition)
-                except Exception as exc:  # the definition text does not parse
-                    raise ROSBagException(f"Error generating datatype {conn.type}: {exc}") from None
-            elif found is not None:
-                cls = found
             else:
-                raise ROSBagFormatException(f"no definition of {conn.type} for {conn.topic}")
+                try:
+                    cls = connection_class(conn.type, conn.md5sum, conn.definition,
+                                           sender=f"the connection of {conn.topic}")
+                except MessageError as exc:  # refused: another md5sum than ours, or a definition that lies
+                    raise ROSBagException(f"Error generating datatype {conn.type}: {exc}") from None
             self._classes[key] = cls
         return cls
 

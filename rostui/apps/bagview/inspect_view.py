@@ -21,14 +21,10 @@ MIN_LINES = 6
 
 
 def decode_bag_message(conn: Connection, data: bytes) -> object:
-    """The message, decoded with the type recorded in the bag; :class:`BagError` when it cannot be."""
-    from rostui.core.msg import register_types_from_definition
+    """The message, decoded with the type recorded in the bag once checked; :class:`BagError` when it cannot be."""
+    from rostui.core.bag.decode import decode_message
 
-    try:
-        cls = register_types_from_definition(conn.type, conn.definition)
-        return cls().deserialize(data)
-    except Exception as exc:  # a bad definition, or the generated deserializer's errors on damaged data
-        raise BagError(f"cannot decode this {conn.type or 'message'}: {exc}") from None
+    return decode_message(conn, data)
 
 
 class InspectorView:

@@ -1,4 +1,6 @@
-"""Messages out of a bag: each connection's bytes deserialised with the class its recorded definition describes."""
+"""Messages out of a bag: each connection's bytes deserialised with the class its recorded type, md5sum and
+definition describe, once checked (:func:`rostui.core.msg.connection_class`: rostui's own type wins, and a
+definition is used only when it hashes to the md5sum recorded with it)."""
 
 from __future__ import annotations
 
@@ -6,25 +8,24 @@ from typing import Any
 
 from rostui.core.bag.model import BagError, Connection
 
+__all__ = ["Decoder", "decode_message"]
+
+
+def decode_message(conn: Connection, data: bytes) -> Any:
+    """The message ``data`` holds on ``conn``; one-line BagError when its definition or its bytes are refused."""
+    from rostui.core.msg import connection_class
+    from rostui.core.msg.spec import shown
+
+    try:
+        cls = connection_class(conn.type, conn.md5sum, conn.definition, sender=f"the connection of {shown(conn.topic)}")
+        return cls.deserialize(data)
+    except Exception as exc:  # a refused definition, or the generated deserialiser's errors on damaged data
+        raise BagError(f"cannot decode a {shown(conn.type)} message on {shown(conn.topic)}: {exc}") from None
+
 
 class Decoder:
-    """Deserialises the messages of each connection with the class its definition describes."""
-
-    def __init__(self) -> None:
-        self._classes: dict[tuple[str, str], Any] = {}
+    """Deserialises the messages of each connection with the class its type, md5sum and definition describe."""
 
     def __call__(self, conn: Connection, data: bytes) -> Any:
         """The message ``data`` holds; BagError when its definition or its bytes are broken."""
-        from rostui.core.msg import get_message_class, register_types_from_definition
-
-        key = (conn.type, conn.definition)
-        cls = self._classes.get(key)
-        try:
-            if cls is None:
-                cls = self._classes[key] = (register_types_from_definition(conn.type, conn.definition)
-                                            if conn.definition else get_message_class(conn.type))
-            return cls().deserialize(data)
-        except BagError:
-            raise
-        except Exception as exc:  # a bad definition, or the generated deserialiser's errors on damaged data
-            raise BagError(f"cannot decode a {conn.type} message on {conn.topic}: {exc}") from None
+        return decode_message(conn, data)

@@ -247,13 +247,8 @@ class IndexSource:
 
 def message_yaml(conn: Connection, data: bytes, *, noarr: bool = False) -> str:
     """The message as ``rostopic echo`` prints it (``--noarr`` with ``noarr``), decoded with the type
-    recorded in the bag."""
-    from rostui.core.msg import register_types_from_definition
+    recorded in the bag (checked: :func:`rostui.core.bag.decode.decode_message`)."""
+    from rostui.core.bag.decode import decode_message
     from rostui.core.msg.convert import message_to_yaml
 
-    try:
-        cls = register_types_from_definition(conn.type, conn.definition)
-        msg = cls().deserialize(data)
-    except Exception as exc:  # a bad definition, or the generated deserializer's errors on damaged data
-        raise BagError(f"cannot decode this {conn.type or 'message'}: {exc}") from None
-    return message_to_yaml(msg, noarr=noarr)
+    return message_to_yaml(decode_message(conn, data), noarr=noarr)

@@ -12,7 +12,9 @@ from __future__ import annotations
 
 from ..rostime import Duration, Time
 from .errors import (
+    DefinitionMismatchError,
     DeserializationError,
+    Md5MismatchError,
     MessageError,
     MessageSpecError,
     MessageValueError,
@@ -23,7 +25,6 @@ from .message import Message, Service, install_hooks
 from .registry import (
     DEFINITION_SEPARATOR,
     TypeStore,
-    _reconstruct,
     clear_cache,
     full_text,
     get_message_class,
@@ -33,18 +34,18 @@ from .registry import (
     list_message_types,
     list_service_types,
     md5sum,
-    register_types_from_definition,
 )
+from .received import connection_class, definition_md5, reconstruct
 from .spec import BUILTIN_TYPES, PRIMITIVE_TYPES, Constant, Field, MsgSpec, SrvSpec, parse_msg_text, parse_srv_text
 
 __all__ = [
     "Time", "Duration",
     "MessageError", "UnknownMessageTypeError", "MessageSpecError", "SerializationError",
-    "DeserializationError", "MessageValueError",
+    "DeserializationError", "MessageValueError", "Md5MismatchError", "DefinitionMismatchError",
     "Message", "Service",
     "DEFINITION_SEPARATOR", "TypeStore", "clear_cache", "full_text", "get_message_class",
     "get_message_spec", "get_service_class", "get_service_spec", "list_message_types",
-    "list_service_types", "md5sum", "register_types_from_definition",
+    "list_service_types", "md5sum", "connection_class", "definition_md5",
     "BUILTIN_TYPES", "PRIMITIVE_TYPES", "Constant", "Field", "MsgSpec", "SrvSpec",
     "parse_msg_text", "parse_srv_text",
 ]
@@ -57,4 +58,4 @@ def _message_text(msg: Message) -> str:
     return message_to_yaml(msg)
 
 
-install_hooks(text=_message_text, unpickle=_reconstruct)
+install_hooks(text=_message_text, unpickle=reconstruct)

@@ -9,6 +9,8 @@ __all__ = [
     "SerializationError",
     "DeserializationError",
     "MessageValueError",
+    "Md5MismatchError",
+    "DefinitionMismatchError",
 ]
 
 
@@ -56,3 +58,19 @@ class DeserializationError(MessageError):
 
 class MessageValueError(MessageError, ValueError):
     """A dict/YAML value does not fit a message (unknown field, wrong type)."""
+
+
+class Md5MismatchError(MessageError):
+    """A peer or a file declares a type rostui knows under another md5sum: rostui's type wins, theirs is refused."""
+
+    def __init__(self, sender: str, type_name: str, theirs: str, ours: str) -> None:
+        """Say, in ROS's words, that *sender* has *type_name* as md5sum *theirs* where rostui's is *ours*."""
+        super().__init__(f"{sender} has datatype/md5sum [{type_name}/{theirs}], "
+                         f"but our version has [{type_name}/{ours}]")
+        self.type_name = type_name
+        self.theirs = theirs
+        self.ours = ours
+
+
+class DefinitionMismatchError(MessageError):
+    """A received definition does not hash to the md5sum declared with it (or none was declared): not used."""

@@ -1,9 +1,9 @@
 """Type registry: loads .msg/.srv specs from packages, computes md5 and full text, builds classes.
 
 The default store loads lazily from rostui's built-in ``share/`` packages and
-ROS_PACKAGE_PATH (see :mod:`rostui.core.packages`).  Types learnt from a
-connection header's ``message_definition`` can be added with
-:func:`register_types_from_definition`.
+ROS_PACKAGE_PATH (see :mod:`rostui.core.packages`), and holds nothing else:
+classes for a connection header's or a bag's ``message_definition`` come from
+:func:`rostui.core.msg.received.connection_class`, in stores of their own.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ __all__ = [
     "get_service_spec",
     "md5sum",
     "full_text",
-    "register_types_from_definition",
+    "split_definition",
     "list_message_types",
     "list_service_types",
     "normalize_type_name",
@@ -41,9 +41,6 @@ DEFINITION_SEPARATOR = "=" * 80
 
 MAX_NESTING = 64
 """Deepest nesting of message types accepted (ROS types cannot contain themselves)."""
-
-DYNAMIC_CACHE_SIZE = 256
-"""How many classes built from received definitions are kept (the oldest are forgotten first)."""
 
 
 def normalize_type_name(type_name: str) -> str:
@@ -248,6 +245,13 @@ class TypeStore:
             self._classes[type_name] = cls
             return cls
 
+    def use_class(self, cls: type[Message]) -> None:
+        """Let *cls* stand for its type here (a class of another store whose md5sum this store's type has)."""
+        with self._lock:
+            if self.md5sum(cls._type) != cls._md5sum:
+                raise MessageSpecError(f"{cls._type}: md5sum {cls._md5sum} is not this store's {self.md5sum(cls._type)}")
+            self._classes[cls._type] = cls
+
     def get_service_class(self, type_name: str) -> type[Service]:
         """The generated service class of *type_name* (``_request_class``/``_response_class``)."""
         cls = self._srv_classes.get(type_name)
@@ -296,8 +300,6 @@ def _read(path: Path) -> str:
 
 
 _default = TypeStore(load_from_packages=True)
-_dynamic_cache: dict[tuple[str, str], type[Message]] = {}
-_dynamic_lock = threading.Lock()
 
 
 def default_store() -> TypeStore:
@@ -309,7 +311,6 @@ def clear_cache() -> None:
     """Forget every loaded type (for example after editing .msg files)."""
     global _default
     _default = TypeStore(load_from_packages=True)
-    _dynamic_cache.clear()
     packages.clear_cache()
 
 
@@ -366,53 +367,6 @@ def split_definition(type_name: str, definition: str) -> list[MsgSpec]:
             raise MessageSpecError(f"{shown(sub)} after 'MSG:' is not a valid pkg/Type name", where)
         specs.append(parse_msg_text(text, sub, f"<message_definition of {type_name}: {sub}>"))
     return specs
-
-
-def register_types_from_definition(type_name: str, definition: str) -> type[Message]:
-    """Build the class of *type_name* from a connection header's ``message_definition``.
-
-    If the locally installed type has the same md5 its class is returned;
-    otherwise a class is built from the definition alone (and types unknown
-    locally are registered so that :func:`get_message_class` finds them).
-    """
-    key = (type_name, definition)
-    cls = _dynamic_cache.get(key)
-    if cls is not None:
-        return cls
-    if not isinstance(type_name, str):
-        raise UnknownMessageTypeError(repr(type_name), "not a valid pkg/Type name")
-    type_name = normalize_type_name(type_name)
-    store = TypeStore(load_from_packages=False)
-    for spec in split_definition(type_name, definition):
-        store.add_spec(spec)
-    md5 = store.md5sum(type_name)
-    try:
-        local_md5: str | None = _default.md5sum(type_name)
-    except (UnknownMessageTypeError, MessageSpecError):
-        local_md5 = None
-    if local_md5 == md5:
-        cls = _default.get_class(type_name)
-    else:
-        cls = store.get_class(type_name)
-        for t, spec in store._specs.items():
-            if not _default.has_type(t):
-                _default.add_spec(spec)
-    with _dynamic_lock:
-        while len(_dynamic_cache) >= DYNAMIC_CACHE_SIZE:
-            del _dynamic_cache[next(iter(_dynamic_cache))]
-        _dynamic_cache[key] = cls
-    return cls
-
-
-def _reconstruct(type_name: str, md5: str, definition: str) -> Message:
-    """Unpickling helper: an empty instance of the class matching *type_name*/*md5*."""
-    try:
-        cls = get_message_class(type_name)
-        if cls._md5sum != md5:
-            raise UnknownMessageTypeError(type_name)
-    except (UnknownMessageTypeError, MessageSpecError):
-        cls = register_types_from_definition(type_name, definition)
-    return cls.__new__(cls)
 
 
 def list_message_types(package: str) -> list[str]:

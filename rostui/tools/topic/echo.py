@@ -289,13 +289,11 @@ class EchoFormatter:
 
 
 def decode(raw: Any) -> Any:
-    """Deserialize an AnyMsg with the class its publisher described (any type, even unknown locally)."""
-    from rostui.core.msg import get_message_class, register_types_from_definition
+    """Deserialize an AnyMsg with the class its publisher's header describes, once checked
+    (:func:`rostui.core.msg.connection_class`: rostui's own type wins; a definition must hash to its md5sum)."""
+    from rostui.core.msg import connection_class
 
     header = raw._connection_header or {}
-    definition = header.get("message_definition")
-    if definition:
-        cls = register_types_from_definition(header["type"], definition)
-    else:
-        cls = get_message_class(header["type"])
+    cls = connection_class(header.get("type", ""), header.get("md5sum", ""), header.get("message_definition", ""),
+                           sender=f"publisher [{header.get('callerid') or '?'}]")
     return cls.deserialize(raw._buff)

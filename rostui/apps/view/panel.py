@@ -190,7 +190,7 @@ class ViewPanel(Vertical):
                     self.view.show_prepared(prepared, received)
         finally:
             self._delivery_pending = False
-            if self.feed.waiting:
+            if self.feed.waiting and self.is_attached:
                 self._arrived()
 
     def _decode(self, raw: Any) -> Any:

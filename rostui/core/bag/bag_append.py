@@ -13,7 +13,6 @@ index the way ``rosbag reindex`` does.
 from __future__ import annotations
 
 import os
-import struct
 
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.rosbag2_0 import (
@@ -26,7 +25,6 @@ from rostui.core.bag.rosbag2_0 import (
     BagWriter,
     Resumed,
     _chunk_info,
-    _decompress,
 )
 from rostui.core.bag.sink import AppendFile
 
@@ -48,14 +46,13 @@ def _indexed_chunks(reader: BagReader) -> list[ChunkInfo] | None:
     try:
         reader.file.seek(reader.index_pos)
         while reader.file.tell() < reader.size:
-            fields, data = reader._read_record()
-            op = fields.get("op")
-            if op == bytes([OP_CONNECTION]):
-                reader._connection(fields, data)
-            elif op == bytes([OP_CHUNK_INFO]):
-                start, end, counts = _chunk_info(fields, data)
-                chunks.append((struct.unpack("<Q", fields["chunk_pos"])[0], start, end, counts))
-    except (BagError, EOFError, struct.error, KeyError):
+            record = reader._read_record()
+            if record.op == OP_CONNECTION:
+                reader._connection(record)
+            elif record.op == OP_CHUNK_INFO:
+                start, end, counts = _chunk_info(record)
+                chunks.append((record.number("chunk_pos", 8), start, end, counts))
+    except (BagError, EOFError):
         return None
     if len(chunks) != reader.chunk_count:
         return None
@@ -71,34 +68,36 @@ def _scanned_chunks(reader: BagReader) -> tuple[list[ChunkInfo], int]:
     while reader.file.tell() < reader.size:
         at = reader.file.tell()
         try:
-            fields, data = reader._read_record()
-        except (EOFError, BagError, struct.error):
+            record = reader._read_record()
+        except (EOFError, BagError):
             break
-        op = fields.get("op")
-        if op == bytes([OP_CHUNK]):
+        op = record.op
+        if op == OP_CHUNK:
             if pending is not None:
                 break  # the previous chunk's index records are missing: the file stays valid only up to it
             try:
-                plain = _decompress(fields["compression"].decode(), data)
                 counts: dict[int, int] = {}
                 times: list[int] = []
-                for conn_id, t, _offset in reader._chunk_entries(plain):
+                for conn_id, t, _offset in reader._chunk_entries(reader._plain(record), at):
                     counts[conn_id] = counts.get(conn_id, 0) + 1
                     times.append(t)
-            except Exception:  # a damaged chunk: keep what comes before it
+            except BagError:  # a damaged chunk: keep what comes before it
                 break
             if not counts:
                 break
             pending = ((at, min(times), max(times), counts), len(counts))
-        elif op == bytes([OP_INDEX_DATA]) and pending is not None:
+        elif op == OP_INDEX_DATA and pending is not None:
             info, needed = pending
             pending = (info, needed - 1)
             if needed == 1:
                 chunks.append(info)
                 good_end = reader.file.tell()
                 pending = None
-        elif op == bytes([OP_CONNECTION]):
-            reader._connection(fields, data)
+        elif op == OP_CONNECTION:
+            try:
+                reader._connection(record)
+            except BagError:
+                break
             if pending is None:
                 good_end = reader.file.tell()
         else:

@@ -12,16 +12,33 @@ Memory is 24 bytes a message plus the cache, whatever the file's size.
 from __future__ import annotations
 
 import os
+import zlib
 from collections import OrderedDict
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
+
+from rostui.core.bag.inflate import inflate
+from rostui.core.bag.model import MalformedRecord
 
 NO_CHUNK = 0xFFFFFFFF
 """The chunk number of a message stored outside any chunk; its offset is then a position in the file."""
 
 CACHE_BYTES = int(os.environ.get("ROSTUI_BAG_CACHE_BYTES", str(64 * 1024 * 1024)))
 """How many bytes of decompressed chunks a reader keeps (the last chunk read is always kept)."""
+
+
+class ChunkPlace(NamedTuple):
+    """One chunk of a file: where its record starts (the byte its errors name), where its stored bytes start and
+    how many there are, their compression, the size its header declares they decompress to, and the CRC32 of
+    those plain bytes (0: none given)."""
+
+    record_at: int
+    data_at: int
+    stored: int
+    compression: str
+    plain_size: int
+    crc: int = 0
 
 
 @dataclass(frozen=True)
@@ -119,19 +136,21 @@ class ChunkedFile:
     """What both readers share for reading through an index: the chunk table, the chunk cache, and the
     file's own index read once.
 
-    A reader sets ``path`` and ``file`` and provides ``_read_index`` (the file's own index, or None) and
-    ``_decompress_chunk``; its ``file_index`` and ``scan_index`` fill ``chunk_table``.
+    A reader sets ``path`` and ``file`` and provides ``_read_index`` (the file's own index, or None); its
+    ``file_index`` and ``scan_index`` fill ``chunk_table``. A chunk that cannot be read raises the same
+    :class:`~rostui.core.bag.model.MalformedRecord` each time it is asked for, without being read again.
     """
 
     path: str
     file: Any
 
     def __init__(self) -> None:
-        self.chunk_table: list[tuple[int, int, str]] = []
-        """Per chunk number: where its stored bytes start, how many there are, and their compression."""
+        self.chunk_table: list[ChunkPlace] = []
+        """Per chunk number: where it lies and what it declares."""
         self.cache = ChunkCache(self._load_chunk)
         self._index: FileIndex | None = None
         self._index_read = False
+        self._broken: dict[int, MalformedRecord] = {}
 
     def file_index(self) -> FileIndex | None:
         """Where every message lies, from the file's own index (read once, no chunk decompressed where the
@@ -144,15 +163,24 @@ class ChunkedFile:
     def _read_index(self) -> FileIndex | None:
         raise NotImplementedError
 
-    def _decompress_chunk(self, kind: str, data: bytes) -> bytes:
-        raise NotImplementedError
+    def read_chunk(self, place: ChunkPlace) -> bytes:
+        """The plain bytes of the chunk at ``place``: read, decompressed within the size it declares, checked
+        against its CRC; MalformedRecord when any of that fails."""
+        self.file.seek(place.data_at)
+        data = self.file.read(place.stored)
+        if len(data) < place.stored:
+            raise MalformedRecord(self.path, place.record_at, "a chunk is cut short")
+        plain = inflate(place.compression, data, place.plain_size, path=self.path, offset=place.record_at)
+        if place.crc and zlib.crc32(plain) != place.crc:
+            raise MalformedRecord(self.path, place.record_at, "a chunk's bytes do not match its CRC")
+        return plain
 
     def _load_chunk(self, number: int) -> bytes:
-        pos, stored, kind = self.chunk_table[number]
-        self.file.seek(pos)
-        data = self.file.read(stored)
-        if len(data) < stored:
-            from rostui.core.bag.model import BagError
-
-            raise BagError(f"{self.path}: a chunk is cut short at byte {pos}")
-        return self._decompress_chunk(kind, data)
+        broken = self._broken.get(number)
+        if broken is not None:
+            raise broken
+        try:
+            return self.read_chunk(self.chunk_table[number])
+        except MalformedRecord as exc:
+            self._broken[number] = exc
+            raise

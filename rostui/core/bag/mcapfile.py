@@ -22,9 +22,9 @@ from mcap.data_stream import ReadDataStream, RecordBuilder
 from mcap.opcode import Opcode
 from mcap.records import Channel, ChunkIndex, DataEnd, Footer, Header, MessageIndex, Schema, Statistics, SummaryOffset
 
-from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, FileIndex
+from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace, FileIndex
 from rostui.core.bag.iov import Parts
-from rostui.core.bag.model import BagError, BagSummary, Connection
+from rostui.core.bag.model import BagError, BagSummary, Connection, MalformedRecord
 from rostui.core.bag.sink import open_append
 
 MAGIC = b"\x89MCAP0\r\n"
@@ -60,30 +60,22 @@ def _compress(kind: str, data: bytes) -> bytes:
     return zstandard.compress(data)
 
 
-def _decompress(kind: str, data: bytes) -> bytes:
-    if kind in ("", "none"):
-        return data
-    if kind == "lz4":
-        import lz4.frame
-
-        plain: bytes = lz4.frame.decompress(data)
-        return plain
-    if kind == "zstd":
-        import zstandard
-
-        return zstandard.ZstdDecompressor().decompressobj().decompress(data)
-    raise BagError(f"unsupported chunk compression '{kind}'")
-
-
-def _walk(records: bytes) -> Iterator[tuple[int, int, bytes]]:
-    """``(offset, opcode, body)`` of each record in a chunk's records."""
+def _walk(records: bytes, path: str, chunk_at: int) -> Iterator[tuple[int, int, memoryview]]:
+    """``(offset, opcode, body)`` of each record in the plain records of the chunk at ``chunk_at``; a record that
+    does not fit, or one of opcode 0 (reserved: never written, a run of zeros), is a MalformedRecord."""
+    view = memoryview(records)
     pos, end = 0, len(records)
-    while pos + 9 <= end:
+    while pos < end:
+        if end - pos < 9:
+            raise MalformedRecord(path, chunk_at, f"a record is cut short, {pos} bytes into the chunk")
         opcode = records[pos]
         (length,) = _U64.unpack_from(records, pos + 1)
-        if pos + 9 + length > end:
-            raise BagError("a record runs past the end of its chunk")
-        yield pos, opcode, records[pos + 9:pos + 9 + length]
+        if opcode == 0:
+            raise MalformedRecord(path, chunk_at, f"a record of opcode 0, {pos} bytes into the chunk")
+        if length > end - pos - 9:
+            raise MalformedRecord(path, chunk_at, f"a record of {length} bytes runs past the end of the chunk, "
+                                                  f"{pos} bytes into it")
+        yield pos, opcode, view[pos + 9:pos + 9 + length]
         pos += 9 + length
 
 
@@ -349,9 +341,34 @@ def _connection_of(channel: Any, schema: Any, md5sum: str) -> Connection:
                       meta.get("latching", "0") == "1")
 
 
+_FOOTER = struct.Struct("<BQQQI")  # opcode, record length (20), summary start, summary offset start, summary crc
+_CHUNK_FIXED = struct.Struct("<QQQII")  # start, end, uncompressed size, uncompressed crc, compression length
+_MESSAGE_BODY = 22  # channel, sequence, log time, publish time: the data follows
+_SUMMARY_RECORDS = (Opcode.SCHEMA, Opcode.CHANNEL, Opcode.STATISTICS, Opcode.CHUNK_INDEX)
+
+
+def _parsed(kind: Any, body: bytes | memoryview, error: Callable[[str], MalformedRecord]) -> Any:
+    """A record of the ``mcap`` library's ``kind`` read from ``body``; ``error`` makes the line when it does not
+    parse."""
+    from mcap.exceptions import McapError
+
+    try:
+        return kind.read(ReadDataStream(io.BytesIO(body)))
+    except (McapError, struct.error, UnicodeDecodeError) as exc:
+        raise error(f"a {kind.__name__.lower()} record does not parse ({type(exc).__name__})") from None
+
+
 class McapBagReader(ChunkedFile):
     """Reads an MCAP (ros1 profile) file in file order, or through its index; one cut short reads up to its
-    last complete record."""
+    last complete record.
+
+    The summary section (schemas, channels, statistics, chunk indexes) is read record by record with every
+    length checked, and nothing in a chunk is needed for it. Every other length is checked against what holds
+    it before anything is read, chunks are decompressed within their declared size
+    (:mod:`rostui.core.bag.inflate`) and checked against their CRC: a record that breaks any of that is a
+    :class:`~rostui.core.bag.model.MalformedRecord`, an error in a file with a summary, and the end of what is
+    readable in one without (a record of opcode 0, as a run of zeros starts, stops it at once).
+    """
 
     def __init__(self, path: str) -> None:
         super().__init__()
@@ -400,27 +417,156 @@ class McapBagReader(ChunkedFile):
         self._md5s[key] = md5
         return md5
 
-    def _read_summary(self) -> Any:
-        from mcap.reader import SeekingReader
+    def _error(self, at: int) -> Callable[[str], MalformedRecord]:
+        """What makes the error line of a record at byte ``at``."""
+        return lambda what: MalformedRecord(self.path, at, what)
 
-        if self.size < 2 * len(MAGIC) + 30:
+    def _read(self, at: int, length: int) -> bytes:
+        """``length`` bytes from byte ``at`` (the caller has checked they lie in the file)."""
+        self.file.seek(at)
+        data: bytes = self.file.read(length)
+        if len(data) < length:
+            raise MalformedRecord(self.path, at, "a record is cut short")
+        return data
+
+    def _read_summary(self) -> Any:
+        """The summary section, or None when the file has none (not closed, or closed without one) or it does
+        not read (``truncated`` then says why)."""
+        footer_at = self.size - len(MAGIC) - _FOOTER.size
+        if footer_at < len(MAGIC):
             return None
-        self.file.seek(-len(MAGIC), os.SEEK_END)
-        if self.file.read(len(MAGIC)) != MAGIC:
+        tail = self._read(footer_at, _FOOTER.size + len(MAGIC))
+        opcode, length, summary_start, offsets_start, crc = _FOOTER.unpack_from(tail)
+        if tail[_FOOTER.size:] != MAGIC or opcode != Opcode.FOOTER or length != _FOOTER.size - 9:
             return None
-        self.file.seek(0)
+        if summary_start == 0:
+            return None
         try:
-            summary = SeekingReader(self.file).get_summary()
-        except Exception:
+            if not len(MAGIC) <= summary_start <= footer_at:
+                raise MalformedRecord(self.path, footer_at, f"the footer places the summary at byte {summary_start}")
+            return self._summary_records(summary_start, footer_at, crc, tail[:1 + 8 + 16])
+        except MalformedRecord as exc:
+            self.truncated = f"its summary cannot be read ({exc.where})"
             return None
-        finally:
-            self.file.seek(0)
+
+    def _summary_records(self, start: int, end: int, crc: int, footer_head: bytes) -> Any:
+        """The schemas, channels, statistics and chunk indexes of the summary section ``[start, end)``, each
+        record read on its own; the section's CRC checked when the footer gives one."""
+        from mcap.summary import Summary
+
+        summary = Summary()
+        computed = 0
+        pos = start
+        while pos < end:
+            if end - pos < 9:
+                raise MalformedRecord(self.path, pos, "a summary record is cut short")
+            head = self._read(pos, 9)
+            opcode = head[0]
+            (length,) = _U64.unpack_from(head, 1)
+            if length > end - pos - 9:
+                raise MalformedRecord(self.path, pos, f"a summary record of {length} bytes runs past the summary")
+            body = self._read(pos + 9, length) if crc or opcode in _SUMMARY_RECORDS else b""
+            computed = zlib.crc32(body, zlib.crc32(head, computed)) if crc else 0
+            error = self._error(pos)
+            if opcode == Opcode.SCHEMA:
+                schema = _parsed(Schema, body, error)
+                summary.schemas[schema.id] = schema
+            elif opcode == Opcode.CHANNEL:
+                channel = _parsed(Channel, body, error)
+                summary.channels[channel.id] = channel
+            elif opcode == Opcode.STATISTICS:
+                summary.statistics = _parsed(Statistics, body, error)
+            elif opcode == Opcode.CHUNK_INDEX:
+                summary.chunk_indexes.append(_parsed(ChunkIndex, body, error))
+            pos += 9 + length
+        if crc and zlib.crc32(footer_head, computed) != crc:
+            raise MalformedRecord(self.path, start, "the summary does not match its CRC")
         return summary
 
     @property
     def closed_properly(self) -> bool:
         """True when the file ends with a summary section (the writer finished it)."""
         return self._summary is not None
+
+    def _stop(self, exc: MalformedRecord) -> None:
+        """A malformed record ends what can be read: an error in a file with a summary; in one without, the
+        end of what is readable (``truncated`` says where)."""
+        if self.closed_properly:
+            raise exc
+        self.truncated = exc.where
+
+    def _records(self) -> Iterator[tuple[int, int, int]]:
+        """``(position, opcode, body length)`` of each record of the data section, up to its end record; a
+        record that does not fit in the file, or of opcode 0, is a MalformedRecord."""
+        pos = len(MAGIC)
+        while pos < self.size:
+            if self.size - pos < 9:
+                raise MalformedRecord(self.path, pos, "a record is cut short")
+            head = self._read(pos, 9)
+            opcode = head[0]
+            (length,) = _U64.unpack_from(head, 1)
+            if opcode == 0:
+                raise MalformedRecord(self.path, pos, "a record of opcode 0 (reserved: never written)")
+            if length > self.size - pos - 9:
+                raise MalformedRecord(self.path, pos, f"a record of {length} bytes runs past the end of the file")
+            yield pos, opcode, length
+            if opcode in (Opcode.DATA_END, Opcode.FOOTER):
+                return
+            pos += 9 + length
+
+    def _chunk_at(self, at: int, length: int | None = None) -> ChunkPlace:
+        """Where the chunk record at byte ``at`` keeps its records, and what it declares of them."""
+        if length is None:
+            if not 0 <= at <= self.size - 9:
+                raise MalformedRecord(self.path, at, "the index places a chunk past the end of the file")
+            head = self._read(at, 9)
+            (length,) = _U64.unpack_from(head, 1)
+            if head[0] != OP_CHUNK:
+                raise MalformedRecord(self.path, at, "the index places a chunk here")
+            if length > self.size - at - 9:
+                raise MalformedRecord(self.path, at, f"a record of {length} bytes runs past the end of the file")
+        if length < _CHUNK_FIXED.size + 8:
+            raise MalformedRecord(self.path, at, f"a chunk record of {length} bytes")
+        fixed = self._read(at + 9, _CHUNK_FIXED.size)
+        _start, _end, plain_size, crc, name_length = _CHUNK_FIXED.unpack(fixed)
+        if name_length > length - _CHUNK_FIXED.size - 8:
+            raise MalformedRecord(self.path, at, f"a chunk's compression name of {name_length} bytes runs past "
+                                                 "the chunk")
+        rest = self._read(at + 9 + _CHUNK_FIXED.size, name_length + 8)
+        try:
+            compression = rest[:name_length].decode()
+        except UnicodeDecodeError:
+            raise MalformedRecord(self.path, at, "a chunk's compression name is not UTF-8 text") from None
+        (stored,) = _U64.unpack_from(rest, name_length)
+        data_at = at + 9 + _CHUNK_FIXED.size + name_length + 8
+        if stored > at + 9 + length - data_at:
+            raise MalformedRecord(self.path, at, f"a chunk's {stored} bytes of records run past the chunk")
+        return ChunkPlace(at, data_at, stored, compression or "none", plain_size, crc)
+
+    def _message(self, body: bytes | memoryview, error: Callable[[str], MalformedRecord]) -> tuple[Connection, int]:
+        """The connection and log time of a message record's body."""
+        if len(body) < _MESSAGE_BODY:
+            raise error(f"a message record of {len(body)} bytes")
+        channel_id, _seq, log_time = _MESSAGE_FIELDS.unpack_from(body)
+        conn = self.connections.get(channel_id)
+        if conn is None:
+            raise error(f"a message on channel {channel_id}, which no channel record declares")
+        return conn, log_time
+
+    def _take_definition(self, opcode: int, body: bytes | memoryview, schemas: dict[int, Any],
+                         error: Callable[[str], MalformedRecord]) -> None:
+        """Remember a schema record; turn a channel record into a connection."""
+        if opcode == Opcode.SCHEMA:
+            schema = _parsed(Schema, body, error)
+            schemas[schema.id] = schema
+        elif opcode == Opcode.CHANNEL:
+            channel = _parsed(Channel, body, error)
+            if channel.id not in self.connections:
+                self.connections[channel.id] = self._connection(channel, schemas.get(channel.schema_id))
+
+    def _inner_error(self, chunk_at: int, pos: int) -> Callable[[str], MalformedRecord]:
+        """What makes the error line of the record ``pos`` bytes into the chunk at ``chunk_at``."""
+        return lambda what: MalformedRecord(self.path, chunk_at, f"{what}, {pos} bytes into the chunk")
 
     def _read_index(self) -> FileIndex | None:
         # the summary's chunk indexes and the message indexes after each chunk (a chunk without message
@@ -433,8 +579,8 @@ class McapBagReader(ChunkedFile):
             return None
         try:
             return self._read_file_index(summary)
-        except (BagError, EOFError, struct.error, KeyError, ValueError) as exc:
-            self.truncated = self.truncated or f"its index cannot be read ({exc})"
+        except MalformedRecord as exc:
+            self.truncated = self.truncated or f"its index cannot be read ({exc.where})"
             return None
 
     def _read_file_index(self, summary: Any) -> FileIndex:
@@ -445,171 +591,166 @@ class McapBagReader(ChunkedFile):
         self.chunk_table = []
         parts: list[ChunkEntries] = []
         for number, index in enumerate(sorted(summary.chunk_indexes, key=lambda i: i.chunk_start_offset)):
-            self.chunk_table.append(self._chunk_location(index.chunk_start_offset))
+            self.chunk_table.append(self._chunk_at(index.chunk_start_offset))
             if not index.message_index_offsets:
                 parts.append(self._chunk_part(number))
                 continue
-            self.file.seek(index.chunk_start_offset + index.chunk_length)
-            block = self.file.read(index.message_index_length)
-            pos = 0
-            while pos + 9 <= len(block):
-                opcode = block[pos]
-                (length,) = _U64.unpack_from(block, pos + 1)
-                body = block[pos + 9:pos + 9 + length]
-                pos += 9 + length
-                if opcode != Opcode.MESSAGE_INDEX or len(body) < 6:
+            start = index.chunk_start_offset + index.chunk_length
+            if not 0 <= start <= self.size or index.message_index_length > self.size - start:
+                raise MalformedRecord(self.path, index.chunk_start_offset, "the index places the chunk's message "
+                                                                           "indexes past the end of the file")
+            block = self._read(start, index.message_index_length)
+            for _at, opcode, body in _walk(block, self.path, start):
+                if opcode != Opcode.MESSAGE_INDEX:
                     continue
+                error = self._error(start)
+                if len(body) < 6:
+                    raise error(f"a message index record of {len(body)} bytes")
                 channel_id = struct.unpack_from("<H", body)[0]
                 (records_length,) = _U32.unpack_from(body, 2)
+                if records_length % 16 or records_length > len(body) - 6:
+                    raise error(f"a message index record's {records_length} bytes of entries do not fit it")
+                if channel_id not in self.connections:
+                    raise error(f"a message index of channel {channel_id}, which no channel record declares")
                 entries = np.frombuffer(body, dtype=_INDEX_ENTRY, count=records_length // 16, offset=6)
-                if channel_id in self.connections:
-                    parts.append(ChunkEntries(entries["time"].astype(np.int64),
-                                              np.full(len(entries), channel_id, dtype=np.uint32),
-                                              entries["offset"], number))
+                parts.append(ChunkEntries(entries["time"].astype(np.int64),
+                                          np.full(len(entries), channel_id, dtype=np.uint32),
+                                          entries["offset"], number))
         return FileIndex.build(parts)
-
-    def _chunk_location(self, at: int) -> tuple[int, int, str]:
-        """(records' position, stored length, compression) of the chunk record at ``at``."""
-        self.file.seek(at)
-        head = self.file.read(_CHUNK_HEAD.size + 4)
-        if len(head) < _CHUNK_HEAD.size + 4 or head[0] != OP_CHUNK:
-            raise BagError(f"no chunk at byte {at}")
-        (name_length,) = _U32.unpack_from(head, _CHUNK_HEAD.size)
-        compression = self.file.read(name_length).decode()
-        (stored,) = _U64.unpack(self.file.read(8))
-        return self.file.tell(), stored, compression
 
     def _chunk_part(self, number: int) -> ChunkEntries:
         """The entries of chunk ``number`` found by reading its records (schemas and channels taken in)."""
         times, conn_ids, offsets = [], [], []
         schemas = self._scanned_schemas
-        for at, opcode, body in _walk(self.cache.get(number)):
+        chunk_at = self.chunk_table[number].record_at
+        for at, opcode, body in _walk(self.cache.get(number), self.path, chunk_at):
+            error = self._inner_error(chunk_at, at)
             if opcode == OP_MESSAGE:
-                channel_id, _seq, log_time = _MESSAGE_FIELDS.unpack_from(body)
-                if channel_id in self.connections:
-                    times.append(log_time)
-                    conn_ids.append(channel_id)
-                    offsets.append(at)
+                conn, log_time = self._message(body, error)
+                times.append(log_time)
+                conn_ids.append(conn.id)
+                offsets.append(at)
             else:
-                self._take_definition(opcode, body, schemas)
+                self._take_definition(opcode, body, schemas, error)
         return ChunkEntries(times, conn_ids, offsets, number)
-
-    def _take_definition(self, opcode: int, body: bytes, schemas: dict[int, Any]) -> None:
-        """Remember a schema record; turn a channel record into a connection."""
-        if opcode == Opcode.SCHEMA:
-            schema = Schema.read(ReadDataStream(io.BytesIO(body)))
-            schemas[schema.id] = schema
-        elif opcode == Opcode.CHANNEL:
-            channel = Channel.read(ReadDataStream(io.BytesIO(body)))
-            if channel.id not in self.connections:
-                self.connections[channel.id] = self._connection(channel, schemas.get(channel.schema_id))
 
     def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex:
         """Where every readable message lies, by reading every chunk once (payloads are not kept); a
         file cut short is read up to its last complete record. ``progress(bytes_read)`` after each chunk."""
         self.chunk_table = []
+        self._broken = {}
+        self.cache.clear()
         parts: list[ChunkEntries] = []
         loose: tuple[list[int], list[int], list[int]] = ([], [], [])
         schemas = self._scanned_schemas
-        self.file.seek(len(MAGIC))
-        pos = len(MAGIC)
-        while pos + 9 <= self.size:
-            self.file.seek(pos)
-            head = self.file.read(9)
-            opcode = head[0]
-            (length,) = _U64.unpack_from(head, 1)
-            if pos + 9 + length > self.size:
-                self.truncated = f"the file ends in an incomplete record at byte {pos}"
-                break
-            if opcode == OP_CHUNK:
-                location = self._chunk_location(pos)
-                number = len(self.chunk_table)
-                self.chunk_table.append(location)
-                try:
-                    parts.append(self._chunk_part(number))
-                except Exception as exc:  # bad compression or a damaged chunk: what came before stays
-                    self.chunk_table.pop()
-                    self.truncated = f"a chunk at byte {pos} cannot be read ({type(exc).__name__})"
-                    break
-                if progress is not None:
-                    progress(pos + 9 + length)
-            elif opcode == OP_MESSAGE:
-                body = self.file.read(_MESSAGE_FIELDS.size)
-                channel_id, _seq, log_time = _MESSAGE_FIELDS.unpack_from(body)
-                if channel_id in self.connections:
+        try:
+            for pos, opcode, length in self._records():
+                if opcode == OP_CHUNK:
+                    self.chunk_table.append(self._chunk_at(pos, length))
+                    try:
+                        parts.append(self._chunk_part(len(self.chunk_table) - 1))
+                    except MalformedRecord:
+                        self.chunk_table.pop()
+                        raise
+                    if progress is not None:
+                        progress(pos + 9 + length)
+                elif opcode == OP_MESSAGE:
+                    conn, log_time = self._message(self._read(pos + 9, min(length, _MESSAGE_BODY)),
+                                                   self._error(pos))
                     loose[0].append(log_time)
-                    loose[1].append(channel_id)
+                    loose[1].append(conn.id)
                     loose[2].append(pos)
-            elif opcode in (Opcode.SCHEMA, Opcode.CHANNEL):
-                self._take_definition(opcode, self.file.read(length), schemas)
-            elif opcode in (Opcode.DATA_END, Opcode.FOOTER):
-                break
-            pos += 9 + length
+                elif opcode in (Opcode.SCHEMA, Opcode.CHANNEL):
+                    self._take_definition(opcode, self._read(pos + 9, length), schemas, self._error(pos))
+        except MalformedRecord as exc:
+            self._stop(exc)
         if loose[0]:
             parts.append(ChunkEntries(*loose, NO_CHUNK))
         return FileIndex.build(parts, from_file_index=False)
 
-    def _decompress_chunk(self, kind: str, data: bytes) -> bytes:
-        return _decompress(kind, data)
-
     def payload(self, chunk: int, offset: int) -> bytes:
         """The serialised message whose record starts at ``offset`` of chunk ``chunk``'s records (or of
-        the file, for a message outside any chunk), as a :class:`FileIndex` locates it."""
+        the file, for a message outside any chunk), as a :class:`FileIndex` locates it; MalformedRecord when no
+        message record fits there."""
         if chunk == NO_CHUNK:
-            self.file.seek(offset)
-            head = self.file.read(9)
+            if not 0 <= offset <= self.size - 9:
+                raise MalformedRecord(self.path, offset, "the index places a message past the end of the file")
+            head = self._read(offset, 9)
             (length,) = _U64.unpack_from(head, 1)
-            body: bytes = self.file.read(length)
-            return body[_MESSAGE_FIELDS.size + 8:]
+            if head[0] != OP_MESSAGE or not _MESSAGE_BODY <= length <= self.size - offset - 9:
+                raise MalformedRecord(self.path, offset, "the index places a message here")
+            return self._read(offset + 9, length)[_MESSAGE_BODY:]
         records = self.cache.get(chunk)
-        (length,) = _U64.unpack_from(records, offset + 1)
-        return records[offset + 9 + _MESSAGE_FIELDS.size + 8:offset + 9 + length]
+        fits = offset <= len(records) - 9
+        length = _U64.unpack_from(records, offset + 1)[0] if fits else 0
+        if not fits or records[offset] != OP_MESSAGE or not _MESSAGE_BODY <= length <= len(records) - offset - 9:
+            raise MalformedRecord(self.path, self.chunk_table[chunk].record_at,
+                                  f"the index places a message {offset} bytes into the chunk")
+        return records[offset + 9 + _MESSAGE_BODY:offset + 9 + length]
 
     def messages(self) -> Iterator[tuple[Connection, int, bytes]]:
         """``(connection, time_ns, data)`` in file order; stops at the first incomplete record."""
-        from mcap.records import Channel, Message, Schema
-        from mcap.stream_reader import StreamReader
-
-        self.file.seek(0)
         schemas: dict[int, Any] = {}
-        records = StreamReader(self.file, skip_magic=False, validate_crcs=True).records
-        while True:
-            try:
-                record = next(records)
-            except StopIteration:
-                return
-            except Exception as exc:  # the mcap reader's own errors, struct errors, bad compression
-                self.truncated = f"the file ends in an incomplete record ({type(exc).__name__})"
-                return
-            if isinstance(record, Message):
-                conn = self.connections.get(record.channel_id)
-                if conn is not None:
-                    yield conn, record.log_time, record.data
-            elif isinstance(record, Schema):
-                schemas[record.id] = record
-            elif isinstance(record, Channel):
-                if record.id not in self.connections:
-                    self.connections[record.id] = self._connection(record, schemas.get(record.schema_id))
+        try:
+            for pos, opcode, length in self._records():
+                if opcode == OP_CHUNK:
+                    place = self._chunk_at(pos, length)
+                    for at, inner, body in _walk(self.read_chunk(place), self.path, pos):
+                        error = self._inner_error(pos, at)
+                        if inner == OP_MESSAGE:
+                            conn, log_time = self._message(body, error)
+                            yield conn, log_time, bytes(body[_MESSAGE_BODY:])
+                        else:
+                            self._take_definition(inner, body, schemas, error)
+                elif opcode == OP_MESSAGE:
+                    loose = self._read(pos + 9, length)
+                    conn, log_time = self._message(loose, self._error(pos))
+                    yield conn, log_time, loose[_MESSAGE_BODY:]
+                elif opcode in (Opcode.SCHEMA, Opcode.CHANNEL):
+                    self._take_definition(opcode, self._read(pos + 9, length), schemas, self._error(pos))
+        except MalformedRecord as exc:
+            self._stop(exc)
 
     def summary(self) -> BagSummary:
-        """Counts and times from the summary section, or from reading every record when there is none."""
+        """Counts and times from the summary section (no chunk decompressed), or from reading every record
+        when there is none."""
         out = BagSummary(self.path, "mcap", "0 (ros1 profile)", self.size, closed=self.closed_properly)
         summary = self._summary
-        if summary is not None and summary.statistics is not None:
+        if summary is not None:
             for cid, channel in summary.channels.items():
                 self.connections[cid] = self._connection(channel, summary.schemas.get(channel.schema_id))
-            stats = summary.statistics
-            out.counts = {cid: n for cid, n in stats.channel_message_counts.items()}
-            out.start_ns, out.end_ns = stats.message_start_time, stats.message_end_time
             for index in summary.chunk_indexes:
                 out.add_chunk(index.compression or "none", index.uncompressed_size, index.compressed_size)
+            stats = summary.statistics
+            if stats is not None:
+                out.counts = dict(stats.channel_message_counts)
+                out.start_ns, out.end_ns = stats.message_start_time, stats.message_end_time
+            else:
+                self._count_indexed(out)
         else:
-            first = last = None
-            for conn, t, _data in self.messages():
-                out.counts[conn.id] = out.counts.get(conn.id, 0) + 1
-                first = t if first is None else min(first, t)
-                last = t if last is None else max(last, t)
-            out.start_ns, out.end_ns = first or 0, last or 0
-            out.problem = self.truncated
+            self._count_messages(out)
+        out.problem = self.truncated
         out.connections = [self.connections[c] for c in sorted(self.connections)]
         return out
+
+    def _count_indexed(self, out: BagSummary) -> None:
+        """Counts and times from the message indexes (a summary without statistics)."""
+        import numpy as np
+
+        index = self.file_index()
+        if index is None:
+            self._count_messages(out)
+            return
+        ids, counts = np.unique(index.conn_ids, return_counts=True)
+        out.counts = {int(i): int(n) for i, n in zip(ids, counts)}
+        if len(index):
+            out.start_ns, out.end_ns = int(index.times[0]), int(index.times[-1])
+
+    def _count_messages(self, out: BagSummary) -> None:
+        """Counts and times from reading every record."""
+        first = last = None
+        for conn, t, _data in self.messages():
+            out.counts[conn.id] = out.counts.get(conn.id, 0) + 1
+            first = t if first is None else min(first, t)
+            last = t if last is None else max(last, t)
+        out.start_ns, out.end_ns = first or 0, last or 0

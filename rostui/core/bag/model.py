@@ -9,6 +9,22 @@ class BagError(Exception):
     """A bag cannot be read or written; the message is one line for the user."""
 
 
+class MalformedRecord(BagError):
+    """A record of a bag file is not what its format allows: one line naming the file, the byte offset where the
+    record starts (for a record inside a chunk, the chunk's own) and what is wrong."""
+
+    def __init__(self, path: str, offset: int, what: str) -> None:
+        super().__init__(f"{path}: {what} (byte {offset})")
+        self.path = path
+        self.offset = offset
+        self.what = what
+
+    @property
+    def where(self) -> str:
+        """What is wrong and at which byte, without the file's name."""
+        return f"{self.what} at byte {self.offset}"
+
+
 @dataclass(frozen=True)
 class Connection:
     """One publisher connection as recorded: its topic, type, md5sum, definition, callerid and latching."""

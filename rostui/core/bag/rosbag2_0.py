@@ -17,9 +17,10 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Any, BinaryIO
 
-from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, FileIndex
+from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace, FileIndex
+from rostui.core.bag.inflate import inflate
 from rostui.core.bag.iov import Parts
-from rostui.core.bag.model import BagError, BagSummary, Connection
+from rostui.core.bag.model import BagError, BagSummary, Connection, MalformedRecord
 from rostui.core.bag.sink import AppendFile, open_append
 
 MAGIC = b"#ROSBAG V2.0\n"
@@ -103,19 +104,6 @@ def _roslz4_frame(data: bytes) -> bytes:
                                          block_checksum=False, content_checksum=True, auto_flush=True)
     packed: bytes = frame.begin() + frame.compress(data) + frame.flush()
     return packed
-
-
-def _decompress(kind: str, data: bytes) -> bytes:
-    if kind == "none":
-        return data
-    if kind == "bz2":
-        return bz2.decompress(data)
-    if kind == "lz4":
-        import lz4.frame
-
-        unpacked: bytes = lz4.frame.decompress(data)
-        return unpacked
-    raise BagError(f"unsupported chunk compression '{kind}'")
 
 
 @dataclass(frozen=True)
@@ -293,9 +281,127 @@ class BagWriter:
             self.out.close()
 
 
+_OP_NAMES = {OP_MSG_DATA: "message", OP_FILE_HEADER: "file header", OP_INDEX_DATA: "index data", OP_CHUNK: "chunk",
+             OP_CHUNK_INFO: "chunk info", OP_CONNECTION: "connection"}
+_IN_CHUNKS = (OP_MSG_DATA, OP_CONNECTION)
+
+
+@dataclass(frozen=True)
+class _Place:
+    """Where a record lies, for its error line: the file, the record's byte (its chunk's, for a record inside
+    one) and, inside a chunk, how far into the chunk's plain bytes."""
+
+    path: str
+    at: int
+    inside: int = -1
+
+    def error(self, what: str) -> MalformedRecord:
+        """The error line for ``what`` is wrong with the record here."""
+        if self.inside >= 0:
+            what = f"{what}, {self.inside} bytes into the chunk"
+        return MalformedRecord(self.path, self.at, what)
+
+
+@dataclass(slots=True)
+class _Record:
+    """One record of the file or of a chunk: where it is (``inside``: its offset in its chunk's plain bytes, -1
+    for a record of the file), its op, its header fields, its data (empty when a chunk's data was skipped)
+    with where that starts and how long it is."""
+
+    path: str
+    at: int
+    inside: int
+    op: int
+    fields: dict[str, bytes]
+    data: bytes | memoryview
+    data_at: int
+    data_length: int
+
+    @property
+    def place(self) -> _Place:
+        """Where the record lies, for an error line."""
+        return _Place(self.path, self.at, self.inside)
+
+    @property
+    def kind(self) -> str:
+        """The record's kind in words."""
+        return _OP_NAMES[self.op]
+
+    def _raw(self, name: str, size: int) -> bytes:
+        raw = self.fields.get(name)
+        if raw is None:
+            raise self.place.error(f"a {self.kind} record has no '{name}' field")
+        if len(raw) != size:
+            raise self.place.error(f"the '{name}' field of a {self.kind} record is {len(raw)} bytes, not {size}")
+        return raw
+
+    def number(self, name: str, size: int = 4) -> int:
+        """The little-endian unsigned field ``name`` of ``size`` bytes."""
+        return int.from_bytes(self._raw(name, size), "little")
+
+    def time(self, name: str = "time") -> int:
+        """The time field ``name`` (seconds and nanoseconds) in nanoseconds."""
+        return _time_ns(self._raw(name, 8))
+
+    def text(self, name: str) -> str:
+        """The UTF-8 field ``name``."""
+        raw = self.fields.get(name)
+        if raw is None:
+            raise self.place.error(f"a {self.kind} record has no '{name}' field")
+        try:
+            return raw.decode()
+        except UnicodeDecodeError:
+            raise self.place.error(f"the '{name}' field of a {self.kind} record is not UTF-8 text") from None
+
+
+def _fields(raw: bytes | memoryview, place: _Place) -> dict[str, bytes]:
+    try:
+        return parse_header(raw)
+    except BagError as exc:
+        raise place.error(str(exc)) from None
+
+
+def _op(fields: dict[str, bytes], place: _Place) -> int:
+    op = fields.get("op")
+    if op is None:
+        raise place.error("a record has no 'op' field")
+    if len(op) != 1 or op[0] not in _OP_NAMES:
+        raise place.error(f"a record has an unknown op ({op.hex()})")
+    return op[0]
+
+
+def _record_in(view: memoryview, pos: int, path: str, chunk_at: int) -> tuple[_Record, int]:
+    """The record at ``pos`` of the plain bytes of the chunk at ``chunk_at`` and where the next one starts."""
+    end = len(view)
+    if end - pos < 8:
+        raise _Place(path, chunk_at, pos).error("a record is cut short")
+    (hlen,) = _U32.unpack_from(view, pos)
+    if hlen > end - pos - 8:
+        raise _Place(path, chunk_at, pos).error(f"a record header of {hlen} bytes runs past the end of the chunk")
+    try:
+        fields = parse_header(view[pos + 4:pos + 4 + hlen])
+        op = fields["op"][0] if len(fields.get("op", b"")) == 1 else -1
+    except BagError as exc:
+        raise _Place(path, chunk_at, pos).error(str(exc)) from None
+    if op not in _OP_NAMES:
+        _op(fields, _Place(path, chunk_at, pos))
+    data_at = pos + 8 + hlen
+    (dlen,) = _U32.unpack_from(view, data_at - 4)
+    if dlen > end - data_at:
+        raise _Place(path, chunk_at, pos).error(f"a record's {dlen} bytes of data run past the end of the chunk")
+    return _Record(path, chunk_at, pos, op, fields, view[data_at:data_at + dlen], data_at, dlen), data_at + dlen
+
+
 class BagReader(ChunkedFile):
     """Reads a rosbag v2.0 file in file order, or through its index; a file cut short reads up to its last
-    complete chunk."""
+    complete chunk.
+
+    Every length is checked against what holds it (the file, or the chunk) before anything is read, every
+    chunk is decompressed within its declared size (:mod:`rostui.core.bag.inflate`), and every field is checked
+    before use: a record that breaks any of that is a :class:`~rostui.core.bag.model.MalformedRecord`. In a
+    file its writer closed that is an error; in one cut short it ends what can be read, as ``rosbag reindex``
+    stops at the first record that is not what it should be (a run of zeros stops it at its first byte).
+    """
 
     def __init__(self, path: str) -> None:
         super().__init__()
@@ -305,30 +411,33 @@ class BagReader(ChunkedFile):
         except OSError as exc:
             raise BagError(f"cannot open {path}: {exc.strerror}") from None
         self.size = os.fstat(self.file.fileno()).st_size
-        magic = self.file.read(len(MAGIC))
-        if magic != MAGIC:
-            self.file.close()
-            if magic.startswith(b"#ROSBAG V"):
-                raise BagError(f"{path}: rosbag format {magic[9:].strip().decode(errors='replace')} is not "
-                               "supported (only 2.0)")
-            raise BagError(f"{path} is not a bag file (no '#ROSBAG V2.0' line)")
-        try:
-            fields, _ = self._read_record()
-        except BagError:
-            self.file.close()
-            raise BagError(f"{path}: the file header is incomplete") from None
-        if fields.get("op") != bytes([OP_FILE_HEADER]):
-            self.file.close()
-            raise BagError(f"{path}: the file header record is missing")
-        self.index_pos: int = struct.unpack("<Q", fields["index_pos"])[0]
-        count = fields.get("chunk_count", b"")
-        self.chunk_count = _U32.unpack(count)[0] if len(count) == 4 else 0
-        self.data_start = self.file.tell()
         self.connections: dict[int, Connection] = {}
         self.truncated = ""
-        self.last_data_length = 0
-        self.record_at = 0
-        """Where the record :meth:`_records` yielded last starts."""
+        self.index_pos = 0
+        self.chunk_count = 0
+        try:
+            self._read_file_header()
+        except BaseException:
+            self.file.close()
+            raise
+        self.data_start = self.file.tell()
+
+    def _read_file_header(self) -> None:
+        magic = self.file.read(len(MAGIC))
+        if magic != MAGIC:
+            if magic.startswith(b"#ROSBAG V"):
+                raise BagError(f"{self.path}: rosbag format {magic[9:].strip().decode(errors='replace')} is not "
+                               "supported (only 2.0)")
+            raise BagError(f"{self.path} is not a bag file (no '#ROSBAG V2.0' line)")
+        try:
+            record = self._read_record()
+        except EOFError:
+            raise BagError(f"{self.path}: the file header is incomplete") from None
+        if record.op != OP_FILE_HEADER:
+            raise BagError(f"{self.path}: the file header record is missing")
+        self.index_pos = record.number("index_pos", 8)
+        if "chunk_count" in record.fields:
+            self.chunk_count = record.number("chunk_count")
 
     def close(self) -> None:
         """Close the file."""
@@ -339,99 +448,170 @@ class BagReader(ChunkedFile):
         """True when the writer finished the file (index written)."""
         return self.index_pos != 0 and self.index_pos <= self.size
 
-    def _read_record(self, skip_chunk_data: bool = False) -> tuple[dict[str, bytes], bytes]:
+    def _read_record(self, skip_chunk_data: bool = False) -> _Record:
+        """The record at the file's position (a chunk's data skipped with ``skip_chunk_data``); EOFError at the
+        end of the file."""
+        at = self.file.tell()
+        place = _Place(self.path, at)
+        left = self.size - at
         head = self.file.read(4)
-        if len(head) < 4:
+        if not head:
             raise EOFError
+        if len(head) < 4 or left < 8:
+            raise place.error("a record is cut short")
         (hlen,) = _U32.unpack(head)
+        if hlen > left - 8:
+            raise place.error(f"a record header of {hlen} bytes runs past the end of the file")
         raw = self.file.read(hlen)
-        if len(raw) < hlen:
-            raise BagError("a record header is cut short")
-        fields = parse_header(raw)
-        dlen_raw = self.file.read(4)
-        if len(dlen_raw) < 4:
-            raise BagError("a record is cut short")
-        (dlen,) = _U32.unpack(dlen_raw)
-        self.last_data_length = dlen
-        if not (skip_chunk_data and fields.get("op") == bytes([OP_CHUNK])):
-            data = self.file.read(dlen)
-            if len(data) < dlen:
-                raise BagError("a record's data is cut short")
-            return fields, data
-        if self.file.tell() + dlen > self.size:
-            raise BagError("a record's data is cut short")
-        self.file.seek(dlen, os.SEEK_CUR)
-        return fields, b""
+        fields = _fields(raw, place)
+        op = _op(fields, place)
+        tail = self.file.read(4)
+        if len(raw) < hlen or len(tail) < 4:
+            raise place.error("a record is cut short")
+        (dlen,) = _U32.unpack(tail)
+        if dlen > left - 8 - hlen:
+            raise place.error(f"a record's {dlen} bytes of data run past the end of the file")
+        data_at = at + 8 + hlen
+        if skip_chunk_data and op == OP_CHUNK:
+            self.file.seek(dlen, os.SEEK_CUR)
+            return _Record(self.path, at, -1, op, fields, b"", data_at, dlen)
+        data = self.file.read(dlen)
+        if len(data) < dlen:
+            raise place.error("a record is cut short")
+        return _Record(self.path, at, -1, op, fields, data, data_at, dlen)
 
-    def _connection(self, fields: dict[str, bytes], data: bytes) -> Connection:
-        conn_id = _U32.unpack(fields["conn"])[0]
-        info = {k: v.decode("utf-8", "replace") for k, v in parse_header(data).items()}
-        conn = Connection(conn_id, fields["topic"].decode(), info.get("type", ""), info.get("md5sum", ""),
+    def _stop(self, exc: MalformedRecord) -> None:
+        """A malformed record ends what can be read: an error in a file its writer closed; in a file cut short,
+        the end of what is readable (``truncated`` says where)."""
+        if self.closed_properly:
+            raise exc
+        self.truncated = exc.where
+
+    def _connection(self, record: _Record) -> Connection:
+        conn_id = record.number("conn")
+        topic = record.text("topic")
+        info = {k: v.decode("utf-8", "replace") for k, v in _fields(record.data, record.place).items()}
+        conn = Connection(conn_id, topic, info.get("type", ""), info.get("md5sum", ""),
                           info.get("message_definition", ""), info.get("callerid", ""),
                           info.get("latching", "0") == "1")
         self.connections.setdefault(conn_id, conn)
         return conn
 
-    def _records(self, with_chunk_data: bool) -> Iterator[tuple[dict[str, bytes], bytes]]:
+    def _message(self, record: _Record) -> tuple[Connection, int]:
+        """The connection and time of a message record."""
+        raw, stamp = record.fields.get("conn"), record.fields.get("time")
+        conn = self.connections.get(_U32.unpack(raw)[0]) if raw is not None and len(raw) == 4 else None
+        if conn is None or stamp is None or len(stamp) != 8:  # say what is wrong
+            conn_id = record.number("conn")
+            record.time()
+            raise record.place.error(f"a message on connection {conn_id}, which no connection record declares")
+        return conn, _time_ns(stamp)
+
+    def _records(self, with_chunk_data: bool) -> Iterator[_Record]:
+        """The file's records in order, from the first after the file header (index data records left out
+        when chunks are read); a malformed one ends them (see :meth:`_stop`)."""
         self.file.seek(self.data_start)
         while self.file.tell() < self.size:
-            at = self.file.tell()
             try:
-                fields, data = self._read_record(skip_chunk_data=not with_chunk_data)
+                record = self._read_record(skip_chunk_data=not with_chunk_data)
             except EOFError:
                 return
-            except (BagError, struct.error, KeyError) as exc:
-                self.truncated = f"{exc} at byte {at}"
+            except MalformedRecord as exc:
+                self._stop(exc)
                 return
-            if fields.get("op") == bytes([OP_INDEX_DATA]) and with_chunk_data:
+            if record.op == OP_INDEX_DATA and with_chunk_data:
                 continue
-            self.record_at = at
-            yield fields, data
+            yield record
+
+    def _chunk_place(self, record: _Record) -> ChunkPlace:
+        return ChunkPlace(record.at, record.data_at, record.data_length, record.text("compression"),
+                          record.number("size"))
+
+    def _plain(self, record: _Record) -> bytes:
+        """A chunk record's plain bytes (decompressed within the size it declares)."""
+        place = self._chunk_place(record)
+        return inflate(place.compression, bytes(record.data), place.plain_size, path=self.path,
+                       offset=place.record_at)
+
+    def _chunk_records(self, plain: bytes, chunk_at: int) -> Iterator[_Record]:
+        """The records of a chunk's plain bytes (connections taken in on the way)."""
+        view = memoryview(plain)
+        pos = 0
+        while pos < len(view):
+            record, pos = _record_in(view, pos, self.path, chunk_at)
+            if record.op not in _IN_CHUNKS:
+                raise record.place.error(f"a {record.kind} record inside a chunk")
+            if record.op == OP_CONNECTION:
+                self._connection(record)
+            yield record
+
+    def _chunk_entries(self, plain: bytes, chunk_at: int) -> Iterator[tuple[int, int, int]]:
+        """``(conn_id, time_ns, offset)`` of each message record in a decompressed chunk; connection
+        records are taken in on the way."""
+        for record in self._chunk_records(plain, chunk_at):
+            if record.op == OP_MSG_DATA:
+                conn, t = self._message(record)
+                yield conn.id, t, record.inside
 
     def _read_index(self) -> FileIndex | None:
         if not self.closed_properly:
             return None
         try:
             return self._read_file_index()
-        except (BagError, EOFError, struct.error, KeyError, ValueError):
+        except (MalformedRecord, EOFError) as exc:
+            where = exc.where if isinstance(exc, MalformedRecord) else "it ends early"
+            self.truncated = self.truncated or f"its index cannot be read ({where})"
             return None
 
     def _read_file_index(self) -> FileIndex:
         self.file.seek(self.index_pos)
         chunk_positions: list[int] = []
         while self.file.tell() < self.size:
-            fields, data = self._read_record()
-            op = fields.get("op")
-            if op == bytes([OP_CONNECTION]):
-                self._connection(fields, data)
-            elif op == bytes([OP_CHUNK_INFO]):
-                chunk_positions.append(struct.unpack("<Q", fields["chunk_pos"])[0])
+            record = self._read_record()
+            if record.op == OP_CONNECTION:
+                self._connection(record)
+            elif record.op == OP_CHUNK_INFO:
+                chunk_positions.append(record.number("chunk_pos", 8))
         if len(chunk_positions) != self.chunk_count:
-            raise BagError(f"the index lists {len(chunk_positions)} of {self.chunk_count} chunks")
+            raise MalformedRecord(self.path, self.index_pos, f"the index lists {len(chunk_positions)} of the "
+                                                             f"{self.chunk_count} chunks the file header counts")
         self.chunk_table = []
         parts: list[ChunkEntries] = []
         for number, pos in enumerate(sorted(chunk_positions)):
+            if not self.data_start <= pos < self.index_pos:
+                raise MalformedRecord(self.path, self.index_pos, f"the index places a chunk at byte {pos}, "
+                                                                 "outside the chunks")
             self.file.seek(pos)
-            fields, _ = self._read_record(skip_chunk_data=True)
-            if fields.get("op") != bytes([OP_CHUNK]):
-                raise BagError(f"no chunk at byte {pos}")
-            end = self.file.tell()
-            self.chunk_table.append((end - self.last_data_length, self.last_data_length,
-                                      fields.get("compression", b"none").decode()))
-            while self.file.tell() < self.size:
+            record = self._read_record(skip_chunk_data=True)
+            if record.op != OP_CHUNK:
+                raise record.place.error("the index places a chunk here")
+            self.chunk_table.append(self._chunk_place(record))
+            while self.file.tell() < self.index_pos:
                 at = self.file.tell()
-                fields, data = self._read_record(skip_chunk_data=True)
-                if fields.get("op") != bytes([OP_INDEX_DATA]):
+                record = self._read_record(skip_chunk_data=True)
+                if record.op != OP_INDEX_DATA:
                     self.file.seek(at)
                     break
-                import numpy as np
-
-                entries = np.frombuffer(data, dtype=_INDEX_ENTRY, count=_U32.unpack(fields["count"])[0])
-                times = entries["sec"].astype(np.int64) * 1_000_000_000 + entries["nsec"]
-                conn_id = _U32.unpack(fields["conn"])[0]
-                parts.append(ChunkEntries(times, np.full(len(entries), conn_id, dtype=np.uint32),
-                                          entries["offset"], number))
+                parts.append(self._index_entries(record, number))
         return FileIndex.build(parts)
+
+    def _index_entries(self, record: _Record, number: int) -> ChunkEntries:
+        """The entries of an index data record of chunk ``number``."""
+        import numpy as np
+
+        version = record.number("ver")
+        if version != 1:
+            raise record.place.error(f"an index data record of version {version} (only 1 is known)")
+        conn_id = record.number("conn")
+        if conn_id not in self.connections:
+            raise record.place.error(f"an index data record of connection {conn_id}, which no connection "
+                                     "record declares")
+        count = record.number("count")
+        if count * 12 != len(record.data):
+            raise record.place.error(f"an index data record of {count} entries holds {len(record.data)} bytes")
+        entries = np.frombuffer(record.data, dtype=_INDEX_ENTRY, count=count)
+        times = entries["sec"].astype(np.int64) * 1_000_000_000 + entries["nsec"]
+        return ChunkEntries(times, np.full(count, conn_id, dtype=np.uint32), entries["offset"], number)
 
     def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex:
         """Where every readable message lies, by reading every chunk once (payloads are not kept).
@@ -439,108 +619,74 @@ class BagReader(ChunkedFile):
         ``progress(bytes_read)`` is called after each chunk.
         """
         self.chunk_table = []
+        self._broken = {}
+        self.cache.clear()
         parts: list[ChunkEntries] = []
         loose: list[tuple[int, int, int]] = []
-        for fields, data in self._records(with_chunk_data=True):
-            op = fields.get("op")
-            if op == bytes([OP_CONNECTION]):
-                self._connection(fields, data)
-            elif op == bytes([OP_CHUNK]):
-                kind = fields["compression"].decode()
-                try:
-                    plain = _decompress(kind, data)
-                except Exception as exc:
-                    self.truncated = f"a chunk does not decompress ({exc})"
-                    break
-                number = len(self.chunk_table)
-                self.chunk_table.append((self.file.tell() - len(data), len(data), kind))
-                times, conn_ids, offsets = [], [], []
-                for conn_id, t, offset in self._chunk_entries(plain):
-                    times.append(t)
-                    conn_ids.append(conn_id)
-                    offsets.append(offset)
-                parts.append(ChunkEntries(times, conn_ids, offsets, number))
-                if progress is not None:
-                    progress(self.file.tell())
-            elif op == bytes([OP_MSG_DATA]):
-                conn_id = _U32.unpack(fields["conn"])[0]
-                if conn_id in self.connections:
-                    loose.append((_time_ns(fields["time"]), conn_id, self.record_at))
+        for record in self._records(with_chunk_data=True):
+            try:
+                if record.op == OP_CONNECTION:
+                    self._connection(record)
+                elif record.op == OP_CHUNK:
+                    entries = list(self._chunk_entries(self._plain(record), record.at))
+                    parts.append(ChunkEntries([t for _, t, _ in entries], [c for c, _, _ in entries],
+                                              [o for _, _, o in entries], len(self.chunk_table)))
+                    self.chunk_table.append(self._chunk_place(record))
+                    if progress is not None:
+                        progress(self.file.tell())
+                elif record.op == OP_MSG_DATA:
+                    conn, t = self._message(record)
+                    loose.append((t, conn.id, record.at))
+            except MalformedRecord as exc:
+                self._stop(exc)
+                break
         if loose:
             parts.append(ChunkEntries([t for t, _, _ in loose], [c for _, c, _ in loose],
                                       [o for _, _, o in loose], NO_CHUNK))
         return FileIndex.build(parts, from_file_index=False)
 
-    def _chunk_entries(self, plain: bytes) -> Iterator[tuple[int, int, int]]:
-        """``(conn_id, time_ns, offset)`` of each message record in a decompressed chunk; connection
-        records are taken in on the way."""
-        view = memoryview(plain)
-        pos, end = 0, len(plain)
-        while pos + 4 <= end:
-            at = pos
-            (hlen,) = _U32.unpack_from(view, pos)
-            fields = parse_header(view[pos + 4:pos + 4 + hlen])
-            pos += 4 + hlen
-            (dlen,) = _U32.unpack_from(view, pos)
-            pos += 4 + dlen
-            op = fields.get("op")
-            if op == bytes([OP_CONNECTION]):
-                self._connection(fields, plain[pos - dlen:pos])
-            elif op == bytes([OP_MSG_DATA]):
-                yield _U32.unpack(fields["conn"])[0], _time_ns(fields["time"]), at
-
-    def _decompress_chunk(self, kind: str, data: bytes) -> bytes:
-        return _decompress(kind, data)
-
     def payload(self, chunk: int, offset: int) -> bytes:
         """The serialised message whose record starts at ``offset`` of chunk ``chunk`` (or of the file,
-        for a message outside any chunk), as a :class:`FileIndex` locates it."""
+        for a message outside any chunk), as a :class:`FileIndex` locates it; MalformedRecord when no record
+        fits there."""
         if chunk == NO_CHUNK:
             self.file.seek(offset)
-            return self._read_record()[1]
+            try:
+                record = self._read_record()
+            except EOFError:
+                raise MalformedRecord(self.path, offset, "the index places a message past the end of the file") \
+                    from None
+            if record.op != OP_MSG_DATA:
+                raise record.place.error("the index places a message here")
+            return bytes(record.data)
         plain = self.cache.get(chunk)
-        (hlen,) = _U32.unpack_from(plain, offset)
-        pos = offset + 4 + hlen
-        (dlen,) = _U32.unpack_from(plain, pos)
-        return plain[pos + 4:pos + 4 + dlen]
+        end = len(plain)
+        if 0 <= offset <= end - 8:
+            data_at = offset + 8 + _U32.unpack_from(plain, offset)[0]
+            if data_at <= end:
+                (dlen,) = _U32.unpack_from(plain, data_at - 4)
+                if dlen <= end - data_at:
+                    return plain[data_at:data_at + dlen]
+        raise MalformedRecord(self.path, self.chunk_table[chunk].record_at,
+                              f"the index places a message {offset} bytes into the chunk, where none fits")
 
     def messages(self) -> Iterator[tuple[Connection, int, bytes]]:
         """``(connection, time_ns, data)`` in file order, up to the last complete chunk."""
-        for fields, data in self._records(with_chunk_data=True):
-            op = fields.get("op")
-            if op == bytes([OP_CONNECTION]):
-                self._connection(fields, data)
-            elif op == bytes([OP_CHUNK]):
-                try:
-                    plain = _decompress(fields["compression"].decode(), data)
-                except BagError:
-                    raise
-                except Exception as exc:
-                    self.truncated = f"a chunk does not decompress ({exc})"
-                    return
-                yield from self._chunk_messages(plain)
-            elif op == bytes([OP_MSG_DATA]):
-                conn = self.connections.get(_U32.unpack(fields["conn"])[0])
-                if conn is not None:
-                    yield conn, _time_ns(fields["time"]), data
-
-    def _chunk_messages(self, plain: bytes) -> Iterator[tuple[Connection, int, bytes]]:
-        view = memoryview(plain)
-        pos, end = 0, len(plain)
-        while pos + 4 <= end:
-            (hlen,) = _U32.unpack_from(view, pos)
-            fields = parse_header(view[pos + 4:pos + 4 + hlen])
-            pos += 4 + hlen
-            (dlen,) = _U32.unpack_from(view, pos)
-            pos += 4
-            data = plain[pos:pos + dlen]
-            pos += dlen
-            op = fields.get("op")
-            if op == bytes([OP_CONNECTION]):
-                self._connection(fields, data)
-            elif op == bytes([OP_MSG_DATA]):
-                conn = self.connections[_U32.unpack(fields["conn"])[0]]
-                yield conn, _time_ns(fields["time"]), data
+        for record in self._records(with_chunk_data=True):
+            try:
+                if record.op == OP_CONNECTION:
+                    self._connection(record)
+                elif record.op == OP_CHUNK:
+                    for inner in self._chunk_records(self._plain(record), record.at):
+                        if inner.op == OP_MSG_DATA:
+                            conn, t = self._message(inner)
+                            yield conn, t, bytes(inner.data)
+                elif record.op == OP_MSG_DATA:
+                    conn, t = self._message(record)
+                    yield conn, t, bytes(record.data)
+            except MalformedRecord as exc:
+                self._stop(exc)
+                return
 
     def summary(self) -> BagSummary:
         """Counts and times from the index records, without decompressing any chunk.
@@ -552,34 +698,32 @@ class BagReader(ChunkedFile):
         index_counts: dict[int, int] = {}
         chunk_spans: list[list[int]] = []
         chunk_infos: list[tuple[int, int, dict[int, int]]] = []
-        for fields, data in self._records(with_chunk_data=False):
-            op = fields.get("op")
-            if op == bytes([OP_CONNECTION]):
-                self._connection(fields, data)
-            elif op == bytes([OP_CHUNK]):
-                size = fields.get("size", b"")
-                summary.add_chunk(fields.get("compression", b"none").decode(),
-                                  _U32.unpack(size)[0] if len(size) == 4 else self.last_data_length,
-                                  self.last_data_length)
-                chunk_spans.append([])
-            elif op == bytes([OP_INDEX_DATA]):
-                conn_id = _U32.unpack(fields["conn"])[0]
-                count = _U32.unpack(fields["count"])[0]
-                index_counts[conn_id] = index_counts.get(conn_id, 0) + count
-                if count and len(data) >= 12 and chunk_spans:
-                    import numpy as np
+        for record in self._records(with_chunk_data=False):
+            try:
+                if record.op == OP_CONNECTION:
+                    self._connection(record)
+                elif record.op == OP_CHUNK:
+                    place = self._chunk_place(record)
+                    summary.add_chunk(place.compression, place.plain_size, place.stored)
+                    chunk_spans.append([])
+                elif record.op == OP_INDEX_DATA:
+                    conn_id, count = record.number("conn"), record.number("count")
+                    index_counts[conn_id] = index_counts.get(conn_id, 0) + count
+                    if count and len(record.data) >= 12 and chunk_spans:
+                        import numpy as np
 
-                    entries = np.frombuffer(data, dtype=_INDEX_ENTRY, count=min(count, len(data) // 12))
-                    stamps = entries["sec"].astype(np.int64) * 1_000_000_000 + entries["nsec"]
-                    chunk_spans[-1].extend((int(stamps.min()), int(stamps.max())))
-            elif op == bytes([OP_CHUNK_INFO]):
-                try:
-                    chunk_infos.append(_chunk_info(fields, data))
-                except (KeyError, struct.error):
-                    self.truncated = "a chunk info record is malformed"
+                        entries = np.frombuffer(record.data, dtype=_INDEX_ENTRY,
+                                                count=min(count, len(record.data) // 12))
+                        stamps = entries["sec"].astype(np.int64) * 1_000_000_000 + entries["nsec"]
+                        chunk_spans[-1].extend((int(stamps.min()), int(stamps.max())))
+                elif record.op == OP_CHUNK_INFO:
+                    chunk_infos.append(_chunk_info(record))
+            except MalformedRecord as exc:
+                self._stop(exc)
+                break
         if not self.closed_properly:
             # connection records live inside chunks: read them from the chunks' data
-            for conn, _t, _d in self.messages():
+            for _conn, _t, _d in self.messages():
                 pass
         summary.connections = list(self.connections.values())
         spans = [(min(s), max(s)) for s in chunk_spans if s]
@@ -598,8 +742,11 @@ class BagReader(ChunkedFile):
         return summary
 
 
-def _chunk_info(fields: dict[str, bytes], data: bytes) -> tuple[int, int, dict[int, int]]:
+def _chunk_info(record: _Record) -> tuple[int, int, dict[int, int]]:
     """A chunk info record's start and end time and its message count per connection."""
-    count = _U32.unpack(fields["count"])[0]
+    count = record.number("count")
+    if count * 8 != len(record.data):
+        raise record.place.error(f"a chunk info record of {count} connections holds {len(record.data)} bytes")
+    data = record.data
     counts = {_U32.unpack_from(data, 8 * i)[0]: _U32.unpack_from(data, 8 * i + 4)[0] for i in range(count)}
-    return _time_ns(fields["start_time"]), _time_ns(fields["end_time"]), counts
+    return record.time("start_time"), record.time("end_time"), counts

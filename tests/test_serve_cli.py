@@ -114,15 +114,18 @@ def test_urls_and_the_ssh_line() -> None:
     assert public_url("192.0.2.7", 9000) == "http://192.0.2.7:9000"
     assert public_url("::1", 8000) == "http://localhost:8000"
     assert public_url("0.0.0.0", 8000) == f"http://{socket.gethostname()}:8000"
-    local = announcement("graph", "127.0.0.1", 8001, "http://localhost:8001")
-    assert local[0].startswith("rostui serve: graph at http://localhost:8001 ")
-    assert local[1] == (f"From another machine: ssh -L 8001:localhost:8001 {socket.gethostname()}, "
-                        "then open http://localhost:8001 there")
-    tunnel = announcement("graph", "127.0.0.1", 8001, "http://localhost:9000")
-    assert tunnel[1].startswith("From another machine: ssh -L 9000:localhost:8001 ")
-    assert tunnel[1].endswith(", then open http://localhost:9000 there")
-    shared = announcement("graph", "0.0.0.0", 8001, "http://robot:8001")
-    assert "there is no password" in shared[1]
+    local = announcement("graph", "127.0.0.1", 8001, "http://localhost:8001", "TOKEN", 8)
+    assert local[0] == "rostui serve: graph listening on 127.0.0.1:8001; open http://localhost:8001/?token=TOKEN"
+    assert local[1].startswith("The token is required: a page or websocket without it is refused. ")
+    assert "(at most 8: --max-sessions)" in local[1]
+    assert local[2] == (f"From another machine: ssh -L 8001:localhost:8001 {socket.gethostname()}, "
+                        "then open http://localhost:8001/?token=TOKEN there")
+    tunnel = announcement("graph", "127.0.0.1", 8001, "http://localhost:9000", "TOKEN", 8)
+    assert tunnel[2].startswith("From another machine: ssh -L 9000:localhost:8001 ")
+    assert tunnel[2].endswith(", then open http://localhost:9000/?token=TOKEN there")
+    shared = announcement("graph", "0.0.0.0", 8001, "http://robot:8001", "TOKEN", 8)
+    assert shared[0].startswith("rostui serve: graph listening on 0.0.0.0:8001; ")
+    assert "has the token can use the app" in shared[2]
 
 
 def test_shutdown_ends_an_app_that_ignores_sigterm() -> None:
@@ -130,7 +133,7 @@ def test_shutdown_ends_an_app_that_ignores_sigterm() -> None:
     program = textwrap.dedent("""
         import asyncio, sys
         import psutil
-        from rostui.apps.web_server import end_children
+        from rostui.apps.serve.server import end_children
 
         STUBBORN = ("import signal, time; signal.signal(signal.SIGTERM, signal.SIG_IGN); "
                     "print(1, flush=True); time.sleep(60)")

@@ -1,12 +1,13 @@
 """`rostui serve APP [ARGS]`: one of the terminal apps in a web browser, through textual-serve.
 
-textual-serve (the optional extra ``rostui[web]``, wrapped by
-rostui/apps/web_server.py, which only this command imports) runs a small web
+textual-serve (the optional extra ``rostui[web]``, wrapped by the package
+rostui/apps/serve/, which only this command imports) runs a small web
 server; each browser tab that opens it starts its own copy of the app as
 ``python -m rostui APP ARGS`` with this environment (so the same
 ``ROS_MASTER_URI``), drawn by Textual's web driver into xterm.js in the page.
-The app and its arguments are checked here, before anything listens, so a
-typo is one line in this terminal rather than an empty page.
+Only a browser holding the token printed here gets in.  The app and its
+arguments are checked here, before anything listens, so a typo is one line in
+this terminal rather than an empty page.
 """
 
 from __future__ import annotations
@@ -16,17 +17,22 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import typer
 
+from rostui.apps.serve.access import EVERYWHERE, LOOPBACK_NAMES as LOOPBACK
+
 #: The apps `rostui serve` runs, as a user names them.
 APPS = ("graph", "console", "loggers", "monitor", "bag view", "turtlesim", "launch --tui")
 
 #: Port textual-serve (and `textual serve`) listen on by default.
 DEFAULT_PORT = 8000
 
-#: Addresses that only this machine can reach.
-LOOPBACK = frozenset({"127.0.0.1", "localhost", "::1"})
+#: Tabs open at once unless --max-sessions says otherwise (each runs its own app, 50-150 MB).
+DEFAULT_MAX_SESSIONS = 8
 
-#: Addresses that mean every interface of this machine.
-EVERYWHERE = frozenset({"0.0.0.0", "::", ""})
+#: Seconds a viewing app has to quit when its tab closes, before SIGTERM and SIGKILL.
+VIEWER_QUIT_GRACE = 2.0
+
+#: Seconds a recording bag view has to finish its file when its tab closes.
+RECORDER_QUIT_GRACE = 10.0
 
 SERVE_CONTEXT = {
     "help_option_names": ["-h", "--help"],
@@ -70,10 +76,11 @@ def _parse(ctx: typer.Context, path: List[str], args: List[str]) -> Tuple[Dict[s
         raise NotAnApp(f"{' '.join(path)}: {explain()}") from None
 
 
-def check_app(ctx: typer.Context, words: List[str]) -> None:
+def check_app(ctx: typer.Context, words: List[str]) -> float:
     """Refuse (:class:`NotAnApp`) words that do not open an app: another command, a bad option, a form that prints.
 
-    The app's own options are parsed by its command without running it.
+    The app's own options are parsed by its command without running it.  Returns the seconds the app
+    needs to quit when its tab closes (a launch gets what its own options give its nodes).
     """
     path = _app_path(words)
     name = " ".join(path)
@@ -90,6 +97,9 @@ def check_app(ctx: typer.Context, words: List[str]) -> None:
     recording = params.get("record") or params.get("all_topics") or params.get("regex")
     if path == ["bag", "view"] and not params.get("args") and not recording:
         raise NotAnApp("bag view needs a bag: rostui serve bag view FILE ... (or --record TOPIC ...)")
+    if path == ["launch"]:
+        return float(params.get("sigint_timeout") or 0) + float(params.get("sigterm_timeout") or 0) + 3.0
+    return RECORDER_QUIT_GRACE if path == ["bag", "view"] and recording else VIEWER_QUIT_GRACE
 
 
 def _check_launch(params: Dict[str, Any], extra: List[str]) -> None:
@@ -119,19 +129,24 @@ def public_url(host: str, port: int) -> str:
     return f"http://{name}:{port}"
 
 
-def announcement(app: str, host: str, port: int, url: str) -> List[str]:
-    """The lines printed once the server listens: where to open it, and how to reach it from elsewhere."""
+def announcement(app: str, host: str, port: int, url: str, token: str, max_sessions: int) -> List[str]:
+    """The lines printed once the server listens: where, the address with its token, how to reach it from elsewhere."""
     import socket
 
     from urllib.parse import urlsplit
 
-    lines = [f"rostui serve: {app} at {url} (each browser tab runs its own copy; Ctrl-C stops the server)"]
+    opened = f"{url}/?token={token}"
+    listening = f"[{host}]:{port}" if ":" in host else f"{host or '*'}:{port}"
+    lines = [f"rostui serve: {app} listening on {listening}; open {opened}",
+             f"The token is required: a page or websocket without it is refused. Each browser tab runs its own copy "
+             f"(at most {max_sessions}: --max-sessions); Ctrl-C stops the server."]
     if host in LOOPBACK:
         near = urlsplit(url).port or port
         lines.append(f"From another machine: ssh -L {near}:localhost:{port} {socket.gethostname()}, "
-                     f"then open {url} there")
+                     f"then open {opened} there")
     else:
-        lines.append(f"Anyone who can reach {host or '*'}:{port} can use the app: there is no password")
+        lines.append(f"Anyone who can reach {listening} and has the token can use the app; plain http carries "
+                     "the token in the clear")
     return lines
 
 
@@ -161,6 +176,8 @@ def serve_command(
     url: Optional[str] = typer.Option(None, "--public-url", metavar="URL",
                                       help="The address browsers open, when not http://HOST:PORT "
                                            "(a tunnel to another port, a proxy)."),
+    max_sessions: int = typer.Option(DEFAULT_MAX_SESSIONS, "--max-sessions", metavar="N",
+                                     help="Tabs open at once (each runs its own app); more are refused."),
 ) -> None:
     """Serve a terminal app to web browsers: graph, console, loggers, monitor, bag view, turtlesim, launch --tui.
 
@@ -168,8 +185,10 @@ def serve_command(
     copy with this terminal's environment (ROS_MASTER_URI too).  Options of serve
     go before the app: `rostui serve --port 8080 bag view run.bag`.
 
-    Listens on 127.0.0.1:8000, this machine only.  From a laptop:
-    `ssh -L 8000:localhost:8000 ROBOT`, then open http://localhost:8000.
+    Listens on 127.0.0.1:8000, this machine only, and prints the address to open with
+    its token (http://localhost:8000/?token=...): a page or websocket without the token,
+    or from another site, is refused.  From a laptop: `ssh -L 8000:localhost:8000 ROBOT`,
+    then open that address.
 
     Needs the web extra: pip install 'rostui\\[web]'.
     """
@@ -177,22 +196,27 @@ def serve_command(
 
     words: List[str] = list(ctx.args)
     try:
-        check_app(ctx, words)
+        quit_grace = check_app(ctx, words)
     except NotAnApp as exc:
         fail(f"rostui serve: {exc}")
     if not 0 < port < 65536:
         fail(f"rostui serve: --port must be 1-65535, not {port}")
+    if max_sessions < 1:
+        fail(f"rostui serve: --max-sessions must be 1 or more, not {max_sessions}")
     try:
-        from rostui.apps.web_server import AppServer
+        from rostui.apps.serve.access import Access
+        from rostui.apps.serve.server import AppServer
     except ImportError as exc:
         fail(f"rostui serve: the web extra is missing ({exc}): pip install 'rostui[web]'")
     taken = _port_taken(host, port)
     if taken is not None:
         fail(f"rostui serve: {taken}")
     app = " ".join(words)
-    address = url or public_url(host, port)
+    address = (url or public_url(host, port)).rstrip("/")
+    access = Access.for_server(host, port, address)
     server = AppServer([sys.executable, "-m", "rostui", *words], host=host, port=port, public_url=address,
-                       title=f"rostui {app}", announce=announcement(app, host, port, address))
+                       title=f"rostui {app}", access=access, max_sessions=max_sessions, quit_grace=quit_grace,
+                       announce=announcement(app, host, port, address, access.token, max_sessions))
     try:
         server.serve()
     except OSError as exc:

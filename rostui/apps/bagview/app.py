@@ -138,6 +138,7 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         self.bag_clock = BagClock(clock_hz) if publish_clock else None
         self.index: BagIndex | None = None
         self.transport: Transport | None = None
+        self.source: IndexSource | None = None
         self.node: Any = None
         self.publishers: dict[tuple[str, str], Any] = {}
         self.link = "" if publish else "browsing only"
@@ -191,7 +192,8 @@ class BagViewApp(ReleasesOnExit, KeysApp):
 
     def _bag_ready(self, index: BagIndex) -> None:
         self.index = index
-        self.transport = Transport(IndexSource(index), self._publish, start_ns=index.start_ns, end_ns=index.end_ns,
+        self.source = IndexSource(index)
+        self.transport = Transport(self.source, self._publish, start_ns=index.start_ns, end_ns=index.end_ns,
                                    rate=self.rate, loop=self.loop_play, paused=not self.start_playing,
                                    hold_at_end=True, accepts=self._accepts, clock=self.clock,
                                    on_tick=self._on_tick if self.bag_clock else None,
@@ -265,7 +267,8 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         self.timeline.show(bag_ns, self.selected, transport.disabled)
         self.status.update(play_status(paused=transport.paused, at_end=transport.at_end, rate=transport.rate,
                                        loop=transport.loop, bag_ns=bag_ns, start_ns=index.start_ns,
-                                       end_ns=index.end_ns, published=transport.published if self.node else -1))
+                                       end_ns=index.end_ns, published=transport.published if self.node else -1,
+                                       problem=self.source.problem if self.source is not None else ""))
         header = header_text(self.names, index, self.link)
         if header.plain != self._header_shown:
             self._header_shown = header.plain
@@ -285,7 +288,13 @@ class BagViewApp(ReleasesOnExit, KeysApp):
             self.inspector_text.update("")
             self.inspector_view.clear()
             return
-        conn, t, data = self.index.item(position)
+        try:
+            conn, t, data = self.index.item(position)
+        except BagError as exc:  # a damaged chunk, or a record the index misplaces
+            self.inspector_title.update(_escape(topic))
+            self.inspector_text.update(f"[b]{_escape(str(exc))}[/b]")
+            self.inspector_view.clear()
+            return
         track = self.index.tracks[topic]
         number = self.index.number_in_track(topic, position)
         self.inspector_title.update(_escape(f"{topic}  {conn.type}  #{number} of {track.count}  bag {t / 1e9:.6f}  "

@@ -41,14 +41,17 @@ def header_text(names: list[str], index: BagIndex | None, link: str = "") -> Tex
 
 
 def play_status(*, paused: bool, at_end: bool, rate: float, loop: bool, bag_ns: int, start_ns: int, end_ns: int,
-                published: int) -> Text:
+                published: int, problem: str = "") -> Text:
     """``▶ PLAYING ×1 loop │ bag 1700000001.230000 │ 2023-11-14 22:13:21.230 │ +1.230 / 2.000 s 61% │ published 7``;
-    ``published`` below 0 leaves the count out (nothing is published)."""
+    ``published`` below 0 leaves the count out (nothing is published); a ``problem`` (the line of a message
+    that could not be read) comes right after the state, where a narrow terminal still shows it."""
     state = "■ END" if paused and at_end else "❚❚ PAUSED" if paused else "▶ PLAYING"
     text = Text(f" {state} ", style="bold reverse")
     text.append(f" ×{rate:g}")
     if loop:
         text.append(" loop", style="bold")
+    if problem:
+        text.append(f" │ ⚠ {problem}", style="bold yellow")
     span = max(end_ns - start_ns, 0)
     pct = 100.0 * (bag_ns - start_ns) / span if span else 0.0
     text.append(f" │ bag {bag_ns / 1e9:.6f} │ {wall_text(bag_ns)} │ +{(bag_ns - start_ns) / 1e9:.3f} / "

@@ -220,20 +220,30 @@ def _gather_tracks(index: BagIndex) -> None:
 
 
 class IndexSource:
-    """A :class:`~rostui.core.bag.transport.MessageSource` over a :class:`BagIndex`: seeks both ways at once."""
+    """A :class:`~rostui.core.bag.transport.MessageSource` over a :class:`BagIndex`: seeks both ways at once.
+
+    A message that cannot be read (a damaged chunk, a record the index misplaces) is passed over, and
+    :attr:`problem` keeps the error line of the last one, for the screen to show.
+    """
 
     def __init__(self, index: BagIndex) -> None:
         self.index = index
         self.position = 0
+        self.problem = ""
+        """The one-line error of the last message that could not be read ('' while none)."""
         self._read: tuple[int, MessageItem] | None = None
 
     def peek(self) -> MessageItem | None:
-        """The message at the read position, or None at the end."""
-        if self.position >= len(self.index):
-            return None
-        if self._read is None or self._read[0] != self.position:
-            self._read = (self.position, self.index.item(self.position))
-        return self._read[1]
+        """The message at the read position (past any that cannot be read), or None at the end."""
+        while self.position < len(self.index):
+            if self._read is not None and self._read[0] == self.position:
+                return self._read[1]
+            try:
+                self._read = (self.position, self.index.item(self.position))
+            except BagError as exc:
+                self.problem = str(exc)
+                self.position += 1
+        return None
 
     def advance(self) -> None:
         """Move past the message at the read position."""

@@ -62,9 +62,11 @@ async def advertise_connections(node: Any, conns: Sequence[Connection], queue_si
     connection of the topic was); returns the publishers by ``(topic, md5sum)``.
 
     A topic recorded with two types is published with the first. A connection recorded without a type
-    (an MCAP channel with no schema) cannot be advertised: it is skipped, and ``warn`` says so once a topic.
+    (an MCAP channel with no schema), or with a name or type the node or the master refuses (a ROS 2 type in
+    an MCAP file), cannot be advertised: it is skipped, and ``warn`` says so once a topic.
     """
     from rostui.core.node import AnyMsg
+    from rostui.core.node.node import MasterRefusedError
     from rostui.core.node.topics import TopicType
 
     latched = {c.topic for c in conns if c.latching}
@@ -83,8 +85,10 @@ async def advertise_connections(node: Any, conns: Sequence[Connection], queue_si
         try:
             publishers[key] = await node.advertise(conn.topic, AnyMsg, queue_size=queue_size,
                                                    latch=conn.topic in latched, topic_type=ttype)
-        except ValueError:
-            continue
+        except (ValueError, MasterRefusedError) as exc:
+            if warn is not None and conn.topic not in untyped:
+                warn(f"{conn.topic} ({conn.type}) cannot be advertised ({exc}): it is not played")
+            untyped.add(conn.topic)
     return publishers
 
 
@@ -270,18 +274,13 @@ def _stderr_line(text: str) -> None:
     print(text, file=sys.stderr, flush=True)
 
 
-async def play(opts: PlayOptions, argv: Sequence[str] = (), *, status: Callable[[str], None] | None = None,
-               warn: Callable[[str], None] = _stderr_line) -> PlayStats:
-    """Open the files, start a ``play_...`` node and play; Ctrl-C stops. ``warn`` gets one line per file
-    that cannot play in time order."""
-    from rostui.core.node import AsyncNode, MasterUnreachableError
-
-    if not opts.files:
-        raise BagError("no bag file given")
+def open_bags(paths: Sequence[str], warn: Callable[[str], None]) -> tuple[list[Reader], list[BagSummary]]:
+    """Open each bag to play and read its summary; ``warn`` gets one line per file that cannot play in time
+    order. BagError (every file closed) for a file that cannot be read or holds no messages."""
     readers: list[Reader] = []
     summaries: list[BagSummary] = []
     try:
-        for path in opts.files:
+        for path in paths:
             reader = open_reader(path)
             readers.append(reader)
             summary = reader.summary()
@@ -292,6 +291,23 @@ async def play(opts: PlayOptions, argv: Sequence[str] = (), *, status: Callable[
             notice = unordered_notice(reader)
             if notice:
                 warn(notice)
+    except BaseException:
+        for reader in readers:
+            reader.close()
+        raise
+    return readers, summaries
+
+
+async def play(opts: PlayOptions, argv: Sequence[str] = (), *, status: Callable[[str], None] | None = None,
+               warn: Callable[[str], None] = _stderr_line) -> PlayStats:
+    """Open the files, start a ``play_...`` node and play; Ctrl-C stops. ``warn`` gets one line per file
+    that cannot play in time order."""
+    from rostui.core.node import AsyncNode, MasterUnreachableError
+
+    if not opts.files:
+        raise BagError("no bag file given")
+    readers, summaries = open_bags(opts.files, warn)
+    try:
         node = AsyncNode("play", anonymous=True, argv=list(argv))
         try:
             await node.start()
@@ -305,8 +321,10 @@ async def play(opts: PlayOptions, argv: Sequence[str] = (), *, status: Callable[
                 loop.add_signal_handler(sig, player.stop.set)
             node.shutdown_hooks.append(lambda _reason: player.stop.set())
             keys.open(loop)
-            stats = await player.run()
-            await _drain(node, 2.0)
+            try:
+                stats = await player.run()
+            finally:  # what was published before a damaged record still reaches its subscribers
+                await _drain(node, 2.0)
             return stats
         finally:
             keys.close(loop)

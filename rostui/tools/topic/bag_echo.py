@@ -25,7 +25,7 @@ def echo_bag(path: str, topic: str | None, formatter: EchoFormatter, out: Out) -
     """
     from rostui.core.bag.files import merged_messages, open_reader
     from rostui.core.bag.decode import Decoder
-    from rostui.core.bag.model import BagError
+    from rostui.core.bag.model import BagError, MalformedRecord
 
     if not os.path.exists(path):
         raise TopicToolError(f"bag file [{path}] does not exist")
@@ -50,6 +50,8 @@ def echo_bag(path: str, topic: str | None, formatter: EchoFormatter, out: Out) -
                 out(text)
             if formatter.done:
                 break
+    except MalformedRecord as exc:  # its line names the file and the byte
+        raise TopicToolError(str(exc)) from None
     except BagError as exc:
         raise TopicToolError(f"{path}: {exc}") from None
     finally:

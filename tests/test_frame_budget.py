@@ -8,7 +8,7 @@ import time
 
 import pytest
 
-from rostui.models.frame_budget import FrameBudget
+from rostui.models.frame_budget import FrameBudget, SharedCost
 
 
 class Clocks:
@@ -106,3 +106,35 @@ def test_share_must_be_a_fraction_of_a_core() -> None:
         FrameBudget(0)
     with pytest.raises(ValueError):
         FrameBudget(1.5)
+
+
+def test_what_no_panel_accounts_for_is_shared_by_the_panels_drawing() -> None:
+    """Composing and writing the screen is nobody's frame: one panel alone pays all of it (the viewer as a whole
+    stays within the share, as when the process's CPU was charged), two drawing panels half each, an idle
+    panel none; each panel's own frames stay its own."""
+    clocks = Clocks()
+    process = [0.0]
+    shared = SharedCost(cpu=lambda: process[0])
+    camera, heavy, idle = (FrameBudget(0.45, wall=lambda: clocks.wall, cpu=lambda: clocks.cpu, shared=shared)
+                           for _ in range(3))
+
+    def frame(budget: FrameBudget, own: float, screen: float) -> None:
+        with budget.spending():
+            clocks.cpu += own
+            process[0] += own
+        process[0] += screen  # Textual composing and writing afterwards: charged to no panel by itself
+
+    clocks.wall = 1.0
+    frame(camera, 0.002, 0.010)
+    assert camera.balance() == pytest.approx(0.45 * 0.5 - 0.012)  # alone: the whole viewer's cost
+    clocks.wall = 1.1
+    frame(camera, 0.002, 0.010)
+    frame(heavy, 0.300, 0.010)
+    before = {id(b): b.balance() for b in (camera, heavy, idle)}
+    clocks.wall = 1.2
+    frame(heavy, 0.300, 0.020)
+    camera.balance()
+    earned = 0.1 * 0.45
+    assert heavy.balance() == pytest.approx(min(before[id(heavy)] + earned, 0.225) - 0.300 - 0.010)
+    assert camera.balance() == pytest.approx(min(before[id(camera)] + earned, 0.225) - 0.010)
+    assert idle.balance() == pytest.approx(min(before[id(idle)] + earned, 0.225))

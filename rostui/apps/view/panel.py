@@ -8,9 +8,10 @@ newest message, decodes it (lazily: numeric arrays stay numpy views over the
 received bytes, :mod:`rostui.models.sensors.lazy_msg`) and hands it to the
 view, so frames that came while the screen was busy are dropped, not queued.
 Each panel's :class:`~rostui.models.frame_budget.FrameBudget` is charged the
-CPU its own deliveries take and spaces them so the panel stays within its
-share of a core however fast or heavy its frames come; a heavy topic drops
-its own frames, never its neighbours'.  A type no view shows
+CPU its own deliveries take (and its part of what the grid's screen and node
+cost besides) and spaces them so the panel stays within its share of a core
+however fast or heavy its frames come; a heavy topic drops its own frames,
+never its neighbours'.  A type no view shows
 is one line in the panel naming the types that can be shown.
 
 A view class with ``SHARED = True`` (the top-down view) draws several topics
@@ -36,7 +37,7 @@ from textual.widgets import Static
 from rostui.apps.view.feed import TopicFeed
 from rostui.apps.view.registry import TopicView, UnknownViewError, view_class
 from rostui.core.node import AsyncNode
-from rostui.models.frame_budget import FrameBudget
+from rostui.models.frame_budget import FrameBudget, SharedCost
 from rostui.models.master_link import MASTER_ERRORS
 
 __all__ = ["ViewPanel", "ViewGrid", "NodeOf", "TypeOf", "decode_for_view"]
@@ -73,14 +74,14 @@ class ViewPanel(Vertical):
     """
 
     def __init__(self, topic: str, *, msg_type: str | None = None,
-                 view_options: Mapping[str, Any] | None = None) -> None:
+                 view_options: Mapping[str, Any] | None = None, shared: SharedCost | None = None) -> None:
         super().__init__(classes="view-panel")
         self.topic = topic
         self.msg_type = msg_type
         self.view_options = dict(view_options or {})
         self.joined = False
         self.view: TopicView | None = None
-        self.budget = FrameBudget()
+        self.budget = FrameBudget(shared=shared)
         self.feed = TopicFeed(topic, self._arrived)
         self.note = Static(classes="view-note")
         self.problem = ""
@@ -228,7 +229,9 @@ class ViewGrid(Container):
         self.topics = list(dict.fromkeys(topics))
         self.node_of = node_of
         self.type_of = type_of
-        self.panels = [ViewPanel(topic, view_options=view_options) for topic in self.topics]
+        self.shared_cost = SharedCost()
+        """What the viewer costs beyond the panels' own frames (composing, writing, receiving), shared out."""
+        self.panels = [ViewPanel(topic, view_options=view_options, shared=self.shared_cost) for topic in self.topics]
         self._checking = False
 
     def compose(self) -> ComposeResult:

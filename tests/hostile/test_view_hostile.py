@@ -183,8 +183,8 @@ def test_a_heavy_topic_drops_its_own_frames_not_its_neighbours(
                 camera_feed, heavy_feed = camera_panel.feed, heavy_panel.feed
                 start = (camera_feed.received.count, camera_feed.dropped, heavy_feed.received.count,
                          heavy_feed.dropped)
-                await until(lambda: camera_feed.received.count >= start[0] + 40
-                            and heavy_feed.received.count >= start[2] + 40, "forty frames of each", timeout=60)
+                await until(lambda: camera_feed.received.count >= start[0] + 30
+                            and heavy_feed.received.count >= start[2] + 30, "thirty frames of each", timeout=60)
                 camera_got = camera_feed.received.count - start[0]
                 camera_dropped = camera_feed.dropped - start[1]
                 heavy_got = heavy_feed.received.count - start[2]

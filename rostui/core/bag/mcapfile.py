@@ -387,7 +387,11 @@ class McapBagReader(ChunkedFile):
         self._md5s: dict[int, str] = {}  # by schema id (0: no schema), for channels without md5sum metadata
         self._scanned_schemas: dict[int, Any] = {}
         """Schema records met while reading chunks: a later chunk's channel may use one an earlier chunk held."""
-        self._summary = self._read_summary()
+        try:
+            self._summary = self._read_summary()
+        except BaseException:
+            self.file.close()
+            raise
 
     def close(self) -> None:
         """Close the file."""

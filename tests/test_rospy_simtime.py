@@ -226,9 +226,11 @@ def test_talker_rate_and_time_follow_a_bag(any_master: str, envs: dict[str, dict
         assert all(BAG_START <= t <= BAG_END + 1 for t in ticking), (side, ticking)
         assert len(ticking) >= 150, (side, len(ticking))
         mean = (ticking[-1] - ticking[0]) / (len(ticking) - 1)
-        assert 0.09 <= mean <= 0.11, (side, mean)
+        # Debian's rospy drops the ticks its process was too starved to take (a Rate more than two periods
+        # late starts again from now), so on a loaded machine its mean period grows; never below the rate.
+        assert 0.09 <= mean <= (0.11 if side == "shim" else float("inf")), (side, mean)
         assert "Traceback" not in started.output(f"talker_{side}")
-    assert abs(len(said["shim"]) - len(said["real"])) <= 5, {side: len(t) for side, t in said.items()}
+    assert len(said["shim"]) >= len(said["real"]) - 5, {side: len(t) for side, t in said.items()}
 
 
 @pytest.mark.parametrize("any_master", ["rostui", "real"], indirect=True)

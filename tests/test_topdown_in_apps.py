@@ -44,8 +44,10 @@ def scan_bag(path: Path) -> Path:
 
 
 def wall_columns(view: TopDownView) -> set[int]:
+    """The canvas columns the scan's wall is drawn in; none while the view has no canvas (being laid out)."""
     vp = view.viewport
-    assert vp is not None
+    if vp is None:
+        return set()
     return {c for r in range(vp.rows) for c in range(vp.cols) if view.cell_topic(c, r) == "/scan"}
 
 

@@ -53,7 +53,8 @@ async def check_drawn(env: dict[str, str]) -> None:
         assert set(TOPICS) | {"/tf", "/tf_static"} <= subscriptions(env)
         await pilot.press("q")
     assert app.return_code == 0
-    assert subscriptions(env) == set()
+    # the unregistrations left on quit; a busy master answers them when it can
+    await until(lambda: subscriptions(env) == set(), lambda: f"the master forgetting {subscriptions(env)}")
 
 
 @sync

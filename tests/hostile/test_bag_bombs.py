@@ -79,7 +79,8 @@ class Run:
 
     def figures(self) -> dict[str, Any]:
         """What :func:`record` keeps of it."""
-        tail = (self.err.strip().splitlines() or self.out.strip().splitlines() or [""])[-1]
+        lines = self.err.strip().splitlines() or self.out.strip().splitlines() or [""]
+        tail = next((line for line in lines if line.startswith(("warning:", "rostui", "ERROR"))), lines[-1])
         return {"exit": "stopped" if self.stopped else self.code, "peak_rss_mb": round(self.peak_mb, 1),
                 "said": tail[:160]}
 

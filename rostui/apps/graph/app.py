@@ -29,7 +29,7 @@ from rostui.apps.graph.widget import GraphView
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.keys import key_line
-from rostui.apps.widgets.lifecycle import ReleasesOnExit
+from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.network import master_uri_from_env
 from rostui.models.graph.hidden import explain_empty
 from rostui.models.graph.labels import EdgeLabels, LabelStyle, edge_labels
@@ -137,7 +137,8 @@ class GraphApp(ReleasesOnExit, KeysApp):
         yield Static(KEYS, id="keys")
 
     def on_mount(self) -> None:
-        """Poll now and every ``period`` seconds."""
+        """Poll now and every ``period`` seconds; quit cleanly on SIGTERM and SIGHUP."""
+        quit_on_signals(self)
         self.query_one("#details-pane").display = False
         self.query_one("#prompt", Input).display = False
         self.query_one("#banner").display = False

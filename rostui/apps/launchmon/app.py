@@ -47,6 +47,8 @@ MAX_LINES_PER_REFRESH = 500
 PANE_LINES = 2000
 #: Seconds a notice (a start, stop or restart done) stays in the status line.
 NOTICE_SECONDS = 5.0
+#: Seconds the launcher has, beyond its nodes' SIGINT and SIGTERM timeouts, to stop after SIGTERM or SIGHUP.
+STOP_MARGIN = 5.0
 #: Colour of each kind of state in the table.
 STATE_STYLES = {
     NodeState.STARTING: "yellow",
@@ -163,12 +165,14 @@ class LaunchMonitorApp(KeysApp):
         yield Static(KEYS, id="keys")
 
     def on_mount(self) -> None:
-        """Start the launch and the refresh timer; Ctrl-C from outside (SIGINT) and SIGTERM quit, SIGHUP too."""
-        quit_on_signals(self)
+        """Start the launch and the refresh timer; Ctrl-C from outside (SIGINT) and SIGTERM quit; SIGHUP stops
+        the launch and leaves (each within the time the launch's nodes are given to stop)."""
+        options = self.supervisor.options
+        quit_on_signals(self, grace=options.sigint_timeout + options.sigterm_timeout + STOP_MARGIN,
+                        on_hangup=self._terminal_gone)
         loop = asyncio.get_running_loop()
         try:
             loop.add_signal_handler(signal.SIGINT, lambda: self.call_later(self.action_quit))
-            loop.add_signal_handler(signal.SIGHUP, self._terminal_gone)
         except (NotImplementedError, RuntimeError, ValueError):
             pass
         self.query_one("#banner", Static).display = False

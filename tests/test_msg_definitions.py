@@ -1,6 +1,8 @@
 """Classes from a peer's or a file's definition: built only once the definition hashes to the md5sum declared
-with it, and never for a type rostui knows itself under another md5sum (rostui's type wins, in ROS's words).
-Also: arrays of a message type with no fields work, as ROS allows (``std_msgs/Empty[]``).
+with it.  From the wire, never for a type rostui knows itself under another md5sum (rostui's type wins, in
+ROS's words); from a bag (``stored``), another version of a type rostui knows is built from the bag's own
+definition, privately, as rosbag reads old bags.  Also: arrays of a message type with no fields work, as ROS
+allows (``std_msgs/Empty[]``).
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from rostui.core.msg import (
     clear_cache,
     connection_class,
     definition_md5,
+    foreign_version,
     get_message_class,
 )
 from rostui.core.msg import received
@@ -49,6 +52,58 @@ def test_a_known_type_under_another_md5_is_refused_in_ros_words() -> None:
         connection_class("sensor_msgs/Image", theirs, IMAGE_WITHOUT_WIDTH, sender="publisher [/liar]")
     assert str(caught.value) == (f"publisher [/liar] has datatype/md5sum [sensor_msgs/Image/{theirs}], "
                                  f"but our version has [sensor_msgs/Image/{image._md5sum}]")
+
+
+#: An older turtlesim/Pose, as a bag recorded before the velocities were added.
+OLD_POSE = "float32 x\nfloat32 y\nfloat32 theta\n"
+
+
+def test_a_bag_of_another_version_of_a_known_type_is_read_with_its_own_definition() -> None:
+    """Before: refused as from the wire ("but our version has"), so old bags could not be read at all."""
+    ours = get_message_class("turtlesim/Pose")
+    md5 = definition_md5("turtlesim/Pose", OLD_POSE)
+    old = connection_class("turtlesim/Pose", md5, OLD_POSE, sender="the connection of /pose", stored=True)
+    assert old is not ours and (old._type, old._md5sum) == ("turtlesim/Pose", md5)
+    msg = old.deserialize(struct.pack("<fff", 1.0, 2.0, 0.5))
+    assert (msg.x, msg.y, msg.theta) == (1.0, 2.0, 0.5) and not hasattr(msg, "linear_velocity")
+    # private: rostui's own type is untouched, and the wire still refuses that version
+    assert get_message_class("turtlesim/Pose") is ours
+    assert connection_class("turtlesim/Pose", ours._md5sum, OLD_POSE, stored=True) is ours
+    with pytest.raises(Md5MismatchError, match="but our version has"):
+        connection_class("turtlesim/Pose", md5, OLD_POSE)
+
+
+def test_a_bags_own_version_nests_rostuis_types_where_their_md5sums_agree() -> None:
+    image = get_message_class("sensor_msgs/Image")
+    theirs = definition_md5("sensor_msgs/Image", IMAGE_WITHOUT_WIDTH)
+    old = connection_class("sensor_msgs/Image", theirs, IMAGE_WITHOUT_WIDTH, stored=True)
+    assert old is not image and "width" not in old.__slots__
+    assert type(old().header) is get_message_class("std_msgs/Header")
+    definition = "sensor_msgs/Image picture\n" + SEP + "MSG: sensor_msgs/Image\n" + IMAGE_WITHOUT_WIDTH
+    holder = connection_class("z/Holder", definition_md5("z/Holder", definition), definition, stored=True)
+    assert holder._field_classes["sensor_msgs/Image"]._md5sum == theirs
+
+
+def test_a_bags_definition_must_still_hash_to_its_md5sum() -> None:
+    image = get_message_class("sensor_msgs/Image")
+    with pytest.raises(DefinitionMismatchError, match="but its definition has md5sum"):
+        connection_class("sensor_msgs/Image", "0" * 32, IMAGE_WITHOUT_WIDTH, stored=True)
+    with pytest.raises(Md5MismatchError, match=f"but our version has \\[sensor_msgs/Image/{image._md5sum}\\]"):
+        connection_class("sensor_msgs/Image", "0" * 32, "", stored=True)  # no definition: nothing to read it with
+    with pytest.raises(DefinitionMismatchError, match="cannot be checked"):
+        connection_class("z/Thing", "*", "int32 a\n", stored=True)
+
+
+def test_a_class_of_another_version_says_so_in_one_line() -> None:
+    image = get_message_class("sensor_msgs/Image")
+    theirs = definition_md5("sensor_msgs/Image", IMAGE_WITHOUT_WIDTH)
+    old = connection_class("sensor_msgs/Image", theirs, IMAGE_WITHOUT_WIDTH, stored=True)
+    assert foreign_version(image) is None and foreign_version(image()) is None
+    assert foreign_version(old()) == (f"sensor_msgs/Image here has md5sum {theirs}, not the one rostui knows "
+                                      f"({image._md5sum})")
+    unknown = connection_class("z/Thing", definition_md5("z/Thing", "int32 a\n"), "int32 a\n")
+    assert foreign_version(unknown) == "z/Thing is not a type rostui knows"
+    assert foreign_version(object()) == "object is not a message"
 
 
 def test_a_type_rostui_knows_nested_in_an_unknown_one_must_be_rostuis_too() -> None:

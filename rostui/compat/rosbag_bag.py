@@ -460,7 +460,8 @@ class Bag:
 
     def _message_class(self, conn: Connection) -> type[Message]:
         """The class of ``conn``'s messages: the script's own when its md5sum is the bag's, else the class the
-        bag's type, md5sum and definition describe, once checked (rostui's own type wins)."""
+        bag's type, md5sum and definition describe, once checked (another version of a type is built from the
+        bag's definition, as rosbag does)."""
         key = (conn.type, conn.md5sum, conn.definition)
         cls = self._classes.get(key)
         if cls is None:
@@ -470,8 +471,8 @@ class Bag:
             else:
                 try:
                     cls = connection_class(conn.type, conn.md5sum, conn.definition,
-                                           sender=f"the connection of {conn.topic}")
-                except MessageError as exc:  # refused: another md5sum than ours, or a definition that lies
+                                           sender=f"the connection of {conn.topic}", stored=True)
+                except MessageError as exc:  # refused: a definition that does not hash to its md5sum, or none
                     raise ROSBagException(f"Error generating datatype {conn.type}: {exc}") from None
             self._classes[key] = cls
         return cls

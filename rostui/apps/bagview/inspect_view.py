@@ -3,16 +3,21 @@
 When the selected message's type has a view (an image...), the view is
 mounted at the top of the inspector, above the message's text, and shown
 that message; another topic or type replaces it, a type without a view
-removes it.
+removes it.  A view draws its type by name, so a message recorded with
+another version of that type (the bag's own definition: another md5sum) is
+not given to it: one line says so and the message is shown as text only.
 """
 
 from __future__ import annotations
 
 from textual.containers import VerticalScroll
+from textual.markup import escape
 from textual.widget import Widget
+from textual.widgets import Static
 
 from rostui.apps.view.registry import TopicView, view_class, viewable
 from rostui.core.bag.model import BagError, Connection
+from rostui.core.msg import foreign_version
 
 __all__ = ["InspectorView", "decode_bag_message"]
 
@@ -28,19 +33,34 @@ def decode_bag_message(conn: Connection, data: bytes) -> object:
 
 
 class InspectorView:
-    """Keeps the view of the inspected message's type in ``inspector`` (before ``before``)."""
+    """Keeps the view of the inspected message's type in ``inspector`` (before ``before``), and the line saying
+    why a message of a viewable type's name is shown as text only (:attr:`note`)."""
 
     def __init__(self, inspector: VerticalScroll, before: Widget) -> None:
         self.inspector = inspector
         self.before = before
         self.view: TopicView | None = None
+        self.note = Static(classes="inspector-note")
+        self.note.display = False
         self._key: tuple[str, str] | None = None
 
     def show(self, topic: str | None, conn: Connection | None, data: bytes, t_ns: int) -> bool:
-        """Show the message in its view; False (and no view) when its type has none."""
+        """Show the message in its view; False (and no view) when its type has none or it is another version of
+        that type than rostui's (then :attr:`note` says so)."""
         if topic is None or conn is None or not viewable(conn.type):
             self.clear()
             return False
+        try:
+            msg = decode_bag_message(conn, data)
+        except BagError:
+            self.clear()
+            raise
+        other = foreign_version(msg)
+        if other is not None:
+            self.clear()
+            self._say(f"{other}: shown as text")
+            return False
+        self._say("")
         if self._key != (topic, conn.type) or self.view is None:
             self.clear()
             self.view = view_class(conn.type).for_bag(topic, classes="inspector-view")
@@ -48,13 +68,20 @@ class InspectorView:
             self.inspector.mount(self.view, before=self.before)
             self._key = (topic, conn.type)
         view = self.view
-        msg = decode_bag_message(conn, data)
         view.call_after_refresh(view.show_message, msg, t_ns / 1e9)
         return True
 
     def clear(self) -> None:
-        """Remove the view."""
+        """Remove the view and the note."""
         if self.view is not None:
             self.view.remove()
         self.view = None
         self._key = None
+        self._say("")
+
+    def _say(self, text: str) -> None:
+        """The note line above the message's text (hidden when empty)."""
+        if text and not self.note.is_attached:
+            self.inspector.mount(self.note, before=self.before)
+        self.note.update(escape(text))
+        self.note.display = bool(text)

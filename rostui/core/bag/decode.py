@@ -1,6 +1,9 @@
 """Messages out of a bag: each connection's bytes deserialised with the class its recorded type, md5sum and
-definition describe, once checked (:func:`rostui.core.msg.connection_class`: rostui's own type wins, and a
-definition is used only when it hashes to the md5sum recorded with it)."""
+definition describe, once checked (:func:`rostui.core.msg.connection_class` with ``stored``): rostui's class when
+the md5sum recorded is rostui's, else a private class built from the bag's own definition, used only when that
+definition hashes to the md5sum recorded with it (a bag of an older or newer version of a type is read as
+rosbag reads it).  Such a message is not rostui's version of its type: ask
+:func:`rostui.core.msg.foreign_version` before reading it as one."""
 
 from __future__ import annotations
 
@@ -17,7 +20,8 @@ def decode_message(conn: Connection, data: bytes) -> Any:
     from rostui.core.msg.spec import shown
 
     try:
-        cls = connection_class(conn.type, conn.md5sum, conn.definition, sender=f"the connection of {shown(conn.topic)}")
+        cls = connection_class(conn.type, conn.md5sum, conn.definition, sender=f"the connection of {shown(conn.topic)}",
+                               stored=True)
         return cls.deserialize(data)
     except Exception as exc:  # a refused definition, or the generated deserialiser's errors on damaged data
         raise BagError(f"cannot decode a {shown(conn.type)} message on {shown(conn.topic)}: {exc}") from None

@@ -4,36 +4,22 @@ Standard ROS 1 MCAP files (written by the ``mcap`` tools, Foxglove, ``mcap-ros1-
 type's full definition in a schema (encoding ``ros1msg``: the type's own text, then a ``MSG: pkg/Type``
 section per nested type) but no md5sum.  ROS 1 needs one to connect a publisher to a subscriber, so it is
 computed here as genmsg does, from the definition alone (never from locally installed types, which may
-differ from what was recorded).
+differ from what was recorded): :func:`rostui.core.msg.definition_md5`, the hash every received definition is
+checked with.
 """
 
 from __future__ import annotations
 
 from functools import lru_cache
 
-from rostui.core.msg import MessageError, MessageSpecError, TypeStore
-from rostui.core.msg.registry import split_definition
+from rostui.core.msg import MessageError, definition_md5
+
+__all__ = ["UNKNOWN_MD5", "ROS1_SCHEMA_ENCODING", "definition_md5", "schema_md5"]
 
 UNKNOWN_MD5 = "*"
 """The md5sum given to a type whose definition cannot be read: ROS's wildcard (see docs/bag.md)."""
 
 ROS1_SCHEMA_ENCODING = "ros1msg"
-
-
-def definition_md5(type_name: str, definition: str) -> str:
-    """The md5sum of ``type_name`` as genmsg computes it from ``definition`` (a full ``message_definition``).
-
-    Raises :class:`MessageError` when the text does not parse or lacks a nested type.
-    """
-    specs = split_definition(type_name, definition)
-    known = {spec.type_name for spec in specs}
-    missing = sorted({dep for spec in specs for dep in spec.dependencies()} - known)
-    if missing:
-        raise MessageSpecError(f"the definition has no 'MSG:' section for {', '.join(missing)}")
-    store = TypeStore(load_from_packages=False)
-    for spec in specs:
-        store.add_spec(spec)
-    return store.md5sum(specs[0].type_name)
 
 
 @lru_cache(maxsize=1024)

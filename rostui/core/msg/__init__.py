@@ -35,7 +35,7 @@ from .registry import (
     list_service_types,
     md5sum,
 )
-from .received import connection_class, definition_md5, reconstruct
+from .received import connection_class, definition_md5, foreign_version, reconstruct, rostui_md5
 from .spec import BUILTIN_TYPES, PRIMITIVE_TYPES, Constant, Field, MsgSpec, SrvSpec, parse_msg_text, parse_srv_text
 
 __all__ = [
@@ -45,7 +45,7 @@ __all__ = [
     "Message", "Service",
     "DEFINITION_SEPARATOR", "TypeStore", "clear_cache", "full_text", "get_message_class",
     "get_message_spec", "get_service_class", "get_service_spec", "list_message_types",
-    "list_service_types", "md5sum", "connection_class", "definition_md5",
+    "list_service_types", "md5sum", "connection_class", "definition_md5", "foreign_version", "rostui_md5",
     "BUILTIN_TYPES", "PRIMITIVE_TYPES", "Constant", "Field", "MsgSpec", "SrvSpec",
     "parse_msg_text", "parse_srv_text",
 ]

@@ -9,9 +9,10 @@ deadline after which the process ends at once (exit status 128 + the signal, as 
   bytecodes however busy the loop is; they hand the quit to the loop, and if the loop has not taken
   it within :data:`LOOP_GRACE` seconds nothing can be cleaned up and the process ends;
 - on a terminal that has hung up (an SSH link dropped, tmux killed) Textual's writer thread can die
-  on the first failed write (EIO) with its queue full, and ``App.exit`` then waits for ever; so the
-  process ends ``grace`` seconds after the signal whatever Textual is doing (the app's own clean-up
-  has run by then, and nothing is left to restore on a vanished screen).
+  on the first failed write (EIO) with its queue full, and ``App.exit`` then waits for ever; so after
+  a hangup an app that releases what it holds (:class:`ReleasesOnExit`) ends as soon as it has, and
+  any app ends ``grace`` seconds after the signal whatever Textual is doing (nothing is left to
+  restore on a vanished screen).
 """
 
 from __future__ import annotations
@@ -68,8 +69,17 @@ class _Ending:
         self.taken.set()
         if signum == signal.SIGHUP and self.on_hangup is not None:
             self.on_hangup()
+        elif signum == signal.SIGHUP and isinstance(self.app, ReleasesOnExit):
+            asyncio.ensure_future(self._release_then_end(self.app, signum))
         else:
             self.app.call_later(self.app.action_quit)
+
+    async def _release_then_end(self, app: ReleasesOnExit, signum: int) -> None:
+        """After a hangup: what the app holds is released (nodes, files), and nothing is left to draw."""
+        try:
+            await app.release_once()
+        finally:
+            os._exit(128 + signum)
 
     def _deadlines(self, signum: int, since: float) -> None:
         if not self.taken.wait(min(LOOP_GRACE, self.grace)):

@@ -246,7 +246,7 @@ def test_a_page_from_another_origin_cannot_open_a_session(console: Served, brows
     finally:
         foreign.close()
     output = console.output()
-    assert "may not use this server (refused GET /ws" in output, output
+    assert "may not use this server (refused 'GET' '/ws' from 127.0.0.1)" in output, output
     assert "Traceback" not in output
 
 

@@ -104,12 +104,15 @@ def test_requests_without_the_token_or_from_another_site_are_refused(served: Ser
         (f"/?token={token}", {"Origin": "http://attacker.example"}),  # another site's page
         (f"/?token={token}", {"Origin": f"http://localhost:{port + 1}"}),  # another port is another site
         (f"/?token={token}", {"Origin": "null"}),
+        ("/%1b]0;owned%07%1b[2J", {"Host": "x" * 5000}),  # escapes and a flood of text for serve's terminal
     ]
     for path, headers in refused:
         status, _headers, body = get(port, path, **headers)
         assert status == 403, (path, headers, status, body)
         assert body.startswith("rostui serve: ") and body.count("\n") == 1, body
         assert token not in body
+    # control characters in a header: refused by aiohttp's parser before any handler
+    assert get(port, f"/?token={token}", Origin="http://\x1b]0;owned\x07.example")[0] == 400
     # another site's page opening the websocket, with the token and with the cookie a user's browser holds
     for tab in (Tab(loop, port, token=token, origin="http://attacker.example"),
                 Tab(loop, port, token=token, host="attacker.example")):
@@ -117,7 +120,7 @@ def test_requests_without_the_token_or_from_another_site_are_refused(served: Ser
     assert len(served.apps()) == 1, "no app started for a refused request"
 
     status, headers, body = get(port, f"/?token={token}&fontsize=14", Host=here)  # as a user opens it
-    assert status == 303 and headers["location"] == "/?fontsize=14", (status, headers)
+    assert status == 303 and headers["location"] == "./?fontsize=14", (status, headers)
     cookie = headers["set-cookie"]
     assert token in cookie and "HttpOnly" in cookie and "SameSite=Strict" in cookie, cookie
     jar = cookie.split(";")[0]
@@ -129,6 +132,7 @@ def test_requests_without_the_token_or_from_another_site_are_refused(served: Ser
     legit.help_round()
     output = served.output()
     assert "refused" in output and "Traceback" not in output, output
+    assert "\x1b" not in output and max(len(line) for line in output.splitlines()) < 400, output
 
 
 def test_a_huge_terminal_is_clamped_beside_a_legitimate_tab(served: Served, loop: Loop, legit: Tab) -> None:

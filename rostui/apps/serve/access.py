@@ -111,12 +111,13 @@ class Access:
         """None when a request with these headers may go on; otherwise why it may not."""
         address = host_and_port(host or "", self.public_scheme)
         if address is None or address not in self.addresses:
-            return Refusal("host", 403, f"rostui serve: Host {host!r} is not this server's address: open the URL serve printed")
+            return Refusal("host", 403,
+                           f"rostui serve: Host {(host or '')[:80]!r} is not this server's address: open the URL serve printed")
         if origin is not None:
             parts = urlsplit(origin)
             source = host_and_port(parts.netloc, parts.scheme) if parts.scheme in ("http", "https") else None
             if source is None or source not in self.addresses:
-                return Refusal("origin", 403, f"rostui serve: a page from {origin[:80]} may not use this server")
+                return Refusal("origin", 403, f"rostui serve: a page from {origin[:80]!r} may not use this server")
         if not (self.token_matches(query_token) or self.token_matches(cookie_token)):
             what = "a wrong token" if query_token or cookie_token else "no token"
             return Refusal("token", 403, f"rostui serve: {what}: open the URL with ?token= that rostui serve printed")

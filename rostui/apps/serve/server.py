@@ -215,8 +215,10 @@ class AppServer(Server):
         if refusal is not None:
             return self._refuse(request, refusal)
         if query_token is not None and request.path == "/":
-            rest = {k: v for k, v in request.query.items() if k != TOKEN_PARAMETER}
-            response: web.StreamResponse = web.HTTPSeeOther(str(request.rel_url.with_query(rest)))
+            rest = request.rel_url.with_query({k: v for k, v in request.query.items() if k != TOKEN_PARAMETER})
+            # relative, so that a proxy serving the page under a path of its own keeps it
+            location = "./" + (f"?{rest.query_string}" if rest.query_string else "")
+            response: web.StreamResponse = web.HTTPSeeOther(location)
             response.set_cookie(self.access.cookie, self.access.token, httponly=True, samesite="Strict", path="/",
                                 secure=self.access.public_scheme == "https")
         else:
@@ -227,8 +229,8 @@ class AppServer(Server):
 
     def _refuse(self, request: web.Request, refusal: Refusal) -> web.Response:
         peer = request.remote or "?"
-        self.notes.say(f"refused {refusal.check}", f"{refusal.reason} (refused {request.method} "
-                                                    f"{request.path[:40]} from {peer})")
+        self.notes.say(f"refused {refusal.check}", f"{refusal.reason} (refused {request.method[:10]!r} "
+                                                    f"{request.path[:40]!r} from {peer})")
         return web.Response(status=refusal.status, text=refusal.reason + "\n", headers=SECURITY_HEADERS)
 
     # -- the page ---------------------------------------------------------------------------------------

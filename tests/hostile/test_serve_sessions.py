@@ -242,17 +242,18 @@ GARBAGE = {
 }
 
 
-@pytest.mark.parametrize("garbage", list(GARBAGE))
-def test_a_message_no_page_sends_ends_that_tab_only(served: Served, loop: Loop, legit: Tab, garbage: str) -> None:
+def test_a_message_no_page_sends_ends_that_tab_only(served: Served, loop: Loop, legit: Tab) -> None:
     others = served.apps()
-    tab = Tab(loop, served.port, token=served.token)
-    assert tab.open()
-    tab.wait_for(SHOWS)
-    app = app_of(served, others)
-    tab.send_text(GARBAGE[garbage])
-    wait_until(tab.closed, "the server to close the tab that sent garbage")
-    assert tab.close_code in (1003, 1008, 1009), (tab.close_code, tab.close_reason)
-    wait_until(lambda: not live([app]), "its app to end")
+    for name, garbage in GARBAGE.items():
+        tab = Tab(loop, served.port, token=served.token)
+        assert tab.open(), name
+        tab.wait_for(SHOWS)
+        app = app_of(served, others)
+        tab.send_text(garbage)
+        wait_until(tab.closed, f"the server to close the tab that sent {name}")
+        assert tab.close_code in (1003, 1008, 1009), (name, tab.close_code, tab.close_reason)
+        wait_until(lambda: not live([app]), f"the app of the tab that sent {name} to end")
+        tab.close()
     legit.help_round()
     output = served.output()
     assert "Traceback" not in output, output

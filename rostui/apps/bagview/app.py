@@ -27,13 +27,13 @@ from textual.containers import VerticalScroll
 from textual.widgets import Input, Static
 
 from rostui.apps.bagview.bars import PLAY_KEYS, header_text, play_status, wall_text
-from rostui.apps.bagview.inspect_view import InspectorView
+from rostui.apps.bagview.inspect_view import InspectorView, inspected_text
 from rostui.apps.bagview.timeline import TimelineView
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.bag.clock import DEFAULT_HZ, BagClock
-from rostui.core.bag.index import BagIndex, IndexSource, load_index, message_yaml
+from rostui.core.bag.index import BagIndex, IndexSource, load_index
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.transport import TICK_PERIOD, Transport
 from rostui.core.node import AnyMsg
@@ -302,7 +302,8 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         try:
             pictured = self.inspector_view.show(topic, conn, data, t)
             noarr = pictured or len(data) > INSPECT_ARRAYS_UP_TO
-            self.inspector_text.update(_escape(message_yaml(conn, data, noarr=noarr)))
+            self.inspector_text.update(_escape(inspected_text(conn, data, noarr=noarr,
+                                                              cut_above=INSPECT_ARRAYS_UP_TO)))
         except BagError as exc:
             self.inspector_text.update(f"[b]{_escape(str(exc))}[/b]")
 

@@ -6,6 +6,12 @@ that message; another topic or type replaces it, a type without a view
 removes it.  A view draws its type by name, so a message recorded with
 another version of that type (the bag's own definition: another md5sum) is
 not given to it: one line says so and the message is shown as text only.
+
+A message of rostui's version of its type is read as `rostui view` reads it
+(:mod:`rostui.models.sensors.lazy_msg`: numeric arrays as views of the
+bag's bytes, arrays of messages read when asked), so a scan of ten million
+ranges is neither turned into ten million floats for its picture nor for
+its text (:func:`inspected_text`: each array cut to its first items).
 """
 
 from __future__ import annotations
@@ -17,9 +23,11 @@ from textual.widgets import Static
 
 from rostui.apps.view.registry import TopicView, view_class, viewable
 from rostui.core.bag.model import BagError, Connection
-from rostui.core.msg import foreign_version
+from rostui.core.msg import MessageError, foreign_version, md5sum
+from rostui.core.msg.spec import shown
+from rostui.models.sensors.lazy_msg import LazyDecodeError, LazyMessage, read_message
 
-__all__ = ["InspectorView", "decode_bag_message"]
+__all__ = ["InspectorView", "decode_bag_message", "inspected_message", "inspected_text"]
 
 #: Fewest lines the picture gets in the inspector.
 MIN_LINES = 6
@@ -30,6 +38,36 @@ def decode_bag_message(conn: Connection, data: bytes) -> object:
     from rostui.core.bag.decode import decode_message
 
     return decode_message(conn, data)
+
+
+def inspected_message(conn: Connection, data: bytes) -> object:
+    """The message as the inspector reads it: lazily when its type is rostui's and recorded with rostui's
+    md5sum, else decoded with the bag's definition (:func:`decode_bag_message`); :class:`BagError` when neither
+    can read it."""
+    try:
+        ours = md5sum(conn.type)
+    except MessageError:
+        ours = None
+    if ours is None or conn.md5sum != ours:
+        return decode_bag_message(conn, data)
+    try:
+        return read_message(conn.type, data)
+    except LazyDecodeError as exc:
+        raise BagError(f"cannot decode a {shown(conn.type)} message on {shown(conn.topic)}: {exc}") from None
+
+
+def inspected_text(conn: Connection, data: bytes, *, noarr: bool, cut_above: int) -> str:
+    """The message's text: as ``rostopic echo`` prints it (``--noarr`` with ``noarr``) up to ``cut_above``
+    bytes; a larger message of rostui's version of its type with each array cut to its first items and its
+    length (:func:`~rostui.models.sensors.lazy_text.lazy_text`).  :class:`BagError` when it cannot be read."""
+    from rostui.core.bag.index import message_yaml
+    from rostui.models.sensors.lazy_text import lazy_text
+
+    if len(data) > cut_above:
+        msg = inspected_message(conn, data)
+        if isinstance(msg, LazyMessage):
+            return lazy_text(msg)
+    return message_yaml(conn, data, noarr=noarr)
 
 
 class InspectorView:
@@ -51,11 +89,11 @@ class InspectorView:
             self.clear()
             return False
         try:
-            msg = decode_bag_message(conn, data)
+            msg = inspected_message(conn, data)
         except BagError:
             self.clear()
             raise
-        other = foreign_version(msg)
+        other = None if isinstance(msg, LazyMessage) else foreign_version(msg)  # lazily read: rostui's version
         if other is not None:
             self.clear()
             self._say(f"{other}: shown as text")

@@ -233,7 +233,9 @@ slave.serve_forever()
 def test_live_publisher_header_is_refused_and_never_run(rostui_core: subprocess.Popen, ros_env: dict[str, str],
                                                          tmp_path: Path) -> None:
     """`rostui topic echo` decodes with each publisher's header: a poisoning definition from one publisher, then
-    another publisher naming the poisoned type, must end in one clear line and no code run."""
+    another publisher naming the poisoned type, must each be refused in one clear line, and no code run."""
+    import signal
+
     definition, later_name = poisoned_definition()
     work = tmp_path / "echo_cwd"
     work.mkdir()
@@ -257,8 +259,12 @@ def test_live_publisher_header_is_refused_and_never_run(rostui_core: subprocess.
         echo = subprocess.Popen([sys.executable, "-m", "rostui", "topic", "echo", "/evil"], env=ros_env, cwd=work,
                                 stdout=out.open("w"), stderr=err.open("w"), stdin=subprocess.DEVNULL)
         try:
-            wait_until(lambda: echo.poll() is not None or "a: 0" in out.read_text(), "echo to decode or refuse")
+            wait_until(lambda: echo.poll() is not None or "a: 0" in out.read_text() or "/poisoner" in err.read_text(),
+                       "echo to decode or refuse the poisoner")
             publisher("/namer", later_name, empty, "0.5")  # its messages come after the poisoner's
+            wait_until(lambda: echo.poll() is not None or "/namer" in err.read_text(), "echo to refuse the namer")
+            assert echo.poll() is None, "one refused publisher ended the echo"
+            echo.send_signal(signal.SIGINT)
             echo.wait(timeout=60)
         finally:
             if echo.poll() is None:
@@ -269,8 +275,8 @@ def test_live_publisher_header_is_refused_and_never_run(rostui_core: subprocess.
             proc.kill()
             proc.wait()
     assert not (work / "pwned").exists(), "the definition's code ran in the subscriber"
-    assert echo.returncode != 0
     lines = err.read_text().strip().splitlines()
-    assert len(lines) == 1, lines
-    assert "cannot decode message on /evil" in lines[0] and "not a valid pkg/Type name" in lines[0]
-    assert "Traceback" not in err.read_text()
+    assert len(lines) == 2 and all(line.startswith("refused a publisher of /evil: ") for line in lines), lines
+    assert "publisher [/poisoner]" in lines[0] and "not a valid pkg/Type name" in lines[0], lines[0]
+    assert "publisher [/namer]" in lines[1] and "not a valid pkg/Type name" in lines[1], lines[1]
+    assert out.read_text() == "" and "Traceback" not in err.read_text()

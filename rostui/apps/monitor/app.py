@@ -263,6 +263,10 @@ class MonitorApp(ReleasesOnExit, KeysApp):
                     else "(no publishers)"
             elif row is not None and row.liveness is Liveness.STALE:
                 note = "✖ stale: no messages lately"
+            refused = self.source.refusals(topic)
+            if refused and not note.startswith("cannot decode"):  # a publisher whose header gives no class
+                said = f"✖ refused {refused[-1]}"
+                note = said if msg is None else f"{note}  {said}".strip()
             tree.show_message(topic, heading, message_tree(msg) if msg is not None else None, note)
         focus = self.focus_topic()
         rates, bandwidths = self.source.history(focus) if focus else ([], [])

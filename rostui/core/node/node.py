@@ -29,6 +29,7 @@ from rostui.core.network import Addressing, connect_host, master_uri_from_env, r
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.busypoll import BusyPoll, busy_poll_for
 from rostui.core.node.logging_link import NodeLogging
+from rostui.core.node.header_check import HeaderCheck
 from rostui.core.node.params import ParamCache
 from rostui.core.node.services import ServiceException, ServiceProxy, ServiceServer, probe_header
 from rostui.core.tcpros import encode_header
@@ -520,8 +521,12 @@ class AsyncNode:
 
     async def subscribe(self, topic: str, msg_class: Any, callback: Callable[..., Any] | None = None, *,
                         callback_args: Any = None, queue_size: int | None = None,
-                        tcp_nodelay: bool = False) -> Subscriber:
-        """Subscribe to a topic; ``callback(msg)`` runs on the engine loop."""
+                        tcp_nodelay: bool = False, check: HeaderCheck | None = None) -> Subscriber:
+        """Subscribe to a topic; ``callback(msg)`` runs on the engine loop.
+
+        With ``check`` (:mod:`rostui.core.node.header_check`) the callback hears only the publishers whose
+        connection header it accepts; a publisher no callback of the topic accepts is refused.
+        """
         name = self.resolve(topic)
         sub = self.subscriptions.get(name)
         created = sub is None
@@ -531,7 +536,7 @@ class AsyncNode:
         elif sub.msg_class._md5sum != msg_class._md5sum:
             raise ValueError(f"topic [{name}] is already subscribed as {sub.type_name}, not {msg_class._type}")
         if callback is not None:
-            sub.add_callback(callback, callback_args)
+            sub.add_callback(callback, callback_args, check)
         sub.handles += 1
         if created:
             try:

@@ -6,7 +6,10 @@ keeps its last frame for newcomers.  Publishing from a thread other than the
 engine's queues the frame and wakes the loop once per batch.
 
 A `Subscription` connects to every publisher the master lists, checks each
-publisher header, deserialises frames and calls callbacks.  Publishers in the
+publisher header, deserialises frames and calls callbacks.  A callback may
+come with a header check (:mod:`rostui.core.node.header_check`): it hears
+only the publishers the check accepts, and a publisher no callback accepts
+is refused and not asked again while it stays listed.  Publishers in the
 same process are linked directly: message objects are handed over without
 serialisation.  Both reach their node only through `TopicHost`.
 """
@@ -26,7 +29,10 @@ from typing import Any, Callable, Iterable, Iterator, Protocol, Sequence
 from rostui.core.localhost import connect_host
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.busypoll import BusyPoll
-from rostui.core.node.transport import InboundConnection, PublisherConnection, SubscriberConnection, set_nodelay
+from rostui.core.node.header_check import HeaderCheck
+from rostui.core.node.transport import (
+    InboundConnection, PublisherConnection, ReportedRefusal, SubscriberConnection, set_nodelay,
+)
 from rostui.core.tcpros import LEN, encode_header, max_backlog_from_env
 
 log = logging.getLogger("rostui.topics")
@@ -457,6 +463,55 @@ class Publication:
 
 
 Callback = Callable[..., Any]
+#: One registered callback: the callable, its extra argument, and the check deciding which publishers it hears.
+Registration = tuple[Callback, Any, "HeaderCheck | None"]
+
+
+class _Gate:
+    """One publisher's verdicts for a subscription: which registered callbacks hear it.
+
+    Each check is asked once per gate (a connection, or a same-process
+    publisher), when the header comes or when a callback is registered later.
+    """
+
+    __slots__ = ("sub", "header", "verdicts", "seen", "heard_by")
+
+    def __init__(self, sub: "Subscription", header: dict[str, str] | None = None) -> None:
+        self.sub = sub
+        self.header = header
+        self.verdicts: dict[HeaderCheck, str | None] = {}
+        self.seen: tuple[Registration, ...] | None = None
+        self.heard_by: tuple[tuple[Callback, Any], ...] = ()
+
+    def refusal(self, header: dict[str, str]) -> ReportedRefusal | None:
+        """Why no registered callback hears this publisher (its header), or None when one does (or none checks).
+
+        The checks that refused it say so themselves (a check reports its refusals, see
+        :class:`~rostui.core.node.header_check.RefusalLog`), so the connection drops it quietly.
+        """
+        self.header = header
+        targets = self.targets()
+        if targets or not self.sub.callbacks:
+            return None
+        reasons = (self.verdict(check) for _cb, _args, check in self.sub.callbacks if check is not None)
+        return ReportedRefusal("; ".join(dict.fromkeys(why for why in reasons if why is not None)))
+
+    def verdict(self, check: HeaderCheck) -> str | None:
+        """What ``check`` says of the header (asked once)."""
+        try:
+            return self.verdicts[check]
+        except KeyError:
+            why = self.verdicts[check] = check(self.header or {})
+            return why
+
+    def targets(self) -> tuple[tuple[Callback, Any], ...]:
+        """The callbacks (and their arguments) that hear this publisher now."""
+        registered = self.sub.callbacks
+        if registered is not self.seen:
+            self.seen = registered
+            self.heard_by = tuple((cb, args) for cb, args, check in registered
+                                  if check is None or self.verdict(check) is None)
+        return self.heard_by
 
 
 class Subscription:
@@ -476,9 +531,12 @@ class Subscription:
         self.raw = msg_class is AnyMsg
         self.queue_size = queue_size
         self.tcp_nodelay = tcp_nodelay
-        self.callbacks: tuple[tuple[Callback, Any], ...] = ()
+        self.callbacks: tuple[Registration, ...] = ()
         self.connections: dict[str, PublisherConnection | None] = {}
+        self.refused: dict[str, str] = {}
+        """Publishers (URI: why) whose header no callback accepted; not asked again while listed."""
         self.local_pubs: dict[str, Publication] = {}
+        self._local_gates: dict[Publication, _Gate] = {}
         self.publisher_uris: list[str] = []
         self.handles = 0
         self.closed = False
@@ -491,9 +549,15 @@ class Subscription:
         name: str = self.msg_class._type
         return name
 
-    def add_callback(self, cb: Callback, args: Any = None) -> None:
-        """Register a callback ``cb(msg)`` or ``cb(msg, args)``."""
-        self.callbacks = self.callbacks + ((cb, args),)
+    def add_callback(self, cb: Callback, args: Any = None, check: HeaderCheck | None = None) -> None:
+        """Register a callback ``cb(msg)`` or ``cb(msg, args)``; with ``check``, it hears only the publishers whose
+        connection header ``check`` accepts (:mod:`rostui.core.node.header_check`).
+
+        Publishers refused so far are asked again: the new callback may hear them.
+        """
+        self.callbacks = self.callbacks + ((cb, args, check),)
+        if self.refused:
+            self._ask_refused_again()
 
     def remove_callback(self, cb: Callback, args: Any = None) -> None:
         """Remove one registration of a callback."""
@@ -504,9 +568,15 @@ class Subscription:
                 break
         self.callbacks = tuple(items)
 
-    def _dispatch(self, msg: Any) -> None:
+    def _ask_refused_again(self) -> None:
+        for uri in list(self.refused):
+            del self.refused[uri]
+            if self.connections.get(uri, False) is None and uri not in self._retry and not self.closed:
+                self._retry[uri] = self.node.loop.create_task(self._connect_loop(uri))
+
+    def _dispatch(self, msg: Any, targets: Iterable[tuple[Callback, Any]]) -> None:
         self.messages_received += 1
-        for cb, args in self.callbacks:
+        for cb, args in targets:
             try:
                 result = cb(msg) if args is None else cb(msg, args)
                 if result is not None and asyncio.iscoroutine(result):
@@ -515,21 +585,28 @@ class Subscription:
                 log.exception("error in subscriber callback for %s", self.topic)
 
     def deliver_local(self, msg: Any, pub: Publication) -> None:
-        """A same-process publisher hands over a message object."""
+        """A same-process publisher hands over a message object (to the callbacks whose checks accept it)."""
+        gate = self._local_gates.get(pub)
+        if gate is None:
+            gate = self._local_gates[pub] = _Gate(self, {
+                "type": pub.topic_type.type, "md5sum": pub.topic_type.md5sum,
+                "message_definition": pub.topic_type.definition, "callerid": pub.node.name,
+                "latching": "1" if pub.latch else "0"})
+        targets = gate.targets()
+        if not targets and self.callbacks:
+            return
         if self.raw and not isinstance(msg, AnyMsg):
             raw = AnyMsg(msg.serialize())
-            raw._connection_header = {"type": pub.topic_type.type, "md5sum": pub.topic_type.md5sum,
-                                      "message_definition": pub.topic_type.definition,
-                                      "callerid": pub.node.name,
-                                      "latching": "1" if pub.latch else "0"}
+            raw._connection_header = gate.header
             msg = raw
-        self._dispatch(msg)
+        self._dispatch(msg, targets)
 
     def publication_gone(self, pub: Publication) -> None:
         """A same-process publisher closed."""
         for uri, p in list(self.local_pubs.items()):
             if p is pub:
                 del self.local_pubs[uri]
+        self._local_gates.pop(pub, None)
 
     # -- connection management --------------------------------------------------
     def update_publishers(self, uris: list[str]) -> None:
@@ -541,6 +618,7 @@ class Subscription:
         for uri in list(self.connections):
             if uri not in wanted:
                 conn = self.connections.pop(uri)
+                self.refused.pop(uri, None)
                 if conn is not None:
                     conn.close()
                 task = self._retry.pop(uri, None)
@@ -548,7 +626,9 @@ class Subscription:
                     task.cancel()
         for uri in list(self.local_pubs):
             if uri not in wanted:
-                self.local_pubs.pop(uri).remove_local(self)
+                gone = self.local_pubs.pop(uri)
+                gone.remove_local(self)
+                self._local_gates.pop(gone, None)
         for uri in uris:
             if uri in self.connections or uri in self.local_pubs:
                 continue
@@ -616,6 +696,9 @@ class Subscription:
             return None
         self.connections[uri] = proto
         reason = await done
+        if proto.refused:  # its header again would be refused again
+            self.refused[uri] = proto.error or "refused"
+            return None
         if proto.error and "md5" in proto.error.lower():
             return None
         return reason
@@ -629,8 +712,13 @@ class Subscription:
         refuse a publisher that :meth:`check_header` objects to, and count
         the messages it takes in ``messages_received``.
         """
-        return SubscriberConnection(self.request_header(), self.check_header, self._frames_handler(), on_lost,
-                                    self._frame_handler(), busy_poll=self.node.busy_poll)
+        gate = _Gate(self)
+
+        def on_header(header: dict[str, str]) -> str | None:
+            return self.check_header(header) or gate.refusal(header)
+
+        return SubscriberConnection(self.request_header(), on_header, self._frames_handler(gate), on_lost,
+                                    self._frame_handler(gate), busy_poll=self.node.busy_poll)
 
     def request_header(self) -> dict[str, str]:
         """The connection header this subscription sends to a publisher."""
@@ -655,20 +743,27 @@ class Subscription:
                     f"we want [{self.msg_class._type}/{self.msg_class._md5sum}]")
         return None
 
-    def _frames_handler(self) -> Callable[[list[bytes], dict[str, str]], None]:
-        """The per-connection frame callback; with a queue_size, only the newest frames of a backlog run."""
+    def _frames_handler(self, gate: _Gate | None = None) -> Callable[[list[bytes], dict[str, str]], None]:
+        """The per-connection frame callback; with a queue_size, only the newest frames of a backlog run.
+
+        Messages go to the callbacks ``gate`` (the connection's verdicts) lets hear them.
+        """
         dispatch = self._dispatch
         keep = self.queue_size if self.queue_size and self.queue_size > 0 else None
+        the_gate = gate if gate is not None else _Gate(self)
         if self.raw:
             def on_raw(frames: list[bytes], header: dict[str, str]) -> None:
                 if keep is not None and len(frames) > keep:
                     frames = frames[-keep:]
+                if the_gate.header is None:
+                    the_gate.header = header
+                targets = the_gate.targets()
                 for data in frames:
                     msg = AnyMsg(data)
                     msg._connection_header = header
-                    dispatch(msg)
+                    dispatch(msg, targets)
             return on_raw
-        on_frame = self._frame_handler()
+        on_frame = self._frame_handler(the_gate)
 
         def on_frames(frames: list[bytes], header: dict[str, str]) -> None:
             if keep is not None and len(frames) > keep:
@@ -677,10 +772,11 @@ class Subscription:
                 on_frame(data, header)
         return on_frames
 
-    def _frame_handler(self) -> Callable[[bytes, dict[str, str]], None]:
+    def _frame_handler(self, gate: _Gate | None = None) -> Callable[[bytes, dict[str, str]], None]:
         """Decode one frame and dispatch it (also the callback for a read that holds exactly one frame)."""
+        the_gate = gate if gate is not None else _Gate(self)
         if self.raw:
-            frames_handler = self._frames_handler()
+            frames_handler = self._frames_handler(the_gate)
             return lambda payload, header: frames_handler([payload], header)
         deserialize = self.msg_class.deserialize
         dispatch = self._dispatch
@@ -693,7 +789,9 @@ class Subscription:
                 log.warning("dropping undecodable message on %s: %s", topic, exc)
                 return
             msg._connection_header = header
-            dispatch(msg)
+            if the_gate.header is None:
+                the_gate.header = header
+            dispatch(msg, the_gate.targets())
         return on_frame
 
     def close(self) -> None:
@@ -709,3 +807,5 @@ class Subscription:
         for pub in self.local_pubs.values():
             pub.remove_local(self)
         self.local_pubs.clear()
+        self._local_gates.clear()
+        self.refused.clear()

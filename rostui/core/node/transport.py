@@ -294,26 +294,37 @@ class InboundConnection(asyncio.Protocol):
             self.handler.connection_lost()
 
 
+class ReportedRefusal(str):
+    """Why a subscriber refuses a publisher's header, when whoever refused it says so itself: the connection is
+    dropped without a warning of its own (one line to the user, not two)."""
+
+
 class PublisherConnection(asyncio.BaseProtocol):
     """The base of every connection a subscription opens to a publisher.
 
     The subscription and the slave API read ``header`` (the publisher's
     connection header once accepted, else None), ``error`` (why the
-    connection was dropped, or None) and ``bytes_received``, and call
-    :meth:`close`.  Subclasses set the three attributes in ``__init__`` and
-    are asyncio protocols (``asyncio.Protocol`` or ``asyncio.BufferedProtocol``
-    first among their bases).
+    connection was dropped, or None), ``refused`` (True when the subscriber
+    itself refused the publisher's header: asking again would get the same
+    header) and ``bytes_received``, and call :meth:`close`.  Subclasses set
+    the attributes in ``__init__`` and are asyncio protocols
+    (``asyncio.Protocol`` or ``asyncio.BufferedProtocol`` first among their
+    bases).
     """
 
     header: dict[str, str] | None
     error: str | None
+    refused: bool = False
     bytes_received: int
     transport: asyncio.BaseTransport | None
 
     def drop(self, reason: str) -> None:
-        """Close the connection, remembering why."""
-        self.error = reason
-        log.warning("dropping connection to publisher: %s", reason)
+        """Close the connection, remembering why (a :class:`ReportedRefusal` is logged at debug level only)."""
+        self.error = str(reason)
+        if isinstance(reason, ReportedRefusal):
+            log.debug("refusing publisher: %s", reason)
+        else:
+            log.warning("dropping connection to publisher: %s", reason)
         if self.transport is not None:
             self.transport.close()
 
@@ -385,7 +396,13 @@ class SubscriberConnection(asyncio.Protocol, PublisherConnection):
                 if not frames:
                     return
                 header = decode_header(frames[0])
-                problem = header.get("error") or self.on_header(header)
+                problem = header.get("error")
+                if not problem:
+                    problem = self.on_header(header)
+                    if problem:
+                        self.refused = True
+                        self.drop(problem)
+                        return
                 if problem:
                     raise TcprosError(problem)
                 self.header = header

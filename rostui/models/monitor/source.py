@@ -6,7 +6,11 @@ loop.  Every ``period`` seconds it asks the master for ``getSystemState``
 and ``getTopicTypes``; whenever the wanted set changes (the app says which
 topics are on screen or expanded) it subscribes to the new ones with md5
 ``*`` (no decoding: arrivals and sizes are all the table needs) and
-unsubscribes from those no longer wanted.  Messages are decoded only for a
+unsubscribes from those no longer wanted.  A publisher whose connection
+header gives no class (a definition that does not hash to its md5sum,
+another version of a type rostui knows) is refused, its connection dropped
+and the reason kept for the topic (:meth:`MonitorSource.refusals`); the
+topic's other publishers are heard as before.  Messages are decoded only for a
 tree or for the fields the :class:`~rostui.models.monitor.plot.PlotModel`
 plots.  When the master stops answering (or another one
 answers) the link drops the node and registers again once a master answers.
@@ -21,6 +25,7 @@ from typing import Any, Callable, Iterable
 
 from rostui.core.msg import MessageError
 from rostui.core.node import AnyMsg, AsyncNode, Publisher, Subscriber
+from rostui.core.node.header_check import RefusalLog, decodable
 from rostui.core.xmlrpc import XmlRpcProtocolError
 from rostui.models.master_link import CALL_TIMEOUT, LinkedSource, MasterLink, SourceState, failure_reason
 from rostui.models.monitor.rows import Liveness, TopicRow
@@ -46,10 +51,11 @@ class TopicInfo:
 class _Watch:
     """One subscription: its handle, statistics and the newest raw message."""
 
-    __slots__ = ("handle", "stats", "latest", "arrived", "decoded", "decoded_from")
+    __slots__ = ("handle", "stats", "latest", "arrived", "decoded", "decoded_from", "refused")
 
     def __init__(self) -> None:
         self.handle: Subscriber | None = None
+        self.refused = RefusalLog(decodable)
         self.stats = TopicStats()
         self.latest: AnyMsg | None = None
         self.arrived = 0.0
@@ -100,6 +106,11 @@ class MonitorSource(LinkedSource):
         """The statistics of a subscribed topic."""
         watch = self._watches.get(topic)
         return watch.stats if watch is not None else None
+
+    def refusals(self, topic: str) -> list[str]:
+        """Why publishers of a subscribed topic were refused (one line each, oldest first; empty when none was)."""
+        watch = self._watches.get(topic)
+        return list(watch.refused.lines) if watch is not None else []
 
     def latest(self, topic: str) -> Any:
         """The newest message of a subscribed topic, decoded (None before one came)."""
@@ -232,7 +243,7 @@ class MonitorSource(LinkedSource):
                     continue
                 watch = _Watch()
                 self._watches[name] = watch
-                watch.handle = await node.subscribe(name, AnyMsg, self._receiver(name, watch))
+                watch.handle = await node.subscribe(name, AnyMsg, self._receiver(name, watch), check=watch.refused)
 
     def _receiver(self, topic: str, watch: _Watch) -> Callable[[Any], None]:
         add = watch.stats.add

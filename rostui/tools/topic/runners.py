@@ -16,6 +16,8 @@ from rostui.tools.topic.rates import BwStats, HzStats, format_hz, format_hz_tabl
 ONCE_DELAY = 3.0
 #: How long file/stdin publishing waits for a first subscriber.
 SUBSCRIBER_TIMEOUT = 5.0
+#: How many publishers echo names when their messages do not decode (each once); after that it says nothing more.
+MAX_NAMED_PUBLISHERS = 100
 
 
 class _Run:
@@ -98,10 +100,13 @@ async def run_echo(topic: str, out: Out, *, plot: bool = False, noarr: bool = Fa
                    clear: bool = False, as_json: bool = False) -> int:
     """``rostopic echo``: print messages of *topic* (or a field of it) until stopped or *count* reached.
 
-    Waits, like rostopic, while the topic is not published; decodes any type
-    from its publisher's message_definition.
+    Waits, like rostopic, while the topic is not published; decodes any type from its publisher's
+    message_definition once checked (:func:`rostui.core.node.header_check.decodable`).  A publisher whose
+    header is refused loses its connection and one line on stderr says why; a publisher whose messages do not
+    decode gets one line too; the echo goes on with the others.
     """
     from rostui.core.node import AnyMsg
+    from rostui.core.node.header_check import RefusalLog, decodable, publisher_name
 
     async with _Run() as run:
         found = await _wait_for_topic(run, topic)
@@ -110,16 +115,22 @@ async def run_echo(topic: str, out: Out, *, plot: bool = False, noarr: bool = Fa
         _, real, field = found
         fmt = EchoFormatter(field, plot=plot, noarr=noarr, nostr=nostr, offset=offset, count=count,
                             fixed_width=fixed_width, clear=clear, as_json=as_json)
-        failed: list[str] = []
+        undecodable: set[str] = set()
+
+        def say(line: str) -> None:
+            sys.stderr.write(line + "\n")
+            sys.stderr.flush()
 
         def on_msg(raw: Any) -> None:
             if fmt.done or run.stop.is_set():
                 return
             try:
                 text = fmt.format(decode(raw))
-            except Exception as e:  # undecodable: say so and stop
-                failed.append(f"cannot decode message on {real}: {one_line(str(e))}")
-                run.stop.set()
+            except Exception as e:  # a message its own type cannot read: said once per publisher, then skipped
+                sender = publisher_name(raw._connection_header or {})
+                if sender not in undecodable and len(undecodable) < MAX_NAMED_PUBLISHERS:
+                    undecodable.add(sender)
+                    say(f"cannot decode messages on {real} from {sender}: {one_line(str(e))}")
                 return
             if text is not None:
                 try:
@@ -130,10 +141,9 @@ async def run_echo(topic: str, out: Out, *, plot: bool = False, noarr: bool = Fa
             if fmt.done:
                 run.stop.set()
 
-        await run.node.subscribe(real, AnyMsg, on_msg)
+        refused = RefusalLog(decodable, lambda why: say(f"refused a publisher of {real}: {why}"))
+        await run.node.subscribe(real, AnyMsg, on_msg, check=refused)
         await run.stop.wait()
-        if failed:
-            raise TopicToolError(failed[0])
     return 0
 
 

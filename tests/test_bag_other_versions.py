@@ -15,6 +15,8 @@ import struct
 import subprocess
 from pathlib import Path
 
+import pytest
+
 from conftest import until
 from rostui.core.bag.model import Connection
 from rostui.core.bag.rosbag2_0 import BagWriter
@@ -25,7 +27,8 @@ HEADER_SECTION = SEP + "MSG: std_msgs/Header\nuint32 seq\ntime stamp\nstring fra
 #: turtlesim/Pose as recorded before linear_velocity and angular_velocity were added.
 OLD_POSE = "float32 x\nfloat32 y\nfloat32 theta\n"
 #: A sensor_msgs/Image without width and step.
-IMAGE_WITHOUT_WIDTH = "Header header\nuint32 height\nstring encoding\nuint8 is_bigendian\nuint8[] data\n" + HEADER_SECTION
+IMAGE_WITHOUT_WIDTH = ("Header header\nuint32 height\nstring encoding\nuint8 is_bigendian\nuint8[] data\n"
+                       + HEADER_SECTION)
 T0 = 1_700_000_000_000_000_000
 POSES = [(1.0, 2.0, 0.5), (1.5, 2.5, 0.25)]
 
@@ -116,3 +119,22 @@ def test_bag_view_inspects_an_image_of_another_version_as_text_with_one_line(tmp
             await app.action_quit()
 
     asyncio.run(main())
+
+
+def test_what_draws_a_type_by_its_fields_refuses_another_version_in_one_line() -> None:
+    """The image decoder and the top-down geometry read fields by the type's name: a bag's own version (another
+    md5sum) is one line, not an AttributeError deep in them."""
+    from rostui.core.msg import connection_class
+    from rostui.models.sensors.images import ImageDecodeError, decode_image
+    from rostui.models.sensors.scene2d import drawing_of
+
+    image = connection_class("sensor_msgs/Image", definition_md5("sensor_msgs/Image", IMAGE_WITHOUT_WIDTH),
+                             IMAGE_WITHOUT_WIDTH, stored=True)
+    with pytest.raises(ImageDecodeError, match=r"^sensor_msgs/Image here has md5sum \w+, not the one rostui knows "
+                                               r"\(\w+\): not drawn$"):
+        decode_image(image.deserialize(image_without_width(10)))
+    old_scan = "Header header\nfloat32 angle_min\n" + HEADER_SECTION  # no ranges
+    scan = connection_class("sensor_msgs/LaserScan", definition_md5("sensor_msgs/LaserScan", old_scan), old_scan,
+                            stored=True)
+    with pytest.raises(ValueError, match=r"^sensor_msgs/LaserScan here has md5sum .*: not drawn$"):
+        drawing_of(scan())

@@ -244,6 +244,12 @@ def test_raw_feed_takes_the_broadcaster_and_refuses_garbage_and_other_types() ->
     assert feed_raw(buf, other, static=False, received=2.0) == [
         "[/confused] publishes std_msgs/String, not tf2_msgs/TFMessage; ignored"]
     assert buf.frames() == ["map", "odom"]
+    stamped.header.frame_id, stamped.child_frame_id = "odom", "base"
+    older = AnyMsg(tf_message(transforms=[stamped]).serialize())  # its bytes would even decode as ours
+    older._connection_header = {"type": "tf2_msgs/TFMessage", "md5sum": "0" * 32, "callerid": "/old"}
+    assert feed_raw(buf, older, static=False, received=3.0) == [
+        f"[/old] publishes tf2_msgs/TFMessage with md5sum {'0' * 32}, not rostui's {tf_message._md5sum}; ignored"]
+    assert buf.frames() == ["map", "odom"]
 
 
 def test_an_edge_keeps_a_bounded_number_of_samples() -> None:

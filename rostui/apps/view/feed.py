@@ -7,6 +7,7 @@ from collections import deque
 from typing import Any, Callable
 
 from rostui.core.node import AnyMsg, AsyncNode, Subscriber
+from rostui.core.node.header_check import HeaderCheck
 
 __all__ = ["TopicFeed", "Rate"]
 
@@ -37,17 +38,21 @@ class Rate:
 
 
 class TopicFeed:
-    """``topic`` subscribed raw (AnyMsg, any type) on a node; :meth:`take` hands over the newest message once.
+    """``topic`` subscribed raw (AnyMsg) on a node; :meth:`take` hands over the newest message once.
 
     ``on_arrival()`` runs (on the node's loop) after each message; the owner
     then takes the newest when it is ready to draw, so a slow screen skips
-    frames instead of falling behind.
+    frames instead of falling behind.  With :attr:`check` set before
+    :meth:`attach` (:mod:`rostui.core.node.header_check`), only the publishers
+    it accepts are heard: a liar's frames never take an honest one's place.
     """
 
     def __init__(self, topic: str, on_arrival: Callable[[], None], clock: Callable[[], float] = time.time) -> None:
         self.topic = topic
         self.on_arrival = on_arrival
         self.clock = clock
+        self.check: HeaderCheck | None = None
+        """Which publishers are heard (None: every one); used by the next :meth:`attach`."""
         self.received = Rate()
         self.node: AsyncNode | None = None
         self._handle: Subscriber | None = None
@@ -68,7 +73,7 @@ class TopicFeed:
         await self.detach()
         self.node = node
         if node is not None:
-            self._handle = await node.subscribe(self.topic, AnyMsg, self._on_message)
+            self._handle = await node.subscribe(self.topic, AnyMsg, self._on_message, check=self.check)
 
     async def detach(self) -> None:
         """Unsubscribe (the node may be gone already)."""

@@ -14,6 +14,13 @@ however fast or heavy its frames come; a heavy topic drops its own frames,
 never its neighbours'.  A type no view shows
 is one line in the panel naming the types that can be shown.
 
+A view draws its type by its fields, so the panel hears only publishers of
+exactly that type under rostui's md5sum
+(:func:`~rostui.core.node.header_check.of_type`): a publisher whose header
+says another type or md5sum (whatever it told the master) is refused, one
+line in the panel says so, and the topic's honest publishers are drawn as
+before.
+
 A view class with ``SHARED = True`` (the top-down view) draws several topics
 in one picture: the first panel of that class mounts the view, each later
 panel of the class hands its topic to that view (``add_topic``), delivers to
@@ -36,7 +43,9 @@ from textual.widgets import Static
 
 from rostui.apps.view.feed import TopicFeed
 from rostui.apps.view.registry import TopicView, UnknownViewError, view_class
+from rostui.core.msg import foreign_version
 from rostui.core.node import AsyncNode
+from rostui.core.node.header_check import RefusalLog, of_type
 from rostui.models.frame_budget import FrameBudget, SharedCost
 from rostui.models.master_link import MASTER_ERRORS
 
@@ -52,15 +61,15 @@ CHECK_EVERY = 0.5
 
 
 def decode_for_view(raw: Any) -> Any:
-    """A received message as the views read it: lazily (arrays as numpy views) when rostui knows its type and
-    md5sum, else with the class its publisher's definition builds."""
+    """A received message as the views read it: lazily (arrays as numpy views), when its publisher sends rostui's
+    version of its type; ValueError (one line) for any other, which no view can read by its fields."""
     from rostui.models.sensors.lazy_msg import decode_lazily
+    from rostui.tools.topic.echo import decode
 
     msg = decode_lazily(raw)
     if msg is None:
-        from rostui.tools.topic.echo import decode
-
-        msg = decode(raw)
+        other = foreign_version(decode(raw))
+        raise ValueError(f"{other}: not drawn" if other else "not a message a view draws")
     return msg
 
 
@@ -71,6 +80,7 @@ class ViewPanel(Vertical):
     ViewPanel { border: round $primary; height: 1fr; width: 1fr; }
     ViewPanel > .view-note { height: auto; color: $text-muted; }
     ViewPanel > .view-note.problem { color: $error; }
+    ViewPanel > .view-refused { height: auto; color: $error; }
     """
 
     def __init__(self, topic: str, *, msg_type: str | None = None,
@@ -84,13 +94,17 @@ class ViewPanel(Vertical):
         self.budget = FrameBudget(shared=shared)
         self.feed = TopicFeed(topic, self._arrived)
         self.note = Static(classes="view-note")
+        self.refused_line = Static(classes="view-refused")
+        """The newest publisher refused for sending another type or md5sum than the view's (hidden before one)."""
+        self.refused_line.display = False
         self.problem = ""
         self._delivery_pending = False
         self.border_title = escape(topic)
 
     def compose(self) -> ComposeResult:
-        """The note line; the view is mounted once the type is known."""
+        """The note line and the refusal line; the view is mounted once the type is known."""
         yield self.note
+        yield self.refused_line
 
     def on_mount(self) -> None:
         """Say what the panel waits for."""
@@ -112,6 +126,7 @@ class ViewPanel(Vertical):
                 self.problem = f"{self.topic}: {exc}"
                 self.say(self.problem, problem=True)
                 return
+            self.feed.check = RefusalLog(of_type(msg_type), self._refused)
             host = self._shared_host(cls)
             if host is not None:
                 host.add_topic(self.topic)  # type: ignore[attr-defined]
@@ -130,6 +145,17 @@ class ViewPanel(Vertical):
     def own_subscriptions(self) -> bool:
         """True when the mounted view subscribes itself (the panel's feed stays detached)."""
         return bool(getattr(type(self.view), "OWN_SUBSCRIPTIONS", False))
+
+    def _refused(self, why: str) -> None:
+        """A publisher of this topic was refused (another type or md5sum than the view draws): one line says so,
+        in this panel or, when it joined another panel's view, in that one's."""
+        shown = self
+        if self.joined and self.parent is not None:
+            shown = next((panel for panel in self.parent.query_children(ViewPanel)
+                          if panel.view is self.view and not panel.joined), self)
+        shown.refused_line.update(escape(f"{self.topic}: refused {why}: its messages are not drawn"
+                                         if shown is not self else f"refused {why}: its messages are not drawn"))
+        shown.refused_line.display = True
 
     def _shared_host(self, cls: type[TopicView]) -> TopicView | None:
         """The view of class ``cls`` another panel of this grid mounted, when ``cls`` shares one view."""

@@ -20,6 +20,7 @@ from textual.app import ComposeResult
 from textual.widgets import DataTable, Static
 
 from rostui.apps.view.registry import TopicView
+from rostui.core.msg import foreign_version
 from rostui.models.master_link import LinkStatus
 from rostui.models.frame_budget import FrameBudget
 from rostui.models.tf.buffer import Edge, TfBuffer, TfError
@@ -140,9 +141,13 @@ class TfTreeView(TopicView):
         if not self.one_message:
             return
         self.buffer.clear()
-        self._message_count = len(msg.transforms)
-        self._message_problems = self.buffer.add_message(msg, static=self.topic == "/tf_static", broadcaster="",
-                                                         received=received)
+        other = foreign_version(msg)  # a bag's own version of TFMessage: not read as rostui's
+        if other is not None:
+            self._message_count, self._message_problems = 0, [f"{other}: not drawn"]
+        else:
+            self._message_count = len(msg.transforms)
+            self._message_problems = self.buffer.add_message(msg, static=self.topic == "/tf_static", broadcaster="",
+                                                             received=received)
         if self.is_mounted:
             self.redraw()
 

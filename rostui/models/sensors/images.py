@@ -23,6 +23,8 @@ from typing import Any
 import numpy as np
 from PIL import Image as PILImage
 
+from rostui.core.msg import foreign_version
+
 __all__ = ["Picture", "ImageDecodeError", "ENCODINGS", "COMPRESSED_FORMATS", "MAX_DECODE_PIXELS", "decode_image",
            "fit", "colour_map"]
 
@@ -85,7 +87,14 @@ def colour_map(values: np.ndarray) -> tuple[np.ndarray, tuple[float, float] | No
 
 
 def decode_image(msg: Any, max_size: tuple[int, int] = (4096, 4096)) -> Picture:
-    """``msg`` (sensor_msgs/Image or CompressedImage) as a :class:`Picture` no larger than ``max_size`` (w, h)."""
+    """``msg`` (sensor_msgs/Image or CompressedImage) as a :class:`Picture` no larger than ``max_size`` (w, h).
+
+    :class:`ImageDecodeError` (one line) for a message that is not rostui's version of its type (a bag's own
+    version, without the fields read here).
+    """
+    other = foreign_version(msg)
+    if other is not None:
+        raise ImageDecodeError(f"{other}: not drawn")
     if hasattr(msg, "format"):
         return _decode_compressed(msg, max_size)
     return _decode_raw(msg, max_size)

@@ -52,6 +52,11 @@ class LazyMessage:
         self._type = type_name
         self.__dict__.update(fields)
 
+    @property
+    def _md5sum(self) -> str:
+        """rostui's md5sum of its type: it was read with rostui's own spec of that type."""
+        return md5sum(self._type)
+
     def __repr__(self) -> str:
         return f"<{self._type} read lazily>"
 

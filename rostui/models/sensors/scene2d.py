@@ -17,6 +17,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from rostui.core.msg import foreign_version
 from rostui.models.sensors.canvas2d import BrailleCanvas, Viewport, nice_step
 from rostui.models.sensors.cloud2d import CloudError, cloud_points
 from rostui.models.sensors.grid2d import Grid2D, GridError, grid_of
@@ -54,7 +55,11 @@ class Drawing:
 
 
 def drawing_of(msg: Any) -> Drawing:
-    """The geometry of a top-down message; ValueError (one line) when it cannot be read or is not one."""
+    """The geometry of a top-down message; ValueError (one line) when it cannot be read or is not one (nor rostui's
+    version of its type: a bag's own version may lack the fields read here)."""
+    other = foreign_version(msg)
+    if other is not None:
+        raise ValueError(f"{other}: not drawn")
     kind = getattr(msg, "_type", type(msg).__name__)
     frame = str(msg.header.frame_id)
     if kind == "sensor_msgs/LaserScan":

@@ -3,8 +3,9 @@
 The node (``/<name>_<pid>_<ms>``, kept registered by a :class:`MasterLink`) subscribes to both
 topics with ``AnyMsg``, so every message carries its publisher's connection header: the
 ``callerid`` there is the edge's broadcaster. Messages are decoded here as
-``tf2_msgs/TFMessage``; a publisher of another type or of garbage is reported in
-:attr:`TfSource.problems` and its message dropped, nothing else.
+``tf2_msgs/TFMessage``, rostui's version of it: a publisher whose header says another type or
+md5sum is refused (its connection dropped, never decoded) and a message of garbage dropped; each
+is reported in :attr:`TfSource.problems`, nothing else.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from typing import Any, Callable
 
 from rostui.core.msg import get_message_class
 from rostui.core.node import AnyMsg, AsyncNode
+from rostui.core.node.header_check import RefusalLog, of_type
 from rostui.models.master_link import LinkedSource, MasterLink, SourceState
 from rostui.models.tf.buffer import TfBuffer
 
@@ -33,6 +35,9 @@ def feed_raw(buffer: TfBuffer, raw: AnyMsg, *, static: bool, received: float) ->
     if sent_type not in (TF_TYPE, "*"):
         return [f"[{caller}] publishes {sent_type}, not {TF_TYPE}; ignored"]
     msg_class = get_message_class(TF_TYPE)
+    sent_md5 = header.get("md5sum", "*")
+    if sent_md5 not in (msg_class._md5sum, "*"):
+        return [f"[{caller}] publishes {TF_TYPE} with md5sum {sent_md5}, not rostui's {msg_class._md5sum}; ignored"]
     try:
         msg = msg_class.deserialize(raw.serialize())
     except Exception as exc:  # a peer's garbage: drop the message, keep listening
@@ -56,11 +61,13 @@ class TfSource(LinkedSource):
         self.on_change = on_change or (lambda: None)
         self.problems: deque[str] = deque(maxlen=50)
         self.messages = 0
+        self.refused = RefusalLog(of_type(TF_TYPE), self.problems.append)
+        """Publishers of /tf or /tf_static refused for another type or md5sum (each also a line of problems)."""
         self.link = MasterLink(node_name, master_uri, on_connect=self._subscribe, on_state=on_state)
 
     async def _subscribe(self, node: AsyncNode) -> None:
-        await node.subscribe(TF_TOPIC, AnyMsg, self._on_message, callback_args=False)
-        await node.subscribe(TF_STATIC_TOPIC, AnyMsg, self._on_message, callback_args=True)
+        await node.subscribe(TF_TOPIC, AnyMsg, self._on_message, callback_args=False, check=self.refused)
+        await node.subscribe(TF_STATIC_TOPIC, AnyMsg, self._on_message, callback_args=True, check=self.refused)
 
     def _on_message(self, raw: Any, static: bool) -> None:
         self.messages += 1

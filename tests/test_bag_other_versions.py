@@ -138,3 +138,51 @@ def test_what_draws_a_type_by_its_fields_refuses_another_version_in_one_line() -
                             stored=True)
     with pytest.raises(ValueError, match=r"^sensor_msgs/LaserScan here has md5sum .*: not drawn$"):
         drawing_of(scan())
+
+
+def test_the_view_and_the_monitor_refuse_a_played_bag_of_another_version_in_one_line(
+        tmp_path: Path, rostui_core: object, ros_env: dict[str, str], monkeypatch: pytest.MonkeyPatch) -> None:
+    """`rostui bag play` publishes the old bag's Image under the bag's own type, md5sum and definition: the view's
+    Image panel and the monitor's tree each refuse it in one line (no AttributeError), the bag's String still
+    reaching the monitor."""
+    from rostui.apps.monitor.app import MonitorApp
+    from rostui.apps.view.app import ViewApp
+    from rostui.apps.view.image_view import GRAPHICS_ENV
+
+    from conftest import rostui_cmd, stop_process
+
+    monkeypatch.setenv(GRAPHICS_ENV, "halfblock")
+    path = old_bag(tmp_path / "old.bag")
+    image = get_message_class("sensor_msgs/Image")
+    theirs = definition_md5("sensor_msgs/Image", IMAGE_WITHOUT_WIDTH)
+    refused = (f"refused publisher [/play_", f"has datatype/md5sum [sensor_msgs/Image/{theirs}], "
+               f"not [sensor_msgs/Image/{image._md5sum}]")
+    play = subprocess.Popen(rostui_cmd("bag", "play", "-q", "-l", "-r", "10", str(path)), env=ros_env,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    monitor_lines: list[str] = []
+
+    async def main() -> None:
+        view = ViewApp(["/camera/image_raw"], master_uri=ros_env["ROS_MASTER_URI"], period=0.3)
+        async with view.run_test(size=(80, 24)):
+            panel = view.grid.panels[0]
+            await until(lambda: panel.refused_line.display, "the view's panel to refuse the bag's Image", timeout=60)
+            line = str(panel.refused_line.render())
+            assert line.startswith(refused[0]) and refused[1] in line and "\n" not in line, line
+            await view.action_quit()
+        monitor = MonitorApp(period=0.3)
+        async with monitor.run_test(size=(120, 40)) as pilot:
+            await until(lambda: monitor.topic_type("/camera/image_raw") == "sensor_msgs/Image", "the topic listed")
+            monitor.toggle_expanded("/camera/image_raw")
+            monitor.toggle_expanded("/chatter")
+            label = lambda topic: str(monitor.message_trees.topic_node(topic).label)  # noqa: E731
+            await until(lambda: "✖ refused publisher [/play_" in label("/camera/image_raw")
+                        and monitor.source.latest("/chatter") is not None, "the monitor's line and /chatter")
+            monitor_lines.append(label("/camera/image_raw"))
+            await pilot.press("q")
+
+    try:
+        asyncio.run(main())
+    finally:
+        stop_process(play)
+    assert f"but our version has [sensor_msgs/Image/{image._md5sum}]" in monitor_lines[0], monitor_lines
+    assert "Traceback" not in (play.stderr.read() if play.stderr else "")

@@ -11,7 +11,9 @@ A message of rostui's version of its type is read as `rostui view` reads it
 (:mod:`rostui.models.sensors.lazy_msg`: numeric arrays as views of the
 bag's bytes, arrays of messages read when asked), so a scan of ten million
 ranges is neither turned into ten million floats for its picture nor for
-its text (:func:`inspected_text`: each array cut to its first items).
+its text (:func:`inspected_text`: each array cut to its first items).  A
+message that cannot be read so (another version, a type rostui does not
+know) is decoded with the bag's definition only up to :data:`MAX_DECODED`.
 """
 
 from __future__ import annotations
@@ -23,14 +25,19 @@ from textual.widgets import Static
 
 from rostui.apps.view.registry import TopicView, view_class, viewable
 from rostui.core.bag.model import BagError, Connection
-from rostui.core.msg import MessageError, foreign_version, md5sum
+from rostui.core.msg import Message, MessageError, foreign_version, md5sum
 from rostui.core.msg.spec import shown
 from rostui.models.sensors.lazy_msg import LazyDecodeError, LazyMessage, read_message
 
-__all__ = ["InspectorView", "decode_bag_message", "inspected_message", "inspected_text"]
+__all__ = ["InspectorView", "MAX_DECODED", "decode_bag_message", "inspected_message", "inspected_text"]
 
 #: Fewest lines the picture gets in the inspector.
 MIN_LINES = 6
+
+#: Largest message (bytes) decoded with a class built from the bag's definition, whose arrays become Python
+#: lists (a float32 takes 32 bytes there): larger ones of another version of a type, or of a type rostui does
+#: not know, are not decoded (one line says so).
+MAX_DECODED = 16 * 1024 * 1024
 
 
 def decode_bag_message(conn: Connection, data: bytes) -> object:
@@ -49,6 +56,9 @@ def inspected_message(conn: Connection, data: bytes) -> object:
     except MessageError:
         ours = None
     if ours is None or conn.md5sum != ours:
+        if len(data) > MAX_DECODED:
+            raise BagError(f"a {shown(conn.type)} message of {len(data)} B on {shown(conn.topic)} is not "
+                           f"rostui's version of its type: not decoded here (more than {MAX_DECODED} B)")
         return decode_bag_message(conn, data)
     try:
         return read_message(conn.type, data)
@@ -59,14 +69,18 @@ def inspected_message(conn: Connection, data: bytes) -> object:
 def inspected_text(conn: Connection, data: bytes, *, noarr: bool, cut_above: int) -> str:
     """The message's text: as ``rostopic echo`` prints it (``--noarr`` with ``noarr``) up to ``cut_above``
     bytes; a larger message of rostui's version of its type with each array cut to its first items and its
-    length (:func:`~rostui.models.sensors.lazy_text.lazy_text`).  :class:`BagError` when it cannot be read."""
+    length (:func:`~rostui.models.sensors.lazy_text.lazy_text`), any other with its arrays summarised.
+    :class:`BagError` when it cannot be read."""
     from rostui.core.bag.index import message_yaml
+    from rostui.core.msg.convert import message_to_yaml
     from rostui.models.sensors.lazy_text import lazy_text
 
     if len(data) > cut_above:
         msg = inspected_message(conn, data)
         if isinstance(msg, LazyMessage):
             return lazy_text(msg)
+        assert isinstance(msg, Message)  # decode_bag_message's
+        return message_to_yaml(msg, noarr=True)
     return message_yaml(conn, data, noarr=noarr)
 
 

@@ -11,10 +11,10 @@ read from its bytes without building the ranges.
 
 from __future__ import annotations
 
-import json
 from typing import Any
 
 import numpy as np
+import yaml
 
 from rostui.core.msg import Duration, Time, get_message_spec
 from rostui.models.monitor.tree import ARRAY_SHOWN, STRING_SHOWN
@@ -25,8 +25,10 @@ __all__ = ["lazy_text"]
 
 def _scalar(value: Any) -> str:
     if isinstance(value, str):
+        if not value:
+            return "''"
         shown = value if len(value) <= STRING_SHOWN else value[:STRING_SHOWN] + "…"
-        return json.dumps(shown, ensure_ascii=False)
+        return str(yaml.dump(shown, default_style='"', width=float("inf"), allow_unicode=True)).rstrip("\n")
     if isinstance(value, (bool, np.bool_)):
         return "True" if value else "False"
     if isinstance(value, (float, np.floating)):

@@ -276,7 +276,7 @@ def test_live_publisher_header_is_refused_and_never_run(rostui_core: subprocess.
             proc.wait()
     assert not (work / "pwned").exists(), "the definition's code ran in the subscriber"
     lines = err.read_text().strip().splitlines()
-    assert len(lines) == 2 and all(line.startswith("refused a publisher of /evil: ") for line in lines), lines
+    assert len(lines) == 2 and all(line.startswith("ERROR: refused a publisher of /evil: ") for line in lines), lines
     assert "publisher [/poisoner]" in lines[0] and "not a valid pkg/Type name" in lines[0], lines[0]
     assert "publisher [/namer]" in lines[1] and "not a valid pkg/Type name" in lines[1], lines[1]
     assert out.read_text() == "" and "Traceback" not in err.read_text()

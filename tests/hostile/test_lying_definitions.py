@@ -137,10 +137,10 @@ def test_topic_echo_refuses_a_liar_and_keeps_the_honest_publisher(name: str, ech
     assert alive, victim.describe()
     assert len(others) == 1 and words in others[0] and "Traceback" not in victim.output, victim.describe()
     if header_refused:
-        assert others[0].startswith("refused a publisher of /chatter: publisher [/liar] "), others[0]
+        assert others[0].startswith("ERROR: refused a publisher of /chatter: publisher [/liar] "), others[0]
         assert liar.connections == 1, "the refused liar was asked again"
     else:
-        assert others[0].startswith("cannot decode messages on /chatter from publisher [/liar]: "), others[0]
+        assert others[0].startswith("ERROR: cannot decode messages on /chatter from publisher [/liar]: "), others[0]
     assert rss.growth_mb < GROWTH_LIMIT_MB, f"peak RSS grew {rss.growth_mb:.1f} MB"
 
 

@@ -130,7 +130,7 @@ async def run_echo(topic: str, out: Out, *, plot: bool = False, noarr: bool = Fa
                 sender = publisher_name(raw._connection_header or {})
                 if sender not in undecodable and len(undecodable) < MAX_NAMED_PUBLISHERS:
                     undecodable.add(sender)
-                    say(f"cannot decode messages on {real} from {sender}: {one_line(str(e))}")
+                    say(f"ERROR: cannot decode messages on {real} from {sender}: {one_line(str(e))}")
                 return
             if text is not None:
                 try:
@@ -141,7 +141,7 @@ async def run_echo(topic: str, out: Out, *, plot: bool = False, noarr: bool = Fa
             if fmt.done:
                 run.stop.set()
 
-        refused = RefusalLog(decodable, lambda why: say(f"refused a publisher of {real}: {why}"))
+        refused = RefusalLog(decodable, lambda why: say(f"ERROR: refused a publisher of {real}: {why}"))
         await run.node.subscribe(real, AnyMsg, on_msg, check=refused)
         await run.stop.wait()
     return 0

@@ -17,7 +17,7 @@ from rostui.core.bag.files import open_writer
 from rostui.core.bag.model import Connection
 from rostui.core.msg import get_message_class
 
-from conftest import REPO, stop_process, wait_until
+from conftest import REPO, stop_process, until, wait_until
 
 Int32 = get_message_class("std_msgs/Int32")
 
@@ -114,3 +114,10 @@ def run_pilot(app: Any, scenario: Scenario, size: tuple[int, int] = (120, 30)) -
             await app.action_quit()
 
     asyncio.run(main())
+
+
+async def inspector_open(app: Any, pilot: Any) -> None:
+    """Wait for bag view to have read its bags, then show its inspector (i) if it is hidden."""
+    await until(lambda: app.index is not None and app.transport is not None, "the bag read")
+    if not app.inspector.display:
+        await pilot.press("i")

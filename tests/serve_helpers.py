@@ -13,11 +13,13 @@ import json
 import re
 import subprocess
 import threading
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Coroutine, TypeVar
+from typing import Any, Coroutine, Iterator, TypeVar
 
 import psutil
+import pytest
 
 from conftest import REPO, free_port, rostui_cmd, stop_process, wait_for_port, wait_until
 
@@ -87,6 +89,16 @@ def start_serve(words: list[str], env: dict[str, str], log: Path, *options: str)
     return Served(proc, port, match[2], log)
 
 
+@contextmanager
+def serving(words: list[str], env: dict[str, str], log: Path, *options: str) -> Iterator[Served]:
+    """:func:`start_serve` for the ``with`` block; Ctrl-C on it after."""
+    served = start_serve(words, env, log, *options)
+    try:
+        yield served
+    finally:
+        served.stop()
+
+
 class Loop:
     """An asyncio loop on a thread of its own: tests submit coroutines and wait for their results."""
 
@@ -103,6 +115,16 @@ class Loop:
         """Stop the loop and its thread."""
         self.loop.call_soon_threadsafe(self.loop.stop)
         self.thread.join(5)
+
+
+@pytest.fixture
+def loop() -> Iterator[Loop]:
+    """An event loop thread for the tabs."""
+    tabs_loop = Loop()
+    try:
+        yield tabs_loop
+    finally:
+        tabs_loop.close()
 
 
 class Tab:

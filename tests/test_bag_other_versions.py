@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pytest
 
+from bag_view_helpers import inspector_open
 from conftest import until
 from rostui.core.bag.model import Connection
 from rostui.core.bag.rosbag2_0 import BagWriter
@@ -101,9 +102,7 @@ def test_bag_view_inspects_an_image_of_another_version_as_text_with_one_line(tmp
     async def main() -> None:
         app = BagViewApp([str(path)], publish=False)
         async with app.run_test(size=(100, 40)) as pilot:
-            await until(lambda: app.index is not None and app.transport is not None, "the bag read")
-            if not app.inspector.display:
-                await pilot.press("i")
+            await inspector_open(app, pilot)
             assert app.timeline.selected_topic == "/camera/image_raw"
             await until(lambda: "height: 10" in str(app.inspector_text.render()), "the old Image as text")
             await pilot.pause()

@@ -31,7 +31,7 @@ from cli_helpers import rostui
 from conftest import free_port, wait_for_port, wait_until
 from console_helpers import write_sample_log
 from launch_tui_helpers import BUILTIN_SHARE, make_package, write_launch
-from serve_helpers import Served, live, start_serve
+from serve_helpers import Served, live, serving, start_serve
 
 SCREEN_POSE = re.compile(r"turtle1 x (-?\d+\.\d+) y (-?\d+\.\d+)")
 ECHO_X = re.compile(r"^x: (-?[\d.e+-]+)$", re.M)
@@ -48,11 +48,8 @@ def browser() -> Iterator[Any]:
 @pytest.fixture
 def served(rostui_core: subprocess.Popen, ros_env: dict[str, str], tmp_path: Path) -> Iterator[Served]:
     """`rostui serve turtlesim __name:=browser_sim` on a free port."""
-    served = start_serve(["turtlesim", f"__name:={NODE[1:]}"], ros_env, tmp_path / "serve.log")
-    try:
+    with serving(["turtlesim", f"__name:={NODE[1:]}"], ros_env, tmp_path / "serve.log") as served:
         yield served
-    finally:
-        served.stop()
 
 
 def master_x(env: dict[str, str]) -> float:
@@ -183,12 +180,9 @@ def test_every_app_opens_in_a_browser_shows_its_help_and_q_ends_it(app: str, ros
 @pytest.fixture
 def console(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Served]:
     """`rostui serve console FILE` (a rosout.log: no master needed)."""
-    served = start_serve(["console", str(write_sample_log(tmp_path / "rosout.log"))], ros_env,
-                         tmp_path / "serve.log")
-    try:
+    log = write_sample_log(tmp_path / "rosout.log")
+    with serving(["console", str(log)], ros_env, tmp_path / "serve.log") as served:
         yield served
-    finally:
-        served.stop()
 
 
 #: A page of another site: it opens a websocket to the server (and says how that went in its title).

@@ -17,7 +17,7 @@ from rostui.apps.widgets.lifecycle import HANGUP_GRACE
 
 from conftest import wait_until
 from console_helpers import write_sample_log
-from serve_helpers import Loop, Served, Tab, live, start_serve
+from serve_helpers import Loop, Served, Tab, live, loop, serving  # noqa: F401  (loop is a fixture)
 
 #: The acceptance of issue 30: a tab closed after its first screen leaves no app process within 5 s.
 TAB_GONE_WITHIN = 5.0
@@ -31,22 +31,9 @@ SERVE_STOPS_WITHIN = 20.0
 @pytest.fixture
 def served(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Served]:
     """`rostui serve console FILE`."""
-    served = start_serve(["console", str(write_sample_log(tmp_path / "rosout.log"))], ros_env,
-                         tmp_path / "serve.log")
-    try:
+    log = write_sample_log(tmp_path / "rosout.log")
+    with serving(["console", str(log)], ros_env, tmp_path / "serve.log") as served:
         yield served
-    finally:
-        served.stop()
-
-
-@pytest.fixture
-def loop() -> Iterator[Loop]:
-    """An event loop thread for the tabs."""
-    loop = Loop()
-    try:
-        yield loop
-    finally:
-        loop.close()
 
 
 def open_tabs(served: Served, loop: Loop, count: int) -> list[Tab]:

@@ -22,6 +22,7 @@ from rostui.apps.view.topdown_view import TopDownView
 from rostui.core.bag.files import open_writer
 from rostui.core.bag.model import Connection
 
+from bag_view_helpers import inspector_open
 from conftest import until
 from interop_helpers import PEERS, Spawn, spawn  # noqa: F401  (fixture)
 from monitor_helpers import run_monitor
@@ -61,9 +62,7 @@ def column_of(view: TopDownView, x: float) -> int:
 async def test_bag_inspector_draws_the_scan_under_the_cursor(tmp_path: Path) -> None:
     app = BagViewApp([str(scan_bag(tmp_path / "scan.mcap"))], publish=False)
     async with app.run_test(size=(100, 40)) as pilot:
-        await until(lambda: app.index is not None and app.transport is not None, "the bag read")
-        if not app.inspector.display:
-            await pilot.press("i")
+        await inspector_open(app, pilot)
         await until(lambda: isinstance(app.inspector_view.view, TopDownView)
                     and bool(wall_columns(app.inspector_view.view)), "the first scan in the inspector")
         view = app.inspector_view.view

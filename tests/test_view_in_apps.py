@@ -24,6 +24,7 @@ from rostui.core.bag.files import open_writer
 from rostui.core.bag.model import Connection
 from rostui.core.msg import get_message_class
 
+from bag_view_helpers import inspector_open
 from conftest import stop_process, until
 from monitor_helpers import run_monitor
 from view_helpers import GREEN, HEIGHT, RED, WHITE, WIDTH, YELLOW, close, pattern, pixel_at, start_camera
@@ -89,9 +90,7 @@ def test_bag_inspector_shows_the_image_under_the_cursor(tmp_path: Path) -> None:
     async def main() -> None:
         app = BagViewApp([str(path)], publish=False)
         async with app.run_test(size=(100, 40)) as pilot:
-            await until(lambda: app.index is not None and app.transport is not None, "the bag read")
-            if not app.inspector.display:
-                await pilot.press("i")
+            await inspector_open(app, pilot)
             await until(lambda: isinstance(app.inspector_view.view, ImageView)
                         and app.inspector_view.view.drawn.count >= 1, "the first image in the inspector")
             view = app.inspector_view.view

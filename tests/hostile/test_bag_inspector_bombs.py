@@ -29,6 +29,7 @@ from rostui.core.bag.rosbag2_0 import BagWriter
 from rostui.core.msg import definition_md5, get_message_class
 from sensor_bombs import BOMBS, CLOUD_ROWS, PNG_SIDE, SCAN_RANGES
 
+from bag_view_helpers import inspector_open
 from conftest import until
 
 #: Most memory traced while one message is inspected, the app's own included: the bag's reader holds the
@@ -80,9 +81,7 @@ def test_the_inspector_shows_each_bomb_within_bounds_and_the_chatter_after_them(
         tracemalloc.start()  # before the app: the inspector shows the first topic as soon as the bag is read
         try:
             async with app.run_test(size=(100, 40)) as pilot:
-                await until(lambda: app.index is not None and app.transport is not None, "the bag read")
-                if not app.inspector.display:
-                    await pilot.press("i")
+                await inspector_open(app, pilot)
                 for number, (topic, (name, shown)) in enumerate(TOPICS.items()):
                     if number:
                         await pilot.press("down")
@@ -145,9 +144,7 @@ def test_a_huge_message_of_another_version_is_one_line_and_the_chatter_still_sho
         tracemalloc.start()  # before the app: the inspector shows the first topic as soon as the bag is read
         try:
             async with app.run_test(size=(100, 40)) as pilot:
-                await until(lambda: app.index is not None and app.transport is not None, "the bag read")
-                if not app.inspector.display:
-                    await pilot.press("i")
+                await inspector_open(app, pilot)
                 assert app.timeline.selected_topic == "/a_scan"
                 await until(lambda: "not decoded here" in text(), lambda: f"one line, not {text()[:400]!r}")
                 await pilot.pause()

@@ -21,7 +21,7 @@ from hostile_helpers import MB, Background, LegitClient, RssSampler, attack_figu
 
 from conftest import wait_until
 from console_helpers import write_sample_log
-from serve_helpers import DEADLINE, Loop, Served, Tab, live, start_serve
+from serve_helpers import DEADLINE, Loop, Served, Tab, live, loop, serving  # noqa: F401  (loop is a fixture)
 
 #: Sessions the server under attack allows (`--max-sessions`).
 MAX_SESSIONS = 3
@@ -40,21 +40,8 @@ SHOWS = "divisible by"
 def served(ros_env: dict[str, str], tmp_path: Path) -> Iterator[Served]:
     """`rostui serve --max-sessions 3 console FILE`."""
     log = write_sample_log(tmp_path / "rosout.log")
-    served = start_serve(["console", str(log)], ros_env, tmp_path / "serve.log", "--max-sessions", str(MAX_SESSIONS))
-    try:
+    with serving(["console", str(log)], ros_env, tmp_path / "serve.log", "--max-sessions", str(MAX_SESSIONS)) as served:
         yield served
-    finally:
-        served.stop()
-
-
-@pytest.fixture
-def loop() -> Iterator[Loop]:
-    """An event loop thread for the tabs."""
-    loop = Loop()
-    try:
-        yield loop
-    finally:
-        loop.close()
 
 
 @pytest.fixture

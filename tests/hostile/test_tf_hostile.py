@@ -178,14 +178,12 @@ def write_deep_bag(path: Path) -> Path:
 def test_bag_view_inspects_a_deep_chain_message(tmp_path: Path) -> None:
     from rostui.apps.bagview.app import BagViewApp
 
-    from bag_view_helpers import run_pilot
+    from bag_view_helpers import inspector_open, run_pilot
 
     path = write_deep_bag(tmp_path / "deep.bag")
 
     async def scenario(pilot: Pilot, app: BagViewApp) -> None:
-        await until(lambda: app.index is not None and app.transport is not None, "the bag read")
-        if not app.inspector.display:
-            await app.run_action("toggle_inspector")
+        await inspector_open(app, pilot)
         await until(lambda: isinstance(app.inspector_view.view, TfTreeView)
                     and app.inspector_view.view.table.row_count == DEPTH + 8, "every frame in the inspector",
                     timeout=60)

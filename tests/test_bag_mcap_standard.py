@@ -25,7 +25,7 @@ from rostui.core.bag.index import load_index
 from rostui.core.bag.schema_md5 import UNKNOWN_MD5, definition_md5, schema_md5
 
 from cli_helpers import rostui
-from conftest import SYSTEM_PYTHON, need_command, need_peer, rostui_cmd, wait_until
+from conftest import REPO, SYSTEM_PYTHON, need_command, need_peer, rostui_cmd, wait_until
 from interop_helpers import Peer, rospy_peer, run_tool, spawn  # noqa: F401  (spawn is a fixture)
 
 TOPICS = {
@@ -148,9 +148,17 @@ def test_bag_info_prints_the_md5s_without_a_warning(standard: tuple[Path, dict[s
     path, _sent = standard
     result = rostui(["bag", "info", str(path)], ros_env)
     assert result.returncode == 0 and result.stderr == "", result.stderr
+    assert re.search(r"^version: +0 \(ros1 profile\)$", result.stdout, re.M), result.stdout
     assert _types_in(result.stdout) == {t: debian[t][0] for t in TOPICS.values()}, result.stdout
     as_json = json.loads(rostui(["bag", "info", "--json", str(path)], ros_env).stdout)
     assert {row["type"]: row["md5sum"] for row in as_json["types"]} == {t: debian[t][0] for t in TOPICS.values()}
+
+
+def test_bag_info_names_the_profile_the_file_declares(ros_env: dict[str, str]) -> None:
+    """A ROS 2 MCAP (rosbag2's, tests/bag_corpus) is not called a ros1 profile file."""
+    result = rostui(["bag", "info", str(REPO / "tests" / "bag_corpus" / "talker.mcap")], ros_env)
+    assert result.returncode == 0, result.stderr
+    assert re.search(r"^version: +0 \(ros2 profile\)$", result.stdout, re.M), result.stdout
 
 
 def test_each_definition_is_parsed_once(standard: tuple[Path, dict[str, list[str]]], tmp_path: Path,

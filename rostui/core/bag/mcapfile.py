@@ -381,6 +381,8 @@ class McapBagReader(ChunkedFile):
         if self.file.read(len(MAGIC)) != MAGIC:
             self.file.close()
             raise BagError(f"{path} is not an MCAP file (bad magic)")
+        self.profile = self._read_profile()
+        """The header record's profile (``ros1``, ``ros2``...); empty when it names none or cannot be read."""
         self.file.seek(0)
         self.connections: dict[int, Connection] = {}
         self.truncated = ""
@@ -396,6 +398,15 @@ class McapBagReader(ChunkedFile):
     def close(self) -> None:
         """Close the file."""
         self.file.close()
+
+    def _read_profile(self) -> str:
+        """The profile string of the header record right after the magic (read within 256 bytes)."""
+        head = self.file.read(9 + 4 + 256)
+        if len(head) < 13 or head[0] != Opcode.HEADER:
+            return ""
+        length = _U32.unpack_from(head, 9)[0]
+        profile = head[13:13 + length].decode("ascii", "replace") if length <= 256 else ""
+        return profile if profile.isprintable() and "\ufffd" not in profile else ""
 
     def _connection(self, channel: Any, schema: Any) -> Connection:
         """The connection of a channel, its md5sum computed from the schema when the metadata lacks one."""
@@ -718,7 +729,8 @@ class McapBagReader(ChunkedFile):
     def summary(self) -> BagSummary:
         """Counts and times from the summary section (no chunk decompressed), or from reading every record
         when there is none."""
-        out = BagSummary(self.path, "mcap", "0 (ros1 profile)", self.size, closed=self.closed_properly)
+        out = BagSummary(self.path, "mcap", f"0 ({self.profile or 'no'} profile)", self.size,
+                         closed=self.closed_properly)
         summary = self._summary
         if summary is not None:
             for cid, channel in summary.channels.items():

@@ -64,6 +64,8 @@ def test_ctrl_c_ends_the_app_cleanly(pane: Pane, rostui_core: Any, ros_env: dict
     pane.wait_until(lambda: "? help  q quit" in pane.screen(), f"{name}'s key line with ? help and q quit")
     if node is not None:
         wait_until(lambda: node in master_nodes(ros_env), f"{node} registered")
+    elif name != "graph":  # an anonymous node: its name is not known, only that it is new
+        wait_until(lambda: master_nodes(ros_env) - before, f"{name}'s node registered")
     during = master_nodes(ros_env)
     assert shell_children(pane), f"{name} is not running under the shell"
     pane.keys("C-c")

@@ -20,7 +20,9 @@ class Greeter(rospy.SubscribeListener):
 
 
 rospy.init_node("latched_talker")
-pub = rospy.Publisher("latched", String, latch=True, subscriber_listener=Greeter(), queue_size=1)
+# queue_size 10: with 1, a loaded machine lets the latched copy replace the greeting before its queue thread
+# sends it (both rospys queue per connection), and the subscriber hears one message, not two
+pub = rospy.Publisher("latched", String, latch=True, subscriber_listener=Greeter(), queue_size=10)
 pub.publish(String("last"))
 print("ready", flush=True)
 rospy.spin()

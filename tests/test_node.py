@@ -189,6 +189,22 @@ def test_shutdown_unregisters_everything(rostui_core: Any, ros_env: dict[str, st
     run(scenario())
 
 
+def test_what_is_asked_for_after_shutdown_began_is_not_registered(rostui_core: Any, ros_env: dict[str, str]) -> None:
+    """Ctrl-C between init_node and a script's Subscriber line: the script goes on to make the subscriber while
+    the node shuts down; like rospy, the node registers nothing more, so nothing stays listed with the master
+    (the registration used to come after the unregistrations, and the dead node stayed on the graph)."""
+    async def scenario() -> None:
+        node = await AsyncNode("hasty").start()
+        await node.subscribe("early", String, lambda m: None)
+        await node.shutdown()
+        await node.subscribe("late", String, lambda m: None)
+        await node.advertise("out", String)
+        await node.advertise_service("srv", SetBool, lambda r: (True, ""))
+        pubs, subs, srvs = system_state(ros_env)
+        assert not [entry for entry in pubs + subs + srvs if "/hasty" in entry[1]]
+    run(scenario())
+
+
 def test_master_down_is_one_clear_error(ros_env: dict[str, str]) -> None:
     async def scenario() -> None:
         with pytest.raises(MasterError, match="Unable to communicate with master"):

@@ -431,6 +431,12 @@ class AsyncNode:
         return f"rosrpc://{self.addressing.advertise_host}:{self.tcpros_port}"
 
     # -- master -------------------------------------------------------------------
+    @property
+    def registers(self) -> bool:
+        """False once shutdown has begun: what is asked for after that is not told to the master, whose
+        unregistrations have gone already (rospy registers nothing once shut down, too)."""
+        return self.shutdown_reason is None
+
     async def master_call(self, method: str, *args: Any) -> Any:
         """Call a Master API method with our caller id; unwrap the ROS result."""
         assert self._master is not None, "node not started"
@@ -502,7 +508,8 @@ class AsyncNode:
             pub = Publication(self, name, ttype, queue_size=queue_size, latch=latch, tcp_nodelay=tcp_nodelay)
             self.publications[name] = pub
             try:
-                await self.master_call("registerPublisher", name, ttype.type, self.uri)
+                if self.registers:
+                    await self.master_call("registerPublisher", name, ttype.type, self.uri)
             except MasterError:
                 self.publications.pop(name, None)
                 raise
@@ -538,7 +545,7 @@ class AsyncNode:
         if callback is not None:
             sub.add_callback(callback, callback_args, check)
         sub.handles += 1
-        if created:
+        if created and self.registers:
             try:
                 uris = await self.master_call("registerSubscriber", name, msg_class._type, self.uri)
             except MasterError:
@@ -567,6 +574,8 @@ class AsyncNode:
             sub.add_callback(callback, callback_args)
         sub.handles += 1
         self.subscriptions[name] = sub
+        if not self.registers:
+            return Subscriber(self, sub, callback, callback_args)
         try:
             uris = await self.master_call("registerSubscriber", name, sub.type_name, self.uri)
         except Exception:
@@ -593,7 +602,8 @@ class AsyncNode:
         server = ServiceServer(self, resolved, srv_class, handler, threaded=threaded)
         self.services[resolved] = server
         try:
-            await self.master_call("registerService", resolved, self.service_uri, self.uri)
+            if self.registers:
+                await self.master_call("registerService", resolved, self.service_uri, self.uri)
         except MasterError:
             self.services.pop(resolved, None)
             raise

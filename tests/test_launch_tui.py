@@ -233,3 +233,20 @@ async def test_a_burst_of_output_shows_its_newest_lines(tui_env: dict[str, str],
         assert "… 700 lines skipped: more than 500 arrived between two refreshes …" in text
         assert "burst 700\n" not in text + "\n" and "burst 701" in text
         await quit_and_check_gone(pilot, pids_of_launch(app))
+
+
+@on_loop
+async def test_a_refresh_while_the_screen_is_torn_down_draws_nothing(tui_env: dict[str, str],
+                                                                     tmp_path: Path) -> None:
+    """The refresh timer is stopped after the screens on quit: a tick between the two finds no table and
+    must not crash the app (a loaded CI machine met that tick)."""
+    launch = write_launch(tmp_path / "one.launch", """
+  <node pkg="tuitest" type="quiet" name="worker"/>""")
+    app = monitor(launch)
+    async with app.run_test(size=SIZE) as pilot:
+        await until(lambda: len(app.rows) == 1, "the node's row")
+        pids = pids_of_launch(app)
+        await app.query_one("#nodes").remove()
+        app.refresh_view()
+        await quit_and_check_gone(pilot, pids)
+    assert app.return_code == 0

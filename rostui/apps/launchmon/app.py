@@ -226,6 +226,8 @@ class LaunchMonitorApp(KeysApp):
     # -- refresh -------------------------------------------------------------------------------------
     def refresh_view(self) -> None:
         """Read the supervisor: table rows, status line, problem line and new output lines."""
+        if not self.query("#nodes"):  # quitting: the screen's widgets are gone, the timer not yet
+            return
         self._ticks += 1
         processes = self.supervisor.processes
         due = self._ticks % max(1, round(1.0 / self.period)) == 1 or not self._usage

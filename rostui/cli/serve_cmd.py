@@ -17,7 +17,6 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import typer
 
-from rostui.apps.serve.access import EVERYWHERE, LOOPBACK_NAMES as LOOPBACK
 
 #: The apps `rostui serve` runs, as a user names them.
 APPS = ("graph", "console", "loggers", "monitor", "bag view", "turtlesim", "launch --tui")
@@ -120,6 +119,8 @@ def public_url(host: str, port: int) -> str:
     """The address a browser on this machine (or at the near end of an ``ssh -L`` tunnel) opens."""
     import socket
 
+    from rostui.apps.serve.access import EVERYWHERE, LOOPBACK_NAMES as LOOPBACK
+
     if host in LOOPBACK:
         name = "localhost"
     elif host in EVERYWHERE:
@@ -134,6 +135,8 @@ def announcement(app: str, host: str, port: int, url: str, token: str, max_sessi
     import socket
 
     from urllib.parse import urlsplit
+
+    from rostui.apps.serve.access import LOOPBACK_NAMES as LOOPBACK
 
     opened = f"{url}/?token={token}"
     listening = f"[{host}]:{port}" if ":" in host else f"{host or '*'}:{port}"

@@ -19,6 +19,7 @@ import pytest
 from cli_helpers import rostui
 from conftest import rostui_cmd, start_rostui_core, stop_process, until
 from live_helpers import Watcher
+from pilot_helpers import press_in_one_burst
 from monitor_helpers import (ManyTopics, Publisher, master_subscriptions, run_monitor as run,
                              start_publishers, stop_all)
 from textual.pilot import Pilot
@@ -78,6 +79,11 @@ def test_table_sort_and_filter(rostui_core: Any, ros_env: dict[str, str], tmp_pa
         assert "/fast" in app.table.names and app.focused is app.table
         await pilot.press("slash", *"zzz", "enter")
         assert app.table.names == [] and "no topic matches 'zzz'" in screen_text(app, "#banner")
+        await pilot.press("slash", *["backspace"] * 3, "enter")
+        press_in_one_burst(app, "slash", *"/fas", "enter")
+        await until(lambda: app.filter_text == "/fas", lambda: f"the keys typed with / (a / among them) to reach the filter, not {app.filter_text!r}", 10)
+        await until(lambda: app.focused is app.table, "Enter to give the keyboard back to the table", 10)
+        assert app.table.names == ["/fast"]
 
     try:
         run(MonitorApp(period=0.3), scenario)

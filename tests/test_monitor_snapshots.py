@@ -93,8 +93,10 @@ async def feed(pilot: Pilot, talkers: Talkers, clock: SteppedClock, messages: in
         app.repaint()
         stats = [app.source._watches.get(t) for t in TOPICS]
         # a watch exists before its subscription does: its handle is set once subscribing finished
-        return all(w is not None and w.handle is not None and w.handle.get_num_connections() > 0 for w in stats)
-    await until(connected, "the monitor connected to both topics", DEADLINE)
+        subscribed = all(w is not None and w.handle is not None and w.handle.get_num_connections() > 0 for w in stats)
+        # and the publisher drops a message sent before its end of the connection has finished the handshake
+        return subscribed and all(p.get_num_connections() > 0 for p in (talkers.log, talkers.twist))
+    await until(connected, "the monitor connected to both topics, at both ends", DEADLINE)
     start = clock.now
     for k in range(messages):
         clock.now = start + k * 0.1

@@ -31,6 +31,7 @@ from rostui.apps.bagview.inspect_view import InspectorView, inspected_text
 from rostui.apps.bagview.timeline import TimelineView
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.bag.clock import DEFAULT_HZ, BagClock
 from rostui.core.bag.index import BagIndex, IndexSource, load_index
@@ -365,7 +366,7 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         """Open the go-to prompt."""
         self.prompt.value = ""
         self.prompt.display = True
-        self.prompt.focus()
+        focus_now(self.prompt)
 
     def on_input_submitted(self, event: Input.Submitted) -> None:
         """Go where the prompt says."""

@@ -26,6 +26,7 @@ from rostui.apps.console.bars import KEY_HELP, LEVEL_KEYS, Bar, StatusInfo, deta
 from rostui.apps.console.table import LogTable
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.log.levels import Level
 from rostui.core.log.rosout_read import RosoutEntry, RosoutLog, entries_text
@@ -358,7 +359,7 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
         prompt.border_title = {"search": f"search ({kind})", "highlight": f"highlight ({kind})",
                                "save": "save shown messages as rosout.log"}[purpose]
         prompt.display = True
-        prompt.focus()
+        focus_now(prompt)
         prompt.cursor_position = len(prompt.value)
 
     def close_prompt(self, cancelled: bool = False) -> None:

@@ -28,6 +28,7 @@ from rostui.apps.graph.canvas import Canvas, draw, layout_view
 from rostui.apps.graph.widget import GraphView
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.network import master_uri_from_env
@@ -501,7 +502,7 @@ class GraphApp(ReleasesOnExit, KeysApp):
         prompt.border_title = PROMPTS[mode]
         prompt.value = self._prompt_before
         prompt.display = True
-        prompt.focus()
+        focus_now(prompt)
 
     @on(Input.Changed, "#prompt")
     def _typed(self, event: Input.Changed) -> None:

@@ -31,6 +31,7 @@ from rostui.apps.terminal import terminal_missing
 from rostui.apps.view.app import ViewScreen
 from rostui.apps.view.registry import viewable
 from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.msg import Message
@@ -96,7 +97,7 @@ class MonitorApp(ReleasesOnExit, KeysApp):
 
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("q", "quit", "quit"),
-        Binding("slash", "open_filter", "filter"),
+        Binding("slash", "open_filter", "filter", priority=True),
         Binding("s", "sort_next", "sort"),
         Binding("S", "sort_reverse", "reverse sort"),
         Binding("f", "plot", "plot field"),
@@ -320,9 +321,15 @@ class MonitorApp(ReleasesOnExit, KeysApp):
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         """The plot's keys act on the main screen only (in the field chooser, letters are not the app's).
 
+        "/" is a priority binding so that the keys typed after it in the same burst (type-ahead over SSH)
+        already go to the filter; it is the app's only on the main screen, and never while the filter
+        has the keyboard ("/" is part of topic names; Textual does not leave "slash" to a focused Input).
+
         Over a topic's view (Enter on an image) only help, quit and the palette are the app's.
         """
         if action in PLOT_ACTIONS and len(self.screen_stack) > 1:
+            return False
+        if action == "open_filter" and (len(self.screen_stack) > 1 or isinstance(self.focused, Input)):
             return False
         if action not in ("help", "quit", "command_palette") and isinstance(self.screen, ViewScreen):
             return False
@@ -340,7 +347,7 @@ class MonitorApp(ReleasesOnExit, KeysApp):
 
     def action_open_filter(self) -> None:
         """/: type a filter (name or type contains it); the table follows each keystroke."""
-        self.query_one("#filter", FilterInput).focus()
+        focus_now(self.query_one("#filter", FilterInput))
 
     @on(Input.Changed, "#filter")
     def _filter_typed(self, event: Input.Changed) -> None:

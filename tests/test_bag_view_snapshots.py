@@ -140,6 +140,11 @@ def test_small_terminal(snap_compare, square_bag: str) -> None:
     assert snap_compare(BagViewApp([square_bag], publish=False), run_before=run_before, terminal_size=(80, 24))
 
 
+#: Chunk age for the recording snapshots: the burst stays in one chunk, so the sizes shown do not depend on
+#: whether the recorder's half-second flush fell in the middle of the burst (it does on a loaded machine:
+#: 3.2 KB in two chunks where one chunk is 2.5 KB).
+ONE_CHUNK = 3600.0
+
 BURST = r'''
 import time
 from rostui import client as ros
@@ -199,7 +204,8 @@ def test_record_mode(snap_compare, tmp_path: Path, monkeypatch: pytest.MonkeyPat
         await pilot.pause()
 
     try:
-        app = BagRecordApp(RecordOptions(topics=["/chatter", "/turtle1/pose"], output_name="session.mcap"))
+        app = BagRecordApp(RecordOptions(topics=["/chatter", "/turtle1/pose"], output_name="session.mcap",
+                                         max_chunk_age=ONE_CHUNK))
         assert snap_compare(app, run_before=run_before, terminal_size=size)
     finally:
         stop_process(burst)
@@ -225,7 +231,9 @@ def test_record_mode_stopped_at_its_duration(snap_compare, tmp_path: Path, monke
         await pilot.pause()
 
     try:
-        app = BagRecordApp(record_options(["/chatter", "/turtle1/pose"], name="session.mcap", duration="6"))
+        options = record_options(["/chatter", "/turtle1/pose"], name="session.mcap", duration="6")
+        options.max_chunk_age = ONE_CHUNK
+        app = BagRecordApp(options)
         assert snap_compare(app, run_before=run_before, terminal_size=(100, 20))
     finally:
         stop_process(burst)

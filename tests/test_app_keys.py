@@ -15,6 +15,8 @@ from typing import Any, Callable
 
 import pytest
 from textual.app import App
+from textual.message import Message
+from textual.widgets import Static
 from textual.command import CommandPalette
 from textual.pilot import Pilot
 
@@ -31,6 +33,7 @@ from rostui.apps.launchmon.app import LaunchMonitorApp
 from rostui.apps.loggers.app import LoggersApp
 from rostui.apps.loggers.panels import LevelList, LoggerTable, NodeList
 from rostui.apps.monitor.app import MonitorApp
+from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.help import HelpScreen
 from rostui.apps.widgets.keys import ESSENTIAL_KEYS
 from rostui.core.bag.recorder import RecordOptions
@@ -263,3 +266,46 @@ def test_help_and_ctrl_c_over_the_publish_editor(master: dict[str, str], tmp_pat
 
     app = run("monitor", tmp_path, scenario)
     assert app.return_code == 0 and app.released
+
+
+class LateWidget(Static):
+    """A widget that, as it is removed at shutdown, sends the app a message (as a table sends a row highlight)."""
+
+    class Late(Message):
+        """Handled by the app after the widgets are gone."""
+
+    def on_unmount(self) -> None:
+        """Queue the message for the app while Textual is taking the screen down."""
+        self.app.post_message(self.Late())
+
+
+class LateMessageApp(KeysApp):
+    """An app whose handler needs its widget, as loggers' row highlight handler does."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.late_handled = 0
+
+    def compose(self) -> Any:
+        """One widget."""
+        yield LateWidget("late", id="late")
+
+    def on_late_widget_late(self) -> None:
+        """Read the widget (NoMatches once it is gone)."""
+        self.query_one("#late", LateWidget)
+        self.late_handled += 1
+
+
+def test_messages_left_for_the_app_after_its_widgets_are_gone_are_not_handled() -> None:
+    """A loaded fresh-ci run: the loggers app handled a row highlight after quitting had removed its panels
+    and crashed with NoMatches. Once shutdown has begun, the app's handlers get no more widget messages."""
+    app = LateMessageApp()
+
+    async def main() -> None:
+        async with app.run_test() as pilot:
+            await pilot.pause()
+            app.post_message(LateWidget.Late())  # while running: handled
+            await until(lambda: app.late_handled == 1, "the message handled while the app runs")
+
+    asyncio.run(main())
+    assert app.return_code in (None, 0) and app.late_handled == 1

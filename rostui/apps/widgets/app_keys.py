@@ -8,15 +8,22 @@ any screen (the publish editor, the palette, the help itself) and whatever
 widget has the focus, except that ``?`` still types a ``?`` into a text field.
 While a modal screen is up, the app's other priority keys (graph's Escape
 and Tab, turtlesim's Tab) stay out of its way.
+
+Quitting, Textual removes the screens' widgets first and then lets the app
+handle what is still queued for it: a table's row highlight, a timer's tick.
+An app handler then finds its widgets gone (NoMatches); so once shutdown has
+begun, KeysApp hands the app's own handlers no more widget messages or ticks.
 """
 
 from __future__ import annotations
 
 from typing import ClassVar
 
+from textual import events
 from textual.app import App
 from textual.binding import Binding, BindingType
 from textual.dom import DOMNode
+from textual.message import Message
 from textual.screen import ModalScreen, Screen
 
 from rostui.apps.widgets.help import HelpScreen
@@ -73,9 +80,23 @@ class KeysApp(App[int]):
             return
         self.push_screen(HelpScreen(self.keys_for(self.screen)))
 
+    async def _on_message(self, message: Message) -> None:
+        if not self._running and comes_after_the_widgets(message):
+            return
+        await super()._on_message(message)
+
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         """Over a modal screen only the shared keys act here; the modal screen has the rest."""
         stack = self.screen_stack
         if not self._listing_keys and stack and isinstance(stack[-1], ModalScreen) and action not in SHARED_ACTIONS:
             return False
         return True
+
+
+def comes_after_the_widgets(message: Message) -> bool:
+    """Whether ``message``, handled once shutdown has begun, would reach app code about widgets already gone:
+    a widget's message (a row highlighted, an input changed) or a timer's tick.  Textual's own messages and
+    the other events (Unmount among them) still go through."""
+    if isinstance(message, events.Timer):
+        return True
+    return not isinstance(message, events.Event) and not type(message).__module__.startswith("textual.messages")

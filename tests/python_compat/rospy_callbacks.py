@@ -32,8 +32,11 @@ def bad(msg):
 
 
 rospy.Subscriber("echoed", String, on_echoed)
-rospy.Subscriber("chatter", String, on_chatter)
+# bad first: a topic's callbacks run in the order they were added, on one thread, so its error is logged
+# before on_chatter publishes the answer that lets this script end (the other way round the script could end
+# before rospy logged it).
 rospy.Subscriber("chatter", String, bad)
+rospy.Subscriber("chatter", String, on_chatter)
 talk = rospy.Publisher("chatter", String, queue_size=1, latch=True)
 talk.publish(String("hello"))
 print("= heard back:", echoed.wait(30), flush=True)

@@ -71,10 +71,24 @@ def get(port: int, path: str, **headers: str) -> tuple[int, dict[str, str], str]
 
 
 def app_of(served: Served, others: list[psutil.Process]) -> psutil.Process:
-    """The one app process of the server that is not among ``others`` (waiting until it starts)."""
+    """The one rostui app process of the server that is not among ``others`` (waiting until it starts); other
+    short-lived children (a helper the server or an app runs) are not apps."""
     known = {p.pid for p in others}
-    wait_until(lambda: len([p for p in served.apps() if p.pid not in known]) == 1, "the new tab's app to start")
-    return next(p for p in served.apps() if p.pid not in known)
+    found: list[psutil.Process] = []
+
+    def started() -> bool:
+        found[:] = [p for p in served.apps() if p.pid not in known and is_rostui(p)]
+        return len(found) == 1
+    wait_until(started, "the new tab's app to start")
+    return found[0]
+
+
+def is_rostui(process: psutil.Process) -> bool:
+    """Whether ``process`` runs rostui (the app a tab started), not a helper."""
+    try:
+        return "rostui" in " ".join(process.cmdline())
+    except psutil.Error:
+        return False
 
 
 def test_requests_without_the_token_or_from_another_site_are_refused(served: Served, loop: Loop,

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import asyncio
 import ctypes
-import ctypes.util
 import os
 import signal
 import sys
@@ -34,7 +33,9 @@ def _parent_death_hangup() -> Optional[Callable[[], None]]:
     if not sys.platform.startswith("linux"):
         return None
     try:
-        prctl = ctypes.CDLL(ctypes.util.find_library("c") or None, use_errno=True).prctl
+        # the symbols already loaded into this process (libc's among them): ctypes.util.find_library would run
+        # ldconfig in a child process for every tab opened
+        prctl = ctypes.CDLL(None, use_errno=True).prctl
     except (OSError, AttributeError):
         return None
     server = os.getpid()

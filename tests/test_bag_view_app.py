@@ -16,6 +16,7 @@ import sys
 import time
 from pathlib import Path
 from typing import Any
+from xmlrpc.client import ServerProxy
 
 import pytest
 from rich.console import Console
@@ -82,7 +83,7 @@ def test_seek_to_half_then_play_publishes_the_second_half_only(name: str, tmp_pa
         assert "■ END" in status(app) and "published 75" in status(app)
 
     try:
-        run(BagViewApp([str(path)]), scenario)
+        run(BagViewApp([str(path)], publish_all=True), scenario)
         assert counter.values("/count") == list(range(50, 100))
         assert counter.values("/odd") == list(range(51, 100, 2))
     finally:
@@ -105,7 +106,7 @@ def test_each_step_while_paused_publishes_exactly_one_message(counts_bag: Path, 
         assert "PAUSED" in status(app)
 
     try:
-        run(BagViewApp([str(counts_bag)]), scenario)
+        run(BagViewApp([str(counts_bag)], publish_all=True), scenario)
         assert counter.received() == [("/count", 20), ("/count", 21), ("/odd", 21), ("/count", 22),
                                       ("/count", 23), ("/odd", 23)]
     finally:
@@ -117,9 +118,12 @@ def test_switched_off_topic_is_not_published(counts_bag: Path, tmp_path: Path, r
     counter = Counter(ros_env, tmp_path, "/count", "/odd")
 
     async def scenario(pilot: Pilot, app: BagViewApp) -> None:
+        await loaded(app)
+        await pilot.press("a")  # every topic on
         await publishing(app, counter)
         await pilot.press("down", "t")  # /odd off
-        assert app.transport is not None and app.transport.disabled == {"/odd"}
+        assert app.publishing == {"/count"}
+        await until(lambda: {topic for topic, _ in app.publishers} == {"/count"}, "/odd unadvertised")
         await pilot.press("8", "space")
         await until(lambda: app.transport is not None and app.transport.at_end, "the end")
         await until(lambda: len(counter.values("/count")) >= 20, "the last 20 counts")
@@ -128,6 +132,43 @@ def test_switched_off_topic_is_not_published(counts_bag: Path, tmp_path: Path, r
         run(BagViewApp([str(counts_bag)]), scenario)
         assert counter.values("/count") == list(range(80, 100))
         assert counter.values("/odd") == []
+    finally:
+        counter.close()
+
+
+def test_nothing_is_published_until_a_topic_is_switched_on(counts_bag: Path, tmp_path: Path, rostui_core: Any,
+                                                          ros_env: dict[str, str]) -> None:
+    """Next to a live robot, playing a bag sends nothing: no node joins the master and a subscriber hears
+    nothing until t publishes the selected topic (rqt_bag's Publish box); t again unadvertises it."""
+    counter = Counter(ros_env, tmp_path, "/count", "/odd")
+    master = ServerProxy(ros_env["ROS_MASTER_URI"])
+
+    def bag_view_publishes() -> set[str]:
+        publishers = master.getSystemState("/bag_view_test")[2][0]
+        return {topic for topic, nodes in publishers if any(n.startswith("/bag_view") for n in nodes)}
+
+    async def scenario(pilot: Pilot, app: BagViewApp) -> None:
+        await loaded(app)
+        assert "not publishing: t publishes the selected topic, a every topic" in str(app.header.render())
+        await pilot.press("space")
+        await until(lambda: app.transport is not None and app.transport.at_end, "the end of the bag")
+        assert app.node is None and bag_view_publishes() == set() and counter.received() == []
+        assert "published" not in status(app)
+        await pilot.press("t")  # the selected topic, /count
+        await until(lambda: bag_view_publishes() == {"/count"}, "/count advertised on the master")
+        await until(lambda: "connected /count" in counter.lines(), "the counter to connect to /count")
+        await until(lambda: "publishing 1 topic as /bag_view_" in app.link, "the header to say what is published")
+        app.refresh_view()
+        assert app.link in str(app.header.render())
+        assert "● /count" in str(app.timeline.render()) and "○ /odd" in str(app.timeline.render())
+        await pilot.press("9", "space")
+        await until(lambda: len(counter.values("/count")) >= 10, "the last ten counts")
+        await pilot.press("t")
+        await until(lambda: bag_view_publishes() == set(), "/count unadvertised")
+
+    try:
+        run(BagViewApp([str(counts_bag)]), scenario)
+        assert counter.values("/count") == list(range(90, 100)) and counter.values("/odd") == []
     finally:
         counter.close()
 
@@ -146,7 +187,7 @@ def test_without_a_master_it_browses_and_publishes_once_one_starts(counts_bag: P
         try:
             await until(lambda: app.node is not None, "the node once the master answers")
             app.refresh_view()
-            assert "publishing as /bag_view_" in str(app.header.render())
+            assert "publishing 2 topics as /bag_view_" in str(app.header.render())
             await until(counter.connected, "the counter to connect")
             await pilot.press("s")
             await until(lambda: counter.received() == [("/count", 50)], "a step published")
@@ -154,7 +195,7 @@ def test_without_a_master_it_browses_and_publishes_once_one_starts(counts_bag: P
             counter.close()
 
     try:
-        run(BagViewApp([str(counts_bag)]), scenario)
+        run(BagViewApp([str(counts_bag)], publish_all=True), scenario)
     finally:
         for proc in core:
             stop_process(proc)
@@ -189,11 +230,9 @@ def test_keys_move_the_cursor_change_rate_loop_topics_and_inspector(counts_bag: 
         assert t.rate == 0.25
         await pilot.press("l")
         assert t.loop and " loop " in status(app)
-        await pilot.press("down", "t")
-        assert t.disabled == {"/odd"}
-        assert "○ /odd" in str(app.timeline.render())
-        await pilot.press("a")
-        assert t.disabled == set()
+        await pilot.press("down", "t", "a")  # browsing only: t and a say so and publish nothing
+        assert app.publishing == set() and app.node is None and "○ /odd" in str(app.timeline.render())
+        assert any("opened with --no-publish" in n.message for n in app._notifications)
         app.refresh_view()
         assert str(app.inspector_text.render()) == "data: 25"  # /odd under the cursor at 0.25 s
         assert "/odd  std_msgs/Int32  #13 of 50" in str(app.inspector_title.render())

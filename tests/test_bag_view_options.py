@@ -61,8 +61,7 @@ def test_clock_follows_pause_seek_step_and_play_to_rospy(tmp_path: Path, real_ro
     peer.wait_for("subscribed")
 
     async def scenario(pilot: Pilot, app: BagViewApp) -> None:
-        await until(lambda: app.node is not None, f"the app's node ({app.link})")
-        assert app.link.endswith("with /clock")
+        await until(lambda: app.link.startswith("publishing /clock as /bag_view_"), f"the app's node ({app.link})")
         await clock_settles_at(peer, T0, "paused at the start")
         assert set(clocks(peer)) == {T0}, "a paused clock never moves"
         await pilot.press("5")
@@ -101,11 +100,11 @@ def test_bag_play_paused_keeps_publishing_the_clock_to_rospy(tmp_path: Path, rea
 
 def test_without_clock_nothing_is_advertised_on_clock(counts_bag_path: Path, rostui_core: Any) -> None:
     async def scenario(pilot: Pilot, app: BagViewApp) -> None:
-        await until(lambda: app.node is not None, f"the app's node ({app.link})")
-        assert "/clock" not in app.node.publications and not app.link.endswith("/clock")
+        await until(lambda: app.link.startswith("publishing 2 topics as"), f"the app's node ({app.link})")
+        assert "/clock" not in app.node.publications and "/clock" not in app.link
         await pilot.press("space")
 
-    run_pilot(BagViewApp([str(counts_bag_path)]), scenario)
+    run_pilot(BagViewApp([str(counts_bag_path)], publish_all=True), scenario)
 
 
 @pytest.fixture
@@ -141,7 +140,9 @@ def test_both_commands_refuse_the_same_flags_with_the_same_line(tmp_path: Path, 
 @pytest.mark.parametrize("args,message", [
     (["counts.mcap", "-x", "/a", "--split"], "rostui bag view: -x, --split are recording options (add --record)"),
     (["counts.mcap", "--duration", "2"], "rostui bag view: --duration is a recording option (add --record)"),
-    (["counts.mcap", "--clock", "--no-publish"], "--clock publishes /clock; it cannot go with --no-publish"),
+    (["counts.mcap", "--clock", "--no-publish"], "--clock publishes; it cannot go with --no-publish"),
+    (["counts.mcap", "--publish", "--no-publish"], "--publish publishes; it cannot go with --no-publish"),
+    (["counts.mcap", "--topics", "/count", "--no-publish"], "--topics publishes; it cannot go with --no-publish"),
     (["counts.mcap", "--clock", "--hz", "0"], "the clock rate (--hz) must be a positive number, not 0"),
     (["--record", "/a", "--clock"], "rostui bag view --record: --clock and --hz are for viewing a bag"),
     (["-e", "/a.*", "--hz", "10"], "rostui bag view --record: --clock and --hz are for viewing a bag"),

@@ -95,6 +95,10 @@ def square_bag(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> str:
     return "square.mcap"
 
 
+#: A master URI nothing answers on (the discard port on loopback refuses at once).
+NO_MASTER = "http://127.0.0.1:9/"
+
+
 async def _loaded(pilot: Pilot) -> BagViewApp:
     app = pilot.app
     assert isinstance(app, BagViewApp)
@@ -113,19 +117,21 @@ def test_paused_with_inspector(snap_compare, square_bag: str) -> None:
     assert snap_compare(BagViewApp([square_bag], publish=False), run_before=run_before, terminal_size=(120, 32))
 
 
-def test_playing_at_double_rate_with_a_topic_off_and_loop(snap_compare, square_bag: str) -> None:
-    """Playing ×2 with loop, /rosout switched off, the velocity command under the cursor (frozen clock)."""
+def test_playing_at_double_rate_publishing_a_topic_with_no_master_and_loop(snap_compare, square_bag: str) -> None:
+    """Playing ×2 with loop, /rosout switched on for publishing (●) with no master to publish to (the header
+    says so), the velocity command under the cursor (frozen clock)."""
     async def run_before(pilot: Pilot) -> None:
         app = await _loaded(pilot)
         await pilot.press("g", *"4.5", "enter")
         for _ in range(3):
             await pilot.press("s")
         await pilot.press("t", "down", "down", "plus", "l", "space")
-        assert app.transport is not None and not app.transport.paused
+        assert app.transport is not None and not app.transport.paused and app.publishing == {"/rosout"}
+        await until(lambda: app.link.startswith("no master at"), "the app to find no master")
         app.refresh_view()
         await pilot.pause()
 
-    app = BagViewApp([square_bag], publish=False, clock=lambda: 1000.0)
+    app = BagViewApp([square_bag], master_uri=NO_MASTER, clock=lambda: 1000.0)
     assert snap_compare(app, run_before=run_before, terminal_size=(120, 32))
 
 

@@ -60,8 +60,10 @@ def _check_bags(files: list[str]) -> None:
 
 
 def run_view(files: list[str], *, rate: float, loop: bool, pause: bool, topics: list[str], publish: bool,
-             clock: bool = False, hz: float | None = None, record_flags: RecordFlags | None = None) -> int:
-    """Open the bag view on ``files``."""
+             publish_all: bool = False, clock: bool = False, hz: float | None = None,
+             record_flags: RecordFlags | None = None) -> int:
+    """Open the bag view on ``files``; nothing is published unless ``publish_all`` or ``topics`` ask for it
+    (or the t and a keys, later)."""
     from rostui.core.bag.clock import DEFAULT_HZ, BagClock
     from rostui.core.bag.model import BagError
 
@@ -77,13 +79,16 @@ def run_view(files: list[str], *, rate: float, loop: bool, pause: bool, topics: 
         BagClock(DEFAULT_HZ if hz is None else hz)
     except BagError as exc:
         fail(f"rostui bag view: {exc}")
-    if clock and not publish:
-        fail("rostui bag view: --clock publishes /clock; it cannot go with --no-publish")
+    if not publish:
+        asked = [flag for flag, given in (("--clock", clock), ("--publish", publish_all), ("--topics", topics))
+                 if given]
+        if asked:
+            fail(f"rostui bag view: {asked[0]} publishes; it cannot go with --no-publish")
     _check_bags(files)
     from rostui.apps.bagview.app import run_app
 
     return run_app(files, rate=rate, loop=loop, start_playing=not pause, topics=topics, publish=publish,
-                   publish_clock=clock, clock_hz=DEFAULT_HZ if hz is None else hz)
+                   publish_all=publish_all, publish_clock=clock, clock_hz=DEFAULT_HZ if hz is None else hz)
 
 
 def run_record_view(topics: list[str], *, all_topics: bool, regex: bool, flags: RecordFlags) -> int:
@@ -142,15 +147,19 @@ def register(bag_app: typer.Typer) -> None:
         rate: float = typer.Option(1.0, "-r", "--rate", metavar="FACTOR", help="Playback rate factor (+/- change it in the app)."),
         loop: bool = typer.Option(False, "-l", "--loop", help="Loop playback."),
         pause: bool = typer.Option(True, "--pause/--play", help="Open paused (default) or playing."),
+        publish_all: bool = typer.Option(False, "--publish", help="Publish every topic from the start, as rosbag "
+                                                                  "play does (by default nothing is published "
+                                                                  "until t or a)."),
         topics: list[str] | None = typer.Option(None, "--topics", metavar="TOPIC",
-                                                help="Publish only these topics at first (t toggles in the app)."),
-        no_publish: bool = typer.Option(False, "--no-publish", help="Browse only: no node, nothing published."),
+                                                help="Publish these topics from the start (t toggles in the app)."),
+        no_publish: bool = typer.Option(False, "--no-publish", help="Browse only: no node; t and a publish "
+                                                                    "nothing."),
     ) -> None:
         """View a bag like a video player: timeline, play/pause/step/seek, rate, loop, topics, inspector.
 
         Keys: space play/pause, s step, arrows/PgUp/PgDn/Home/End/0-9/g seek, , and . the selected
-        topic's previous/next message, +/- rate, l loop, up/down and t choose topics to publish
-        (a all), i inspector, q quit.
+        topic's previous/next message, +/- rate, l loop, up/down choose a topic, t publishes it (a every
+        topic), i inspector, q quit.  Nothing is published until t, a, --publish or --topics asks.
         """
         items = list(args or [])
         flags = RecordFlags(exclude=exclude, name=name, prefix=prefix, bz2=bz2_flag, lz4=lz4_flag,
@@ -160,4 +169,5 @@ def register(bag_app: typer.Typer) -> None:
                 fail("rostui bag view --record: --clock and --hz are for viewing a bag, not recording")
             raise typer.Exit(run_record_view(items, all_topics=all_topics, regex=regex, flags=flags))
         raise typer.Exit(run_view(items, rate=rate, loop=loop, pause=pause, topics=list(topics or []),
-                                  publish=not no_publish, clock=clock, hz=hz, record_flags=flags))
+                                  publish=not no_publish, publish_all=publish_all, clock=clock, hz=hz,
+                                  record_flags=flags))

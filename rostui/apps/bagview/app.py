@@ -2,9 +2,12 @@
 
 The bag's index (where each message lies, no payload) is read into a
 :class:`~rostui.core.bag.index.BagIndex` in a worker thread; a :class:`~rostui.core.bag.transport.Transport` (the same scheduler as
-``rostui bag play``) runs on Textual's loop and publishes through a node
-``/bag_view_...`` that advertises every topic with its recorded type. Without
-a master (or with ``publish=False``) the app still browses the bag. The
+``rostui bag play``) runs on Textual's loop. Nothing is published until the
+user asks (rqt_bag's "Publish" box): ``t`` publishes the selected topic, ``a``
+every topic, ``--publish``/``--topics`` from the start; only then does a node
+``/bag_view_...`` join the master, advertising just those topics with their
+recorded types.  Without a master (or with ``publish=False``) the app still
+browses the bag. The
 screen is refreshed ten times a second from the transport's state: the
 timeline's cursor, the status line and the inspector (the selected topic's
 message under the cursor, decoded as ``rostopic echo`` prints it).
@@ -55,6 +58,9 @@ RETRY_SECONDS = 2.0
 
 #: Seconds the node may take to shut down when the app quits.
 SHUTDOWN_TIMEOUT = 3.0
+
+#: What the header says while nothing is published.
+NOT_PUBLISHING = "not publishing: t publishes the selected topic, a every topic"
 
 
 def parse_goto(text: str, start_ns: int, end_ns: int) -> int:
@@ -116,13 +122,14 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         Binding("l", "toggle_loop", "loop"),
         Binding("up", "select(-1)", "previous topic", show=False),
         Binding("down", "select(1)", "next topic", show=False),
-        Binding("t,enter", "toggle_topic", "publish on/off"),
-        Binding("a", "all_topics", "all topics on"),
+        Binding("t,enter", "toggle_topic", "publish the topic on/off"),
+        Binding("a", "all_topics", "publish every topic / none"),
         Binding("i", "toggle_inspector", "inspector"),
     ]
 
     def __init__(self, paths: Sequence[str], *, rate: float = 1.0, loop: bool = False, publish: bool = True,
-                 topics: Sequence[str] = (), start_playing: bool = False, master_uri: str | None = None,
+                 topics: Sequence[str] = (), publish_all: bool = False, start_playing: bool = False,
+                 master_uri: str | None = None,
                  queue_size: int = 100, clock: Callable[[], float] = time.perf_counter,
                  publish_clock: bool = False, clock_hz: float = DEFAULT_HZ) -> None:
         super().__init__()
@@ -130,8 +137,9 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         self.names = [os.path.basename(p) for p in self.paths]
         self.rate = rate
         self.loop_play = loop
-        self.publish_wanted = publish
-        self.only_topics = set(topics)
+        self.publish_allowed = publish
+        self.start_topics = set(topics)
+        self.publish_all_at_start = publish_all
         self.start_playing = start_playing
         self.master_uri = master_uri
         self.queue_size = queue_size
@@ -142,7 +150,11 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         self.source: IndexSource | None = None
         self.node: Any = None
         self.publishers: dict[tuple[str, str], Any] = {}
-        self.link = "" if publish else "browsing only"
+        self.publishing: set[str] = set()
+        self.published = 0
+        self.link = NOT_PUBLISHING if publish else "browsing only (--no-publish)"
+        self._connecting = False
+        self._sync_lock = asyncio.Lock()
         self.selected = 0
         self.error = ""
         self._header_shown = ""
@@ -196,29 +208,38 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         self.source = IndexSource(index)
         self.transport = Transport(self.source, self._publish, start_ns=index.start_ns, end_ns=index.end_ns,
                                    rate=self.rate, loop=self.loop_play, paused=not self.start_playing,
-                                   hold_at_end=True, accepts=self._accepts, clock=self.clock,
+                                   hold_at_end=True, clock=self.clock,
                                    on_tick=self._on_tick if self.bag_clock else None,
                                    tick_period=self.bag_clock.tick_period(TICK_PERIOD) if self.bag_clock
                                    else TICK_PERIOD)
-        for topic in index.topics:
-            if self.only_topics and topic not in self.only_topics:
-                self.transport.set_topic_enabled(topic, False)
         self.timeline.set_index(index)
         for notice in index.notices:
             self.notify(notice, title="file cut short", severity="warning", timeout=8)
         self._run_task = asyncio.ensure_future(self.transport.run())
-        if self.publish_wanted:
-            self.link = "connecting to the master…"
-            self.run_worker(self._connect(index), name="node", exit_on_error=False)
+        if self.publish_allowed:
+            self.publishing = set(index.topics) if self.publish_all_at_start else self.start_topics & set(index.topics)
+            self._publishing_changed()
         self.refresh_view()
 
-    async def _connect(self, index: BagIndex) -> None:
-        """Start the node and advertise every topic; without a master, browse and try again now and then."""
-        while not await self._try_connect(index):
-            await asyncio.sleep(RETRY_SECONDS)
+    def _publishing_changed(self) -> None:
+        """Join the master once something is to be published, and (re)advertise what is switched on."""
+        if self.node is not None:
+            self.run_worker(self._sync_publishers(), group="publishers", exit_on_error=False)
+        elif (self.publishing or self.bag_clock is not None) and not self._connecting:
+            self._connecting = True
+            self.link = "connecting to the master…"
+            self.run_worker(self._connect(), name="node", exit_on_error=False)
+        elif self.node is None and not self._connecting:
+            self.link = NOT_PUBLISHING
 
-    async def _try_connect(self, index: BagIndex) -> bool:
-        from rostui.core.bag.player import advertise_connections
+    async def _connect(self) -> None:
+        """Start the node; without a master, browse and try again now and then."""
+        while not await self._try_connect():
+            await asyncio.sleep(RETRY_SECONDS)
+        self._connecting = False
+        await self._sync_publishers()
+
+    async def _try_connect(self) -> bool:
         from rostui.core.node import AsyncNode
 
         node = AsyncNode("bag_view", anonymous=True, master_uri=self.master_uri)
@@ -226,7 +247,6 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         try:
             await node.start(publish_rosout=False)
             await asyncio.wait_for(node.master_call("getPid"), 5.0)
-            publishers = await advertise_connections(node, index.connections, self.queue_size)
             if self.bag_clock is not None:
                 await self.bag_clock.advertise(node)
         except Exception:  # no master, or it refused us: browse without publishing
@@ -236,21 +256,37 @@ class BagViewApp(ReleasesOnExit, KeysApp):
                 pass
             self.link = f"no master at {node.master_uri}: not publishing (trying again every {RETRY_SECONDS:g} s)"
             return False
-        self.publishers = publishers
         self.node = node
-        self.link = f"publishing as {node.name}" + (" with /clock" if self.bag_clock is not None else "")
         return True
 
-    # -- publishing ------------------------------------------------------------------------------------
-    def _accepts(self, conn: Connection) -> bool:
-        return self.node is None or (conn.topic, conn.md5sum) in self.publishers
+    async def _sync_publishers(self) -> None:
+        """Advertise the connections of the topics switched on; unregister those of topics switched off."""
+        from rostui.core.bag.player import advertise_connections
 
+        async with self._sync_lock:
+            node, index = self.node, self.index
+            if node is None or index is None:
+                return
+            wanted = [c for c in index.connections if c.topic in self.publishing]
+            new = [c for c in wanted if (c.topic, c.md5sum) not in self.publishers]
+            if new:
+                self.publishers.update(await advertise_connections(node, new, self.queue_size))
+            keep = {(c.topic, c.md5sum) for c in wanted}
+            for key in [key for key in self.publishers if key not in keep]:
+                await self.publishers.pop(key).unregister()
+            topics = len({topic for topic, _ in self.publishers})
+            parts = [f"{topics} topic{'s' if topics != 1 else ''}"] if topics else []
+            parts += ["/clock"] if self.bag_clock is not None else []
+            self.link = f"publishing {' and '.join(parts)} as {node.name}" if parts else NOT_PUBLISHING
+
+    # -- publishing ------------------------------------------------------------------------------------
     def _publish(self, conn: Connection, t: int, data: bytes) -> None:
-        pub = self.publishers.get((conn.topic, conn.md5sum))
+        if self.bag_clock is not None:
+            self.bag_clock.publish(t)
+        pub = self.publishers.get((conn.topic, conn.md5sum)) if conn.topic in self.publishing else None
         if pub is not None:
-            if self.bag_clock is not None:
-                self.bag_clock.publish(t)
             pub.publish(AnyMsg(data))
+            self.published += 1
 
     def _on_tick(self, bag_ns: int) -> None:
         """The transport's tick (playing, paused or held at the end): the bag time on /clock."""
@@ -265,10 +301,10 @@ class BagViewApp(ReleasesOnExit, KeysApp):
             self.status.update(" reading " + ", ".join(self.names) + "…")
             return
         bag_ns = transport.bag_ns()
-        self.timeline.show(bag_ns, self.selected, transport.disabled)
+        self.timeline.show(bag_ns, self.selected, self.publishing)
         self.status.update(play_status(paused=transport.paused, at_end=transport.at_end, rate=transport.rate,
                                        loop=transport.loop, bag_ns=bag_ns, start_ns=index.start_ns,
-                                       end_ns=index.end_ns, published=transport.published if self.node else -1,
+                                       end_ns=index.end_ns, published=self.published if self.node else -1,
                                        problem=self.source.problem if self.source is not None else ""))
         header = header_text(self.names, index, self.link)
         if header.plain != self._header_shown:
@@ -408,18 +444,25 @@ class BagViewApp(ReleasesOnExit, KeysApp):
             self.refresh_view()
 
     def action_toggle_topic(self) -> None:
-        """Publish the selected topic, or skip it."""
+        """Publish the selected topic, or stop publishing it."""
         topic = self.timeline.selected_topic
-        if self.transport is not None and topic is not None:
-            self.transport.set_topic_enabled(topic, topic in self.transport.disabled)
+        if self.index is not None and topic is not None and self._may_publish():
+            self.publishing ^= {topic}
+            self._publishing_changed()
             self.refresh_view()
 
     def action_all_topics(self) -> None:
-        """Publish every topic."""
-        if self.transport is not None:
-            for topic in list(self.transport.disabled):
-                self.transport.set_topic_enabled(topic, True)
+        """Publish every topic; when every topic is published already, none."""
+        if self.index is not None and self._may_publish():
+            everything = set(self.index.topics)
+            self.publishing = set() if self.publishing >= everything else everything
+            self._publishing_changed()
             self.refresh_view()
+
+    def _may_publish(self) -> bool:
+        if not self.publish_allowed:
+            self.notify("browsing only: opened with --no-publish", title="publish", severity="warning")
+        return self.publish_allowed
 
     def action_toggle_inspector(self) -> None:
         """Show or hide the inspector."""

@@ -12,7 +12,7 @@ from rostui.core.bag.info import status_size
 
 #: Key help in play mode.
 PLAY_KEYS = key_line("space play  s step  ←→ ±1s  PgUp/Dn ±10%  Home/End  0-9 %  g go to  +- rate  l loop  "
-                     "↑↓t topics  i inspect")
+                     "↑↓ topic  t publish it  a publish all  i inspect")
 
 #: Key help in record mode.
 RECORD_KEYS = key_line("r start/stop  n split (new file)")

@@ -1,6 +1,6 @@
 """The timeline: one row per topic with its message density over the bag, a time ruler and the cursor.
 
-Rows show whether the topic is published (``●``) or skipped (``○``), its
+Rows show whether the topic is published (``●``) or only browsed (``○``), its
 name, its message count and a density strip (block glyphs scaled to the
 topic's busiest slice). The cursor is a highlighted column through every
 strip; the ruler marks it with ``▼``. A click in the strips seeks there; a
@@ -48,7 +48,7 @@ class TimelineView(Widget, can_focus=True):
 
     COMPONENT_CLASSES: ClassVar[set[str]] = {
         "timeline--ruler", "timeline--name", "timeline--count", "timeline--strip", "timeline--cursor",
-        "timeline--selected", "timeline--off",
+        "timeline--selected", "timeline--publishing",
     }
 
     class Seek(Message):
@@ -71,7 +71,7 @@ class TimelineView(Widget, can_focus=True):
         self.topics: list[str] = []
         self.cursor_ns = 0
         self.selected = 0
-        self.off: set[str] = set()
+        self.publishing: set[str] = set()
         self._top = 0
         self._strips: dict[str, str] = {}
         self._strip_width = -1
@@ -85,12 +85,13 @@ class TimelineView(Widget, can_focus=True):
         self._strip_width = -1
         self.refresh(layout=True)
 
-    def show(self, cursor_ns: int, selected: int, off: set[str]) -> None:
-        """Move the cursor and the selection; repaints only when what is drawn changes."""
+    def show(self, cursor_ns: int, selected: int, publishing: set[str]) -> None:
+        """Move the cursor and the selection, mark the ``publishing`` topics; repaints only when what is drawn
+        changes."""
         self.cursor_ns = cursor_ns
         self.selected = selected
-        self.off = set(off)
-        key = (self._cursor_column(), selected, frozenset(off), self.size)
+        self.publishing = set(publishing)
+        key = (self._cursor_column(), selected, frozenset(publishing), self.size)
         if key != self._drawn:
             self._drawn = key
             self.refresh()
@@ -172,10 +173,12 @@ class TimelineView(Widget, can_focus=True):
         lines = [self._ruler(width, column)]
         for row in range(self._top, min(len(self.topics), self._top + self._rows_shown())):
             topic = self.topics[row]
-            on = topic not in self.off
             line = Text()
             name = topic if len(topic) < name_width else topic[:name_width - 2] + "…"
-            line.append("● " if on else "○ ")
+            if topic in self.publishing:
+                line.append("● ", style=self.get_component_rich_style("timeline--publishing"))
+            else:
+                line.append("○ ")
             line.append(name.ljust(name_width), style=self.get_component_rich_style("timeline--name"))
             line.append(str(self.index.tracks[topic].count).rjust(COUNT_WIDTH),
                         style=self.get_component_rich_style("timeline--count"))
@@ -185,8 +188,6 @@ class TimelineView(Widget, can_focus=True):
             line.append(strip[:column], style=strip_style)
             line.append(strip[column] if strip[column] != " " else "│", style=cursor_style)
             line.append(strip[column + 1:], style=strip_style)
-            if not on:
-                line.stylize(self.get_component_rich_style("timeline--off"))
             if row == self.selected:
                 line.stylize(readable(self.get_component_rich_style("timeline--selected"), system),
                              0, MARK_WIDTH + name_width)

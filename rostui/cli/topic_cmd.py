@@ -53,10 +53,11 @@ def _fail(message: str, hint: Optional[str] = None) -> NoReturn:
 
 
 def _topic_hint(name: str) -> Optional[str]:
-    """``did you mean …?`` among the topics the master knows."""
+    """``did you mean …?`` among the topics someone publishes or subscribes to now."""
     from rostui.cli.common import suggestion
+    from rostui.tools.suggest import registered_topics
 
-    return suggestion(name, lambda: (topic for topic, _type in _call("getTopicTypes")))
+    return suggestion(name, lambda: registered_topics(_call("getSystemState")))
 
 
 def _out(text: str) -> None:

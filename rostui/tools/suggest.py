@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Iterable
+from typing import Any, Iterable
 
 CUTOFF = 0.6
 """How alike (difflib's ratio, 0..1) a name must be to be suggested."""
@@ -35,6 +35,16 @@ def with_namespaces(names: Iterable[str]) -> set[str]:
         parts = name.strip("/").split("/")
         found.update("/" + "/".join(parts[:i]) for i in range(1, len(parts) + 1))
     return found
+
+
+def registered_topics(system_state: Any) -> set[str]:
+    """The topics someone publishes or subscribes to now, from getSystemState's value.
+
+    Not getTopicTypes': the master keeps a topic's type after its last publisher and subscriber have gone
+    (rosmaster does too), so its names include topics no one can echo any more.
+    """
+    publishers, subscribers = system_state[0], system_state[1]
+    return {topic for topic, _nodes in publishers} | {topic for topic, _nodes in subscribers}
 
 
 def did_you_mean(name: str, candidates: Iterable[str]) -> str | None:

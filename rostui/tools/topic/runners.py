@@ -84,9 +84,9 @@ async def _wait_for_topic(run: _Run, topic: str) -> tuple[str, str, str] | None:
         if type_name is not None and real_topic is not None:
             return type_name, real_topic, path
         if not warned:
-            from rostui.tools.suggest import did_you_mean
+            from rostui.tools.suggest import did_you_mean, registered_topics
 
-            hint = did_you_mean(topic, (name for name, _type in types))
+            hint = did_you_mean(topic, registered_topics(await _master(run.node, "getSystemState")))
             sys.stderr.write(f"WARNING: topic [{topic}] does not appear to be published yet\n"
                              + (f"{hint}\n" if hint else ""))
             sys.stderr.flush()

@@ -51,3 +51,35 @@ def test_did_you_mean_offers_only_topics_that_exist_now(rostui_core: Any, ros_en
             pane.keys("C-c")
             pane.wait_until(lambda: exit_status(pane.screen()) is not None, f"topic {command} to end on Ctrl-C")
             assert "did you mean" not in pane.screen(), pane.screen()
+
+
+POSE = re.compile(r"turtle1 x (-?\d+\.\d+) y (-?\d+\.\d+)")
+
+
+def turtle_x(pane: Pane) -> float:
+    """turtle1's x as turtlesim's status line shows it (0 when it is not on screen)."""
+    found = POSE.search(pane.screen())
+    return float(found.group(1)) if found else 0.0
+
+
+def test_a_second_teleop_says_it_took_the_arrow_keys_and_gives_them_back(ros_env: dict[str, str]) -> None:
+    """2: `rostui teleop` beside `rostui turtlesim` takes the node name /teleop_turtle (ROS shuts the older
+    node down); turtlesim's key line says its arrow keys are off, and once the teleop ends they drive again."""
+    with shell_pane("sim", 100, 30) as sim, shell_pane("teleop", 80, 12) as teleop:
+        sim.type(rostui_line(ros_env, EXIT_MARK, "turtlesim"))
+        sim.wait_until(lambda: "turtle1 x 5.54" in sim.screen() and "↑↓←→ drive" in sim.screen(), "turtlesim")
+        teleop.type(rostui_line(ros_env, EXIT_MARK, "teleop"))
+        teleop.wait_until(lambda: "Use arrow keys to move the turtle." in teleop.screen(), "the teleop banner")
+        sim.wait_until(lambda: "↑↓←→ off: another /teleop_turtle runs" in sim.screen(),
+                       "turtlesim to say another teleop has the arrow keys' node")
+        sim.keys("Up")
+        teleop.keys("Up")
+        sim.wait_until(lambda: turtle_x(sim) > 6.0, "the other teleop to drive turtle1")
+        teleop.keys("C-c")
+        teleop.wait_until(lambda: exit_status(teleop.screen()) is not None, "the teleop to end")
+        sim.wait_until(lambda: "↑↓←→ drive" in sim.screen(), "turtlesim's arrow keys back")
+        moved_to = turtle_x(sim)
+        sim.keys("Up")
+        sim.wait_until(lambda: turtle_x(sim) > moved_to + 0.5, "turtlesim's own arrow keys to drive again")
+        sim.keys("q")
+        sim.wait_until(lambda: exit_status(sim.screen()) == 0, "turtlesim to quit with status 0")

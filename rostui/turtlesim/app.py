@@ -33,7 +33,7 @@ from rostui.core.log.console import format_line
 from rostui.core.master.embedded import EmbeddedMaster, MasterUnavailableError, ensure_master
 from rostui.core.msg import get_message_class, get_service_class
 from rostui.core.network import master_uri_from_env
-from rostui.core.node.node import AsyncNode, Publisher
+from rostui.core.node.node import AsyncNode, MasterRefusedError, Publisher
 from rostui.turtlesim.node import TurtlesimNode
 from rostui.turtlesim.render import TurtleView
 from rostui.turtlesim.teleop import NODE_NAME as TELEOP_NODE_NAME
@@ -52,6 +52,10 @@ _SHARED_SPECIALS = ("__ns", "__master", "__ip", "__hostname")
 #: Key help: the first part ends the pose line, the second the master line.
 TELEOP_KEYS = (key_line("↑↓←→ drive  Tab next"), "s spawn  c clear  r reset")
 VIEW_KEYS = (key_line("Tab next"), "")
+#: The key line while another node holds the teleop node's name (the arrow keys have no node to publish with).
+TELEOP_TAKEN_KEYS = (key_line("↑↓←→ off: another /teleop_turtle runs  Tab next"), "s spawn  c clear  r reset")
+#: Seconds between looks at the master for the name of the teleop node, while another node holds it.
+TELEOP_RECLAIM_PERIOD = 1.0
 
 
 @dataclass(frozen=True)
@@ -67,11 +71,12 @@ class StatusInfo:
     embedded: bool
     teleop: bool
     state: str = "running"
+    teleop_taken: bool = False
     notice: str = ""
 
     def lines(self) -> str:
         """Two lines: pose, rate and the main keys; the master and the other keys (or a fresh WARN)."""
-        keys = TELEOP_KEYS if self.teleop else VIEW_KEYS
+        keys = TELEOP_TAKEN_KEYS if self.teleop_taken else TELEOP_KEYS if self.teleop else VIEW_KEYS
         master = f"embedded master {self.master_uri}" if self.embedded else f"master {self.master_uri}"
         if self.state != "running":
             return f"{self.state}…\n{master}"
@@ -169,8 +174,7 @@ class TurtlesimApp(ReleasesOnExit, KeysApp):
             self.embedded = await ensure_master(self.master_uri)
             await self.sim.start()
             if self.teleop:
-                self.teleop_node = AsyncNode(TELEOP_NODE_NAME, argv=self._teleop_argv, master_uri=self.master_uri)
-                await self.teleop_node.start()
+                await self._start_teleop_node()
         except MasterUnavailableError as exc:
             await self._fail(f"ERROR: {exc}")
             return
@@ -186,6 +190,44 @@ class TurtlesimApp(ReleasesOnExit, KeysApp):
             self.farewell = format_line(Level.WARN, f"Shutdown request received. Reason given for shutdown: [{reason}]",
                                         self.sim.name)
             self.exit(0)
+
+    async def _start_teleop_node(self) -> None:
+        """Register the arrow keys' node and watch for another node taking its name."""
+        node = AsyncNode(TELEOP_NODE_NAME, argv=self._teleop_argv, master_uri=self.master_uri)
+        node.log.console = None  # its "Shutdown request received" must not write over the screen
+        await node.start()
+        self.teleop_node = node
+        self.run_worker(self._watch_teleop_node(node), group="teleop", exit_on_error=False)
+
+    async def _watch_teleop_node(self, node: AsyncNode) -> None:
+        """Another /teleop_turtle (`rostui teleop`, turtle_teleop_key) makes the master shut ours down, as ROS
+        does with a name registered twice: say so, and take the name back once that node has gone."""
+        reason = await node.wait_shutdown()
+        if self._stopping:
+            return
+        self.teleop_node = None
+        self._publishers.clear()
+        self.notify(f"{node.name} was taken by another node ({reason}): the arrow keys are off until it ends",
+                    title="teleop", severity="warning", timeout=8)
+        self.refresh_status()
+        while not self._stopping and self.sim.node is not None:
+            await asyncio.sleep(TELEOP_RECLAIM_PERIOD)
+            try:
+                await self.sim.node.master_call("lookupNode", node.name)
+                continue  # the other node still holds the name
+            except MasterRefusedError:
+                pass  # no such node: the name is free again
+            except Exception:
+                continue  # no master just now
+            if self._stopping:
+                return
+            try:
+                await self._start_teleop_node()
+            except Exception:
+                continue
+            self.notify(f"{node.name} is free again: the arrow keys drive", title="teleop", timeout=5)
+            self.select(self._selected)
+            return
 
     async def _fail(self, message: str) -> None:
         await self._stop_ros()
@@ -258,6 +300,7 @@ class TurtlesimApp(ReleasesOnExit, KeysApp):
             embedded=self.embedded is not None,
             teleop=self.teleop,
             state=state,
+            teleop_taken=self.teleop and self.started.is_set() and self.teleop_node is None,
             notice=notice if time.monotonic() - stamp < NOTICE_SECONDS else "",
         )
 
@@ -319,9 +362,10 @@ class TurtlesimApp(ReleasesOnExit, KeysApp):
         await self._call_empty_service("reset")
 
     async def _call_empty_service(self, name: str) -> None:
-        if not self.started.is_set() or self.teleop_node is None or self.sim.node is None:
+        caller = self.teleop_node or self.sim.node  # the sim's own node while another holds the teleop's name
+        if not self.started.is_set() or caller is None or self.sim.node is None:
             return
-        proxy = self.teleop_node.service_proxy(self.sim.node.resolve(name), get_service_class("std_srvs/Empty"))
+        proxy = caller.service_proxy(self.sim.node.resolve(name), get_service_class("std_srvs/Empty"))
         try:
             await proxy.call()
         except Exception as exc:

@@ -231,6 +231,7 @@ def run_teleop(argv: Sequence[str], *, topic: str | None = None) -> int:
     parameter is not a number.
     """
     from rostui import client as ros
+    from rostui.core.node.node import MasterError
 
     program = "turtle_teleop_key" if topic is None else "rostui teleop"
     try:
@@ -247,6 +248,16 @@ def run_teleop(argv: Sequence[str], *, topic: str | None = None) -> int:
         print(f"{program}: {exc}", file=sys.stderr)
         ros.signal_shutdown("bad parameter")
         return 1
+    try:
+        return _drive(fd, ros, topic, scale_linear, scale_angular)
+    except MasterError as exc:  # the master went away (a turtlesim hosting it quit)
+        print(f"{program}: {exc}", file=sys.stderr)
+        ros.signal_shutdown("no master")
+        return 1
+
+
+def _drive(fd: int, ros: Any, topic: str | None, scale_linear: float, scale_angular: float) -> int:
+    """Advertise, print the banner and publish a command per arrow key until q or Ctrl-C."""
     Twist = ros.msg("geometry_msgs/Twist")
     Velocity = ros.msg("turtlesim/Velocity")
     twist_pub = ros.Publisher(topic or TWIST_TOPIC, Twist, queue_size=1)

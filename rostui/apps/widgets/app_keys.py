@@ -24,6 +24,7 @@ from textual.app import App
 from textual.binding import Binding, BindingType
 from textual.dom import DOMNode
 from textual.message import Message
+from textual.notifications import SeverityLevel
 from textual.screen import ModalScreen, Screen
 
 from rostui.apps.widgets.help import HelpScreen
@@ -79,6 +80,13 @@ class KeysApp(App[int]):
             self.screen.dismiss(None)
             return
         self.push_screen(HelpScreen(self.keys_for(self.screen)))
+
+    def notify(self, message: str, *, title: str = "", severity: SeverityLevel = "information",
+               timeout: float | None = None, markup: bool = False) -> None:
+        """Textual's toast, plain text unless ``markup`` is asked for: notices quote names, paths, reasons and
+        exceptions, and one with brackets in it ("[/teleop_turtle]") is not markup (Textual raised MarkupError
+        and the app ended)."""
+        super().notify(message, title=title, severity=severity, timeout=timeout, markup=markup)
 
     async def _on_message(self, message: Message) -> None:
         if not self._running and comes_after_the_widgets(message):

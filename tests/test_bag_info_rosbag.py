@@ -10,6 +10,7 @@ whose hundredths round up, one message (`msg`), and sizes from kilobytes to mega
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import subprocess
@@ -422,3 +423,31 @@ def test_a_killed_rostui_bag_reindexed_by_either_tool_infos_as_rosbag(tmp_path: 
     for theirs, ours in infos:
         assert ours == theirs
     assert _rows(infos[0][0])["messages"] == _rows(infos[1][0])["messages"] == "350"
+
+
+def test_the_real_span_beside_rosbags_duration_in_a_terminal(rosbag_bags: Path, ros_env: dict[str, str]) -> None:
+    """Issue 31, 4: chunks out of time order make rosbag info's duration negative. `bag info` keeps rosbag's
+    text byte for byte and says the messages' span in a note on stderr; `--exact` prints their start, end and
+    duration; bag view's header shows the span and what bag info says instead."""
+    from rostui.core.bag.info import human_duration
+    from tmux_helpers import rostui_line, shell_pane
+
+    path = rosbag_bags / "backwards_none.bag"
+    theirs, ours = _both(path, ros_env)
+    assert ours == theirs
+    rosbag_duration = _rows(theirs)["duration"]
+    note = rostui(["bag", "info", str(path)], {**ros_env, **TIME_ENV}).stderr
+    assert note.startswith(f"note: {path}: the duration {rosbag_duration} is rosbag's (its first and last chunk)")
+    exact = rostui(["bag", "info", "--exact", "--json", str(path)], ros_env)
+    span = json.loads(exact.stdout)["duration"]
+    assert span > 0 and rosbag_duration.startswith("-")
+    with shell_pane("span", 120, 30) as pane:
+        pane.type(rostui_line({**ros_env, **TIME_ENV}, "SPAN_EXIT=", "bag", "info", "--exact", str(path)))
+        pane.wait_until(lambda: "SPAN_EXIT=0" in pane.screen().replace("\n", ""), "bag info --exact")
+        assert f"\nduration:    {human_duration(span)}\n" in pane.screen(), pane.screen()
+        pane.type("clear")
+        pane.type(rostui_line(ros_env, "SPAN_EXIT=", "bag", "view", str(path)))
+        pane.wait_until(lambda: f"{span:.3f} s (bag info: {rosbag_duration}, first and last chunk)" in pane.screen(),
+                        "bag view's header")
+        pane.keys("q")
+        pane.wait_until(lambda: "SPAN_EXIT=0" in pane.screen().replace("\n", ""), "bag view to quit")

@@ -108,9 +108,10 @@ def run_play(args: list[str], *, rate: float, loop_play: bool, pause: bool, star
     return 0
 
 
-def run_info(files: list[str], as_json: bool) -> int:
-    """Print info for each file; 1 when any could not be read."""
-    from rostui.core.bag.info import format_info, info_dict, summarize
+def run_info(files: list[str], as_json: bool, exact: bool = False) -> int:
+    """Print info for each file (``exact``: the messages' own start, end and duration); 1 when any could not be
+    read. Where rosbag's duration is not the messages' span a note on stderr says both."""
+    from rostui.core.bag.info import format_info, info_dict, span_note, summarize
     from rostui.core.bag.model import BagError
 
     failed = False
@@ -127,7 +128,10 @@ def run_info(files: list[str], as_json: bool) -> int:
         else:
             if i:
                 print("---")
-            print(format_info(summary))
+            print(format_info(summary, exact), flush=True)
+            note = None if exact else span_note(summary)
+            if note:
+                print(note, file=sys.stderr, flush=True)
     if as_json:
         from rostui.cli.common import print_json
 
@@ -299,9 +303,11 @@ def register(app: typer.Typer) -> None:
     def info_command(
         files: list[str] = typer.Argument(..., metavar="FILE...", help="Bags to describe."),
         as_json: bool = typer.Option(False, "--json", help="Print machine-readable JSON instead of text."),
+        exact: bool = typer.Option(False, "--exact", help="Duration, start and end of the earliest and latest "
+                                                          "message (rosbag takes the first and last chunk)."),
     ) -> None:
         """Summarize bags: times, size, counts, types and topics (like `rosbag info`)."""
-        raise typer.Exit(run_info(list(files), as_json))
+        raise typer.Exit(run_info(list(files), as_json, exact))
 
     @bag_app.command("reindex")
     def reindex_command(

@@ -157,6 +157,8 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         self._sync_lock = asyncio.Lock()
         self.selected = 0
         self.error = ""
+        self.rosbag_duration: str | None = None
+        """What ``bag info`` (rosbag's rules) gives as the duration, when it is not the messages' span."""
         self._header_shown = ""
         self._run_task: asyncio.Task[int] | None = None
         self._inspected: tuple[str | None, int | None] = (None, None)
@@ -201,6 +203,7 @@ class BagViewApp(ReleasesOnExit, KeysApp):
             self.error = str(exc)
             self.call_from_thread(self.exit, None, 1)
             return
+        self.rosbag_duration = _rosbag_duration(index)
         self.call_from_thread(self._bag_ready, index)
 
     def _bag_ready(self, index: BagIndex) -> None:
@@ -306,7 +309,7 @@ class BagViewApp(ReleasesOnExit, KeysApp):
                                        loop=transport.loop, bag_ns=bag_ns, start_ns=index.start_ns,
                                        end_ns=index.end_ns, published=self.published if self.node else -1,
                                        problem=self.source.problem if self.source is not None else ""))
-        header = header_text(self.names, index, self.link)
+        header = header_text(self.names, index, self.link, self.rosbag_duration)
         if header.plain != self._header_shown:
             self._header_shown = header.plain
             self.header.update(header)
@@ -488,6 +491,19 @@ class BagViewApp(ReleasesOnExit, KeysApp):
                 pass
         if self.index is not None:
             self.index.close()
+
+
+def _rosbag_duration(index: BagIndex) -> str | None:
+    """bag info's duration of the one file viewed, when rosbag's rules (its first and last chunk) do not give
+    the messages' span; None otherwise (and for several files, each with its own)."""
+    from rostui.core.bag.info import rosbag_duration
+
+    if len(index.readers) != 1:
+        return None
+    try:
+        return rosbag_duration(index.readers[0].summary())
+    except BagError:
+        return None
 
 
 def _escape(text: str) -> str:

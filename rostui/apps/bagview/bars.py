@@ -24,8 +24,10 @@ def wall_text(t_ns: int) -> str:
     return time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(secs)) + f".{ns // 1_000_000:03d}"
 
 
-def header_text(names: list[str], index: BagIndex | None, link: str = "") -> Text:
-    """``square.bag · 12.3 KB · 1234 msgs · 2 topics · 9.000 s │ LINK`` and a warning for files cut short."""
+def header_text(names: list[str], index: BagIndex | None, link: str = "", rosbag_duration: str | None = None) -> Text:
+    """``square.bag · 12.3 KB · 1234 msgs · 2 topics · 9.000 s │ LINK`` and a warning for files cut short; the
+    span is the messages'; ``rosbag_duration``, when given, is what bag info says instead (chunks out of time
+    order), and the header says so."""
     text = Text()
     text.append(" · ".join(names), style="bold")
     if index is None:
@@ -33,6 +35,8 @@ def header_text(names: list[str], index: BagIndex | None, link: str = "") -> Tex
         return text
     span = (index.end_ns - index.start_ns) / 1e9
     text.append(f" · {status_size(index.file_size)} · {len(index)} msgs · {len(index.tracks)} topics · {span:.3f} s")
+    if rosbag_duration is not None:
+        text.append(f" (bag info: {rosbag_duration}, first and last chunk)")
     if link:
         text.append(f" │ {link}")
     for notice in index.notices:

@@ -99,6 +99,7 @@ def info_dict(summary: BagSummary) -> dict[str, Any]:
         "closed": summary.closed,
         "problem": summary.problem or None,
         "duration": (summary.end_ns - summary.start_ns) / 1e9,
+        "rosbag_duration": (lambda span: span[1] - span[0])(_span(summary)),
         "start": summary.start_ns / 1e9,
         "end": summary.end_ns / 1e9,
         "size": summary.size,
@@ -143,10 +144,32 @@ def _compression_lines(summary: BagSummary, seconds: float) -> list[tuple[str, s
     return rows
 
 
-def _span(summary: BagSummary) -> tuple[float, float]:
-    """Start and end in seconds: from the first and last chunk where the file has chunk infos, as rosbag's."""
-    start_ns, end_ns = summary.info_span or (summary.start_ns, summary.end_ns)
+def _span(summary: BagSummary, exact: bool = False) -> tuple[float, float]:
+    """Start and end in seconds: from the first and last chunk where the file has chunk infos, as rosbag's
+    (``exact``: of the earliest and the latest message)."""
+    start_ns, end_ns = (summary.start_ns, summary.end_ns) if exact else summary.info_span or (summary.start_ns,
+                                                                                              summary.end_ns)
     return seconds_of(start_ns), seconds_of(end_ns)
+
+
+def rosbag_duration(summary: BagSummary) -> str | None:
+    """rosbag info's duration when it is not the messages' span (chunks out of time order: rosbag takes the
+    first and the last chunk of the file), as rosbag writes it; None when the two agree."""
+    if summary.info_span is None or summary.info_span == (summary.start_ns, summary.end_ns):
+        return None
+    start, end = _span(summary)
+    return human_duration(end - start)
+
+
+def span_note(summary: BagSummary) -> str | None:
+    """The footnote of ``bag info`` (on stderr, so its text stays rosbag's) when rosbag's duration is not the
+    messages' span; None when they agree."""
+    rosbag = rosbag_duration(summary)
+    if rosbag is None:
+        return None
+    start, end = _span(summary, exact=True)
+    return (f"note: {summary.path}: the duration {rosbag} is rosbag's (its first and last chunk); the messages "
+            f"span {human_duration(end - start)}: `rostui bag info --exact` shows their start and end")
 
 
 def _topic_row(topic: str, count: int, type_name: str, conns: int, widths: tuple[int, int, int]) -> str:
@@ -158,8 +181,11 @@ def _topic_row(topic: str, count: int, type_name: str, conns: int, widths: tuple
     return f"{topic:<{topic_width}}   {count:>{count_width}} {unit}    : {type_name:<{type_width}}{extra}"
 
 
-def format_info(summary: BagSummary) -> str:
+def format_info(summary: BagSummary, exact: bool = False) -> str:
     """rosbag info's text: path, version, duration, start, end, size, messages, compression, types, topics.
+
+    ``exact``: duration, start and end of the earliest and the latest message, where rosbag takes the first
+    and the last chunk of the file (they differ when chunks are out of time order).
 
     A file with neither connections nor chunks shows path, version and size only. Rows keep rosbag's
     padding (a type column is padded even at a line's end); only the text's end is stripped.
@@ -168,7 +194,7 @@ def format_info(summary: BagSummary) -> str:
     if not summary.connections and not summary.chunk_count:
         rows.append(("size", human_size(summary.size)))
     else:
-        start, end = _span(summary)
+        start, end = _span(summary, exact)
         rows += [("duration", human_duration(end - start)), ("start", human_time(start)), ("end", human_time(end)),
                  ("size", human_size(summary.size)), ("messages", str(summary.message_count))]
         rows += _compression_lines(summary, end - start)

@@ -7,6 +7,7 @@ screen, against a `rostui core` master of its own.
 from __future__ import annotations
 
 import re
+from pathlib import Path
 from typing import Any
 from xmlrpc.client import ServerProxy
 
@@ -83,3 +84,47 @@ def test_a_second_teleop_says_it_took_the_arrow_keys_and_gives_them_back(ros_env
         sim.wait_until(lambda: turtle_x(sim) > moved_to + 0.5, "turtlesim's own arrow keys to drive again")
         sim.keys("q")
         sim.wait_until(lambda: exit_status(sim.screen()) == 0, "turtlesim to quit with status 0")
+
+
+def write_one_topic(path: Path, type_name: str, md5sum: str, definition: str, payloads: list[bytes]) -> Path:
+    """A bag (by its extension: .bag or MCAP) of ``payloads`` on /thing, 0.1 s apart, recorded as ``type_name``."""
+    from rostui.core.bag.files import open_writer
+    from rostui.core.bag.model import Connection
+
+    writer = open_writer(str(path))
+    writer.add_connection(Connection(id=0, topic="/thing", type=type_name, md5sum=md5sum, definition=definition))
+    for i, payload in enumerate(payloads):
+        writer.write(0, 1_700_000_000_000_000_000 + i * 100_000_000, payload)
+    writer.close()
+    return path
+
+
+#: The md5sum of a definition with no fields.
+EMPTY_MD5 = "d41d8cd98f00b204e9800998ecf8427e"
+
+
+def test_no_silent_empty_results_from_odd_bags(tmp_path: Path, ros_env: dict[str, str]) -> None:
+    """5: a definition with no fields over messages that hold bytes, a bag cut before its first message, and a
+    real empty message each say what they are in `topic echo -b` and in bag view's inspector."""
+    hollow = write_one_topic(tmp_path / "hollow.bag", "my_pkg/Thing", EMPTY_MD5, "\n", [b"\x03\x00\x00\x00abc"] * 3)
+    empty = write_one_topic(tmp_path / "empty.mcap", "std_msgs/Empty", EMPTY_MD5, "", [b""] * 3)
+    whole = write_one_topic(tmp_path / "whole.bag", "std_msgs/Int32", "da5909fbe378aeaf85e547e830cc1bb7",
+                            "int32 data\n", [bytes(4)] * 200)
+    cut = tmp_path / "cut.bag"
+    cut.write_bytes(whole.read_bytes()[:whole.stat().st_size // 2])
+    with shell_pane("odd_bags", 240, 30) as pane:  # wide: the lines quote long paths
+        screen = run_to_exit(pane, ros_env, "topic", "echo", "-b", str(hollow), "/thing")
+        assert exit_status(screen) == 1 and "its definition has no fields, but the message holds 7 bytes" in screen
+        screen = run_to_exit(pane, ros_env, "topic", "echo", "-b", str(cut), "/thing")
+        assert exit_status(screen) == 1 and "was cut short and holds no messages" in screen, screen
+        screen = run_to_exit(pane, ros_env, "topic", "echo", "-b", str(empty), "/thing")
+        assert exit_status(screen) == 0 and screen.count("---") == 3, screen
+        for bag, shown in ((hollow, "its definition has no fields, but the message holds 7 bytes"),
+                           (empty, "(no fields: std_msgs/Empty is an empty message)")):
+            pane.type("clear")
+            pane.type(rostui_line(ros_env, EXIT_MARK, "bag", "view", str(bag)))
+            pane.wait_until(lambda: "/thing" in pane.screen() and "PAUSED" in pane.screen(), "bag view")
+            pane.keys("End")
+            pane.wait_until(lambda: shown in pane.screen().replace("\n", ""), f"the inspector to say {shown!r}")
+            pane.keys("q")
+            pane.wait_until(lambda: exit_status(pane.screen()) == 0, "bag view to quit")

@@ -245,7 +245,7 @@ def _echo_bag(path: str, topic: Optional[str], **options: Any) -> NoReturn:
 
     formatter = EchoFormatter("", from_bag=True, **options)
     try:
-        echo_bag(path, topic, formatter, _out)
+        echo_bag(path, topic, formatter, _out, warn=lambda line: print(line, file=sys.stderr, flush=True))
     except TopicToolError as e:
         _fail(f"ERROR: {e}")
     except (BrokenPipeError, KeyboardInterrupt):

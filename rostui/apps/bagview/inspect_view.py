@@ -69,7 +69,8 @@ def inspected_message(conn: Connection, data: bytes) -> object:
 def inspected_text(conn: Connection, data: bytes, *, noarr: bool, cut_above: int) -> str:
     """The message's text: as ``rostopic echo`` prints it (``--noarr`` with ``noarr``) up to ``cut_above``
     bytes; a larger message of rostui's version of its type with each array cut to its first items and its
-    length (:func:`~rostui.models.sensors.lazy_text.lazy_text`), any other with its arrays summarised.
+    length (:func:`~rostui.models.sensors.lazy_text.lazy_text`), any other with its arrays summarised; a line
+    saying so for a message with no fields (a blank inspector would look like a fault).
     :class:`BagError` when it cannot be read."""
     from rostui.core.bag.index import message_yaml
     from rostui.core.msg.convert import message_to_yaml
@@ -81,7 +82,7 @@ def inspected_text(conn: Connection, data: bytes, *, noarr: bool, cut_above: int
             return lazy_text(msg)
         assert isinstance(msg, Message)  # decode_bag_message's
         return message_to_yaml(msg, noarr=True)
-    return message_yaml(conn, data, noarr=noarr)
+    return message_yaml(conn, data, noarr=noarr) or f"(no fields: {conn.type} is an empty message)"
 
 
 class InspectorView:

@@ -22,6 +22,8 @@ def decode_message(conn: Connection, data: bytes) -> Any:
     try:
         cls = connection_class(conn.type, conn.md5sum, conn.definition, sender=f"the connection of {shown(conn.topic)}",
                                stored=True)
+        if not cls.__slots__ and data:  # rosbag would print an empty message and drop every byte
+            raise BagError(f"its definition has no fields, but the message holds {len(data)} bytes")
         return cls.deserialize(data)
     except Exception as exc:  # a refused definition, or the generated deserialiser's errors on damaged data
         raise BagError(f"cannot decode a {shown(conn.type)} message on {shown(conn.topic)}: {exc}") from None

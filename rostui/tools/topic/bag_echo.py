@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from typing import Callable
 
 from rostui.tools.topic.common import Out, TopicToolError, resolve_topic
 from rostui.tools.topic.echo import EchoFormatter
@@ -17,11 +18,14 @@ def _field_of(want: str, topic: str) -> str | None:
     return None
 
 
-def echo_bag(path: str, topic: str | None, formatter: EchoFormatter, out: Out) -> int:
+def echo_bag(path: str, topic: str | None, formatter: EchoFormatter, out: Out,
+             warn: Callable[[str], None] | None = None) -> int:
     """Print the messages of ``topic`` (or of every topic when None) in ``path``, in time order.
 
     ``topic`` may name a field (``/pose/x``); the formatter's count stops it early. Returns how many
-    messages were printed; TopicToolError for a bag that cannot be read.
+    messages were printed; TopicToolError for a bag that cannot be read or holds no readable message (a file
+    cut short before its first message). A file cut short later is echoed up to the cut, and ``warn`` gets
+    one line saying so.
     """
     from rostui.core.bag.files import merged_messages, open_reader
     from rostui.core.bag.decode import Decoder
@@ -37,6 +41,14 @@ def echo_bag(path: str, topic: str | None, formatter: EchoFormatter, out: Out) -
     decode = Decoder()
     resolved: dict[str, str] = {}
     try:
+        summary = reader.summary()
+        if not summary.closed:
+            why = f" ({summary.problem})" if summary.problem else ""
+            if not summary.message_count:
+                raise TopicToolError(f"unable to use bag file: {path} was cut short and holds no messages{why}")
+            if warn is not None:
+                warn(f"WARNING: {path} was cut short{why}: its {summary.message_count} messages before the cut "
+                     "are echoed")
         for conn, time_ns, data, _source in merged_messages([reader]):
             name = resolved.get(conn.topic)
             if name is None:

@@ -128,3 +128,28 @@ def test_no_silent_empty_results_from_odd_bags(tmp_path: Path, ros_env: dict[str
             pane.wait_until(lambda: shown in pane.screen().replace("\n", ""), f"the inspector to say {shown!r}")
             pane.keys("q")
             pane.wait_until(lambda: exit_status(pane.screen()) == 0, "bag view to quit")
+
+
+def test_bag_play_status_fits_an_80_column_terminal_and_short_bags_get_readable_ticks(
+        tmp_path: Path, rostui_core: Any, ros_env: dict[str, str]) -> None:
+    """6: at 80 columns `bag play`'s status line (rosbag's is about 90) is rewritten in place instead of wrapping
+    and scrolling the terminal; bag view's ruler over a 50 ms bag reads in milliseconds, not `0.0s 0.0s`."""
+    from bag_view_helpers import write_counts
+
+    long_bag = write_counts(tmp_path / "counts.bag", 400)  # 4 s
+    with shell_pane("play80", 80, 24) as pane:
+        pane.type(rostui_line(ros_env, EXIT_MARK, "bag", "play", str(long_bag)))
+        pane.wait_until(lambda: "Duration: 1." in pane.screen(), "a second of playing")
+        pane.wait_until(lambda: "Duration: 2." in pane.screen(), "two seconds of playing")
+        rows = [line for line in pane.screen().splitlines() if "Bag Time:" in line]
+        assert len(rows) == 1, pane.screen()
+        pane.wait_until(lambda: exit_status(pane.screen()) == 0, "bag play to finish")
+    short_bag = write_counts(tmp_path / "short.mcap", 6)  # 50 ms
+    with shell_pane("ticks", 100, 24) as pane:
+        pane.type(rostui_line(ros_env, EXIT_MARK, "bag", "view", str(short_bag)))
+        pane.wait_until(lambda: "┊" in pane.screen(), "bag view's ruler")
+        ruler = next(line for line in pane.screen().splitlines() if "┊" in line)
+        labels = re.findall(r"┊(\S+)", ruler)
+        assert len(labels) >= 3 and len(set(labels)) == len(labels) and all(l.endswith("ms") for l in labels), ruler
+        pane.keys("q")
+        pane.wait_until(lambda: exit_status(pane.screen()) == 0, "bag view to quit")

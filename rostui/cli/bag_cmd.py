@@ -23,13 +23,20 @@ def _ros_log(text: str) -> None:
 
 
 def _status_writer(stream: TextIO) -> Callable[[str], None]:
-    """A status-line printer: rewritten in place on a terminal, one line a second otherwise."""
+    """A status-line printer: rewritten in place on a terminal, cut to its width (a line that wraps makes the
+    terminal scroll at every update), one line a second otherwise."""
+    import os
+
     tty = stream.isatty()
     last = [0.0]
 
     def show(line: str) -> None:
         if tty:
-            stream.write("\r" + line)
+            try:
+                width = os.get_terminal_size(stream.fileno()).columns - 1
+            except OSError:
+                width = len(line)
+            stream.write("\r" + line.rstrip()[:width].ljust(width))
             stream.flush()
             return
         now = time.monotonic()

@@ -34,8 +34,13 @@ def density_glyphs(counts: list[int]) -> str:
     return "".join(GLYPHS[0 if n <= 0 else max(1, round(n * steps / top))] for n in counts)
 
 
-def seconds_label(seconds: float) -> str:
-    """A short ruler label: ``0s``, ``1.5s``, ``12s``, ``2m05s``."""
+def seconds_label(seconds: float, step: float = 1.0) -> str:
+    """A short ruler label: ``0s``, ``1.5s``, ``12s``, ``2m05s``; with ticks ``step`` seconds apart under a
+    tenth of a second, ``35ms`` or ``120µs`` (a 50 ms bag read ``0.0s 0.0s 0.0s``)."""
+    if 0 < step < 0.001:
+        return f"{seconds * 1e6:.0f}µs"
+    if 0 < step < 0.1:
+        return f"{seconds * 1e3:.0f}ms"
     if seconds >= 120:
         return f"{int(seconds // 60)}m{int(seconds % 60):02d}s"
     if seconds >= 10 or seconds == int(seconds):
@@ -152,8 +157,9 @@ class TimelineView(Widget, can_focus=True):
                     style=self.get_component_rich_style("timeline--ruler"))
         span_s = (self.index.end_ns - self.index.start_ns) / 1e9
         cells = [" "] * width
+        step = span_s * TICK_SPACING / width if width else 0.0
         for x in range(0, width, TICK_SPACING):
-            label = "┊" + seconds_label(span_s * x / width)
+            label = "┊" + seconds_label(span_s * x / width, step)
             if x + len(label) <= width and not x - 1 <= column <= x + len(label):  # labels give way to ▼
                 cells[x:x + len(label)] = list(label)
         cells[column] = "▼"

@@ -169,6 +169,8 @@ def test_real_rosbag_info_reads_a_rostui_bag(tmp_path: Path, ros_env: dict[str, 
 @pytest.mark.parametrize("args,message", [
     (["-O", "x.bag", "--compression", "zstd", "/x"], "a .bag file cannot use zstd compression (none, bz2 or lz4)"),
     (["-O", "x.mcap", "--compression", "bz2", "/x"], "MCAP files use lz4 or zstd compression, not bz2"),
+    (["--mcap", "--compression", "bz2", "/x"], "MCAP files use lz4 or zstd compression, not bz2"),
+    (["--mcap", "-O", "x.bag", "/x"], "--mcap records MCAP, but x.bag names a .bag file"),
     (["-O", "x.mcap", "--compression", "rar", "/x"], "unknown compression 'rar' (none, lz4, zstd or bz2)"),
     (["-O", "a.bag", "-o", "b", "/x"], "use -O NAME or -o PREFIX, not both"),
 ])

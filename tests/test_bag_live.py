@@ -284,7 +284,7 @@ def test_record_all_finds_later_topics_excludes_and_splits(ros_env: dict[str, st
         watcher = Watcher()
         items.append(watcher)
         rec = Cmd(rostui_cmd("bag", "record", "-a", "-x", "/skip.*", "-o", str(tmp_path / "all"), "--split",
-                             "--size", "0.05"), ros_env, tmp_path, "record")
+                             "--size", "0.05", "--mcap"), ros_env, tmp_path, "record")
         items.append(rec)
         rec.wait_for("Recording to")
         later = Counter(watcher, "/later", size=1000)

@@ -185,7 +185,7 @@ def test_without_a_master_it_browses_and_publishes_once_one_starts(counts_bag: P
         core.append(start_rostui_core(ros_env))
         counter = Counter(ros_env, tmp_path, "/count")
         try:
-            await until(lambda: app.node is not None, "the node once the master answers")
+            await until(lambda: app.link.startswith("publishing"), "the node once the master answers")
             app.refresh_view()
             assert "publishing 2 topics as /bag_view_" in str(app.header.render())
             await until(counter.connected, "the counter to connect")
@@ -303,7 +303,7 @@ def test_missing_and_garbage_files_are_one_line(tmp_path: Path, ros_env: dict[st
     empty.write_bytes(b"#ROSBAG V2.0\n" + os.urandom(200))
     for args in (["view", str(tmp_path / "nope.mcap")], ["view", str(junk)], ["view", str(empty)], ["view"],
                  ["view", "-r", "0", str(junk)], ["view", "--record"],
-                 ["view", "--record", "-a", "--compression", "bz2"]):
+                 ["view", "--record", "-a", "--mcap", "--compression", "bz2"]):
         result = rostui(["bag", *args], ros_env, timeout=30)
         assert result.returncode == 1, (args, result.stdout, result.stderr)
         lines = result.stderr.strip().splitlines()
@@ -402,5 +402,5 @@ def test_record_all_topics_finds_the_published_ones(tmp_path: Path, rostui_core:
         run(BagRecordApp(RecordOptions(all_topics=True, output_prefix="all")), scenario)
     finally:
         stop_process(talker)
-    files = sorted(tmp_path.glob("all_*_0.mcap"))
+    files = sorted(tmp_path.glob("all_*_0.bag"))  # rosbag's format unless asked for MCAP
     assert len(files) == 1 and file_values(files[0])

@@ -153,3 +153,37 @@ def test_bag_play_status_fits_an_80_column_terminal_and_short_bags_get_readable_
         assert len(labels) >= 3 and len(set(labels)) == len(labels) and all(l.endswith("ms") for l in labels), ruler
         pane.keys("q")
         pane.wait_until(lambda: exit_status(pane.screen()) == 0, "bag view to quit")
+
+
+def test_bag_record_writes_rosbags_format_and_says_so(tmp_path: Path, rostui_core: Any,
+                                                      ros_env: dict[str, str]) -> None:
+    """8: `bag record -a` writes what a teammate's rosbag opens (.bag, named by date and time as rosbag names
+    it), and says the file and its format when it starts and when it ends; --mcap is one flag away."""
+    import subprocess
+    import sys
+
+    from conftest import need_command
+
+    talker = subprocess.Popen([sys.executable, "-m", "rostui", "topic", "pub", "-r", "20", "/chatter",
+                               "std_msgs/String", "data: hi"], env=ros_env, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL)
+    try:
+        with shell_pane("record", 160, 20) as pane:
+            pane.type(f"cd {tmp_path}")
+            for flags, ending in (((), ".bag' (rosbag v2.0 .bag)."), (("--mcap",), ".mcap' (MCAP, not readable")):
+                pane.type("clear")
+                pane.type(rostui_line(ros_env, EXIT_MARK, "bag", "record", "-a", *flags))
+                pane.wait_until(lambda: ending in pane.screen(), f"the start line to say {ending!r}")
+                pane.wait_until(lambda: re.search(r": [1-9]\d* msgs, ", pane.screen()) is not None,
+                                "the status line to count /chatter's messages")
+                pane.keys("C-c")
+                pane.wait_until(lambda: exit_status(pane.screen()) == 0, "bag record to end on Ctrl-C")
+                assert re.search(r"Recorded \d+ messages to \d{4}(-\d\d){5}\.(bag|mcap) \(", pane.screen())
+    finally:
+        talker.terminate()
+        talker.wait(10)
+    bags, mcaps = list(tmp_path.glob("*.bag")), list(tmp_path.glob("*.mcap"))
+    assert len(bags) == 1 and len(mcaps) == 1, list(tmp_path.iterdir())
+    need_command("rosbag")
+    theirs = subprocess.run(["rosbag", "info", str(bags[0])], capture_output=True, text=True, timeout=120)
+    assert theirs.returncode == 0 and "/chatter" in theirs.stdout, theirs.stderr

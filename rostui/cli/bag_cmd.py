@@ -1,5 +1,5 @@
-"""`rostui bag record|play|info|reindex|convert|filter|compress|decompress`: rosbag's commands; MCAP by default,
-``.bag`` by name."""
+"""`rostui bag record|play|info|reindex|convert|filter|compress|decompress`: rosbag's commands; recordings are
+rosbag's ``.bag`` by default, MCAP with ``--mcap`` or by name."""
 
 from __future__ import annotations
 
@@ -55,7 +55,7 @@ def _split_ros_args(items: list[str]) -> tuple[list[str], list[str]]:
 
 def run_record(args: list[str], *, all_topics: bool, regex: bool, exclude: str | None, name: str | None,
                prefix: str | None, bz2_flag: bool, lz4_flag: bool, compression: str | None, split: bool,
-               size: float | None, duration: str | None, max_size: float | None) -> int:
+               size: float | None, duration: str | None, max_size: float | None, mcap: bool = False) -> int:
     """Record until Ctrl-C or a limit; 1 with one line on error."""
     from rostui.core.bag.model import BagError
     from rostui.core.bag.record_options import record_options
@@ -66,7 +66,7 @@ def run_record(args: list[str], *, all_topics: bool, regex: bool, exclude: str |
     try:
         opts = record_options(topics, all_topics=all_topics, regex=regex, exclude=exclude, name=name, prefix=prefix,
                               bz2=bz2_flag, lz4=lz4_flag, compression=compression, split=split, size_mb=size,
-                              duration=duration, max_size_mb=max_size)
+                              duration=duration, max_size_mb=max_size, mcap=mcap)
     except BagError as exc:
         fail(f"rostui bag record: {exc}")
     status = _status_writer(sys.stderr) if sys.stderr.isatty() else None
@@ -81,7 +81,9 @@ def run_record(args: list[str], *, all_topics: bool, regex: bool, exclude: str |
         sys.stderr.write("\n")
     if error:
         fail(f"rostui bag record: {error}; {', '.join(files)} holds what was recorded before")
-    _ros_log(f"Recorded {count} messages to {', '.join(files)}")
+    from rostui.core.bag.recorder import file_format
+
+    _ros_log(f"Recorded {count} messages to {', '.join(files)} ({file_format(files[-1]) if files else 'no file'})")
     return 0
 
 
@@ -232,7 +234,8 @@ def run_change_compression(command: str, files: list[str], kind: str, output_dir
 RECORD_EXAMPLES = examples(
     ("the turtle's commands and poses into square.bag (chapter 9)",
      "rostui bag record -O square.bag /turtle1/command_velocity /turtle1/pose"),
-    ("every topic, also those that appear later; MCAP named by date and time", "rostui bag record -a"),
+    ("every topic, also later ones, into a .bag named by date and time", "rostui bag record -a"),
+    ("the same as MCAP (rosbag cannot read it)", "rostui bag record -a --mcap"),
     ("every topic but the log", "rostui bag record -a -x '/rosout.*'"),
     ("a compressed rosbag .bag file that stops after one minute",
      "rostui bag record -j --duration 1m -O run.bag /turtle1/pose"),
@@ -249,7 +252,8 @@ PLAY_EXAMPLES = examples(
 
 def register(app: typer.Typer) -> None:
     """Add ``rostui bag ...``."""
-    bag_app = typer.Typer(name="bag", help="Record, play and inspect bags: MCAP by default, rosbag .bag by name.",
+    bag_app = typer.Typer(name="bag",
+                          help="Record, play and inspect bags: rosbag .bag by default, MCAP with --mcap or by name.",
                           no_args_is_help=True, context_settings={"help_option_names": ["-h", "--help"]})
     app.add_typer(bag_app, name="bag")
 
@@ -263,9 +267,12 @@ def register(app: typer.Typer) -> None:
         exclude: str | None = typer.Option(None, "-x", "--exclude", metavar="REGEX",
                                            help="Leave out topics whose whole name matches (from -a and -e)."),
         name: str | None = typer.Option(None, "-O", "--output-name", metavar="NAME",
-                                        help="File name (.bag: rosbag v2.0, otherwise MCAP)."),
+                                        help="File name (.mcap: MCAP; otherwise rosbag v2.0, .bag added when "
+                                             "missing)."),
         prefix: str | None = typer.Option(None, "-o", "--output-prefix", metavar="PREFIX",
                                           help="Prepend PREFIX to the date-and-time file name."),
+        mcap: bool = typer.Option(False, "--mcap", help="Record MCAP instead of rosbag's .bag (rosbag cannot read "
+                                                        "it; `rostui bag convert` makes a .bag)."),
         bz2_flag: bool = typer.Option(False, "-j", "--bz2", help="Compress: bz2 in .bag files, zstd in MCAP."),
         lz4_flag: bool = typer.Option(False, "--lz4", help="lz4 compression."),
         compression: str | None = typer.Option(None, "--compression", metavar="none|lz4|zstd|bz2",
@@ -281,7 +288,7 @@ def register(app: typer.Typer) -> None:
         raise typer.Exit(run_record(list(args or []), all_topics=all_topics, regex=regex, exclude=exclude,
                                     name=name, prefix=prefix, bz2_flag=bz2_flag, lz4_flag=lz4_flag,
                                     compression=compression, split=split, size=size, duration=duration,
-                                    max_size=max_size))
+                                    max_size=max_size, mcap=mcap))
 
     @bag_app.command("play", context_settings=CONTEXT, epilog=PLAY_EXAMPLES)
     def play_command(

@@ -31,12 +31,13 @@ class RecordFlags:
     split: bool = False
     size: float | None = None
     duration: str | None = None
+    mcap: bool = False
 
     def given(self) -> list[str]:
         """The flags given, as a user typed them."""
         flags = {"-x": self.exclude, "-O": self.name, "-o": self.prefix, "-j": self.bz2, "--lz4": self.lz4,
                  "--compression": self.compression, "--split": self.split, "--size": self.size,
-                 "--duration": self.duration}
+                 "--duration": self.duration, "--mcap": self.mcap}
         return [flag for flag, value in flags.items() if value not in (None, False)]
 
 
@@ -99,7 +100,7 @@ def run_record_view(topics: list[str], *, all_topics: bool, regex: bool, flags: 
     try:
         opts = record_options(topics, all_topics=all_topics, regex=regex, exclude=flags.exclude, name=flags.name,
                               prefix=flags.prefix, bz2=flags.bz2, lz4=flags.lz4, compression=flags.compression,
-                              split=flags.split, size_mb=flags.size, duration=flags.duration)
+                              split=flags.split, size_mb=flags.size, duration=flags.duration, mcap=flags.mcap)
     except BagError as exc:
         fail(f"rostui bag view --record: {exc}")
     from rostui.apps.bagview.record_app import run_record_app
@@ -125,8 +126,9 @@ def register(bag_app: typer.Typer) -> None:
                                            help="With --record: leave out topics whose whole name matches "
                                                 "(from -a and -e)."),
         name: str | None = typer.Option(None, "-O", "--output-name", metavar="NAME",
-                                        help="With --record: file name (.bag: rosbag v2.0, otherwise MCAP); "
+                                        help="With --record: file name (.mcap: MCAP, otherwise rosbag v2.0); "
                                              "files are NAME_0, NAME_1, ..."),
+        mcap: bool = typer.Option(False, "--mcap", help="With --record: MCAP instead of rosbag's .bag."),
         prefix: str | None = typer.Option(None, "-o", "--output-prefix", metavar="PREFIX",
                                           help="With --record: prepend PREFIX to the date-and-time file name."),
         bz2_flag: bool = typer.Option(False, "-j", "--bz2", help="With --record: compress (bz2 in .bag files, "
@@ -163,7 +165,7 @@ def register(bag_app: typer.Typer) -> None:
         """
         items = list(args or [])
         flags = RecordFlags(exclude=exclude, name=name, prefix=prefix, bz2=bz2_flag, lz4=lz4_flag,
-                            compression=compression, split=split, size=size, duration=duration)
+                            compression=compression, split=split, size=size, duration=duration, mcap=mcap)
         if record or all_topics or regex:
             if clock or hz is not None:
                 fail("rostui bag view --record: --clock and --hz are for viewing a bag, not recording")

@@ -260,6 +260,7 @@ class BagViewApp(ReleasesOnExit, KeysApp):
             self.link = f"no master at {node.master_uri}: not publishing (trying again every {RETRY_SECONDS:g} s)"
             return False
         self.node = node
+        self.link = f"advertising as {node.name}…"
         return True
 
     async def _sync_publishers(self) -> None:

@@ -45,6 +45,7 @@ class RecordOptions:
     duration_s: float | None = None
     max_size_mb: float | None = None
     max_chunk_age: float = 0.5
+    mcap: bool = False  # --mcap: MCAP where the name gives no format (rosbag's .bag otherwise)
 
 
 _DURATION_UNITS = {"": 1.0, "s": 1.0, "m": 60.0, "h": 3600.0}
@@ -74,18 +75,24 @@ def stamp(now: float | None = None) -> str:
 
 
 def base_file_name(opts: RecordOptions, now: float | None = None) -> str:
-    """The file name to record to: ``-O`` as given (``.mcap`` added when it names no format),
-    ``-o PREFIX`` plus the date and time, or the date and time alone."""
+    """The file name to record to: ``-O`` as given (``.bag`` added when it names no format, as rosbag adds it;
+    ``.mcap`` with ``--mcap``), ``-o PREFIX`` plus the date and time, or the date and time alone."""
+    default_ext = ".mcap" if opts.mcap else ".bag"
     if opts.output_name:
         name = opts.output_name
-        return name if name.endswith((".bag", ".mcap")) else name + ".mcap"
-    ext = ".mcap"
+        return name if name.endswith((".bag", ".mcap")) else name + default_ext
+    ext = default_ext
     prefix = opts.output_prefix or ""
     if prefix.endswith(".bag") or prefix.endswith(".mcap"):
         prefix, ext = os.path.splitext(prefix)
     if prefix and not prefix.endswith("/"):
         prefix += "_"
     return f"{prefix}{stamp(now)}{ext}"
+
+
+def file_format(name: str) -> str:
+    """How a recording's file is written, as the start and end lines say it."""
+    return "rosbag v2.0 .bag" if name.endswith(".bag") else "MCAP, not readable by rosbag: `rostui bag convert` makes a .bag"
 
 
 def split_file_name(base: str, index: int) -> str:
@@ -401,7 +408,7 @@ class Recorder:
         """Record until ``stop`` is set (Ctrl-C, a size or duration limit, or a write error); finalise the file."""
         self._loop = asyncio.get_running_loop()
         self._open_next()
-        self.report(f"Recording to '{self.files[-1]}'.")
+        self.report(f"Recording to '{self.files[-1]}' ({file_format(self.files[-1])}).")
         thread = threading.Thread(target=self._writer_thread, name="rostui-bag-writer", daemon=True)
         thread.start()
         tasks = [asyncio.ensure_future(self._status(status))] if status is not None else []

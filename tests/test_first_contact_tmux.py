@@ -11,6 +11,8 @@ from pathlib import Path
 from typing import Any
 from xmlrpc.client import ServerProxy
 
+from cli_helpers import rostui
+from conftest import wait_until
 from tmux_helpers import Pane, rostui_line, shell_pane
 
 EXIT_MARK = "FIRST_CONTACT_EXIT="
@@ -187,3 +189,61 @@ def test_bag_record_writes_rosbags_format_and_says_so(tmp_path: Path, rostui_cor
     need_command("rosbag")
     theirs = subprocess.run(["rosbag", "info", str(bags[0])], capture_output=True, text=True, timeout=120)
     assert theirs.returncode == 0 and "/chatter" in theirs.stdout, theirs.stderr
+
+
+def test_quitting_the_turtlesim_that_hosts_the_master_says_who_loses_it(ros_env: dict[str, str]) -> None:
+    """9: with a talker on the master `rostui turtlesim` started, q says the talker uses it and quits on a second
+    q; the shell then reads which nodes were left without a master."""
+    import subprocess
+    import sys
+
+    with shell_pane("host", 100, 30) as pane:
+        pane.type(rostui_line(ros_env, EXIT_MARK, "turtlesim"))
+        pane.wait_until(lambda: "embedded master" in pane.screen() and "turtle1 x" in pane.screen(), "turtlesim")
+        talker = subprocess.Popen([sys.executable, "-m", "rostui", "topic", "pub", "-r", "5", "/chatter",
+                                   "std_msgs/String", "data: hi"], env=ros_env,
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        try:
+            names: list[str] = []
+
+            def talker_listed() -> bool:
+                names[:] = [n for n in rostui(["node", "list"], ros_env).stdout.split() if n.startswith("/rostopic")]
+                return bool(names)
+            wait_until(talker_listed, "the talker on turtlesim's master")
+            pane.keys("q")
+            pane.wait_until(lambda: f"{names[0]} use the master turtlesim started: q again quits" in pane.screen(),
+                            "turtlesim to say the talker uses its master")
+            assert exit_status(pane.screen()) is None, "one q quit turtlesim"
+            pane.keys("q")
+            pane.wait_until(lambda: exit_status(pane.screen()) == 0, "turtlesim to quit on the second q")
+            said = pane.screen().replace("\n", "")
+            assert f"{names[0]} is left without a master" in said, pane.screen()
+        finally:
+            talker.terminate()
+            talker.wait(10)
+
+
+def test_wtf_resolves_localhost_without_etc_hosts_and_help_wraps_at_the_terminal(
+        tmp_path: Path, rostui_core: Any, ros_env: dict[str, str]) -> None:
+    """9: in a root with no /etc/hosts (an empty one bind-mounted in a mount namespace of its own), `rostui wtf`
+    reaches ROS_MASTER_URI=http://localhost:PORT as every other command does; `bag view --help` at 80 columns
+    wraps its paragraphs at the terminal's width, not also at the docstring's line ends."""
+    from conftest import need_command
+
+    need_command("unshare")
+    empty = tmp_path / "hosts"
+    empty.write_text("")
+    port = ros_env["ROS_MASTER_URI"].rstrip("/").rsplit(":", 1)[1]
+    env = {**ros_env, "ROS_MASTER_URI": f"http://localhost:{port}/"}
+    line = rostui_line(env, EXIT_MARK, "wtf")
+    with shell_pane("nohosts", 160, 30) as pane:
+        pane.type(f"unshare -m sh -c 'mount --bind {empty} /etc/hosts && getent hosts localhost; {line}'")
+        pane.wait_until(lambda: exit_status(pane.screen()) is not None, "rostui wtf")
+        screen = pane.screen()
+        assert "cannot resolve" not in screen and "Found 0 error(s)" in screen, screen
+    with shell_pane("help80", 80, 60) as pane:
+        pane.type(rostui_line(ros_env, EXIT_MARK, "bag", "view", "--help").replace("; echo", " | head -12; echo", 1))
+        pane.wait_until(lambda: "Keys:" in pane.screen(), "bag view's help")
+        paragraph = pane.screen().split("Keys:", 1)[1].split("\n\n", 1)[0]
+        rows = [row.rstrip() for row in ("Keys:" + paragraph).splitlines()]
+        assert all(len(row) > 60 for row in rows[:-1]), "a line ends mid-paragraph:\n" + "\n".join(rows)

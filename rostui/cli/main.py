@@ -14,6 +14,7 @@ from rostui.cli import (
     pkg_cmd, python_cmd, run_cmd, serve_cmd, service_cmd, tf_cmd, topic_cmd, turtlesim_cmd, view_cmd,
     wtf_cmd,
 )
+from rostui.cli.help_text import reflow_commands
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
 
@@ -56,6 +57,7 @@ for _module in (run_cmd, node_cmd, topic_cmd, msg_cmd, service_cmd, param_cmd, p
                 turtlesim_cmd, graph_cmd, console_cmd, loggers_cmd, launch_cmd, bag_cmd, monitor_cmd, serve_cmd,
                 python_cmd, tf_cmd, view_cmd):
     _module.register(app)
+reflow_commands(app)
 
 
 def main() -> None:

@@ -25,7 +25,9 @@ def _host_of(uri: str) -> str | None:
 
 def _addresses(host: str) -> set[str]:
     try:
-        return {str(info[4][0]) for info in socket.getaddrinfo(host, 0, 0, 0, socket.SOL_TCP)}
+        from rostui.core.localhost import connect_host
+
+        return {str(info[4][0]) for info in socket.getaddrinfo(connect_host(host), 0, 0, 0, socket.SOL_TCP)}
     except (OSError, UnicodeError):
         return set()
 

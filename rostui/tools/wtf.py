@@ -106,7 +106,12 @@ def _is_local_address(address: str) -> bool:
 
 
 def _resolve(host: str) -> list[str]:
-    return sorted({str(info[4][0]) for info in socket.getaddrinfo(host, None, proto=socket.IPPROTO_TCP)})
+    """The addresses of ``host``; a localhost name this machine cannot resolve (a root with no /etc/hosts) is
+    the loopback address it always means, as for every other rostui command."""
+    from rostui.core.localhost import connect_host
+
+    return sorted({str(info[4][0]) for info in socket.getaddrinfo(connect_host(host), None,
+                                                                  proto=socket.IPPROTO_TCP)})
 
 
 def _check_environment(env: Mapping[str, str], uri: str) -> list[Finding]:

@@ -56,6 +56,8 @@ VIEW_KEYS = (key_line("Tab next"), "")
 TELEOP_TAKEN_KEYS = (key_line("↑↓←→ off: another /teleop_turtle runs  Tab next"), "s spawn  c clear  r reset")
 #: Seconds between looks at the master for the name of the teleop node, while another node holds it.
 TELEOP_RECLAIM_PERIOD = 1.0
+#: Seconds within which a second q quits when other nodes use the embedded master.
+QUIT_AGAIN_SECONDS = NOTICE_SECONDS
 
 
 @dataclass(frozen=True)
@@ -110,7 +112,7 @@ class TurtlesimApp(ReleasesOnExit, KeysApp):
     TITLE = "turtlesim"
 
     BINDINGS = [
-        Binding("q", "quit", "quit"),
+        Binding("q", "quit_asking", "quit (twice while other nodes use the master it started)"),
         Binding("tab", "select_next", "next turtle", priority=True),
         Binding("shift+tab", "select_previous", "previous turtle", priority=True),
         Binding("s", "spawn", "spawn"),
@@ -135,6 +137,7 @@ class TurtlesimApp(ReleasesOnExit, KeysApp):
         """The node's shutdown line, printed once the app has left the screen (empty unless asked to shut down)."""
         self._selected = ""
         self._notice: tuple[float, str] = (0.0, "")
+        self._quit_asked = float("-inf")
         self.sim.log.add_sink(self._on_log)
 
     # -- composition ---------------------------------------------------------------
@@ -372,8 +375,42 @@ class TurtlesimApp(ReleasesOnExit, KeysApp):
             self.notify(f"{name} failed: {exc}", severity="error")
 
     async def release(self) -> None:
-        """Unregister the nodes and stop the embedded master."""
+        """Unregister the nodes and stop the embedded master (saying which other nodes it leaves behind)."""
+        if self.embedded is not None and not self._stopping:
+            others = await self._other_nodes()
+            if others:
+                self.farewell = (f"turtlesim stopped the master it started at {self.embedded.uri}; "
+                                 f"{', '.join(others)} {'is' if len(others) == 1 else 'are'} left without a master "
+                                 "(start `rostui core` first to keep them connected)")
         await self._stop_ros()
+
+    async def action_quit_asking(self) -> None:
+        """q: quit; when other nodes use the master this turtlesim started, the first q says so and a second
+        q within a few seconds quits (Ctrl-C and signals quit at once, saying which nodes lose their master)."""
+        if self.embedded is not None and not self._stopping:
+            others = await self._other_nodes()
+            now = time.monotonic()
+            if others and now - self._quit_asked > QUIT_AGAIN_SECONDS:
+                self._quit_asked = now
+                self._notice = (now, f"{', '.join(others)} use the master turtlesim started: q again quits "
+                                     "and stops it")
+                self.refresh_status()
+                return
+        await self.action_quit()
+
+    async def _other_nodes(self) -> list[str]:
+        """The nodes registered with this process's embedded master besides its own, sorted."""
+        node = self.sim.node
+        if node is None:
+            return []
+        try:
+            publishers, subscribers, services = await asyncio.wait_for(node.master_call("getSystemState"), 2.0)
+        except Exception:
+            return []
+        ours = {node.name, "/rosout"} | ({self.teleop_node.name} if self.teleop_node is not None else set())
+        ours.add(node.resolve(f"/{TELEOP_NODE_NAME}"))
+        listed = {n for _name, nodes in (*publishers, *subscribers, *services) for n in nodes}
+        return sorted(listed - ours)
 
 
 def run_app(argv: Sequence[str], *, teleop: bool = True) -> int:

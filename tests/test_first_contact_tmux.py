@@ -247,3 +247,58 @@ def test_wtf_resolves_localhost_without_etc_hosts_and_help_wraps_at_the_terminal
         paragraph = pane.screen().split("Keys:", 1)[1].split("\n\n", 1)[0]
         rows = [row.rstrip() for row in ("Keys:" + paragraph).splitlines()]
         assert all(len(row) > 60 for row in rows[:-1]), "a line ends mid-paragraph:\n" + "\n".join(rows)
+
+
+def make_package(folder: Path, name: str, scripts: dict[str, str]) -> Path:
+    """A package ``name`` in ``folder`` (package.xml) with executable shell scripts ``{file: text printed}``."""
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "package.xml").write_text(f'<?xml version="1.0"?>\n<package format="2"><name>{name}</name>'
+                                        "<version>0.0.0</version><description>test</description>"
+                                        "<maintainer email='a@b.c'>a</maintainer><license>BSD</license>"
+                                        "</package>\n")
+    for file, said in scripts.items():
+        script = folder / file
+        script.write_text(f"#!/bin/sh\necho {said}\n")
+        script.chmod(0o755)
+    return folder
+
+
+def test_run_and_launch_take_the_installed_executable_first_as_rosrun_and_roslaunch_do(
+        tmp_path: Path, ros_env: dict[str, str]) -> None:
+    """10: a package both in the workspace (ROS_PACKAGE_PATH) and installed in a catkin prefix (lib/<pkg>, as
+    Debian's /usr/lib/<pkg>): `rostui run` and `rostui launch` start the installed node, as rosrun and
+    roslaunch (roslib's find_node) do; a node only the workspace has still comes from the workspace."""
+    from conftest import need_command
+
+    need_command("rosrun")
+    prefix = tmp_path / "install"
+    (prefix / ".catkin").parent.mkdir(parents=True)
+    (prefix / ".catkin").write_text("")
+    make_package(prefix / "share" / "twice_pkg", "twice_pkg", {})
+    make_package(prefix / "lib" / "twice_pkg", "twice_pkg", {"node": "from-the-installed-prefix"})
+    (prefix / "lib" / "twice_pkg" / "package.xml").unlink()
+    make_package(tmp_path / "ws" / "src" / "twice_pkg", "twice_pkg",
+                 {"node": "from-the-workspace", "only_here": "only-in-the-workspace"})
+    launch = tmp_path / "twice.launch"
+    launch.write_text('<launch><node pkg="twice_pkg" type="node" name="twice" output="screen"/></launch>\n')
+    env = {**ros_env, "ROS_PACKAGE_PATH": str(tmp_path / "ws" / "src"), "CMAKE_PREFIX_PATH": str(prefix)}
+    exports = " ".join(f"{k}={v}" for k, v in env.items() if k in ("ROS_PACKAGE_PATH", "CMAKE_PREFIX_PATH"))
+    with shell_pane("twice", 200, 40) as pane:
+        pane.type(f"export {exports}")
+        lists = []
+        for command in ("rosrun twice_pkg node", rostui_line(env, EXIT_MARK, "run", "twice_pkg", "node")):
+            pane.type("clear")
+            pane.type(command)
+            pane.wait_until(lambda: "#?" in pane.screen(), f"{command.split(';')[0]} to ask which executable")
+            lists.append(re.findall(r"^\d\) (\S+)$", pane.screen(), re.MULTILINE))
+            pane.type("1")
+            pane.wait_until(lambda: "from-the-installed-prefix" in pane.screen(), "the installed node, picked first")
+        assert lists[0] == lists[1] and "install/lib/twice_pkg/node" in lists[1][0], lists
+        screen = run_to_exit(pane, env, "run", "twice_pkg", "only_here")
+        assert "only-in-the-workspace" in screen and exit_status(screen) == 0, screen
+        pane.type("clear")
+        pane.type(rostui_line(env, EXIT_MARK, "launch", str(launch)))
+        pane.wait_until(lambda: "from-the-installed-prefix" in pane.screen(), "the launched node's line")
+        assert "from-the-workspace" not in pane.screen(), pane.screen()
+        pane.keys("C-c")
+        pane.wait_until(lambda: exit_status(pane.screen()) is not None, "the launch to end")

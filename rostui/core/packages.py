@@ -211,20 +211,41 @@ def package_of(path: Path | str) -> str | None:
 
 # -- executables (``rostui run``) ----------------------------------------------
 
-def executable_dirs(package: str) -> list[Path]:
-    """Directories searched for *package*'s executables.
+#: The file that marks a catkin workspace (a devel or install space) in CMAKE_PREFIX_PATH.
+CATKIN_MARKER = ".catkin"
+#: Where Debian installs ROS packages: catkin's last workspace, always searched.
+SYSTEM_PREFIX = Path("/usr")
 
-    The package directory, and for an installed package at
-    ``<prefix>/share/<pkg>`` also catkin's libexec directory ``<prefix>/lib/<pkg>``
-    when it exists (where Debian and catkin installs put node executables).
+
+def catkin_workspaces() -> list[Path]:
+    """The catkin workspaces roslib searches, in order: CMAKE_PREFIX_PATH's entries that hold a ``.catkin``
+    marker, then ``/usr`` (Debian's catkin always adds it)."""
+    entries = [Path(p) for p in os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep) if p]
+    found = [p for p in entries if (p / CATKIN_MARKER).is_file()]
+    return [*found, SYSTEM_PREFIX] if SYSTEM_PREFIX not in found else found
+
+
+def executable_dirs(package: str) -> list[Path]:
+    """Directories searched for *package*'s executables, in roslib's ``find_node`` order (rosrun's too).
+
+    First the first catkin workspace (:func:`catkin_workspaces`) that has ``lib/<pkg>``, ``libexec/<pkg>`` or
+    ``share/<pkg>``, those of them that exist; then the package's own directory (ROS_PACKAGE_PATH's, as
+    rospack finds it). So an installed node (Debian's ``/usr/lib/<pkg>/``) comes before a workspace copy of
+    the same package, as roslaunch and rosrun start it. rostui's built-in packages (:data:`BUILTIN_SHARE`,
+    found when no ROS_PACKAGE_PATH entry holds the package) are rostui's own install: their executables are
+    theirs alone, whatever Debian has installed under the same name.
     Raises :class:`PackageNotFoundError`.
     """
     pkg_dir = get_package_path(package)
-    dirs = [pkg_dir]
-    if pkg_dir.parent.name == "share":
-        libexec = pkg_dir.parent.parent / "lib" / pkg_dir.name
-        if libexec.is_dir():
-            dirs.insert(0, libexec)
+    if BUILTIN_SHARE in pkg_dir.parents:
+        return [pkg_dir]
+    dirs: list[Path] = []
+    for workspace in catkin_workspaces():
+        dirs = [d for d in (workspace / sub / package for sub in ("lib", "libexec", "share")) if d.is_dir()]
+        if dirs:
+            break
+    if pkg_dir not in dirs:
+        dirs.append(pkg_dir)
     return dirs
 
 

@@ -119,7 +119,7 @@ def node_executable(node: NodeSpec, anons: dict[str, str]) -> tuple[Path, list[s
     args = shlex.split(resolve(node.args, ctx) or "")
     remaps = [f"{src}:={dst}" for src, dst in node.remaps] + [f"__name:={name}"]
     try:
-        path = locate(node.package, node.type)
+        path = locate(node.package, node.type, choose=lambda found: found[0])  # roslaunch takes the first match
     except RunError as exc:
         raise LaunchError(f"cannot launch node of type [{node.package}/{node.type}]: {exc.lines[0]}",
                           node.filename, node.line) from None

@@ -7,6 +7,7 @@ screen, against a `rostui core` master of its own.
 from __future__ import annotations
 
 import re
+import signal
 from pathlib import Path
 from typing import Any
 from xmlrpc.client import ServerProxy
@@ -302,3 +303,59 @@ def test_run_and_launch_take_the_installed_executable_first_as_rosrun_and_roslau
         assert "from-the-workspace" not in pane.screen(), pane.screen()
         pane.keys("C-c")
         pane.wait_until(lambda: exit_status(pane.screen()) is not None, "the launch to end")
+
+
+SUMMARY_LAUNCH = """<launch>
+  <param name="speed" value="2.5"/>
+  <param name="long_text" value="a string that is far longer than twenty"/>
+  <group ns="robot">
+    <node pkg="rosbag" type="play" name="player" args="--help"/>
+    <node pkg="nope_pkg" type="nope" name="bad"/>
+  </group>
+  <node pkg="rosbag" type="record" name="rec" args="--help"/>
+</launch>
+"""
+
+
+def summary_block(text: str) -> list[str]:
+    """The lines from SUMMARY to the blank line that ends NODES, with /rosdistro's and /rosversion's values
+    (each launcher's own) left out."""
+    lines = text.splitlines()
+    start = lines.index("SUMMARY")
+    end = next(i for i in range(lines.index("NODES", start), len(lines)) if not lines[i].strip())
+    return [re.sub(r"^( \* /ros(distro|version)): .*$", r"\1: ...", line) for line in lines[start:end]]
+
+
+def test_launch_prints_roslaunchs_summary_and_starts_the_nodes_beside_a_bad_one(
+        tmp_path: Path, ros_env: dict[str, str]) -> None:
+    """7: the SUMMARY / PARAMETERS / NODES block roslaunch users read before anything runs, line for line as
+    Debian's roslaunch prints it; a node whose package does not exist is reported and the others start."""
+    import subprocess
+
+    from conftest import free_port, need_command
+
+    need_command("roslaunch")
+    launch = tmp_path / "summary.launch"
+    launch.write_text(SUMMARY_LAUNCH)
+    theirs_env = {**ros_env, "ROS_MASTER_URI": f"http://127.0.0.1:{free_port()}", "ROS_HOME": str(tmp_path / "rl")}
+    out = tmp_path / "roslaunch.out"
+    with out.open("w") as sink:
+        theirs = subprocess.Popen(["roslaunch", str(launch)], env=theirs_env, stdout=sink, stderr=subprocess.STDOUT,
+                                  stdin=subprocess.DEVNULL)
+    try:
+        wait_until(lambda: "process[rec-4]: started" in out.read_text(), "roslaunch to start the last node")
+    finally:
+        theirs.send_signal(signal.SIGINT)
+        theirs.wait(60)
+    plain = re.sub(r"\x1b\[[0-9;]*m|\x1b\]2;[^\x07]*\x07", "", out.read_text())
+    expected = summary_block(plain)
+    assert "    bad (nope_pkg/nope)" in expected, plain
+    with shell_pane("summary", 120, 60) as pane:
+        pane.type(rostui_line(ros_env, EXIT_MARK, "launch", str(launch)))
+        pane.wait_until(lambda: "process[rec-3]: started" in pane.screen(), "the node after the bad one to start")
+        screen = pane.screen()
+        assert summary_block(screen) == expected, screen
+        assert "ERROR: cannot launch node of type [nope_pkg/nope]" in screen
+        assert "process[robot-player-1]: started" in screen
+        pane.keys("C-c")
+        pane.wait_until(lambda: exit_status(pane.screen()) is not None, "the launch to end on Ctrl-C")

@@ -43,8 +43,9 @@ from rostui.core.xmlrpc import XmlRpcClient, XmlRpcError
 from rostui.core.xmlrpc.server import XmlRpcServer
 from rostui.launch.errors import LaunchError
 from rostui.launch.files import LaunchRequest
-from rostui.launch.inspect import load_config, node_argv, node_env
+from rostui.launch.inspect import load_config, node_env
 from rostui.launch.python_nodes import node_command
+from rostui.launch.summary import launch_summary
 from rostui.launch.machines import assign_machines
 from rostui.launch.model import LaunchConfig, Machine, NodeSpec
 from rostui.launch.output import OutputBuffer
@@ -533,6 +534,8 @@ class Supervisor:
             for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
                 loop.add_signal_handler(signum, self.request_stop)
         try:
+            for line in launch_summary(self.config).split("\n"):
+                self.say(line)
             await self._master()
             self.run_id = await self._run_id()
             run_dir = run_log_dir(self.run_id)
@@ -614,10 +617,7 @@ def load_supervisor(request: LaunchRequest, options: SupervisorOptions,
     supervisor = Supervisor(config, loader.anons, options, reporter)
     for warning in config.warnings:
         supervisor.complain(f"WARNING: {warning}")
-    assign_machines(config)
-    for node in config.nodes:
-        if remote_machine(config, node) is None:  # remote executables are the remote machine's business
-            node_argv(node, loader.anons)  # every executable must exist before anything starts
+    assign_machines(config)  # a node that cannot run is reported when its turn comes, and the others start
     if options.verbose:
         for node in config.nodes:
             supervisor.say(f"node {node.resolved_name}: {node.package}/{node.type}")

@@ -74,6 +74,7 @@ def test_a_second_teleop_says_it_took_the_arrow_keys_and_gives_them_back(ros_env
         sim.wait_until(lambda: "turtle1 x 5.54" in sim.screen() and "↑↓←→ drive" in sim.screen(), "turtlesim")
         teleop.type(rostui_line(ros_env, EXIT_MARK, "teleop"))
         teleop.wait_until(lambda: "Use arrow keys to move the turtle." in teleop.screen(), "the teleop banner")
+        assert "[ WARN] /teleop_turtle is already running (turtlesim's arrow keys" in teleop.screen().replace("\n", "")
         sim.wait_until(lambda: "↑↓←→ off: another /teleop_turtle runs" in sim.screen(),
                        "turtlesim to say another teleop has the arrow keys' node")
         sim.keys("Up")

@@ -239,6 +239,11 @@ def run_teleop(argv: Sequence[str], *, topic: str | None = None) -> int:
     except TeleopError as exc:
         print(exc, file=sys.stderr)
         return 1
+    taken = _name_in_use(argv)
+    if taken:
+        print(f"[ WARN] {taken} is already running (turtlesim's arrow keys, or another teleop): ROS gives the name "
+              "to the newest node, so that one stops; turtlesim's arrow keys drive again once this teleop ends",
+              file=sys.stderr, flush=True)
     try:
         ros.init_node(NODE_NAME, argv=[sys.argv[0], *argv])
         scale_linear, scale_angular = read_scales(ros.get_param)
@@ -254,6 +259,23 @@ def run_teleop(argv: Sequence[str], *, topic: str | None = None) -> int:
         print(f"{program}: {exc}", file=sys.stderr)
         ros.signal_shutdown("no master")
         return 1
+
+
+def _name_in_use(argv: Sequence[str]) -> str | None:
+    """This teleop's node name when the master already knows a node by it (None otherwise, or without a
+    master: init_node then says what is wrong)."""
+    from rostui.core import names
+    from rostui.core.masteruri import master_uri_from_env
+    from rostui.core.xmlrpc.quick import quick_call
+
+    try:
+        args = names.parse_argv(list(argv))
+        name = names.node_global_name(NODE_NAME, args)
+        code, _message, _uri = quick_call(master_uri_from_env(args.master), "lookupNode", "/rostui_teleop", name,
+                                          timeout=2.0)
+    except Exception:
+        return None
+    return name if code == 1 else None
 
 
 def _drive(fd: int, ros: Any, topic: str | None, scale_linear: float, scale_angular: float) -> int:

@@ -46,14 +46,21 @@ def view_line(env: dict[str, str], *args: str, cwd: Path) -> str:
 
 def test_bag_view_seeks_plays_and_quits_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str],
                                                 tmp_path: Path) -> None:
-    """The timeline and inspector show; 5 then space publishes the second half; q gives the shell back."""
+    """The timeline and inspector show; playing publishes nothing until a switches every topic on (a live
+    subscriber hears nothing, no node joins the master); then 5 and space publish the second half; q gives the
+    shell back."""
     write_counts(tmp_path / "counts.bag")
     counter = Counter(ros_env, tmp_path, "/count", "/odd")
     try:
         pane.type(view_line(ros_env, "counts.bag", cwd=tmp_path))
         pane.wait_until(lambda: pane.shows("counts.bag · ", "150 msgs", "/count", "/odd", "PAUSED"),
                         "the header, the timeline and the paused state")
-        pane.wait_until(lambda: pane.shows("publishing as /bag_view_"), "the app's node")
+        assert pane.shows("not publishing: t publishes the selected topic, a every topic")
+        pane.keys("Space")
+        pane.wait_until(lambda: pane.shows("■ END", "data: 99"), "the whole bag played")
+        assert counter.received() == [] and bag_view_nodes(ros_env) == [], "playing published unasked"
+        pane.keys("a")
+        pane.wait_until(lambda: pane.shows("publishing 2 topics as /bag_view_"), "the app's node")
         wait_until(counter.connected, "the counter to connect to the app")
         pane.keys("5")
         pane.wait_until(lambda: pane.shows(" 50%", "data: 49"), "the cursor at 50% and /count 49 inspected")
@@ -99,8 +106,8 @@ def test_closing_the_terminal_while_playing_ends_the_app_and_its_node(pane: Pane
                                                                      tmp_path: Path) -> None:
     """The terminal goes away (SIGHUP) mid-playback: the node unregisters and the process ends."""
     bag = write_counts(tmp_path / "hangup.mcap", count=3000)  # 30 s
-    pane.type(view_line(ros_env, "--play", str(bag), cwd=tmp_path))
-    pane.wait_until(lambda: pane.shows("▶ PLAYING", "publishing as /bag_view_"), "playing and publishing")
+    pane.type(view_line(ros_env, "--play", "--publish", str(bag), cwd=tmp_path))
+    pane.wait_until(lambda: pane.shows("▶ PLAYING", "publishing 2 topics as /bag_view_"), "playing and publishing")
     wait_until(lambda: len(bag_view_nodes(ros_env)) == 1, "the app's node on the master")
     pids = app_pids(str(bag))
     assert pids

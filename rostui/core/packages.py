@@ -230,8 +230,9 @@ def executable_dirs(package: str) -> list[Path]:
 
     First the first catkin workspace (:func:`catkin_workspaces`) that has ``lib/<pkg>``, ``libexec/<pkg>`` or
     ``share/<pkg>``, those of them that exist; then the package's own directory (ROS_PACKAGE_PATH's, as
-    rospack finds it). So an installed node (Debian's ``/usr/lib/<pkg>/``) comes before a workspace copy of
-    the same package, as roslaunch and rosrun start it. rostui's built-in packages (:data:`BUILTIN_SHARE`,
+    rospack finds it), after the ``<prefix>/lib/<pkg>`` beside it when it lies at ``<prefix>/share/<pkg>``.
+    So an installed node (Debian's ``/usr/lib/<pkg>/``) comes before a workspace copy of the same package, as
+    roslaunch and rosrun start it. rostui's built-in packages (:data:`BUILTIN_SHARE`,
     found when no ROS_PACKAGE_PATH entry holds the package) are rostui's own install: their executables are
     theirs alone, whatever Debian has installed under the same name.
     Raises :class:`PackageNotFoundError`.
@@ -244,6 +245,9 @@ def executable_dirs(package: str) -> list[Path]:
         dirs = [d for d in (workspace / sub / package for sub in ("lib", "libexec", "share")) if d.is_dir()]
         if dirs:
             break
+    libexec = pkg_dir.parent.parent / "lib" / pkg_dir.name  # an install prefix's layout, in no workspace
+    if pkg_dir.parent.name == "share" and libexec.is_dir() and libexec not in dirs:
+        dirs.append(libexec)
     if pkg_dir not in dirs:
         dirs.append(pkg_dir)
     return dirs

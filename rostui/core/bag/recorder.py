@@ -95,6 +95,12 @@ def file_format(name: str) -> str:
     return "rosbag v2.0 .bag" if name.endswith(".bag") else "MCAP, not readable by rosbag: `rostui bag convert` makes a .bag"
 
 
+def recording_line(name: str) -> str:
+    """The line that says where recording goes: rosbag's own for a .bag; for MCAP also that it is MCAP (rosbag
+    cannot read it)."""
+    return f"Recording to '{name}'." if name.endswith(".bag") else f"Recording to '{name}' ({file_format(name)})."
+
+
 def split_file_name(base: str, index: int) -> str:
     """``name_<index>.ext`` for the pieces of a split recording, as rosbag names them."""
     root, ext = os.path.splitext(base)
@@ -279,14 +285,14 @@ class Recorder:
         """Close the file and open ``name`` at this message boundary (a :class:`NextFile` from the queue)."""
         self._close_writer()
         self._open(name)
-        self._from_writer(self.report, f"Recording to '{name}'.")
+        self._from_writer(self.report, recording_line(name))
 
     def _limit(self, why: str) -> None:
         """A --size or --duration limit: the next file with --split, else stop (saying ``why``)."""
         if self.opts.split:
             self._close_writer()
             self._open_next()
-            self._from_writer(self.report, f"Recording to '{self.files[-1]}'.")
+            self._from_writer(self.report, recording_line(self.files[-1]))
         else:
             self.limit_reached = why
             self._from_writer(self.stop.set)
@@ -408,7 +414,7 @@ class Recorder:
         """Record until ``stop`` is set (Ctrl-C, a size or duration limit, or a write error); finalise the file."""
         self._loop = asyncio.get_running_loop()
         self._open_next()
-        self.report(f"Recording to '{self.files[-1]}' ({file_format(self.files[-1])}).")
+        self.report(recording_line(self.files[-1]))
         thread = threading.Thread(target=self._writer_thread, name="rostui-bag-writer", daemon=True)
         thread.start()
         tasks = [asyncio.ensure_future(self._status(status))] if status is not None else []

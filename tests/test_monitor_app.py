@@ -133,7 +133,8 @@ def test_rate_matches_rostui_topic_hz(rostui_core: Any, ros_env: dict[str, str],
     pubs = start_publishers(ros_env, tmp_path, [("/steady", "std_msgs/String", "data: tick", 25)])
     hz_out = (tmp_path / "hz.txt").open("w")
     # the monitor's rate is over the last 10 s of arrivals: topic hz gets the same window (250 messages at 25 Hz),
-    # so a publisher slowed for a moment on a busy machine moves both alike
+    # so a publisher slowed for a moment on a busy machine moves both alike (and a stalled screen does not lift
+    # the monitor's: tests/test_monitor_core.py)
     hz = subprocess.Popen(rostui_cmd("topic", "hz", "-w", "250", "/steady"), env=ros_env, stdout=hz_out,
                           stderr=subprocess.STDOUT, text=True)
     rates: dict[str, float] = {}

@@ -9,7 +9,7 @@ from rostui.models.monitor.publish import PublishError, check_topic, message_fro
 from rostui.models.monitor.rows import (
     Column, Liveness, TopicRow, age_text, bandwidth_text, filter_rows, rate_text, sort_rows,
 )
-from rostui.models.monitor.stats import STALE_MIN_SECONDS, TopicStats
+from rostui.models.monitor.stats import RATE_WINDOW_SECONDS, STALE_MIN_SECONDS, TopicStats, window_rate
 from rostui.models.monitor.tree import ARRAY_SHOWN, PathError, constant_names, message_tree, value_at
 from rostui.tools.topic.rates import HzStats
 
@@ -70,6 +70,38 @@ def test_rate_window_forgets_old_arrivals() -> None:
     for i in range(20):
         stats.add(1100.0 + i * 0.5, 1)  # then 2 Hz
     assert stats.sample(now=1100.0 + 19 * 0.5).rate == pytest.approx(2.0)
+
+
+def test_a_stalled_screen_does_not_lift_the_rate() -> None:
+    """25 Hz sent; the screen stalled 1.2 s, so that moment's 30 messages came at once when it woke.
+
+    When the window begins at that burst, rostopic hz's mean over the same arrivals reads about 10 %
+    high (the burst's messages were sent before the window); the monitor counts the burst once.
+    """
+    sent = [1000.0 + i * 0.04 for i in range(750)]
+    woke = 1010.0
+    stalled = [t for t in sent if woke - 1.2 < t <= woke]
+    arrivals = [woke + stalled.index(t) * 1e-5 if t in stalled else t for t in sent]  # handed over in turn
+    stats, hz = TopicStats(), HzStats()
+    for t in arrivals:
+        stats.add(t, 10)
+    now = woke + RATE_WINDOW_SECONDS - 0.01
+    window = [t for t in arrivals if now - RATE_WINDOW_SECONDS <= t <= now]
+    for t in window:
+        hz.add(t)
+    assert hz.stats()[0] > 27.5, "the naive mean is lifted by the burst"
+    assert stats.sample(now=now).rate == pytest.approx(25.0, rel=0.005)
+
+
+def test_window_rate() -> None:
+    """A steady stream, a burst at the start, at the end and in the middle; too few arrivals."""
+    steady = [i * 0.1 for i in range(11)]
+    assert window_rate(steady) == pytest.approx(10.0)
+    assert window_rate([0.0, 0.0, 0.0] + [i * 0.1 for i in range(1, 11)]) == pytest.approx(10.0)
+    assert window_rate(steady + [1.0, 1.0, 1.0]) == pytest.approx(13 / 1.0)
+    assert window_rate([0.0, 0.5, 0.5, 0.5, 1.0]) == pytest.approx(4.0)
+    assert window_rate([5.0]) is None and window_rate([]) is None
+    assert window_rate([5.0, 5.0, 5.0]) == 0.0
 
 
 def test_stale_after_missed_periods() -> None:

@@ -1,8 +1,14 @@
 """Rate, bandwidth and age of one topic's messages, with a short history for sparklines.
 
-The rate is :meth:`rostui.tools.topic.rates.HzStats.rate` over the arrivals
-of the last :data:`RATE_WINDOW_SECONDS` (rostopic hz's own computation, so
-the monitor agrees with ``rostui topic hz``); the bandwidth is
+The rate is rostopic hz's computation (arrivals less one over their span,
+as :meth:`rostui.tools.topic.rates.HzStats.stats`) over the arrivals of the
+last :data:`RATE_WINDOW_SECONDS`, so the monitor agrees with ``rostui topic
+hz``, with one difference: a burst at the window's start counts as one
+arrival (:func:`window_rate`).  The monitor stamps a message when its
+screen's loop hands it over, so a moment when the screen is slow to draw
+delivers the messages of that moment together; counted where the window
+cuts, they were sent before it and would lift the rate (by a tenth for a
+second's stall in ten).  The bandwidth is
 :class:`~rostui.tools.topic.rates.BwStats` (rostopic bw's).  Recording a
 message is one clock read and two deque appends; statistics are computed
 once per :meth:`TopicStats.sample`.
@@ -13,15 +19,18 @@ from __future__ import annotations
 import time
 from collections import deque
 from dataclasses import dataclass
+from typing import Sequence
 
 from rostui.tools.topic.rates import BwStats, HzStats
 
-__all__ = ["TopicStats", "Sample", "RATE_WINDOW_SECONDS", "HISTORY", "STALE_MIN_SECONDS", "STALE_PERIODS"]
+__all__ = ["TopicStats", "Sample", "window_rate", "BURST_FRACTION", "RATE_WINDOW_SECONDS", "HISTORY", "STALE_MIN_SECONDS", "STALE_PERIODS"]
 
 #: Seconds of arrivals the rate is computed over (at least the last two arrivals are always kept).
 RATE_WINDOW_SECONDS = 10.0
 #: Arrivals kept at most for the rate (a 1 kHz topic keeps 5 s).
 RATE_WINDOW_MESSAGES = 5000
+#: Arrivals closer than this fraction of the window's mean interval to the next one are one burst.
+BURST_FRACTION = 0.1
 #: Messages the bandwidth is averaged over (rostopic bw's default window).
 BW_WINDOW_MESSAGES = 100
 #: Samples (one per :meth:`TopicStats.sample`) kept for the sparklines.
@@ -30,6 +39,28 @@ HISTORY = 60
 STALE_PERIODS = 5.0
 #: ...and never sooner than this many seconds.
 STALE_MIN_SECONDS = 2.0
+
+
+def window_rate(times: Sequence[float]) -> float | None:
+    """Messages per second over ``times`` (arrivals, oldest first), a burst at the start counting once.
+
+    rostopic hz's rate (intervals over span) once the arrivals that came in
+    one burst with the first are left out but for the burst's last: they were
+    sent before the window began.  None with fewer than two arrivals; 0 when
+    they all came at once.
+    """
+    count = len(times)
+    if count < 2:
+        return None
+    last = times[-1]
+    mean = (last - times[0]) / (count - 1)
+    if mean <= 0.0:
+        return 0.0
+    burst = mean * BURST_FRACTION
+    start = 0
+    while start < count - 2 and times[start + 1] - times[start] < burst:
+        start += 1
+    return (count - 1 - start) / (last - times[start])
 
 
 @dataclass(frozen=True)
@@ -70,7 +101,7 @@ class TopicStats:
         times = self.hz.times
         while len(times) > 2 and times[0] < now - RATE_WINDOW_SECONDS:
             times.popleft()
-        rate = self.hz.rate()
+        rate = window_rate(times)
         if rate is not None:
             self.rate = rate
         if self.stale_at(now):

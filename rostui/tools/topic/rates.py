@@ -33,14 +33,6 @@ class HzStats:
             times.clear()
         times.append(t)
 
-    def rate(self) -> float | None:
-        """The rate :meth:`stats` reports (messages per second over the window), without the other figures."""
-        times = self.times
-        if len(times) < 2:
-            return None
-        mean = (times[-1] - times[0]) / (len(times) - 1)
-        return 1.0 / mean if mean > 0.0 else 0
-
     def stats(self) -> tuple[float, float, float, float, int] | None:
         """``(rate, min_delta, max_delta, std_dev, window)`` or None when there is nothing new."""
         times = list(self.times)

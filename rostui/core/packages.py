@@ -245,9 +245,9 @@ def executable_dirs(package: str) -> list[Path]:
         dirs = [d for d in (workspace / sub / package for sub in ("lib", "libexec", "share")) if d.is_dir()]
         if dirs:
             break
-    libexec = pkg_dir.parent.parent / "lib" / pkg_dir.name  # an install prefix's layout, in no workspace
-    if pkg_dir.parent.name == "share" and libexec.is_dir() and libexec not in dirs:
-        dirs.append(libexec)
+    prefix_lib = pkg_dir.parent.parent / "lib" / pkg_dir.name  # an install prefix's layout, in no workspace
+    if pkg_dir.parent.name == "share" and prefix_lib.is_dir() and prefix_lib not in dirs:
+        dirs.append(prefix_lib)
     if pkg_dir not in dirs:
         dirs.append(pkg_dir)
     return dirs

@@ -232,7 +232,7 @@ class BagViewApp(ReleasesOnExit, KeysApp):
             self._connecting = True
             self.link = "connecting to the master…"
             self.run_worker(self._connect(), name="node", exit_on_error=False)
-        elif self.node is None and not self._connecting:
+        elif not self._connecting:
             self.link = NOT_PUBLISHING
 
     async def _connect(self) -> None:

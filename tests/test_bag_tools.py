@@ -9,6 +9,7 @@ import shlex
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -396,3 +397,20 @@ def test_ctrl_c_leaves_no_half_file_and_the_original_as_it_was(command: str, tmp
     assert err.startswith(f"rostui bag {command}: interrupted; ") and err.count("\n") == 1, err
     assert sorted(p.name for p in tmp_path.iterdir() if p.name != "ros_home") == ["counts.bag"]
     assert src.read_bytes() == before
+
+
+def test_ctrl_c_while_the_new_file_is_made_leaves_no_partial_file(tmp_path: Path,
+                                                                   monkeypatch: pytest.MonkeyPatch) -> None:
+    """Ctrl-C after the writer made its file but before it returned (a fresh-ci run left the file behind)."""
+    from rostui.core.bag import rewrite
+
+    class InterruptedWriter(rewrite.BagWriter):
+        def __init__(self, path: str, **options: Any) -> None:
+            super().__init__(path, **options)
+            raise KeyboardInterrupt
+
+    monkeypatch.setattr(rewrite, "BagWriter", InterruptedWriter)
+    with pytest.raises(KeyboardInterrupt):
+        with rewrite.new_file(str(tmp_path / "out.bag")):
+            pass
+    assert list(tmp_path.iterdir()) == []

@@ -27,18 +27,20 @@ def new_file(dst: str, compression: str = "none", *, rosbag: bool | None = None)
     """
     tmp = partial_name(dst)
     as_rosbag = is_rosbag_name(dst) if rosbag is None else rosbag
-    try:
-        writer: Writer = (BagWriter(tmp, compression=compression, max_chunk_age=float("inf")) if as_rosbag
-                          else McapBagWriter(tmp, compression=compression, max_chunk_age=float("inf")))
-    except OSError as exc:
-        raise BagError(f"cannot create {dst}: {exc.strerror}") from None
-    try:
+    writer: Writer | None = None
+    try:  # Ctrl-C may come while the writer is still being made, its file already there
+        try:
+            writer = (BagWriter(tmp, compression=compression, max_chunk_age=float("inf")) if as_rosbag
+                      else McapBagWriter(tmp, compression=compression, max_chunk_age=float("inf")))
+        except OSError as exc:
+            raise BagError(f"cannot create {dst}: {exc.strerror}") from None
         yield writer
         writer.close()
         os.replace(tmp, dst)
     except BaseException:
-        with contextlib.suppress(Exception):
-            writer.close()
+        if writer is not None:
+            with contextlib.suppress(Exception):
+                writer.close()
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise

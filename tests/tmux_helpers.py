@@ -100,7 +100,7 @@ class Pane:
 
 @contextmanager
 def shell_pane(session: str, width: int, height: int, kind: type[PaneT] = Pane) -> Iterator[PaneT]:
-    """A detached ``width`` x ``height`` session running /bin/sh with a plain ``$`` prompt; closed afterwards.
+    """A detached ``width`` x ``height`` session running /bin/sh, at its plain ``$`` prompt; closed afterwards.
 
     ``kind`` is the Pane subclass to return, for tests that read more off the screen.
 
@@ -109,6 +109,8 @@ def shell_pane(session: str, width: int, height: int, kind: type[PaneT] = Pane) 
     need_command("tmux")
     pane = kind.start(session, width, height, [PLAIN_SHELL])
     try:
+        # a line typed before the shell reads is echoed by the terminal, then its output follows the prompt
+        pane.wait_until(lambda: pane.screen().strip() == "$", "the shell's first prompt")
         yield pane
     finally:
         pane.close()

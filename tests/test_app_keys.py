@@ -313,3 +313,14 @@ def test_messages_left_for_the_app_after_its_widgets_are_gone_are_not_handled() 
 
     asyncio.run(main())
     assert app.return_code in (None, 0) and app.late_handled == 1
+
+
+def test_status_parts_wrap_between_parts_never_inside_one() -> None:
+    """A status line too long for its width breaks before the part that would cross it."""
+    from rostui.apps.widgets.bar_text import join_parts
+
+    parts = ["Nodes/Topics (all) · hide debug", "2 nodes · 4 topics", "● master", "arrows scroll"]
+    assert join_parts(parts, 100) == " │ ".join(parts)
+    assert join_parts(parts, 70) == " │ ".join(parts[:3]) + "\narrows scroll"
+    assert join_parts(parts, 10) == "\n".join(parts)
+    assert join_parts(parts, 0) == " │ ".join(parts)

@@ -32,6 +32,8 @@ DEADLINE = 60.0
 
 PLAIN_SHELL = "env PS1='$ ' /bin/sh"
 EXIT_MARK = "EXIT_STATUS="
+READER_TERMINAL = (80, 24)
+"""Columns and lines of every terminal on the desk: the size a terminal opens at, which the book's reader keeps."""
 LOG_LINE = re.compile(r"^\[ ?(DEBUG|INFO|WARN|ERROR|FATAL)\] \[(\d+\.\d+)\]: (.*)$", re.MULTILINE)
 
 
@@ -139,8 +141,9 @@ class Terminal:
 class Desk:
     """A private tmux server with one session whose windows are the reader's terminals."""
 
-    def __init__(self, env: dict[str, str], tmp: Path, width: int = 100, height: int = 30) -> None:
+    def __init__(self, env: dict[str, str], tmp: Path, size: tuple[int, int] = READER_TERMINAL) -> None:
         need_command("tmux")
+        width, height = size
         self.env = self._terminal_env(env, tmp)
         self.socket = f"rostui-book-{os.getpid()}-{uuid.uuid4().hex[:8]}"
         self.session = "book"
@@ -240,6 +243,21 @@ def status_pose(terminal: Terminal) -> tuple[float, float, float] | None:
     """The pose on a turtlesim app's status line, if it is on screen."""
     match = POSE.search(terminal.screen())
     return None if match is None else (float(match[2]), float(match[3]), float(match[4]))
+
+
+def settled_pose(terminal: Terminal) -> tuple[float, float, float]:
+    """The turtle's pose once it has stood still for 1.5 s (turtlesim stops a turtle 1 s after its last command)."""
+    seen: list[tuple[float, tuple[float, float, float] | None]] = []
+
+    def settled() -> bool:
+        now = time.monotonic()
+        seen.append((now, status_pose(terminal)))
+        recent = {pose for when, pose in seen if when >= now - 1.5}
+        return now - seen[0][0] >= 1.5 and len(recent) == 1 and None not in recent
+    poll(settled, "the turtle to stand still")
+    pose = seen[-1][1]
+    assert pose is not None
+    return pose
 
 
 def start_core(desk: Desk) -> Terminal:

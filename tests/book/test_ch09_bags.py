@@ -2,7 +2,7 @@
 
 draw_square drives the turtle while ``rostui bag record -O square.bag`` records the velocity commands and
 poses; ``rostui bag info`` describes the bag as rosbag does; ``rostui bag play`` makes the turtle move again
-from wherever it is; 9.3's ``rosbag`` package executables run the same commands from rosrun and launch files.
+from wherever it is, as ``rostui bag view`` does once asked to publish; 9.3's ``rosbag`` package executables run the same commands from rosrun and launch files.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from book_helpers import (
-    Desk, desk, dot_edges, lines, ok, poll, start_core, start_turtlesim_view, status_pose,
+    Desk, desk, dot_edges, lines, ok, poll, settled_pose, start_core, start_turtlesim_view, status_pose,
 )
 
 __all__ = ["desk"]
@@ -79,6 +79,22 @@ def test_bag_of_squares(desk: Desk, tmp_path: Path) -> None:
     assert "/turtlesim" in publishers and player in publishers  # two nodes claim to know the pose
     poll(lambda: status_pose(sim) not in (None, before), "the turtle to move under the bag's commands")
     assert play.exit_status(timeout=120) == 0  # play ends with the bag
+
+    # rqt_bag's part: bag view plays the bag on screen and publishes nothing until asked (t: the selected topic).
+    view = desk.terminal("view")
+    view.run("rostui bag view square.bag")
+    view.wait_for(r"not publishing")
+    still = settled_pose(sim)
+    view.keys("8", "Space")  # the last fifth of the bag
+    view.wait_for(r"■ END")
+    assert status_pose(sim) == still and not any(n.startswith("/bag_view_") for n in lines(ok("node list", env)))
+    view.keys("t")  # the first row, selected from the start
+    view.wait_for(r"publishing 1 topic as\s+/bag_view_")  # the header wraps at 80 columns
+    view.wait_for(r"● /turtle1/comm")
+    view.keys("Home", "Space")
+    poll(lambda: status_pose(sim) != still, "the turtle to move under the commands bag view publishes")
+    view.keys("q")
+    assert view.exit_status() == 0
 
     # 9.3: the rosbag package's record and play executables, from rosrun and from a launch file.
     shell = desk.terminal("shell")

@@ -28,6 +28,7 @@ from rostui.apps.graph.canvas import Canvas, draw, layout_view
 from rostui.apps.graph.widget import GraphView
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.bar_text import join_parts
 from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
@@ -50,6 +51,8 @@ __all__ = ["GraphApp", "run_app", "KEYS"]
 #: Key help shown under the graph.
 KEYS = key_line("v view  d debug  s sinks  l leaves  g group  i/x filter  b book  / search  f focus ±  "
                 "Tab next  Enter info  r rate")
+#: On the status line while the drawing does not fit the screen.
+SCROLL_HINT = "arrows scroll"
 #: Layouts kept for views seen lately (switching back redraws them exactly, at once).
 CACHE_SIZE = 8
 #: Seconds a topic is listened to when its rate is measured.
@@ -153,6 +156,7 @@ class GraphApp(ReleasesOnExit, KeysApp):
         """A new width may fit longer (or need shorter) edge labels: draw again."""
         if self.view_graph is not None:
             self.recompute()
+        self.call_after_refresh(self.update_status)  # whether the drawing still fits
 
     @property
     def graph_view(self) -> GraphView:
@@ -287,9 +291,12 @@ class GraphApp(ReleasesOnExit, KeysApp):
             parts.append(counts)
         state = {None: "… master", True: "● master", False: "✖ master"}[self.master_ok]
         parts.append(state)
+        if self.graph_view.overflows():
+            parts.append(SCROLL_HINT)
         if self.notice:
             parts.append(self.notice)
-        self.query_one("#status", Static).update(" │ ".join(parts))
+        status = self.query_one("#status", Static)
+        status.update(join_parts(parts, status.content_region.width))
         problem = self.master_error or self.filter_error
         banner = self.query_one("#banner", Static)
         banner.update(problem)

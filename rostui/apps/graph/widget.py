@@ -67,6 +67,13 @@ class GraphView(ScrollView, can_focus=True):
         self.virtual_size = Size(canvas.width, canvas.height) if canvas else Size(0, 0)
         self.refresh()
 
+    def overflows(self) -> bool:
+        """True when the drawing is wider or taller than the widget shows (the arrow keys scroll it)."""
+        shown = self.scrollable_content_region
+        if self.canvas is None or not self.display or not shown.area:
+            return False
+        return self.canvas.width > shown.width or self.canvas.height > shown.height
+
     def set_marks(self, marks: Mapping[str, Mark]) -> None:
         """Which vertices show as new or gone."""
         if dict(marks) != dict(self.marks):

@@ -80,7 +80,9 @@ class Run:
     def figures(self) -> dict[str, Any]:
         """What :func:`record` keeps of it."""
         lines = self.err.strip().splitlines() or self.out.strip().splitlines() or [""]
-        tail = next((line for line in lines if line.startswith(("warning:", "rostui", "ERROR"))), lines[-1])
+        said = [line.strip() for line in self.err.splitlines() + self.out.splitlines()]  # bag info warns on stdout
+        tail = next((line for line in said if line.startswith(("warning:", "rostui", "ERROR"))),
+                    next((line for line in said if line.startswith("messages:")), lines[-1]))
         return {"exit": "stopped" if self.stopped else self.code, "peak_rss_mb": round(self.peak_mb, 1),
                 "said": tail[:160]}
 

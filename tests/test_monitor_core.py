@@ -9,7 +9,8 @@ from rostui.models.monitor.publish import PublishError, check_topic, message_fro
 from rostui.models.monitor.rows import (
     Column, Liveness, TopicRow, age_text, bandwidth_text, filter_rows, rate_text, sort_rows,
 )
-from rostui.models.monitor.stats import RATE_WINDOW_SECONDS, STALE_MIN_SECONDS, TopicStats, window_rate
+from rostui.models.monitor.stats import RATE_WINDOW_SECONDS, STALE_MIN_SECONDS, TopicStats
+from rostui.tools.topic.rates import window_rate
 from rostui.models.monitor.tree import ARRAY_SHOWN, PathError, constant_names, message_tree, value_at
 from rostui.tools.topic.rates import HzStats
 

@@ -262,3 +262,12 @@ def test_an_edge_keeps_a_bounded_number_of_samples() -> None:
     edge = buf.edge("odom")
     assert edge is not None and len(edge.samples) == len(edge.stamps) == MAX_SAMPLES
     assert buf.lookup_transform("map", "odom").transform.translation[0] == MAX_SAMPLES + 499
+
+
+def test_an_edges_first_receipts_in_a_burst_do_not_lift_its_rate() -> None:
+    """Three transforms queued while the listener started, handed over at once, then 20 Hz: the rate reads 20."""
+    from rostui.models.tf.buffer import Edge
+
+    edge = Edge("odom", "map", False, "/b")
+    edge.receipts.extend([100.0, 100.0001, 100.0002] + [100.0002 + 0.05 * i for i in range(1, 6)])
+    assert edge.rate() == pytest.approx(20.0)

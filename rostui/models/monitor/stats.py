@@ -19,9 +19,8 @@ from __future__ import annotations
 import time
 from collections import deque
 from dataclasses import dataclass
-from typing import Sequence
 
-from rostui.tools.topic.rates import BwStats, HzStats
+from rostui.tools.topic.rates import BURST_FRACTION, BwStats, HzStats, window_rate
 
 __all__ = ["TopicStats", "Sample", "window_rate", "BURST_FRACTION", "RATE_WINDOW_SECONDS", "HISTORY", "STALE_MIN_SECONDS", "STALE_PERIODS"]
 
@@ -29,8 +28,6 @@ __all__ = ["TopicStats", "Sample", "window_rate", "BURST_FRACTION", "RATE_WINDOW
 RATE_WINDOW_SECONDS = 10.0
 #: Arrivals kept at most for the rate (a 1 kHz topic keeps 5 s).
 RATE_WINDOW_MESSAGES = 5000
-#: Arrivals closer than this fraction of the window's mean interval to the next one are one burst.
-BURST_FRACTION = 0.1
 #: Messages the bandwidth is averaged over (rostopic bw's default window).
 BW_WINDOW_MESSAGES = 100
 #: Samples (one per :meth:`TopicStats.sample`) kept for the sparklines.
@@ -39,28 +36,6 @@ HISTORY = 60
 STALE_PERIODS = 5.0
 #: ...and never sooner than this many seconds.
 STALE_MIN_SECONDS = 2.0
-
-
-def window_rate(times: Sequence[float]) -> float | None:
-    """Messages per second over ``times`` (arrivals, oldest first), a burst at the start counting once.
-
-    rostopic hz's rate (intervals over span) once the arrivals that came in
-    one burst with the first are left out but for the burst's last: they were
-    sent before the window began.  None with fewer than two arrivals; 0 when
-    they all came at once.
-    """
-    count = len(times)
-    if count < 2:
-        return None
-    last = times[-1]
-    mean = (last - times[0]) / (count - 1)
-    if mean <= 0.0:
-        return 0.0
-    burst = mean * BURST_FRACTION
-    start = 0
-    while start < count - 2 and times[start + 1] - times[start] < burst:
-        start += 1
-    return (count - 1 - start) / (last - times[start])
 
 
 @dataclass(frozen=True)

@@ -15,6 +15,7 @@ from collections import deque
 from dataclasses import dataclass, field
 from typing import Any
 
+from rostui.tools.topic.rates import window_rate
 from rostui.models.tf.transform import Transform
 
 DEFAULT_CACHE_TIME = 10.0
@@ -98,11 +99,10 @@ class Edge:
         return self.receipts[-1] if self.receipts else 0.0
 
     def rate(self) -> float | None:
-        """Messages per second over the receipts kept, or None (static, or fewer than two)."""
+        """Messages per second over the receipts kept, or None (static, fewer than two, or all at once)."""
         if self.static or len(self.receipts) < 2:
             return None
-        span = self.receipts[-1] - self.receipts[0]
-        return (len(self.receipts) - 1) / span if span > 0 else None
+        return window_rate(self.receipts) or None  # a burst of the first receipts counts once, as in the monitor
 
     def age(self, now: float) -> float:
         """Seconds between the newest stamp and ``now`` (for a static edge: since it was received)."""

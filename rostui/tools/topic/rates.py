@@ -10,6 +10,30 @@ from typing import Sequence
 HZ_DEFAULT_WINDOW = 50000
 #: ``bw``'s default window.
 BW_DEFAULT_WINDOW = 100
+#: Arrivals closer than this fraction of a window's mean interval to the next one are one burst.
+BURST_FRACTION = 0.1
+
+
+def window_rate(times: Sequence[float]) -> float | None:
+    """Messages per second over ``times`` (arrivals, oldest first), a burst at the start counting once.
+
+    rostopic hz's rate (intervals over span) once the arrivals that came in
+    one burst with the first are left out but for the burst's last: they were
+    sent before the window began.  None with fewer than two arrivals; 0 when
+    they all came at once.
+    """
+    count = len(times)
+    if count < 2:
+        return None
+    last = times[-1]
+    mean = (last - times[0]) / (count - 1)
+    if mean <= 0.0:
+        return 0.0
+    burst = mean * BURST_FRACTION
+    start = 0
+    while start < count - 2 and times[start + 1] - times[start] < burst:
+        start += 1
+    return (count - 1 - start) / (last - times[start])
 
 
 class HzStats:

@@ -31,3 +31,15 @@ def rostui(args: Sequence[str], env: dict[str, str], timeout: float = 30.0,
     return subprocess.run([sys.executable, "-m", "rostui", *args], env=env, cwd=REPO, capture_output=True,
                           text=True, timeout=timeout, input=input,
                           stdin=None if input is not None else subprocess.DEVNULL)
+
+
+def interrupted_import() -> ImportError:
+    """What numpy raises when Ctrl-C lands while one of its C modules loads: an ImportError whose
+    context is the KeyboardInterrupt (seen in CI: ``numpy._core.multiarray failed to import``)."""
+    try:
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt:
+            raise ImportError("numpy._core.multiarray failed to import")
+    except ImportError as exc:
+        return exc

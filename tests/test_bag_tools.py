@@ -15,7 +15,7 @@ import pytest
 
 from rostui.core.bag.files import open_reader, open_writer
 
-from cli_helpers import rostui
+from cli_helpers import interrupted_import, rostui
 from conftest import SYSTEM_PYTHON, need_command, need_peer
 from tmux_helpers import shell_pane
 
@@ -414,3 +414,28 @@ def test_ctrl_c_while_the_new_file_is_made_leaves_no_partial_file(tmp_path: Path
         with rewrite.new_file(str(tmp_path / "out.bag")):
             pass
     assert list(tmp_path.iterdir()) == []
+
+
+
+@pytest.mark.parametrize("command", ["filter", "compress"])
+def test_ctrl_c_during_a_lazy_import_is_still_an_interrupt(command: str, tmp_path: Path,
+                                                           monkeypatch: pytest.MonkeyPatch,
+                                                           capsys: pytest.CaptureFixture[str]) -> None:
+    from rostui.cli import bag_cmd
+    from rostui.core.bag import compress, filter as bag_filter
+
+    def interrupted_in_import(*_args: Any, **_kwargs: Any) -> None:
+        raise interrupted_import()
+
+    monkeypatch.setattr(bag_filter, "filter_bag", interrupted_in_import)
+    monkeypatch.setattr(compress, "change_compression", interrupted_in_import)
+    src = tmp_path / "counts.bag"
+    with pytest.raises(SystemExit) as stopped:
+        if command == "filter":
+            bag_cmd.run_filter(str(src), str(tmp_path / "out.bag"), "True", None)
+        else:
+            bag_cmd.run_change_compression(command, [str(src)], "lz4", None, False, True)
+    assert stopped.value.code == 1
+    err = capsys.readouterr().err
+    assert err.startswith(f"rostui bag {command}: interrupted; ") and err.count("\n") == 1, err
+

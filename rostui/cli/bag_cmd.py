@@ -12,7 +12,7 @@ import typer
 
 from rostui.cli import bag_view_cmd
 from rostui.cli.bag_progress import progress_bar
-from rostui.cli.common import examples, fail
+from rostui.cli.common import examples, fail, interrupted
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "allow_interspersed_args": True}
 
@@ -196,7 +196,9 @@ def run_filter(src: str, dst: str, expr: str, print_expr: str | None) -> int:
     except BrokenPipeError:  # --print's reader went away (`| head`): stop quietly, OUT not written
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 1
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, ImportError) as exc:
+        if not interrupted(exc):
+            raise
         fail(f"rostui bag filter: interrupted; {dst} not written")
     except BagError as exc:
         fail(f"rostui bag filter: {exc}")
@@ -216,7 +218,9 @@ def run_change_compression(command: str, files: list[str], kind: str, output_dir
         try:
             with progress_bar(path) as progress:
                 outcome = change_compression(path, kind, output_dir=output_dir, force=force, progress=progress)
-        except KeyboardInterrupt:
+        except (KeyboardInterrupt, ImportError) as exc:
+            if not interrupted(exc):
+                raise
             fail(f"rostui bag {command}: interrupted; {path} is as it was")
         except BagError as exc:
             print(f"rostui bag {command}: {exc}", file=sys.stderr)

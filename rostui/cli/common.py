@@ -20,6 +20,23 @@ def fail(message: str, code: int = 1, hint: str | None = None) -> NoReturn:
     raise SystemExit(code)
 
 
+def interrupted(exc: BaseException) -> bool:
+    """Whether ``exc`` is Ctrl-C, or an error raised because Ctrl-C came in its middle.
+
+    A KeyboardInterrupt that lands while a module is being imported can come out as that import's
+    failure (numpy re-raises it as ``ImportError: numpy._core.multiarray failed to import``), with
+    the interrupt only in its chain of causes.
+    """
+    seen: set[int] = set()
+    current: BaseException | None = exc
+    while current is not None and id(current) not in seen:
+        if isinstance(current, KeyboardInterrupt):
+            return True
+        seen.add(id(current))
+        current = current.__cause__ or current.__context__
+    return False
+
+
 def suggestion(name: str, candidates: Callable[[], Iterable[str]]) -> str | None:
     """``did you mean …?`` for a misspelt ``name`` among ``candidates()`` (the master's names); None if none is close.
 

@@ -61,11 +61,18 @@ reflow_commands(app)
 
 
 def main() -> None:
-    """Console-script entry point: a bare negative number is refused with one line before Typer parses."""
+    """Console-script entry point: a bare negative number is refused with one line before Typer parses; a
+    Ctrl-C that surfaced as another error (see :func:`interrupted`) exits 130 without a traceback."""
     import sys
 
+    from rostui.cli.common import interrupted
     from rostui.cli.negative import looks_negative, refuse_bare_negatives
 
     if any(looks_negative(word) for word in sys.argv[1:]):
         refuse_bare_negatives(typer.main.get_command(app), sys.argv[1:])
-    app()
+    try:
+        app()
+    except Exception as exc:
+        if not interrupted(exc):
+            raise
+        raise SystemExit(130) from None  # Ctrl-C during a lazy import: no traceback, the shell's code

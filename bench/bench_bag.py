@@ -349,7 +349,7 @@ def timing_errors(got: list[tuple[int, float]]) -> dict[str, float]:
 
 def in_process_lateness(path: Path) -> dict[str, float]:
     """rostui's player's own scheduled-vs-actual publish lateness (no subscriber)."""
-    from rostui.core.bag.player import PlayOptions, play
+    from rostui.tools.bag.player import PlayOptions, play
     from rostui.core.node.engine import new_event_loop
 
     stats = new_event_loop().run_until_complete(play(PlayOptions(files=[str(path)], delay_s=0.2)))

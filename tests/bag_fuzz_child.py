@@ -43,7 +43,7 @@ def _info(path: str, _count: int) -> str:
 def _play(path: str, _count: int) -> str:
     from rostui.core.bag.files import merged_messages
     from rostui.core.bag.model import BagError
-    from rostui.core.bag.player import open_bags
+    from rostui.tools.bag.player import open_bags
 
     warnings: list[str] = []
     try:

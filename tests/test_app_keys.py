@@ -36,7 +36,7 @@ from rostui.apps.monitor.app import MonitorApp
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.help import HelpScreen
 from rostui.apps.widgets.keys import ESSENTIAL_KEYS
-from rostui.core.bag.recorder import RecordOptions
+from rostui.tools.bag.recorder import RecordOptions
 from rostui.core.xmlrpc import call_sync, ros_result
 from rostui.models.graph.view import GraphOptions
 from rostui.turtlesim.app import TurtlesimApp

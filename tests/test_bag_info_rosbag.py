@@ -368,7 +368,7 @@ def test_sizes_and_times_format_as_rosbags_own_helpers(ros_env: dict[str, str]) 
     import json
     import random
 
-    from rostui.core.bag.info import human_size, human_time, seconds_of
+    from rostui.tools.bag.info import human_size, human_time, seconds_of
 
     need_peer(_rosbag_tools(), "rosbag and its Python API (Debian python3-rosbag, python3-roslz4)")
     rng = random.Random(18)
@@ -429,7 +429,7 @@ def test_the_real_span_beside_rosbags_duration_in_a_terminal(rosbag_bags: Path, 
     """Issue 31, 4: chunks out of time order make rosbag info's duration negative. `bag info` keeps rosbag's
     text byte for byte and says the messages' span in a note on stderr; `--exact` prints their start, end and
     duration; bag view's header shows the span and what bag info says instead."""
-    from rostui.core.bag.info import human_duration
+    from rostui.tools.bag.info import human_duration
     from tmux_helpers import rostui_line, shell_pane
 
     path = rosbag_bags / "backwards_none.bag"

@@ -18,7 +18,7 @@ from rostui.core.bag.files import open_reader, open_writer
 from rostui.core.bag.iov import Parts, write_all
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.receive import BIG_FRAME, BufferPool, RawFrameConnection
-from rostui.core.bag.recorder import parse_duration
+from rostui.tools.bag.recorder import parse_duration
 from rostui.core.tcpros import encode_header
 
 from cli_helpers import rostui

@@ -402,7 +402,7 @@ def test_ctrl_c_leaves_no_half_file_and_the_original_as_it_was(command: str, tmp
 def test_ctrl_c_while_the_new_file_is_made_leaves_no_partial_file(tmp_path: Path,
                                                                    monkeypatch: pytest.MonkeyPatch) -> None:
     """Ctrl-C after the writer made its file but before it returned (a fresh-ci run left the file behind)."""
-    from rostui.core.bag import rewrite
+    from rostui.tools.bag import rewrite
 
     class InterruptedWriter(rewrite.BagWriter):
         def __init__(self, path: str, **options: Any) -> None:

@@ -25,7 +25,7 @@ from textual.pilot import Pilot
 from rostui.apps.bagview.app import BagViewApp, parse_goto
 from rostui.apps.bagview.record_app import BagRecordApp, topics_table
 from rostui.core.bag.files import open_reader
-from rostui.core.bag.recorder import RecordOptions
+from rostui.tools.bag.recorder import RecordOptions
 
 from bag_view_helpers import STEP_NS, T0, Counter, Int32, write_counts
 from bag_view_helpers import run_pilot as run

@@ -24,8 +24,8 @@ from rostui.apps.bagview.record_app import BagRecordApp, record_header
 from rostui.apps.bagview.recording import RecordSession
 from rostui.core.bag.files import open_reader
 from rostui.core.bag.model import BagError
-from rostui.core.bag.record_options import record_options
-from rostui.core.bag.recorder import RecordOptions, TopicFilter
+from rostui.tools.bag.record_options import record_options
+from rostui.tools.bag.recorder import RecordOptions, TopicFilter
 
 from bag_view_helpers import STEP_NS, T0, Int32, run_pilot, write_counts
 from cli_helpers import rostui

@@ -26,7 +26,7 @@ from rostui.apps.bagview.app import BagViewApp
 from rostui.apps.bagview.record_app import BagRecordApp
 from rostui.core.bag.files import open_writer
 from rostui.core.bag.model import Connection
-from rostui.core.bag.recorder import RecordOptions
+from rostui.tools.bag.recorder import RecordOptions
 from rostui.core.msg import get_message_class
 
 from conftest import REPO, stop_process, until
@@ -220,7 +220,7 @@ def test_record_mode(snap_compare, tmp_path: Path, monkeypatch: pytest.MonkeyPat
 def test_record_mode_stopped_at_its_duration(snap_compare, tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                              rostui_core: Any, ros_env: dict[str, str]) -> None:
     """--duration 6: the burst of 30 + 12 is recorded, then the recording stops by itself and says so."""
-    from rostui.core.bag.record_options import record_options
+    from rostui.tools.bag.record_options import record_options
 
     monkeypatch.chdir(tmp_path)
     burst, out = start_burst(tmp_path, ros_env)

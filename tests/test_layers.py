@@ -1,6 +1,6 @@
 """The layers of docs/architecture.md hold: every import in rostui/ (lazy ones inside functions too) points down.
 
-    cli  >  turtlesim  >  apps  >  launch, models  >  tools, client, compat  >  core
+    cli  >  turtlesim  >  apps  >  launch, models  >  compat  >  tools, client  >  core
 
 core is the ROS 1 runtime and imports nothing above it; no layer below the apps imports Textual, Typer or Rich.
 """
@@ -24,7 +24,7 @@ MAY_IMPORT: dict[str, frozenset[str]] = {
     "models": frozenset({"core", "tools"}),
     "launch": frozenset({"core", "tools", "compat"}),
     "client": frozenset({"core"}),
-    "compat": frozenset({"core", "client"}),
+    "compat": frozenset({"core", "client", "tools"}),
     "apps": frozenset({"core", "tools", "models", "launch"}),
     "turtlesim": frozenset({"core", "tools", "models", "apps", "client"}),
     "cli": frozenset({"core", "tools", "models", "launch", "apps", "turtlesim", "client", "compat", "version"}),
@@ -77,6 +77,23 @@ def _violations() -> list[str]:
             if layer is not None and layer != own and layer not in MAY_IMPORT[own]:
                 out.append(f"{where}: {own} imports {target} (a layer above it)")
     return out
+
+
+#: Modules that change a terminal's modes: the commands' business (cli, apps), never the runtime's.
+TERMINAL_MODES = frozenset({"termios", "tty"})
+
+
+def _imported_tops(path: Path) -> set[str]:
+    return {target.split(".")[0] for _line, target in _imports(path)}
+
+
+def test_core_leaves_terminals_and_signals_to_the_commands() -> None:
+    """No terminal modes anywhere in core; no signal handling in core/bag (playing and recording are tools/bag)."""
+    core = PACKAGE / "core"
+    moded = [str(p.relative_to(REPO)) for p in sorted(core.rglob("*.py")) if _imported_tops(p) & TERMINAL_MODES]
+    signalled = [str(p.relative_to(REPO)) for p in sorted((core / "bag").rglob("*.py"))
+                 if "signal" in _imported_tops(p)]
+    assert (moded, signalled) == ([], [])
 
 
 def test_every_layer_is_known() -> None:

@@ -58,8 +58,8 @@ def run_record(args: list[str], *, all_topics: bool, regex: bool, exclude: str |
                size: float | None, duration: str | None, max_size: float | None, mcap: bool = False) -> int:
     """Record until Ctrl-C or a limit; 1 with one line on error."""
     from rostui.core.bag.model import BagError
-    from rostui.core.bag.record_options import record_options
-    from rostui.core.bag.recorder import record
+    from rostui.tools.bag.record_options import record_options
+    from rostui.tools.bag.recorder import record
     from rostui.core.node.engine import new_event_loop
 
     topics, ros_args = _split_ros_args(args)
@@ -81,7 +81,7 @@ def run_record(args: list[str], *, all_topics: bool, regex: bool, exclude: str |
         sys.stderr.write("\n")
     if error:
         fail(f"rostui bag record: {error}; {', '.join(files)} holds what was recorded before")
-    from rostui.core.bag.recorder import file_format
+    from rostui.tools.bag.recorder import file_format
 
     _ros_log(f"Recorded {count} messages to {', '.join(files)} ({file_format(files[-1]) if files else 'no file'})")
     return 0
@@ -92,8 +92,9 @@ def run_play(args: list[str], *, rate: float, loop_play: bool, pause: bool, star
              queue: int, quiet: bool) -> int:
     """Play bags; 1 with one line on error."""
     from rostui.core.bag.model import BagError
-    from rostui.core.bag.player import PlayOptions, play
+    from rostui.cli.bag_keys import TerminalKeys
     from rostui.core.node.engine import new_event_loop
+    from rostui.tools.bag.player import PlayOptions, play
 
     files, ros_args = _split_ros_args(args)
     opts = PlayOptions(files=files, rate=rate, loop=loop_play, start_paused=pause, start_s=start,
@@ -107,7 +108,7 @@ def run_play(args: list[str], *, rate: float, loop_play: bool, pause: bool, star
     status = None if quiet else _status_writer(sys.stdout)
     ev = new_event_loop()
     try:
-        ev.run_until_complete(play(opts, ros_args, status=status))
+        ev.run_until_complete(play(opts, ros_args, status=status, controls=TerminalKeys()))
     except BagError as exc:
         fail(f"rostui bag play: {exc}")
     finally:
@@ -120,7 +121,7 @@ def run_play(args: list[str], *, rate: float, loop_play: bool, pause: bool, star
 def run_info(files: list[str], as_json: bool, exact: bool = False) -> int:
     """Print info for each file (``exact``: the messages' own start, end and duration); 1 when any could not be
     read. Where rosbag's duration is not the messages' span a note on stderr says both."""
-    from rostui.core.bag.info import format_info, info_dict, span_note, summarize
+    from rostui.tools.bag.info import format_info, info_dict, span_note, summarize
     from rostui.core.bag.model import BagError
 
     failed = False
@@ -184,7 +185,7 @@ def run_convert(src: str, dst: str, compression: str) -> int:
 
 def run_filter(src: str, dst: str, expr: str, print_expr: str | None) -> int:
     """Write the messages of SRC for which EXPR holds to DST; 1 with one line on error (DST untouched)."""
-    from rostui.core.bag.filter import filter_bag
+    from rostui.tools.bag.filter import filter_bag
     from rostui.core.bag.model import BagError
 
     def show(line: str) -> None:
@@ -210,7 +211,7 @@ def run_filter(src: str, dst: str, expr: str, print_expr: str | None) -> int:
 def run_change_compression(command: str, files: list[str], kind: str, output_dir: str | None, force: bool,
                            quiet: bool) -> int:
     """Rewrite each bag with ``kind`` chunks; 1 when any could not be (the others are still done)."""
-    from rostui.core.bag.compress import change_compression
+    from rostui.tools.bag.compress import change_compression
     from rostui.core.bag.model import BagError
 
     failed = False

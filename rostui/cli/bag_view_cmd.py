@@ -4,7 +4,7 @@ Bad input (a missing or unreadable file, a file with no messages, a bad
 rate, clock rate or compression, no topics to record, an option of the
 other mode) is one line and exit status 1, before Textual is imported.
 Recording flags mean what they mean for ``rostui bag record``: both commands
-build their options with :func:`rostui.core.bag.record_options.record_options`.
+build their options with :func:`rostui.tools.bag.record_options.record_options`.
 """
 
 from __future__ import annotations
@@ -95,7 +95,7 @@ def run_view(files: list[str], *, rate: float, loop: bool, pause: bool, topics: 
 def run_record_view(topics: list[str], *, all_topics: bool, regex: bool, flags: RecordFlags) -> int:
     """Open the recording view."""
     from rostui.core.bag.model import BagError
-    from rostui.core.bag.record_options import record_options
+    from rostui.tools.bag.record_options import record_options
 
     try:
         opts = record_options(topics, all_topics=all_topics, regex=regex, exclude=flags.exclude, name=flags.name,

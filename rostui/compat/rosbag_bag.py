@@ -396,7 +396,7 @@ class Bag:
 
     def __str__(self) -> str:
         """What ``rosbag info`` prints for the bag (without rosbag's per-topic frequencies)."""
-        from rostui.core.bag.info import format_info
+        from rostui.tools.bag.info import format_info
 
         with self._peek() as reader:
             summary = reader.summary()

@@ -265,7 +265,7 @@ class BagViewApp(ReleasesOnExit, KeysApp):
 
     async def _sync_publishers(self) -> None:
         """Advertise the connections of the topics switched on; unregister those of topics switched off."""
-        from rostui.core.bag.player import advertise_connections
+        from rostui.tools.bag.player import advertise_connections
 
         async with self._sync_lock:
             node, index = self.node, self.index
@@ -497,7 +497,7 @@ class BagViewApp(ReleasesOnExit, KeysApp):
 def _rosbag_duration(index: BagIndex) -> str | None:
     """bag info's duration of the one file viewed, when rosbag's rules (its first and last chunk) do not give
     the messages' span; None otherwise (and for several files, each with its own)."""
-    from rostui.core.bag.info import rosbag_duration
+    from rostui.tools.bag.info import rosbag_duration
 
     if len(index.readers) != 1:
         return None

@@ -8,7 +8,7 @@ from rich.text import Text
 
 from rostui.core.bag.index import BagIndex
 from rostui.apps.widgets.keys import key_line
-from rostui.core.bag.info import status_size
+from rostui.tools.bag.info import status_size
 
 #: Key help in play mode.
 PLAY_KEYS = key_line("space play  s step  ←→ ±1s  PgUp/Dn ±10%  Home/End  0-9 %  g go to  +- rate  l loop  "

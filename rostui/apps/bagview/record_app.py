@@ -21,13 +21,13 @@ from textual.containers import VerticalScroll
 from textual.widgets import Static
 
 from rostui.apps.bagview.bars import RECORD_KEYS
-from rostui.core.bag.info import status_size
+from rostui.tools.bag.info import status_size
 from rostui.apps.bagview.recording import RecordSession
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.bag.model import BagError
-from rostui.core.bag.recorder import RecordOptions
+from rostui.tools.bag.recorder import RecordOptions
 
 __all__ = ["BagRecordApp", "record_header", "record_status", "run_record_app", "topics_table"]
 

@@ -1,6 +1,6 @@
 """Recording from the bag view: start, stop and split without leaving the app, with per-topic meters.
 
-Each recording (from ``r`` to ``r``) is one :class:`~rostui.core.bag.recorder.Recorder`
+Each recording (from ``r`` to ``r``) is one :class:`~rostui.tools.bag.recorder.Recorder`
 on its own node ``/record_...`` (what ``rostui bag record`` runs). A split asks that
 recorder to go on in the next file: the request joins its writer's queue behind
 the messages already received, so every message lands in exactly one file, as
@@ -23,7 +23,7 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 from rostui.core.bag.model import BagError
-from rostui.core.bag.recorder import Recorder, RecordOptions, base_file_name, split_file_name
+from rostui.tools.bag.recorder import Recorder, RecordOptions, base_file_name, split_file_name
 
 #: Seconds of history behind a topic's rate and bandwidth.
 RATE_WINDOW = 3.0

@@ -3,8 +3,8 @@
 Both commands take rosbag record's flags (topics, ``-a``, ``-e``, ``-x``,
 ``-O``/``-o``, ``-j``/``--lz4``/``--compression``, ``--split``, ``--size``,
 ``--duration``, ``--max-size``); :func:`record_options` checks them together
-and builds the :class:`~rostui.core.bag.recorder.RecordOptions` a
-:class:`~rostui.core.bag.recorder.Recorder` runs, or raises a one-line
+and builds the :class:`~rostui.tools.bag.recorder.RecordOptions` a
+:class:`~rostui.tools.bag.recorder.Recorder` runs, or raises a one-line
 :class:`~rostui.core.bag.model.BagError` that the command prints after its name.
 """
 
@@ -13,7 +13,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from rostui.core.bag.model import BagError
-from rostui.core.bag.recorder import RecordOptions, TopicFilter, parse_duration
+from rostui.tools.bag.recorder import RecordOptions, TopicFilter, parse_duration
 
 __all__ = ["COMPRESSIONS", "record_options"]
 

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from rostui.core.bag.files import Writer, open_writer
-from rostui.core.bag.info import status_size
+from rostui.tools.bag.info import status_size
 from rostui.core.bag.receive import BufferPool, subscribe_raw
 from rostui.core.bag.model import BagError, Connection, connection_key
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from rostui.core.bag.files import copy_messages, open_reader
 from rostui.core.bag.model import BagError
 from rostui.core.bag.progress import Progress
-from rostui.core.bag.rewrite import new_file
+from rostui.tools.bag.rewrite import new_file
 from rostui.core.bag.rosbag2_0 import BagReader
 
 #: What ``--bz2`` (rosbag's default) means in each format: MCAP has no bz2, zstd is its strong compression.

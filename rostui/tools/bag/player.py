@@ -15,7 +15,7 @@ import sys
 import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Protocol
 
 from rostui.core.bag.clock import DEFAULT_HZ, BagClock
 from rostui.core.bag.files import Reader, merged_messages, open_reader, unordered_notice
@@ -220,44 +220,14 @@ def _raw(data: bytes) -> Any:
     return AnyMsg(data)
 
 
-class KeyReader:
-    """Space and ``s`` from a terminal on stdin, in cbreak mode (restored on close)."""
+class PlayControls(Protocol):
+    """What steers a player while it plays (``rostui bag play``'s keys on its terminal)."""
 
-    def __init__(self, player: Player) -> None:
-        self.player = player
-        self.saved: Any = None
-        self.fd = -1
-
-    def open(self, loop: asyncio.AbstractEventLoop) -> None:
-        """Start reading keys when stdin is a terminal."""
-        if not sys.stdin.isatty():
-            return
-        import termios
-        import tty
-
-        self.fd = sys.stdin.fileno()
-        self.saved = termios.tcgetattr(self.fd)
-        tty.setcbreak(self.fd)
-        loop.add_reader(self.fd, self._on_key)
-
-    def _on_key(self) -> None:
-        import os
-
-        key = os.read(self.fd, 16)
-        if b" " in key:
-            self.player.toggle_pause()
-        elif b"s" in key:
-            self.player.step_once()
+    def open(self, loop: asyncio.AbstractEventLoop, player: Player) -> None:
+        """Start steering ``player`` from ``loop``."""
 
     def close(self, loop: asyncio.AbstractEventLoop) -> None:
-        """Give the terminal back as it was."""
-        if self.saved is None:
-            return
-        import termios
-
-        loop.remove_reader(self.fd)
-        termios.tcsetattr(self.fd, termios.TCSADRAIN, self.saved)
-        self.saved = None
+        """Stop, leaving whatever was borrowed as it was."""
 
 
 async def _drain(node: Any, timeout: float) -> None:
@@ -299,9 +269,9 @@ def open_bags(paths: Sequence[str], warn: Callable[[str], None]) -> tuple[list[R
 
 
 async def play(opts: PlayOptions, argv: Sequence[str] = (), *, status: Callable[[str], None] | None = None,
-               warn: Callable[[str], None] = _stderr_line) -> PlayStats:
+               warn: Callable[[str], None] = _stderr_line, controls: PlayControls | None = None) -> PlayStats:
     """Open the files, start a ``play_...`` node and play; Ctrl-C stops. ``warn`` gets one line per file
-    that cannot play in time order."""
+    that cannot play in time order; ``controls`` steer the player while it plays."""
     from rostui.core.node import AsyncNode, MasterUnreachableError
 
     if not opts.files:
@@ -315,19 +285,20 @@ async def play(opts: PlayOptions, argv: Sequence[str] = (), *, status: Callable[
             raise BagError(str(exc)) from None
         loop = asyncio.get_running_loop()
         player = Player(node, opts, readers, status=status, summaries=summaries, warn=warn)
-        keys = KeyReader(player)
         try:
             for sig in (signal.SIGINT, signal.SIGTERM):
                 loop.add_signal_handler(sig, player.stop.set)
             node.shutdown_hooks.append(lambda _reason: player.stop.set())
-            keys.open(loop)
+            if controls is not None:
+                controls.open(loop, player)
             try:
                 stats = await player.run()
             finally:  # what was published before a damaged record still reaches its subscribers
                 await _drain(node, 2.0)
             return stats
         finally:
-            keys.close(loop)
+            if controls is not None:
+                controls.close(loop)
             try:
                 await asyncio.wait_for(node.shutdown("play finished"), 3.0)
             except (asyncio.TimeoutError, Exception):

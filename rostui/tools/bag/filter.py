@@ -18,7 +18,7 @@ from rostui.core.bag.decode import Decoder
 from rostui.core.bag.files import ConnectionMap, merged_messages, open_reader
 from rostui.core.bag.model import BagError
 from rostui.core.bag.progress import Progress, counted
-from rostui.core.bag.rewrite import new_file
+from rostui.tools.bag.rewrite import new_file
 from rostui.core.rostime import Duration, Time
 
 _TIME_NAMES = SimpleNamespace(Time=Time, Duration=Duration)

@@ -137,7 +137,7 @@ class Run:
     # -- master ------------------------------------------------------------------
     def start_master(self) -> None:
         if self.master_kind == "rostui":
-            code = f"import sys; from rostui.cli.core_cmd import run_core; sys.exit(run_core({self.port}))"
+            code = f"import sys; from rostui.cli.core_run import run_core; sys.exit(run_core({self.port}))"
             cmd = [venv_python(), "-c", code]
         else:
             cmd = ["rosmaster", "--core", "-p", str(self.port)]

@@ -124,3 +124,24 @@ def test_every_folder_of_code_is_a_package() -> None:
     """setuptools packages only folders with an ``__init__.py``: one without it works in a checkout, not installed."""
     folders = {p.parent for p in PACKAGE.rglob("*.py")}
     assert sorted(str(f.relative_to(REPO)) for f in folders if not (f / "__init__.py").exists()) == []
+
+
+def test_every_app_and_command_group_is_registered_in_one_place() -> None:
+    """Each command module is a group of the registry (or registered by its group's module); each app package and
+    the turtlesim have one row, whose words are a command of ``rostui``."""
+    import typer
+
+    from rostui.cli.main import app
+    from rostui.cli.registry import APPS, COMMAND_GROUPS
+
+    modules = {p.stem.removesuffix("_cmd") for p in (PACKAGE / "cli").glob("*_cmd.py")}
+    registered_by_group = {"bag_view": "bag"}
+    assert modules - set(registered_by_group) == set(COMMAND_GROUPS)
+    packages = {f"rostui.apps.{p.parent.name}" for p in (PACKAGE / "apps").glob("*/app.py")} | {"rostui.turtlesim"}
+    assert sorted(a.package for a in APPS) == sorted(packages)
+    root = typer.main.get_command(app)
+    for entry in APPS:
+        command = root
+        for word in entry.words:
+            command = command.get_command(None, word)  # type: ignore[attr-defined, arg-type]
+            assert command is not None, entry.name

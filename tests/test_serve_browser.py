@@ -136,6 +136,7 @@ APPS = {
     "monitor": (["monitor"], "/rosout_agg"),
     "bag view": (["bag", "view"], "/count"),
     "launch --tui": (["launch", "--tui"], "quiet is up"),
+    "view": (["view", "/rosout"], "/rosout"),
 }
 
 

@@ -1,20 +1,19 @@
 """The `rostui` command: a Typer app; each command group lives in its own module.
 
-Every ``rostui/cli/<group>_cmd.py`` exposes ``register(app)``; its command
+Every ``rostui/cli/<group>_cmd.py`` named in :data:`rostui.cli.registry.COMMAND_GROUPS`
+exposes ``register(app)``; its command
 functions import their work lazily, so commands that only talk to the master
 start fast and never import Textual.
 """
 
 from __future__ import annotations
 
+import importlib
+
 import typer
 
-from rostui.cli import (
-    bag_cmd, clean_cmd, console_cmd, graph_cmd, launch_cmd, loggers_cmd, monitor_cmd, msg_cmd, node_cmd, param_cmd,
-    pkg_cmd, python_cmd, run_cmd, serve_cmd, service_cmd, tf_cmd, topic_cmd, turtlesim_cmd, view_cmd,
-    wtf_cmd,
-)
 from rostui.cli.help_text import reflow_commands
+from rostui.cli.registry import COMMAND_GROUPS
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
 
@@ -43,20 +42,8 @@ def root(
     """rostui: roscore, rostopic, rosnode, rosservice, rosparam and friends, in one terminal tool."""
 
 
-@app.command("core")
-def core_command(
-    port: int = typer.Option(11311, "-p", "--port", metavar="PORT", help="Port the master listens on."),
-) -> None:
-    """Start a ROS master, parameter server and rosout (like `roscore`)."""
-    from rostui.cli.core_cmd import run_core
-
-    raise typer.Exit(run_core(port))
-
-
-for _module in (run_cmd, node_cmd, topic_cmd, msg_cmd, service_cmd, param_cmd, pkg_cmd, wtf_cmd, clean_cmd,
-                turtlesim_cmd, graph_cmd, console_cmd, loggers_cmd, launch_cmd, bag_cmd, monitor_cmd, serve_cmd,
-                python_cmd, tf_cmd, view_cmd):
-    _module.register(app)
+for _group in COMMAND_GROUPS:
+    importlib.import_module(f"rostui.cli.{_group}_cmd").register(app)
 reflow_commands(app)
 
 

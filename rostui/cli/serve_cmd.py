@@ -17,9 +17,10 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import typer
 
+from rostui.cli.registry import app_of, served_apps
 
 #: The apps `rostui serve` runs, as a user names them.
-APPS = ("graph", "console", "loggers", "monitor", "bag view", "turtlesim", "launch --tui")
+APPS = tuple(app.name for app in served_apps())
 
 #: Port textual-serve (and `textual serve`) listen on by default.
 DEFAULT_PORT = 8000
@@ -50,12 +51,11 @@ def _app_path(words: List[str]) -> List[str]:
     choices = ", ".join(APPS)
     if not words:
         raise NotAnApp(f"name the app to serve: rostui serve APP [ARGS], APP one of {choices}")
-    if words[0] in ("graph", "console", "loggers", "monitor", "turtlesim", "launch"):
-        return words[:1]
-    if words[:2] == ["bag", "view"]:
-        return words[:2]
-    named = " ".join(w for w in words[:2] if not w.startswith("-"))
-    raise NotAnApp(f"`{named}` is not an app; serve one of {choices}")
+    app = app_of(words)
+    if app is None:
+        named = " ".join(w for w in words[:2] if not w.startswith("-"))
+        raise NotAnApp(f"`{named}` is not an app; serve one of {choices}")
+    return list(app.words)
 
 
 def _parse(ctx: typer.Context, path: List[str], args: List[str]) -> Tuple[Dict[str, Any], List[str]]:
@@ -182,7 +182,7 @@ def serve_command(
     max_sessions: int = typer.Option(DEFAULT_MAX_SESSIONS, "--max-sessions", metavar="N",
                                      help="Tabs open at once (each runs its own app); more are refused."),
 ) -> None:
-    """Serve a terminal app to web browsers: graph, console, loggers, monitor, bag view, turtlesim, launch --tui.
+    """Serve a terminal app to web browsers: {apps}.
 
     The words after `serve` are the app's command; each browser tab runs its own
     copy with this terminal's environment (ROS_MASTER_URI too).  Options of serve
@@ -227,5 +227,6 @@ def serve_command(
 
 
 def register(app: typer.Typer) -> None:
-    """Add `rostui serve` to the rostui app."""
+    """Add `rostui serve` to the rostui app; its help names the apps of the registry."""
+    serve_command.__doc__ = (serve_command.__doc__ or "").format(apps=", ".join(APPS))
     app.command("serve", context_settings=SERVE_CONTEXT, options_metavar="[OPTIONS] APP [ARGS]...")(serve_command)

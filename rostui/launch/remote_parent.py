@@ -21,19 +21,36 @@ import re
 import sys
 from collections import deque
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from rostui.core.xmlrpc import XmlRpcClient, XmlRpcError
 from rostui.launch.errors import LaunchError
 from rostui.launch.model import Machine
+from rostui.launch.options import SupervisorOptions
 from rostui.launch.process import ManagedProcess, NodeState
 from rostui.launch.remote_protocol import (
     LOG_ERROR, child_command, label_matches, nodes_xml, output_line, started_pid,
 )
 from rostui.launch.ssh import DEFAULT_TIMEOUT, SshTarget, ssh_argv, ssh_failure
 
-if TYPE_CHECKING:
-    from rostui.launch.supervisor import Supervisor
+
+
+class LaunchHost(Protocol):
+    """What a remote launch needs of the launch that owns it (:class:`~rostui.launch.supervisor.Supervisor`)."""
+
+    anons: dict[str, str]
+    master_uri: str
+    options: SupervisorOptions
+    stopping: asyncio.Event
+
+    def say(self, message: str) -> None:
+        """A line of the launcher's output."""
+
+    def complain(self, message: str) -> None:
+        """A line of the launcher's errors."""
+
+    def node_ended(self, process: ManagedProcess, code: int | None) -> bool:
+        """A node died; True when it will not be restarted."""
 
 #: Seconds a child gets, beyond the launch's own timeouts, to answer ``shutdown``.
 SHUTDOWN_GRACE = 10.0
@@ -132,7 +149,7 @@ class RemoteChild:
 class RemoteLaunch:
     """Every child of a launch; also answers roslaunch's parent API (through the launch's XML-RPC server)."""
 
-    def __init__(self, supervisor: "Supervisor") -> None:
+    def __init__(self, supervisor: LaunchHost) -> None:
         """No children until :meth:`add` gives them nodes."""
         self._supervisor = supervisor
         self.children: list[RemoteChild] = []

@@ -27,7 +27,6 @@ import sys
 import time
 import uuid
 import xmlrpc.client
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 from urllib.parse import urlsplit, urlunsplit
@@ -50,6 +49,7 @@ from rostui.launch.machines import assign_machines
 from rostui.launch.model import LaunchConfig, Machine, NodeSpec
 from rostui.launch.output import OutputBuffer
 from rostui.launch.process import ManagedProcess, NodeState, ProcessPlan
+from rostui.launch.options import SupervisorOptions
 from rostui.launch.remote_parent import RemoteLaunch, RemoteProcess
 
 CALLER = "/roslaunch"
@@ -57,24 +57,6 @@ CALLER = "/roslaunch"
 QUICK_DEATH = 1.0
 #: The longest back-off between restarts of a node that keeps dying at once.
 MAX_BACKOFF = 30.0
-
-
-@dataclass
-class SupervisorOptions:
-    """Command-line options of a launch."""
-
-    screen: bool = False
-    verbose: bool = False
-    wait: bool = False
-    port: int | None = None
-    sigint_timeout: float = 15.0
-    sigterm_timeout: float = 2.0
-    capture: bool = False
-    """Nodes' stdout and stderr into their output rings (the monitor owns the terminal)."""
-    handle_signals: bool = True
-    """Ctrl-C, SIGTERM and SIGHUP stop the launch (off when the monitor handles them)."""
-    stay_when_all_ended: bool = False
-    """Keep the launch (and the master) up when every node has ended, so nodes can be started again."""
 
 
 #: Receives each line of the launcher's own output and whether it is an error (stderr).

@@ -1,7 +1,7 @@
 """ViewApp: `rostui view TOPIC...`, each topic in a panel drawn by the view its type has in the registry.
 
 The app keeps one node registered with the master (a
-:class:`~rostui.apps.view.source.ViewSource`) and the panels subscribe on
+:class:`~rostui.models.sensors.source.ViewSource`) and the panels subscribe on
 it while they are on screen.  :class:`ViewScreen` is the same grid of
 panels over another app's node (the monitor's Enter).
 """
@@ -19,7 +19,7 @@ from textual.widgets import Static
 
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.view.panel import NodeOf, TypeOf, ViewGrid
-from rostui.apps.view.source import ViewSource
+from rostui.models.sensors.source import ViewSource
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals

@@ -19,6 +19,8 @@ from .registry import get_message_class
 from .spec import HEADER_TYPE
 
 __all__ = [
+    "field_class",
+    "format_value",
     "message_to_dict",
     "fill_message",
     "message_to_yaml",
@@ -45,7 +47,7 @@ def _split_type(t: str) -> tuple[str, bool, int | None]:
     return t, False, None
 
 
-def _field_class(msg: Message | type[Message], base: str) -> type[Message]:
+def field_class(msg: Message | type[Message], base: str) -> type[Message]:
     """The class of a nested field type, from the definition that built *msg*'s class (a peer's may differ)."""
     cls = getattr(msg, "_field_classes", {}).get(base)
     return cls if isinstance(cls, type) and issubclass(cls, Message) else get_message_class(base)
@@ -186,7 +188,7 @@ def _convert_scalar(owner: Message, t: str, v: Any, keys: dict[str, Any], where:
             return _make_tval(cls, v[0], v[1], where)
         raise MessageValueError(f"Field [{where}] must be a {t} ({{secs, nsecs}} or nanoseconds), got {v!r}")
     # nested message
-    sub_cls = _field_class(owner, t)
+    sub_cls = field_class(owner, t)
     if isinstance(v, Message):
         if v._type != t:
             raise MessageValueError(f"Field [{where}] must be a {t}, got {v._type}")
@@ -250,7 +252,7 @@ def _yaml_str(s: str) -> str:
     return yaml.dump(s, default_style='"').rstrip("\n")
 
 
-def _strify(
+def format_value(
     val: Any,
     t: str,
     indent: str,
@@ -258,6 +260,8 @@ def _strify(
     time_offset: Time | None,
     filt: Callable[[Message], Iterable[str]] | None,
 ) -> str:
+    """``val`` (of field type ``t``) as rostopic echo prints it below ``indent``: numbers ``width`` wide when given,
+    times relative to ``time_offset``, a message's fields chosen by ``filt``."""
     tp = type(val)
     if tp in (int, float) and width is not None:
         if tp is float:
@@ -280,7 +284,7 @@ def _strify(
             return "[]"
         v0 = val[0]
         if type(v0) in (int, float) and width is not None:
-            return "[" + ", ".join(_strify(v, "", indent, width, time_offset, filt) for v in val) + "]"
+            return "[" + ", ".join(format_value(v, "", indent, width, time_offset, filt) for v in val) + "]"
         if isinstance(v0, str):
             text = yaml.dump(list(val)).rstrip("\n")
             if text[0] == "[":
@@ -291,7 +295,7 @@ def _strify(
         base = _split_type(t)[0]
         pref = indent + "- "
         sub_indent = indent + "  "
-        return "\n" + "\n".join(pref + _strify(v, base, sub_indent, width, time_offset, filt) for v in val)
+        return "\n" + "\n".join(pref + format_value(v, base, sub_indent, width, time_offset, filt) for v in val)
     if isinstance(val, Message):
         fields = list(filt(val)) if filt is not None else val.__slots__
         ni = "  " + indent
@@ -302,7 +306,7 @@ def _strify(
             v = getattr(val, f)
             if isinstance(v, (bytes, bytearray)) and "uint8[" in ft:
                 v = list(v)
-            lines.append(f"{indent}{f}: " + _strify(v, ft, ni, width, time_offset, filt))
+            lines.append(f"{indent}{f}: " + format_value(v, ft, ni, width, time_offset, filt))
         body = "\n".join(lines)
         return "\n" + body if indent else body
     return str(val)
@@ -350,7 +354,7 @@ def _strify_shadow(s: _Shadow, indent: str, width: int | None, time_offset: Time
         else:
             if isinstance(v, (bytes, bytearray)) and "uint8[" in ft:
                 v = list(v)
-            text = _strify(v, ft, ni, width, time_offset, None)
+            text = format_value(v, ft, ni, width, time_offset, None)
         lines.append(f"{indent}{f}: {text}")
     body = "\n".join(lines)
     return "\n" + body if indent else body
@@ -367,7 +371,7 @@ def message_to_yaml(
     """The text ``rostopic echo`` prints for *msg* (``--noarr``, ``--nostr``, ``-w``, ``--offset``), without ``---``."""
     if noarr or nostr:
         return _strify_shadow(_transform(msg, nostr, noarr), "", fixed_numeric_width, time_offset)
-    return _strify(msg, msg._type, "", fixed_numeric_width, time_offset, None)
+    return format_value(msg, msg._type, "", fixed_numeric_width, time_offset, None)
 
 
 # ----------------------------------------------------------------------------- rosmsg-proto template
@@ -409,7 +413,7 @@ def _array_instance(base: str, owner: Message) -> Any:
     if base in ("time", "duration"):
         return _ProtoMsg([("data", _ProtoMsg([("secs", 0), ("nsecs", 0)]))])
     try:
-        return _proto(_field_class(owner, base)())
+        return _proto(field_class(owner, base)())
     except UnknownMessageTypeError:
         return None
 

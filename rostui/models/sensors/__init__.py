@@ -1,1 +1,2 @@
-"""Screen-free decoding of sensor messages (images, scans, ...) into arrays the views draw."""
+"""Screen-free models of `rostui view`: its node and topic types (source), and sensor messages (images, scans, ...)
+decoded into arrays the views draw."""

@@ -74,7 +74,7 @@ def field_evaluator(pattern: str) -> Callable[[Any], Any] | None:
 
 def field_type_of(cls: Any, path: str) -> str | None:
     """The declared type of the field at *path* (``header/stamp``) of *cls*, or None."""
-    from rostui.core.msg.convert import _field_class
+    from rostui.core.msg.convert import field_class
 
     parts = [p for p in path.strip("/").split("/") if p]
     if not parts:
@@ -89,7 +89,7 @@ def field_type_of(cls: Any, path: str) -> str | None:
         if i + 1 < len(parts):
             base = t.split("[", 1)[0]
             try:
-                owner = _field_class(owner, base)
+                owner = field_class(owner, base)
             except Exception:
                 owner = None
     return t
@@ -263,13 +263,13 @@ class EchoFormatter:
         return self.prefix + self._yaml(msg, data, offset) + "\n---\n"
 
     def _yaml(self, msg: Any, data: Any, offset: Any) -> str:
-        from rostui.core.msg.convert import _strify, message_to_yaml
+        from rostui.core.msg.convert import format_value, message_to_yaml
 
         if is_message(data):
             return message_to_yaml(data, noarr=self.noarr, nostr=self.nostr,
                                    fixed_numeric_width=self.fixed_width, time_offset=offset)
         if self.from_bag:
-            return _strify(data, "", "", self.fixed_width, offset, None)
+            return format_value(data, "", "", self.fixed_width, offset, None)
         t = self._type_information(msg)
         if isinstance(data, (bytes, bytearray)):
             data = list(data)
@@ -277,7 +277,7 @@ class EchoFormatter:
             data = _transform_value(data, t, self.nostr, self.noarr)
             if isinstance(data, str) and data.startswith("<"):
                 t = "string"
-        return _strify(data, t or "", "", self.fixed_width, offset, None)
+        return format_value(data, t or "", "", self.fixed_width, offset, None)
 
     def _type_information(self, msg: Any) -> str | None:
         cls = type(msg)

@@ -10,7 +10,7 @@ row; scrolling or moving up leaves it, End (or F in the app) comes back.
 
 from __future__ import annotations
 
-from typing import ClassVar, Sequence
+from typing import ClassVar
 
 from rich.segment import Segment
 from rich.style import Style
@@ -19,10 +19,10 @@ from textual.binding import Binding, BindingType
 from textual.geometry import Size
 from textual.message import Message
 from textual.reactive import reactive
-from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
 from rostui.apps.console.columns import GAP, Layout, cell, layout_for, row_texts
+from rostui.apps.widgets.row_table import RowTable
 from rostui.apps.widgets.terminal_colors import color_system, readable
 from rostui.core.log.levels import Level
 from rostui.models.console.filters import HighlightRule, first_highlight
@@ -39,27 +39,23 @@ _LEVEL_CLASSES = {int(level): f"log-table--{level.text}" for level in Level}
 _CACHE_ROWS = 2048
 
 
-class LogTable(ScrollView, can_focus=True):
+class LogTable(RowTable):
     """The messages of a :class:`ConsoleModel`, one row each, newest at the bottom."""
 
     COMPONENT_CLASSES: ClassVar[set[str]] = {
-        "log-table--header", "log-table--cursor", *_LEVEL_CLASSES.values(),
+        *_LEVEL_CLASSES.values(),
         *(f"log-table--highlight-{n}" for n in range(HIGHLIGHT_COLOURS)),
     }
 
     DEFAULT_CSS = """
     LogTable {
         overflow-x: hidden;
-        overflow-y: scroll;
-        scrollbar-size-vertical: 1;
     }
-    LogTable > .log-table--header { text-style: bold; background: $panel; color: $foreground; }
     LogTable > .log-table--debug { color: $text-success; }
     LogTable > .log-table--info { color: $foreground; }
     LogTable > .log-table--warn { color: $text-warning; }
     LogTable > .log-table--error { color: $text-error; }
     LogTable > .log-table--fatal { color: $text; background: $error 45%; text-style: bold; }
-    LogTable > .log-table--cursor { background: $primary 45%; text-style: bold; }
     LogTable > .log-table--highlight-0 { background: $accent 30%; }
     LogTable > .log-table--highlight-1 { background: $success 30%; }
     LogTable > .log-table--highlight-2 { background: $secondary 80%; }
@@ -67,12 +63,8 @@ class LogTable(ScrollView, can_focus=True):
     """
 
     BINDINGS: ClassVar[list[BindingType]] = [
-        Binding("up", "cursor_up", "up", show=False),
-        Binding("down", "cursor_down", "down", show=False),
-        Binding("pageup", "page_up", "page up", show=False),
-        Binding("pagedown", "page_down", "page down", show=False),
         Binding("home", "first", "first", show=False),
-        Binding("end", "follow", "follow", show=False),
+        Binding("end", "last", "follow", show=False),
     ]
 
     follow: reactive[bool] = reactive(True)
@@ -105,14 +97,9 @@ class LogTable(ScrollView, can_focus=True):
 
     # -- geometry ------------------------------------------------------------------------------
     @property
-    def page_rows(self) -> int:
-        """Rows visible below the header."""
-        return max(1, self.scrollable_content_region.height - 1)
-
-    @property
-    def top_row(self) -> int:
-        """The row shown first under the header."""
-        return int(self.scroll_y)
+    def row_count(self) -> int:
+        """How many messages the filter shows."""
+        return len(self.model)
 
     @property
     def column_layout(self) -> Layout:
@@ -183,7 +170,7 @@ class LogTable(ScrollView, can_focus=True):
         self._set_cursor(self.model.seq_at(row) if rows else None)
         self._top_seq = None
         self.sync()
-        self._scroll_to_row(row, center=True)
+        self.scroll_to_row(row, center=True)
 
     def restyle(self) -> None:
         """Highlight rules (or colours) changed: draw every row again."""
@@ -220,25 +207,19 @@ class LogTable(ScrollView, can_focus=True):
         if row < rows - 1 or not self.follow:
             self.follow = False
         self._set_cursor(self.model.seq_at(row))
-        self._scroll_to_row(row)
+        self.scroll_to_row(row)
         self.refresh()
 
-    def _scroll_to_row(self, row: int, center: bool = False) -> None:
-        top, page = self.top_row, self.page_rows
-        if center:
-            target = max(0, row - page // 2)
-        elif row < top:
-            target = row
-        elif row >= top + page:
-            target = row - page + 1
-        else:
-            return
+    def scroll_to_row(self, row: int, *, center: bool = False) -> int | None:
+        """Scroll ``row`` into view (a scroll that stays in follow mode); the view is anchored to its top message."""
         self._syncing = True
         try:
-            self.scroll_to(y=target, animate=False, force=True)
+            target = super().scroll_to_row(row, center=center)
         finally:
             self._syncing = False
-        self._top_seq = self.model.seq_at(target) if target < len(self.model) else None
+        if target is not None:
+            self._top_seq = self.model.seq_at(target) if target < len(self.model) else None
+        return target
 
     def _move(self, delta: int) -> None:
         row = self.cursor_row
@@ -247,29 +228,21 @@ class LogTable(ScrollView, can_focus=True):
         self.follow = False
         self.select_row(row + delta)
 
-    def action_cursor_up(self) -> None:
-        """Select the message above (leaves follow mode)."""
-        self._move(-1)
+    def action_move(self, delta: int) -> None:
+        """Up/Down: the message above or below (leaves follow mode)."""
+        self._move(delta)
 
-    def action_cursor_down(self) -> None:
-        """Select the message below."""
-        self._move(1)
-
-    def action_page_up(self) -> None:
-        """One page up (leaves follow mode)."""
-        self._move(-self.page_rows)
-
-    def action_page_down(self) -> None:
-        """One page down."""
-        self._move(self.page_rows)
+    def action_page(self, pages: int) -> None:
+        """PageUp/PageDown: a page up or down (leaves follow mode)."""
+        self._move(pages * self.page_rows)
 
     def action_first(self) -> None:
-        """The oldest message shown (leaves follow mode)."""
+        """Home: the oldest message shown (leaves follow mode)."""
         self.follow = False
         self.select_row(0)
 
-    def action_follow(self) -> None:
-        """Back to follow mode: the newest message, and the ones after it as they arrive."""
+    def action_last(self) -> None:
+        """End: back to follow mode, the newest message and the ones after it as they arrive."""
         self.set_follow(True)
 
     def watch_scroll_y(self, old: float, new: float) -> None:
@@ -280,15 +253,10 @@ class LogTable(ScrollView, can_focus=True):
         if not self._syncing and self.follow and new < old and new < self.max_scroll_y:
             self.follow = False
 
-    def on_click(self, event: events.Click) -> None:
-        """Clicking a row selects it."""
-        offset = event.get_content_offset(self)
-        if offset is None or offset.y < 1:
-            return
-        row = self.top_row + offset.y - 1
-        if row < len(self.model):
-            self.follow = False
-            self.select_row(row)
+    def row_clicked(self, row: int, event: events.Click) -> None:
+        """Clicking a row selects it (leaves follow mode)."""
+        self.follow = False
+        self.select_row(row)
 
     # -- drawing -----------------------------------------------------------------------------------
     def _style(self, *names: str) -> Style:
@@ -317,7 +285,7 @@ class LogTable(ScrollView, can_focus=True):
         return strip
 
     def _header(self, layout: Layout) -> Strip:
-        style = self._style("log-table--header")
+        style = self._style("row-table--header")
         text = (" " * GAP).join(cell(c.title, c.width) for c in layout.columns)
         return Strip([Segment(text.ljust(layout.width), style)], layout.width)
 
@@ -328,13 +296,9 @@ class LogTable(ScrollView, can_focus=True):
         if mark >= 0:
             style += self._overlay(f"log-table--highlight-{mark % HIGHLIGHT_COLOURS}")
         if selected:
-            style += self._overlay("log-table--cursor")
+            style += self._overlay("row-table--cursor")
         style = readable(style, color_system(self.app.console.color_system))
         texts = row_texts(seq, entry)
         gap = " " * GAP
         text = gap.join(cell(texts[c.key], c.width) for c in layout.columns)
         return Strip([Segment(text, style)], layout.width)
-
-    def visible_texts(self) -> Sequence[str]:
-        """The text of every visible line (header first), as drawn."""
-        return [self.render_line(y).text for y in range(self.scrollable_content_region.height)]

@@ -16,9 +16,9 @@ from textual import events
 from textual.binding import Binding, BindingType
 from textual.geometry import Size
 from textual.message import Message
-from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
+from rostui.apps.widgets.row_table import RowTable
 from rostui.apps.widgets.terminal_colors import color_system, readable
 from rostui.models.monitor.rows import COLUMNS, Liveness, TopicRow
 
@@ -34,30 +34,21 @@ _LIVENESS_CLASSES = {Liveness.LIVE: "topic-table--live", Liveness.STALE: "topic-
                      Liveness.OFF: "topic-table--quiet"}
 
 
-class TopicTable(ScrollView, can_focus=True):
+class TopicTable(RowTable):
     """One row per topic; :meth:`show` takes the rows in the order to draw them."""
 
-    COMPONENT_CLASSES: ClassVar[set[str]] = {"topic-table--header", "topic-table--cursor", "topic-table--live",
-                                             "topic-table--stale", "topic-table--quiet"}
+    COMPONENT_CLASSES: ClassVar[set[str]] = {"topic-table--live", "topic-table--stale", "topic-table--quiet"}
 
     DEFAULT_CSS = """
     TopicTable {
         overflow-x: auto;
-        overflow-y: scroll;
-        scrollbar-size-vertical: 1;
     }
-    TopicTable > .topic-table--header { text-style: bold; background: $panel; color: $foreground; }
-    TopicTable > .topic-table--cursor { background: $primary 45%; text-style: bold; }
     TopicTable > .topic-table--live { color: $text-success; }
     TopicTable > .topic-table--stale { color: $text-error; text-style: bold; }
     TopicTable > .topic-table--quiet { color: $text-muted; }
     """
 
     BINDINGS: ClassVar[list[BindingType]] = [
-        Binding("up", "move(-1)", "up", show=False),
-        Binding("down", "move(1)", "down", show=False),
-        Binding("pageup", "page(-1)", "page up", show=False),
-        Binding("pagedown", "page(1)", "page down", show=False),
         Binding("home", "first", "first topic", show=False),
         Binding("end", "last", "last topic", show=False),
         Binding("enter", "choose", "expand", show=False),
@@ -79,14 +70,9 @@ class TopicTable(ScrollView, can_focus=True):
 
     # -- geometry ------------------------------------------------------------------------------
     @property
-    def page_rows(self) -> int:
-        """Rows visible below the header."""
-        return max(1, self.scrollable_content_region.height - 1)
-
-    @property
-    def top_row(self) -> int:
-        """The row shown first under the header."""
-        return int(self.scroll_y)
+    def row_count(self) -> int:
+        """How many topics are shown."""
+        return len(self.names)
 
     @property
     def cursor_row(self) -> int | None:
@@ -130,56 +116,25 @@ class TopicTable(ScrollView, can_focus=True):
         if topic not in self.names:
             return False
         self.cursor_topic = topic
-        self._scroll_to_row(self.names.index(topic))
+        self.scroll_to_row(self.names.index(topic))
         self.refresh()
         return True
 
-    def _select_row(self, row: int) -> None:
-        if not self.names:
-            return
-        self.select_topic(self.names[max(0, min(row, len(self.names) - 1))])
-
-    def _scroll_to_row(self, row: int) -> None:
-        top, page = self.top_row, self.page_rows
-        if row < top:
-            self.scroll_to(y=row, animate=False, force=True)
-        elif row >= top + page:
-            self.scroll_to(y=row - page + 1, animate=False, force=True)
+    def select_row(self, row: int) -> None:
+        """Put the cursor on the topic of ``row``."""
+        self.select_topic(self.names[row])
 
     # -- keys and mouse -------------------------------------------------------------------------
-    def action_move(self, delta: int) -> None:
-        """Up/Down: the row above or below."""
-        row = self.cursor_row
-        self._select_row(0 if row is None else row + delta)
-
-    def action_page(self, pages: int) -> None:
-        """PageUp/PageDown: a screenful up or down."""
-        row = self.cursor_row or 0
-        self._select_row(row + pages * self.page_rows)
-
-    def action_first(self) -> None:
-        """Home: the first row."""
-        self._select_row(0)
-
-    def action_last(self) -> None:
-        """End: the last row."""
-        self._select_row(len(self.names) - 1)
-
     def action_choose(self) -> None:
         """Enter: tell the app the cursor's topic was chosen."""
         if self.current_topic is not None:
             self.post_message(self.Chosen(self.current_topic))
 
-    def on_click(self, event: events.Click) -> None:
+    def row_clicked(self, row: int, event: events.Click) -> None:
         """A click selects the row; a double click chooses it."""
-        offset = event.get_content_offset(self)
-        if offset is None or offset.y < 1:
-            return
-        row = self.top_row + offset.y - 1
-        if row < len(self.names):
-            self._select_row(row)
-            if event.chain >= 2:
-                self.action_choose()
+        self.select_row(row)
+        if event.chain >= 2:
+            self.action_choose()
 
     # -- drawing -----------------------------------------------------------------------------------
     def _line(self, texts: Sequence[str]) -> str:
@@ -193,7 +148,7 @@ class TopicTable(ScrollView, can_focus=True):
         scroll_x = int(self.scroll_x)
         if y == 0:
             text = self._line(COLUMNS)
-            style = self.get_component_rich_style("topic-table--header")
+            style = self.get_component_rich_style("row-table--header")
         else:
             row = self.top_row + y - 1
             if row >= len(self.rows):
@@ -202,12 +157,8 @@ class TopicTable(ScrollView, can_focus=True):
             text = self._line(topic.cells())
             style = self.rich_style + self.get_component_rich_style(_LIVENESS_CLASSES[topic.liveness])
             if topic.name == self.cursor_topic:
-                cursor = self.get_component_rich_style("topic-table--cursor")
+                cursor = self.get_component_rich_style("row-table--cursor")
                 style += Style(bgcolor=cursor.bgcolor, bold=cursor.bold)
             style = readable(style, color_system(self.app.console.color_system))
         strip = Strip([Segment(text.ljust(width), style)], width)
         return strip.crop(scroll_x, scroll_x + self.scrollable_content_region.width)
-
-    def visible_texts(self) -> list[str]:
-        """The text of every visible line (header first), as drawn."""
-        return [self.render_line(y).text for y in range(self.scrollable_content_region.height)]

@@ -22,7 +22,8 @@ from dataclasses import dataclass
 
 from rostui.tools.topic.rates import BURST_FRACTION, BwStats, HzStats, window_rate
 
-__all__ = ["TopicStats", "Sample", "window_rate", "BURST_FRACTION", "RATE_WINDOW_SECONDS", "HISTORY", "STALE_MIN_SECONDS", "STALE_PERIODS"]
+__all__ = ["TopicStats", "Sample", "window_rate", "BURST_FRACTION", "RATE_WINDOW_SECONDS", "HISTORY",
+           "STALE_MIN_SECONDS", "STALE_PERIODS"]
 
 #: Seconds of arrivals the rate is computed over (at least the last two arrivals are always kept).
 RATE_WINDOW_SECONDS = 10.0

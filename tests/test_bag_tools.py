@@ -422,7 +422,7 @@ def test_ctrl_c_during_a_lazy_import_is_still_an_interrupt(command: str, tmp_pat
                                                            monkeypatch: pytest.MonkeyPatch,
                                                            capsys: pytest.CaptureFixture[str]) -> None:
     from rostui.cli import bag_cmd
-    from rostui.core.bag import compress, filter as bag_filter
+    from rostui.tools.bag import compress, filter as bag_filter
 
     def interrupted_in_import(*_args: Any, **_kwargs: Any) -> None:
         raise interrupted_import()

@@ -10,7 +10,10 @@ from std_msgs.msg import String
 
 
 def say(*items):
-    print("=", *items, flush=True)
+    # one write per line: at DEBUG, rospy's own threads log to stdout too ("connecting to ..."), and print()'s
+    # separate writes of items, spaces and newline let such a line land inside ours
+    sys.stdout.write(" ".join(["=", *map(str, items)]) + "\n")
+    sys.stdout.flush()
 
 
 say("before", rospy.get_name(), rospy.get_caller_id(), rospy.get_namespace())

@@ -19,6 +19,7 @@ from typing import Any, ClassVar, Iterable
 from textual.app import ComposeResult
 from textual.binding import Binding, BindingType
 from textual.containers import VerticalScroll
+from textual.reactive import reactive
 from textual.timer import Timer
 from textual.widgets import Input, Static
 
@@ -46,6 +47,10 @@ NOTICE_SECONDS = 4.0
 
 #: Seconds the search waits after a keystroke before filtering (typing fast filters once).
 SEARCH_DELAY = 0.06
+
+#: The app's state the filter bar and status line show besides the model's counters: a change to any
+#: repaints them (one watch, set up in :meth:`ConsoleApp.on_mount`).
+BAR_STATE = ("spec", "regex_error", "highlights", "notice", "source_state")
 
 
 class Prompt(Input):
@@ -98,6 +103,17 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
         Binding("F,f", "follow", "follow"),
     ]
 
+    spec: reactive[FilterSpec] = reactive(FilterSpec, init=False)
+    """The filters in force."""
+    regex_error: reactive[str] = reactive("", init=False)
+    """Why the last regular expression typed was refused ('' when it was not)."""
+    highlights: reactive[tuple[HighlightRule, ...]] = reactive(tuple, init=False)
+    """The highlight rules, in the order they were added."""
+    notice: reactive[tuple[float, str]] = reactive((0.0, ""), init=False)
+    """When a notice was given (monotonic seconds) and its text, shown for :data:`NOTICE_SECONDS`."""
+    source_state: reactive[SourceState | None] = reactive(None, init=False)
+    """The live source's link to the master (None when reading a file)."""
+
     def __init__(self, options: ConsoleOptions | None = None, log: RosoutLog | None = None, *,
                  master_uri: str | None = None, log_name: str | None = None, freeze_gc: bool = False) -> None:
         super().__init__()
@@ -105,14 +121,11 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
         self.options = options or ConsoleOptions()
         self.model = ConsoleModel(self.options.max_messages, min_level=self.options.min_level)
         self.spec = self.options.filter_spec()
-        self.highlights: list[HighlightRule] = []
         self.log_file = log
         self.log_name = log_name or (str(log.path) if log is not None else "")
         self.master_uri = master_uri or master_uri_from_env()
         self.source: LiveSource | None = None if log is not None else LiveSource(self.master_uri, self._on_state)
         self.source_state = self.source.state if self.source else None
-        self.regex_error = ""
-        self._notice: tuple[float, str] = (0.0, "")
         self._before_prompt: FilterSpec | None = None
         self._search_timer: Timer | None = None
         self._shown_version = -1
@@ -154,6 +167,9 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
             self.run_worker(self.source.run(), name="rosout_agg", exclusive=True, exit_on_error=False)
         self.set_interval(1.0 / INGEST_RATE, self.take_batch)
         self.table.focus()
+        for name in BAR_STATE:
+            self.watch(self, name, self.refresh_bars, init=False)
+        self.watch(self.table, "follow", self.refresh_bars, init=False)  # FOLLOW or SCROLL
         self.refresh_bars()
         if self.freeze_gc:
             self.call_after_refresh(gc.freeze)
@@ -187,17 +203,15 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
         elif state.status is LinkStatus.CONNECTED and previous is not None and previous.status is LinkStatus.LOST:
             self.notify(f"master {state.master_uri} is back: listening to /rosout_agg again", title="master",
                         timeout=6)
-        self.refresh_bars()
 
     # -- bars ------------------------------------------------------------------------------------------
     def say(self, text: str) -> None:
         """Show a notice in the status line for a few seconds."""
-        self._notice = (time.monotonic(), text)
-        self.refresh_bars()
+        self.notice = (time.monotonic(), text)
 
     def status_info(self) -> StatusInfo:
         """The status line's state besides the model's counters."""
-        stamp, notice = self._notice
+        stamp, notice = self.notice
         notice = notice if time.monotonic() - stamp < NOTICE_SECONDS else ""
         if self.log_file is not None:
             source, ok = f"file {self.log_name}", True
@@ -209,12 +223,8 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
 
     def refresh_bars(self) -> None:
         """Bring the filter bar and status line up to date (each repaints only if its text changed)."""
-        self.filter_bar.show(filter_markup(self.spec, self.model, self.highlights, self.regex_error))
+        self.filter_bar.show(filter_markup(self.spec, self.model, list(self.highlights), self.regex_error))
         self.status_bar.show(status_markup(self.model, self.status_info()))
-
-    def on_log_table_follow_changed(self, _message: LogTable.FollowChanged) -> None:
-        """The status line shows FOLLOW or SCROLL."""
-        self.refresh_bars()
 
     def on_log_table_cursor_moved(self, message: LogTable.CursorMoved) -> None:
         """The detail pane follows the selected message."""
@@ -236,13 +246,11 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
             self.model.set_filter(spec)
         except FilterError as exc:
             self.regex_error = str(exc)
-            self.refresh_bars()
             return False
-        self.spec = spec
-        self.regex_error = ""
         self._shown_version = self.model.version
         self.table.refilter()
-        self.refresh_bars()
+        self.spec = spec
+        self.regex_error = ""
         return True
 
     def action_toggle_level(self, level: int) -> None:
@@ -291,10 +299,7 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
 
     def action_clear_highlights(self) -> None:
         """Remove every highlight rule."""
-        self.highlights.clear()
-        self.table.highlights = self.highlights
-        self.table.restyle()
-        self.refresh_bars()
+        self._set_highlights(())
 
     def add_highlight(self, pattern: str, regex: bool) -> bool:
         """Mark messages matching ``pattern`` with the next highlight colour; False for a bad regex."""
@@ -302,14 +307,15 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
             rule = HighlightRule(pattern, regex)
         except FilterError as exc:
             self.regex_error = str(exc)
-            self.refresh_bars()
             return False
         self.regex_error = ""
-        self.highlights.append(rule)
-        self.table.highlights = self.highlights
-        self.table.restyle()
-        self.refresh_bars()
+        self._set_highlights((*self.highlights, rule))
         return True
+
+    def _set_highlights(self, rules: tuple[HighlightRule, ...]) -> None:
+        self.table.highlights = list(rules)
+        self.table.restyle()
+        self.highlights = rules
 
     # -- pause, clear, follow, detail ------------------------------------------------------------------------
     def action_toggle_pause(self) -> None:
@@ -320,7 +326,7 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
             self.show_model()
         else:
             self.model.pause()
-            self.refresh_bars()
+            self.show_model()
 
     def action_clear(self) -> None:
         """Forget the messages shown so far."""
@@ -331,7 +337,6 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
     def action_follow(self) -> None:
         """Follow the newest messages."""
         self.table.set_follow(True)
-        self.refresh_bars()
 
     def action_toggle_detail(self) -> None:
         """Show or hide every field of the selected message."""

@@ -77,13 +77,6 @@ class LogTable(RowTable):
             super().__init__()
             self.seq = seq
 
-    class FollowChanged(Message):
-        """Follow mode was entered or left."""
-
-        def __init__(self, follow: bool) -> None:
-            super().__init__()
-            self.follow = follow
-
     def __init__(self, model: ConsoleModel, *, id: str | None = None) -> None:
         super().__init__(id=id)
         self.model = model
@@ -187,10 +180,6 @@ class LogTable(RowTable):
         """A new size: new columns, and in follow mode the newest row at the bottom again."""
         self._cache.clear()
         self.sync()
-
-    def watch_follow(self, follow: bool) -> None:
-        """Tell the app, which shows the mode in the status line."""
-        self.post_message(self.FollowChanged(follow))
 
     # -- cursor ------------------------------------------------------------------------------------
     def _set_cursor(self, seq: int | None) -> None:

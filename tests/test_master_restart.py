@@ -260,3 +260,85 @@ def test_checks_stop_when_the_node_shuts_down(ros_env: dict[str, str]) -> None:
         assert len(fake.calls) == seen
         await server.close()
     run(scenario())
+
+
+def test_the_node_is_the_judge_of_its_master(ros_env: dict[str, str]) -> None:
+    """Waiting (and why), connected once the hooks ran, lost, connected again after a new master; a server that
+    answers getPid with something else is not a master."""
+    from rostui.core.node.master_watch import MasterState
+
+    async def scenario() -> None:
+        fake = FakeMaster()
+        port = free_port()
+        node = await AsyncNode("judged", argv=[], master_uri=f"http://127.0.0.1:{port}").start(announce=False)
+        watch = node.master_watch
+        assert watch is not None
+        states: list[str] = []
+        connects: list[MasterState] = []
+
+        async def on_connect() -> None:
+            connects.append(watch.state)  # the hooks run before the node counts as connected
+
+        watch.on_connect.append(on_connect)
+        watch.listeners.append(lambda state: states.append(state.value))
+        server = XmlRpcServer(fake, "127.0.0.1", port)
+        try:
+            await until(lambda: watch.detail == "no answer")
+            assert watch.state is MasterState.WAITING and connects == []
+
+            real_pid = fake.pid
+            fake.pid = "not-a-pid"  # type: ignore[assignment]
+            await server.start()
+            await until(lambda: "not a pid" in watch.detail)
+            assert watch.state is MasterState.WAITING and connects == []
+
+            fake.pid = real_pid
+            await until(lambda: watch.state is MasterState.CONNECTED)
+            assert connects == [MasterState.WAITING] and node.registrations_renewed == 0
+
+            await server.close()
+            await until(lambda: watch.state is MasterState.LOST)
+            server = XmlRpcServer(fake, "127.0.0.1", port)
+            await server.start()
+            await until(lambda: watch.state is MasterState.CONNECTED)
+            assert len(connects) == 2 and node.registrations_renewed == 1
+
+            fake.run_id = "run-2"  # another master took its place between two checks: lost, then connected again
+            await until(lambda: node.registrations_renewed == 2 and watch.state is MasterState.CONNECTED)
+            assert len(connects) == 3
+            assert states == ["waiting", "waiting", "connected", "lost", "connected", "lost", "connected"]
+        finally:
+            await node.shutdown()
+            await server.close()
+    run(scenario())
+
+
+def test_a_hook_that_fails_is_tried_again_at_the_next_check(ros_env: dict[str, str]) -> None:
+    """A set-up the master failed half-way (it went, or refused) leaves the node waiting; the next check retries."""
+    from rostui.core.node.master_errors import MasterUnreachableError
+    from rostui.core.node.master_watch import MasterState
+
+    async def scenario() -> None:
+        fake = FakeMaster()
+        port = free_port()
+        server = XmlRpcServer(fake, "127.0.0.1", port)
+        await server.start()
+        node = AsyncNode("retried", argv=[], master_uri=f"http://127.0.0.1:{port}")
+        watch = node.master_watch
+        assert watch is not None
+        tries: list[int] = []
+
+        async def flaky() -> None:
+            tries.append(len(tries))
+            if len(tries) == 1:
+                raise MasterUnreachableError("Unable to communicate with master")
+
+        watch.on_connect.append(flaky)
+        await node.start(announce=False)
+        try:
+            await until(lambda: watch.state is MasterState.CONNECTED)
+            assert tries == [0, 1]
+        finally:
+            await node.shutdown()
+            await server.close()
+    run(scenario())

@@ -1,31 +1,28 @@
 """The one link to the master that live views share, and how their status line says it.
 
-:class:`MasterLink` keeps an anonymous node registered with the master at a
-URI for as long as it runs.  Every ``check_period`` seconds (one by default)
-it asks the master for its pid: no answer means the master is gone (the node
-is dropped and the link waits for a master to answer); a different pid means
-a new master (the node registers again, so a restarted master knows it).  Its
-owner sets each new node up in ``on_connect`` (subscriptions, a first poll)
-and may run a ``session`` beside the pid check while the node stays registered.
-The console's and the monitor's sources share it; the graph and logger views
-register nothing, so they only poll.
+:class:`MasterLink` keeps an anonymous node for as long as it runs.  Whether
+the master answers, and whether it is a new one, is the node's own judgement
+(:class:`~rostui.core.node.master_watch.MasterWatch`, every ``check_period``
+seconds): after a restart the node registers again what it has, then the
+link's owner sets it up in ``on_connect`` (a first poll, a subscription it
+does not have yet) and may run a ``session`` beside it while it stays
+connected.  The link only says what the apps show: waiting, connected or
+lost.  The console's, monitor's, view's and tf tree's sources share it; the
+graph and logger views register nothing, so they only poll.
 """
 
 from __future__ import annotations
 
 import asyncio
-import enum
 from dataclasses import dataclass
 from typing import Awaitable, Callable
 
-from rostui.core.node.node import AsyncNode, MasterError, MasterUnreachableError
-from rostui.core.xmlrpc import XmlRpcError, XmlRpcProtocolError
+from rostui.core.node.master_watch import CHECK_PERIOD, MasterState, failure_reason
+from rostui.core.node.node import AsyncNode, MasterError
+from rostui.core.xmlrpc import XmlRpcError
 
-__all__ = ["CALL_TIMEOUT", "CHECK_PERIOD", "MASTER_ERRORS", "LinkStatus", "LinkedSource", "MasterLink", "SourceState",
+__all__ = ["CALL_TIMEOUT", "CHECK_PERIOD", "MASTER_ERRORS", "LinkedSource", "MasterLink", "MasterState", "SourceState",
            "failure_reason"]
-
-#: Seconds between two checks of the master's pid.
-CHECK_PERIOD = 1.0
 
 #: Seconds a master call may take before the master counts as gone.
 CALL_TIMEOUT = 3.0
@@ -34,51 +31,34 @@ CALL_TIMEOUT = 3.0
 MASTER_ERRORS: tuple[type[Exception], ...] = (MasterError, XmlRpcError, OSError, asyncio.TimeoutError)
 
 
-class LinkStatus(str, enum.Enum):
-    """Where a link to the master stands; each equals its lower-case name as a string."""
-
-    WAITING = "waiting"
-    """No master has answered yet."""
-    CONNECTED = "connected"
-    """Registered with a master that answers."""
-    LOST = "lost"
-    """The master answered once and is gone now."""
-
-
 @dataclass(frozen=True)
 class SourceState:
-    """A link's :class:`LinkStatus`, the master's URI and a one-line detail (why it is still waiting)."""
+    """Where a link stands with its master (:class:`MasterState`), the master's URI and why it is still waiting."""
 
-    status: LinkStatus
+    status: MasterState
     master_uri: str
     detail: str = ""
 
     def text(self, marks: bool = False) -> str:
         """One line for a status bar; with ``marks`` a leading ●, ✖ or … and, once connected, no URI."""
-        if self.status is LinkStatus.CONNECTED:
+        if self.status is MasterState.CONNECTED:
             return "● master" if marks else f"master {self.master_uri}"
-        if self.status is LinkStatus.LOST:
+        if self.status is MasterState.LOST:
             return ("✖ " if marks else "") + f"master {self.master_uri} gone: waiting for it to come back"
         return (("… " if marks else "") + f"waiting for master {self.master_uri}"
                 + (f" ({self.detail})" if self.detail else ""))
 
 
-def failure_reason(exc: BaseException) -> str:
-    """An error in a few words: ``no answer`` when the master (or a peer) did not answer, else its first line."""
-    if isinstance(exc, (MasterUnreachableError, OSError, asyncio.TimeoutError)):
-        return "no answer"
-    text = str(exc)
-    return text.splitlines()[0] if text else type(exc).__name__
-
-
 class MasterLink:
-    """One anonymous node ``/<node_name>_<pid>_<ms>`` kept registered with the master at ``master_uri``.
+    """One anonymous node ``/<node_name>_<pid>_<ms>`` kept with the master at ``master_uri``.
 
     Call :meth:`run` as a task and :meth:`stop` to end.  ``on_connect(node)``
-    runs after each registration; ``session(node)``, when given, runs beside
-    the pid check until the master goes or changes (then it is cancelled).
-    Either raising one of :data:`MASTER_ERRORS` counts as losing the master;
-    any other error ends :meth:`run`.  ``on_drop()`` runs before a node is
+    runs after each registration with a master (the first, and again after a
+    new master; it must do only what the node does not have yet);
+    ``session(node)``, when given, runs beside the node while it stays
+    connected and starts again when it is connected again.  A master error in
+    either is the master's failure (the node judges it at its next check);
+    any other error ends :meth:`run`.  ``on_drop()`` runs before the node is
     shut down, and ``on_state`` gets each new :class:`SourceState`.
     """
 
@@ -92,89 +72,93 @@ class MasterLink:
         self.master_uri = master_uri
         self.check_period = check_period
         self.call_timeout = call_timeout
-        self.node: AsyncNode | None = None
-        self.state = SourceState(LinkStatus.WAITING, master_uri)
+        self.state = SourceState(MasterState.WAITING, master_uri)
+        self._node: AsyncNode | None = None
         self._on_connect = on_connect
         self._session = session
         self._on_drop = on_drop
         self._on_state = on_state
         self._stopping = asyncio.Event()
+        self._changed = asyncio.Event()
+        self._changes = 0
+        self._failure: BaseException | None = None
+
+    @property
+    def node(self) -> AsyncNode | None:
+        """The link's node while it is connected to a master."""
+        return self._node if self.state.status is MasterState.CONNECTED else None
 
     async def run(self) -> None:
-        """Register, watch the master, register again after it went or changed; until :meth:`stop`."""
-        had_master = False
-        while not self._stopping.is_set():
-            try:
-                node, pid = await self._register()
-            except MASTER_ERRORS as exc:
-                await self._drop()
-                self._set_state(LinkStatus.LOST if had_master else LinkStatus.WAITING,
-                                "" if had_master else failure_reason(exc))
-                await self._pause(self.check_period)
-                continue
-            if self._stopping.is_set():
-                break
-            had_master = True
-            self._set_state(LinkStatus.CONNECTED)
-            await self._stay(node, pid)
+        """Start the node and keep the session going while it is connected; until :meth:`stop`."""
+        node = AsyncNode(self.node_name, anonymous=True, argv=[], master_uri=self.master_uri,
+                         master_check_period=self.check_period)
+        node.log.console = None  # library warnings must not write over the screen
+        watch = node.master_watch
+        assert watch is not None
+        watch.on_connect.append(lambda: self._connected(node))
+        watch.listeners.append(lambda _state: self._judged(node))
+        self._node = node
+        try:
+            await node.start(announce=False)
+            while not self._stopping.is_set():
+                if self.state.status is MasterState.CONNECTED and self._session is not None:
+                    await self._keep_session(node)
+                else:
+                    await self._next_change(self._changes)
+            if self._failure is not None:
+                raise self._failure
+        finally:
             await self._drop()
-            if not self._stopping.is_set():
-                self._set_state(LinkStatus.LOST)
-        await self._drop()
 
     async def stop(self) -> None:
         """End :meth:`run` and shut the node down."""
         self._stopping.set()
+        self._changed.set()
         await self._drop()
 
-    async def _register(self) -> tuple[AsyncNode, int]:
-        """Start a node with the master, set it up; returns it and the master's pid."""
-        # the link watches the master itself (and starts a fresh node on a new one): the node's own watch off
-        node = AsyncNode(self.node_name, anonymous=True, argv=[], master_uri=self.master_uri, watch_master=False)
-        node.log.console = None  # library warnings must not write over the screen
-        self.node = node
-        await asyncio.wait_for(node.start(publish_rosout=False), self.call_timeout)
-        pid = await self._master_pid(node)
-        if self._on_connect is not None:
-            await self._on_connect(node)
-        return node, pid
-
-    async def _master_pid(self, node: AsyncNode) -> int:
-        answer = await asyncio.wait_for(node.master_call("getPid"), self.call_timeout)
-        if not isinstance(answer, int):
-            raise XmlRpcProtocolError(self.master_uri, f"getPid answered {answer!r:.80}, not a pid")
-        return answer
-
-    async def _stay(self, node: AsyncNode, pid: int) -> None:
-        """Return when the link stops, the master goes or changes, or the session fails with a master error."""
-        watch = asyncio.ensure_future(self._watch(node, pid))
-        tasks: set[asyncio.Future[None]] = {watch}
-        if self._session is not None:
-            tasks.add(asyncio.ensure_future(self._session(node)))
+    async def _connected(self, node: AsyncNode) -> None:
+        """The node's hook after each registration with a master: its logger services once, then the owner's set-up."""
+        await asyncio.wait_for(node.announce(publish_rosout=False), self.call_timeout)
+        if self._on_connect is None:
+            return
         try:
-            pending = set(tasks)
-            while watch in pending:
-                done, pending = await asyncio.wait(pending, return_when=asyncio.FIRST_COMPLETED)
-                for task in done:
-                    error = task.exception()
-                    if error is None:
-                        continue
-                    if isinstance(error, MASTER_ERRORS):
-                        return
-                    raise error
-        finally:
-            for task in tasks:
-                task.cancel()
-            await asyncio.gather(*tasks, return_exceptions=True)
+            await self._on_connect(node)
+        except MASTER_ERRORS:
+            raise
+        except Exception as exc:  # a bug, not the master: end run() with it
+            self._failure = exc
+            self._stopping.set()
+            self._changed.set()
 
-    async def _watch(self, node: AsyncNode, pid: int) -> None:
-        """Return when the link stops, or the master does not answer or answers with another pid."""
-        while not await self._pause(self.check_period):
-            try:
-                if await self._master_pid(node) != pid:
-                    return
-            except MASTER_ERRORS:
-                return
+    def _judged(self, node: AsyncNode) -> None:
+        watch = node.master_watch
+        assert watch is not None
+        detail = watch.detail if watch.state is MasterState.WAITING else ""
+        self._set_state(SourceState(watch.state, self.master_uri, detail))
+
+    async def _keep_session(self, node: AsyncNode) -> None:
+        """Run the session until the node is not connected any more, the link stops or the session fails."""
+        assert self._session is not None
+        change = asyncio.ensure_future(self._next_change(self._changes))
+        session = asyncio.ensure_future(self._session(node))
+        try:
+            await asyncio.wait({session, change}, return_when=asyncio.FIRST_COMPLETED)
+        finally:
+            for task in (session, change):
+                task.cancel()
+            await asyncio.gather(session, change, return_exceptions=True)
+        if not session.cancelled() and session.done():
+            error = session.exception()
+            if error is not None and not isinstance(error, MASTER_ERRORS):
+                raise error
+            if error is not None:  # the master failed it: the node's next check says whether it is gone
+                await self._pause(self.check_period)
+
+    async def _next_change(self, seen: int) -> None:
+        """Wait until the link's state changed since it had made ``seen`` changes, or it stops."""
+        while self._changes == seen and not self._stopping.is_set():
+            self._changed.clear()
+            await self._changed.wait()
 
     async def _pause(self, seconds: float) -> bool:
         """Wait ``seconds`` or until :meth:`stop`; True when stopping."""
@@ -185,7 +169,7 @@ class MasterLink:
         return self._stopping.is_set()
 
     async def _drop(self) -> None:
-        node, self.node = self.node, None
+        node, self._node = self._node, None
         if node is None:
             return
         if self._on_drop is not None:
@@ -195,10 +179,11 @@ class MasterLink:
         except MASTER_ERRORS:  # the master is gone; closing our own sockets is all that matters
             pass
 
-    def _set_state(self, status: LinkStatus, detail: str = "") -> None:
-        state = SourceState(status, self.master_uri, detail)
+    def _set_state(self, state: SourceState) -> None:
         if state != self.state:
             self.state = state
+            self._changes += 1
+            self._changed.set()
             if self._on_state is not None:
                 self._on_state(state)
 

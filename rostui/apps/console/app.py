@@ -35,7 +35,7 @@ from rostui.core.network import master_uri_from_env
 from rostui.models.console.filters import FilterError, FilterSpec, HighlightRule, compile_text
 from rostui.models.console.model import ConsoleModel, ConsoleOptions
 from rostui.models.console.source import LiveSource
-from rostui.models.master_link import LinkStatus, SourceState
+from rostui.models.master_link import MasterState, SourceState
 
 __all__ = ["ConsoleApp", "ConsoleOptions", "run_app"]
 
@@ -198,9 +198,9 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
 
     def _on_state(self, state: SourceState) -> None:
         previous, self.source_state = self.source_state, state
-        if state.status is LinkStatus.LOST:
+        if state.status is MasterState.LOST:
             self.notify(state.text(), title="master", severity="error", timeout=6)
-        elif state.status is LinkStatus.CONNECTED and previous is not None and previous.status is LinkStatus.LOST:
+        elif state.status is MasterState.CONNECTED and previous is not None and previous.status is MasterState.LOST:
             self.notify(f"master {state.master_uri} is back: listening to /rosout_agg again", title="master",
                         timeout=6)
 
@@ -217,8 +217,8 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
             source, ok = f"file {self.log_name}", True
             malformed = self.log_file.malformed_summary()
         else:
-            state = self.source_state or SourceState(LinkStatus.WAITING, self.master_uri)
-            source, ok, malformed = state.text(), state.status is LinkStatus.CONNECTED, ""
+            state = self.source_state or SourceState(MasterState.WAITING, self.master_uri)
+            source, ok, malformed = state.text(), state.status is MasterState.CONNECTED, ""
         return StatusInfo(follow=self.table.follow, source=source, source_ok=ok, malformed=malformed, notice=notice)
 
     def refresh_bars(self) -> None:

@@ -36,7 +36,7 @@ from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.msg import Message
 from rostui.core.network import master_uri_from_env
-from rostui.models.master_link import LinkStatus, SourceState
+from rostui.models.master_link import MasterState, SourceState
 from rostui.models.monitor.plot import PlotFieldError, check_numeric, expand_spec, numeric_fields, split_spec
 from rostui.models.monitor.publish import (
     PublishError, Repeater, check_topic, message_from_text, message_template, parse_rate,
@@ -295,9 +295,9 @@ class MonitorApp(ReleasesOnExit, KeysApp):
             parts.append(self.notice)
         self.query_one("#status", Line).set(escape(" │ ".join(parts)))
         problem = ""
-        if self.source.state.status is not LinkStatus.CONNECTED:
+        if self.source.state.status is not MasterState.CONNECTED:
             problem = self.source.state.text()
-            if self.source.state.status is LinkStatus.WAITING:
+            if self.source.state.status is MasterState.WAITING:
                 problem += "; start one with `rostui core` (retrying)"
         elif self.rows and not self.shown:
             problem = f"no topic matches {self.filter_text!r}"

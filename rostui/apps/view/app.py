@@ -24,7 +24,7 @@ from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core.network import master_uri_from_env
-from rostui.models.master_link import LinkStatus, SourceState
+from rostui.models.master_link import MasterState, SourceState
 
 __all__ = ["ViewApp", "ViewScreen", "run_app", "KEYS"]
 
@@ -67,11 +67,11 @@ class ViewApp(ReleasesOnExit, KeysApp):
         if self.released:
             return
         text = state.text(marks=True)
-        if state.status is LinkStatus.WAITING:
+        if state.status is MasterState.WAITING:
             text += "; start one with `rostui core` (retrying)"
         for line in self.query("#status").results(Static):
             line.update(escape(text))
-            line.set_class(state.status is not LinkStatus.CONNECTED, "problem")
+            line.set_class(state.status is not MasterState.CONNECTED, "problem")
 
     async def release(self) -> None:
         """Unsubscribe, leave the master."""

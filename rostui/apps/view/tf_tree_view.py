@@ -21,7 +21,7 @@ from textual.widgets import DataTable, Static
 
 from rostui.apps.view.registry import TopicView
 from rostui.core.msg import foreign_version
-from rostui.models.master_link import LinkStatus
+from rostui.models.master_link import MasterState
 from rostui.models.frame_budget import FrameBudget
 from rostui.models.tf.buffer import Edge, TfBuffer, TfError
 from rostui.models.tf.source import TfSource
@@ -255,7 +255,7 @@ class TfTreeView(TopicView):
     def _update_summary(self, rows: list[TreeRow]) -> None:
         source = self.source
         problem = False
-        if source is not None and source.state.status is not LinkStatus.CONNECTED:
+        if source is not None and source.state.status is not MasterState.CONNECTED:
             text = source.state.text(marks=True)
             problem = True
         elif self.one_message:

@@ -115,6 +115,8 @@ class NodeLogging:
         self.header_class = get_message_class("std_msgs/Header")
         self.rosout: MessagePublisher | None = None
         self.file: NodeLogFile | None = None
+        #: The logger services announced so far (``~get_loggers``, ``~set_logger_level``).
+        self.served: set[str] = set()
         self.forwarder: LibraryLogForwarder | None = None
 
     def attach(self) -> None:
@@ -122,18 +124,25 @@ class NodeLogging:
         self.forwarder = attach_library_log(self.node)
 
     async def announce(self, *, publish_rosout: bool = True) -> None:
-        """Register /rosout and the logger services; open the node's log file."""
+        """Register /rosout and the logger services; open the node's log file.
+
+        Called again after a failure (the master went away half-way), it does only what is left.
+        """
         node = self.node
-        if publish_rosout:
+        if publish_rosout and self.rosout is None:
             self.rosout = await node.advertise("/rosout", self.log_class, queue_size=ROSOUT_QUEUE)
             node.log.add_sink(self.publish)
-        await node.advertise_service("~get_loggers", get_service_class("roscpp/GetLoggers"), self.get_loggers)
-        await node.advertise_service("~set_logger_level", get_service_class("roscpp/SetLoggerLevel"),
-                                     self.set_logger_level)
-        run_id = await node.get_param("/run_id", None)
-        folder = run_log_dir(str(run_id)) if run_id else log_root()
-        self.file = NodeLogFile.for_node(node.name, folder, node.args.log)
-        node.log.add_sink(self.file)
+        services = (("~get_loggers", "roscpp/GetLoggers", self.get_loggers),
+                    ("~set_logger_level", "roscpp/SetLoggerLevel", self.set_logger_level))
+        for name, srv_type, handler in services:
+            if name not in self.served:
+                await node.advertise_service(name, get_service_class(srv_type), handler)
+                self.served.add(name)
+        if self.file is None:
+            run_id = await node.get_param("/run_id", None)
+            folder = run_log_dir(str(run_id)) if run_id else log_root()
+            self.file = NodeLogFile.for_node(node.name, folder, node.args.log)
+            node.log.add_sink(self.file)
 
     def publish(self, record: LogRecord) -> None:
         """The /rosout sink: one rosgraph_msgs/Log per record."""

@@ -4,13 +4,14 @@ The node serves the slave XML-RPC API and one TCPROS server for topics and
 services, registers with the master, and keeps every publication,
 subscription and service it owns so that shutdown can unregister them all.
 
-It also outlives its master, which ROS 1 nodes do not: about every second
-(:data:`MASTER_CHECK_PERIOD`) it asks the master its pid and ``/run_id``, and
-when another master answers (either changed, or it did not answer and now
-does) the node registers again everything it has: publishers, subscribers,
-services and parameter subscriptions.  A restarted master then knows every
-rostui node, and sends publisherUpdate as usual.  The check runs beside the
-node's traffic, on its own connection; nothing is added per message.
+It also outlives its master, which ROS 1 nodes do not: its
+:class:`~rostui.core.node.master_watch.MasterWatch` asks the master about every
+second who it is, and when another master answers (either changed, or it did
+not answer and now does) the node registers again everything it has:
+publishers, subscribers, services and parameter subscriptions.  A restarted
+master then knows every rostui node, and sends publisherUpdate as usual.  The
+check runs beside the node's traffic, on its own connection; nothing is added
+per message.
 """
 
 from __future__ import annotations
@@ -29,6 +30,10 @@ from rostui.core.network import Addressing, connect_host, master_uri_from_env, r
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.busypoll import BusyPoll, busy_poll_for
 from rostui.core.node.logging_link import NodeLogging
+from rostui.core.node.master_errors import MasterError as MasterError
+from rostui.core.node.master_errors import MasterRefusedError as MasterRefusedError
+from rostui.core.node.master_errors import MasterUnreachableError as MasterUnreachableError
+from rostui.core.node.master_watch import CHECK_PERIOD, MasterWatch
 from rostui.core.node.header_check import HeaderCheck
 from rostui.core.node.params import ParamCache
 from rostui.core.node.services import ServiceException, ServiceProxy, ServiceServer, probe_header
@@ -36,41 +41,11 @@ from rostui.core.tcpros import encode_header
 from rostui.core.node.slave import SlaveApi
 from rostui.core.node.topics import Publication, Subscription, TopicType
 from rostui.core.node.transport import InboundConnection, InboundHandler
-from rostui.core.xmlrpc import (
-    RosApiError, XmlRpcClient, XmlRpcConnectionError, XmlRpcError, XmlRpcFault, XmlRpcServer, ros_result,
-)
+from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, XmlRpcServer, ros_result
 
 log = logging.getLogger("rostui.node")
 
 _LOCAL_NODES: dict[str, "AsyncNode"] = {}
-
-#: Seconds between two checks of who the master is.
-MASTER_CHECK_PERIOD = 1.0
-
-#: Seconds a check may wait for the master's answer before the master counts as not answering.
-MASTER_CHECK_TIMEOUT = 3.0
-
-
-def _multicall_value(answer: Any) -> Any:
-    """The value of one ROS API call inside a ``system.multicall`` answer, or None (a fault, a failure code)."""
-    if isinstance(answer, list) and len(answer) == 1:
-        try:
-            return ros_result(answer[0])
-        except (RosApiError, XmlRpcError):
-            return None
-    return None
-
-
-class MasterError(Exception):
-    """The master could not be reached or refused a call."""
-
-
-class MasterUnreachableError(MasterError):
-    """The master did not answer at all (down, wrong URI, network)."""
-
-
-class MasterRefusedError(MasterError):
-    """The master answered with a failure code (e.g. no such parameter or service)."""
 
 
 class Publisher:
@@ -144,12 +119,15 @@ class AsyncNode:
     spins briefly between densely arriving messages instead of sleeping
     (:mod:`rostui.core.node.busypoll`); the sync API turns it on.  With
     ``watch_master`` (the default) the node registers everything again when
-    a new master answers at its URI (see the module's docstring).
+    a new master answers at its URI (see the module's docstring), checking
+    every ``master_check_period`` seconds; :attr:`master_watch` tells where
+    the node stands with its master.
     """
 
     def __init__(self, name: str, *, argv: Sequence[str] | None = None, anonymous: bool = False,
                  master_uri: str | None = None, package: str | None = None, busy_poll: bool = False,
-                 watch_master: bool = True, lenient_name: bool = False) -> None:
+                 watch_master: bool = True, master_check_period: float = CHECK_PERIOD,
+                 lenient_name: bool = False) -> None:
         args = names.parse_argv(list(argv or []))
         self.args = args
         self.argv = list(args.args)
@@ -178,16 +156,8 @@ class AsyncNode:
         self._tcpros: asyncio.AbstractServer | None = None
         self._done: asyncio.Event | None = None
         self._clients: dict[str, XmlRpcClient] = {}
-        self._watch_master = watch_master
-        self._master_identity: tuple[Any, Any] | None = None
-        self._master_answered = False
-        self._master_missed = False
-        self._check_handle: asyncio.Handle | None = None
-        self._check_task: asyncio.Task[None] | None = None
-        self._check_client: XmlRpcClient | None = None
-        self._check_multicall = True
-        #: How many times the node registered everything again with a new master.
-        self.registrations_renewed = 0
+        #: The judge of the master (None with ``watch_master=False``: a node that manages its master itself).
+        self.master_watch = MasterWatch(self, period=master_check_period) if watch_master else None
 
     # -- lifecycle --------------------------------------------------------------
     async def start(self, *, announce: bool = True, publish_rosout: bool = True) -> "AsyncNode":
@@ -211,9 +181,8 @@ class AsyncNode:
         await self._xmlrpc.start()
         self.uri = self._xmlrpc.uri
         _LOCAL_NODES[self.uri] = self
-        if self._watch_master:
-            self._check_client = XmlRpcClient(self.master_uri, timeout=MASTER_CHECK_TIMEOUT)
-            self._check_handle = self.loop.call_soon(self._begin_master_check)
+        if self.master_watch is not None:
+            self.master_watch.start()
         for key, value in self.args.params.items():
             await self.set_param("~" + key, value)
         if announce:
@@ -270,7 +239,8 @@ class AsyncNode:
                 await self._done.wait()
             return
         self.shutdown_reason = reason
-        await self._stop_master_checks()
+        if self.master_watch is not None:
+            await self.master_watch.stop()
         for hook in list(self.shutdown_hooks):
             try:
                 hook(reason)
@@ -299,7 +269,7 @@ class AsyncNode:
             self._tcpros.close()
         if self._xmlrpc is not None:
             await self._xmlrpc.close()
-        for client in [self._master, self._check_client, *self._clients.values()]:
+        for client in [self._master, *self._clients.values()]:
             if client is not None:
                 await client.close()
         self.logging.close()
@@ -307,84 +277,22 @@ class AsyncNode:
         self._done.set()
 
     # -- a new master --------------------------------------------------------------
-    def _begin_master_check(self) -> None:
-        self._check_handle = None
-        if not self.is_shutdown:
-            self._check_task = self.loop.create_task(self._master_check())
-
-    async def _master_check(self) -> None:
-        try:
-            await self.check_master()
-        except Exception as exc:  # a failed check is retried at the next one; it must not end them
-            log.debug("master check failed: %s", exc)
-        finally:
-            self._check_task = None
-            if not self.is_shutdown:
-                self._check_handle = self.loop.call_later(MASTER_CHECK_PERIOD, self._begin_master_check)
-
-    async def _stop_master_checks(self) -> None:
-        if self._check_handle is not None:
-            self._check_handle.cancel()
-            self._check_handle = None
-        task = self._check_task
-        if task is not None and task is not asyncio.current_task():
-            task.cancel()
-            await asyncio.gather(task, return_exceptions=True)
-
-    async def _master_identity_now(self) -> tuple[Any, Any] | None:
-        """The master's ``(pid, /run_id)``, either None where it does not say; None when it does not answer.
-
-        One round trip (``system.multicall``, which rosmaster and rostui's master serve), or two to a
-        master without it.
-        """
-        client = self._check_client
-        assert client is not None
-        try:
-            if self._check_multicall:
-                try:
-                    answers = await client.call("system.multicall", [
-                        {"methodName": "getPid", "params": [self.name]},
-                        {"methodName": "getParam", "params": [self.name, "/run_id"]}])
-                    if isinstance(answers, list) and len(answers) == 2:
-                        pid, run_id = (_multicall_value(answer) for answer in answers)
-                        return pid, run_id
-                except XmlRpcFault:
-                    pass
-                self._check_multicall = False
-            return await self._plain_value(client, "getPid"), await self._plain_value(client, "getParam", "/run_id")
-        except (XmlRpcError, OSError):
-            return None
-
-    async def _plain_value(self, client: XmlRpcClient, method: str, *args: Any) -> Any:
-        try:
-            return ros_result(await client.call(method, self.name, *args))
-        except (RosApiError, XmlRpcFault):
-            return None
+    @property
+    def registrations_renewed(self) -> int:
+        """How many times the node registered everything again with a new master."""
+        return self.master_watch.renewals if self.master_watch is not None else 0
 
     async def check_master(self) -> bool:
-        """Check who the master is; register everything again if it is not the one the node knew.
+        """Check who the master is now; register everything again if it is not the one the node knew.
 
-        A new master is one whose pid or ``/run_id`` differs from the last
-        answer's, or any master that answers after one did not.  Returns True
-        when the node registered again.  The node does this about every
-        second by itself; call it to do it now.
+        Returns True when the node registered again.  The node does this about every second by itself
+        (:class:`~rostui.core.node.master_watch.MasterWatch`); call it to do it now.
         """
-        identity = await self._master_identity_now()
-        if identity is None:
-            self._master_missed = self._master_missed or self._master_answered or self._has_registrations()
-            return False
-        known, self._master_identity = self._master_identity, identity
-        self._master_answered = True
-        if not self._master_missed and (known is None or known == identity):
-            return False
-        self._master_missed = True  # until everything is registered again: a failure below retries next time
-        log.info("a new master answers at %s (pid %s, run_id %s): registering again", self.master_uri, *identity)
-        await self.register_again()
-        self._master_missed = False
-        self.registrations_renewed += 1
-        return True
+        assert self.master_watch is not None, "the node was made with watch_master=False"
+        return await self.master_watch.check()
 
-    def _has_registrations(self) -> bool:
+    def has_registrations(self) -> bool:
+        """Whether the node has anything registered with the master (a topic, a service, a parameter)."""
         return bool(self.publications or self.subscriptions or self.services or self.params.keys())
 
     async def register_again(self) -> None:

@@ -62,7 +62,9 @@ class LiveSource(LinkedSource):
         self.inbox.append(entry_from_message(msg))
 
     async def _subscribe(self, node: AsyncNode) -> None:
-        await node.subscribe("/rosout_agg", self._log_class, self._receive)
+        """After each registration with a master: subscribed once (the node registers it again itself)."""
+        if "/rosout_agg" not in node.subscriptions:
+            await node.subscribe("/rosout_agg", self._log_class, self._receive)
         self.subscriptions += 1
 
     async def run(self) -> None:

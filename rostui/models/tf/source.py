@@ -66,8 +66,11 @@ class TfSource(LinkedSource):
         self.link = MasterLink(node_name, master_uri, on_connect=self._subscribe, on_state=on_state)
 
     async def _subscribe(self, node: AsyncNode) -> None:
-        await node.subscribe(TF_TOPIC, AnyMsg, self._on_message, callback_args=False, check=self.refused)
-        await node.subscribe(TF_STATIC_TOPIC, AnyMsg, self._on_message, callback_args=True, check=self.refused)
+        """After each registration with a master: subscribed once (the node registers them again itself)."""
+        if TF_TOPIC not in node.subscriptions:
+            await node.subscribe(TF_TOPIC, AnyMsg, self._on_message, callback_args=False, check=self.refused)
+        if TF_STATIC_TOPIC not in node.subscriptions:
+            await node.subscribe(TF_STATIC_TOPIC, AnyMsg, self._on_message, callback_args=True, check=self.refused)
 
     def _on_message(self, raw: Any, static: bool) -> None:
         self.messages += 1

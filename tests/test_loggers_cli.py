@@ -80,7 +80,7 @@ def test_no_master_and_no_terminal(ros_env: dict[str, str]) -> None:
     """No master: one line naming its URI.  The app without a terminal: one line saying what to use."""
     result = rostui(["loggers", "/rosout"], ros_env)
     port = master_port(ros_env)
-    assert (result.returncode, result.stderr) == (1, f"ERROR: master at http://127.0.0.1:{port}/ is not answering\n")
+    assert (result.returncode, result.stderr) == (1, f"ERROR: Unable to communicate with master at http://127.0.0.1:{port}/\n")
     result = rostui(["loggers"], ros_env)
     assert result.returncode == 1
     assert result.stderr.startswith("ERROR: rostui loggers draws in a terminal"), result.stderr

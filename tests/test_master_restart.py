@@ -315,7 +315,7 @@ def test_the_node_is_the_judge_of_its_master(ros_env: dict[str, str]) -> None:
 
 def test_a_hook_that_fails_is_tried_again_at_the_next_check(ros_env: dict[str, str]) -> None:
     """A set-up the master failed half-way (it went, or refused) leaves the node waiting; the next check retries."""
-    from rostui.core.node.master_errors import MasterUnreachableError
+    from rostui.core.master_errors import MasterUnreachableError
     from rostui.core.node.master_watch import MasterState
 
     async def scenario() -> None:
@@ -331,7 +331,7 @@ def test_a_hook_that_fails_is_tried_again_at_the_next_check(ros_env: dict[str, s
         async def flaky() -> None:
             tries.append(len(tries))
             if len(tries) == 1:
-                raise MasterUnreachableError("Unable to communicate with master")
+                raise MasterUnreachableError(node.master_uri, "went half-way")
 
         watch.on_connect.append(flaky)
         await node.start(announce=False)

@@ -28,6 +28,7 @@ def _topic_list(args: Sequence[str]) -> int:
 def _param_get(args: Sequence[str]) -> int:
     """``param get NAME`` over :func:`quick_call`; PyYAML loads only for values it must format."""
     from rostui.cli.common import fail, master_uri
+    from rostui.core.master_errors import unreachable_text
     from rostui.core.xmlrpc import RosApiError, XmlRpcConnectionError, ros_result
     from rostui.core.xmlrpc.quick import quick_call
     from rostui.tools.param_quick import script_resolve, simple_value_text
@@ -37,7 +38,7 @@ def _param_get(args: Sequence[str]) -> int:
     try:
         value = ros_result(quick_call(uri, "getParam", "/rosparam", key, timeout=10.0))
     except XmlRpcConnectionError:
-        fail(f"ERROR: Unable to communicate with master at {uri}")
+        fail(f"ERROR: {unreachable_text(uri)}")
     except RosApiError:
         from rostui.cli.common import suggestion
         from rostui.tools.suggest import with_namespaces

@@ -41,7 +41,7 @@ def loggers_command(
         else:
             assert level is not None
             tools.change_level(target, logger, level, timeout=timeout)
-    except (tools.LoggerToolError, ValueError) as exc:
+    except tools.LOGGER_ERRORS + (ValueError,) as exc:
         fail(f"ERROR: {exc}")
 
 

@@ -69,6 +69,7 @@ def _run_async(coro: Any) -> int:
     """Run a long-running tool; one-line errors for what it reports."""
     import asyncio
 
+    from rostui.core.master_errors import MasterUnreachableError
     from rostui.tools.topic.common import TopicToolError
 
     runner: Callable[[Coroutine[Any, Any, int]], int]
@@ -80,7 +81,7 @@ def _run_async(coro: Any) -> int:
         runner = asyncio.run
     try:
         return runner(coro)
-    except TopicToolError as e:
+    except (TopicToolError, MasterUnreachableError) as e:
         _fail(f"ERROR: {e}")
     except KeyboardInterrupt:
         return 0

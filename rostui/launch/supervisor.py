@@ -36,7 +36,7 @@ import yaml
 from rostui.core.log.files import ros_home, run_log_dir
 from rostui.core.msg import MessageError
 from rostui.core.network import resolve_addressing
-from rostui.core.master.embedded import EmbeddedMaster, MasterUnavailableError, ensure_master, \
+from rostui.core.master.embedded import EmbeddedMaster, MasterStartError, ensure_master, \
     master_answers
 from rostui.core.xmlrpc import XmlRpcClient, XmlRpcError
 from rostui.core.xmlrpc.server import XmlRpcServer
@@ -211,7 +211,7 @@ class Supervisor:
             return
         try:
             self.embedded = await ensure_master(self.master_uri)
-        except MasterUnavailableError as exc:
+        except MasterStartError as exc:
             raise LaunchError(str(exc)) from None
         except MessageError as exc:  # the in-process /rosout needs rosgraph_msgs/Log
             reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__

@@ -4,8 +4,10 @@ Every roscpp, rospy and rostui node serves ``<node>/get_loggers`` and
 ``<node>/set_logger_level`` (roscpp/GetLoggers, roscpp/SetLoggerLevel).
 :class:`LoggerLevels` finds those nodes in the master's service list and calls
 the services from an unannounced node on the caller's event loop, with a
-timeout on every call.  Each failure becomes one :class:`LoggerToolError`
-line naming what went wrong: the master, the node or the service.
+timeout on every call.  Each failure is one line naming what went wrong: the
+master (:class:`~rostui.core.master_errors.MasterUnreachableError`, as
+everywhere in rostui), the node or the service (a :class:`LoggerToolError`);
+:data:`LOGGER_ERRORS` holds both.
 
 Nodes spell levels differently: roscpp and rostui answer ``info``, rospy
 ``INFO``.  Levels are shown upper case; requests send upper case names,
@@ -19,6 +21,7 @@ from dataclasses import dataclass
 from typing import Any, Iterable, Sequence
 
 from rostui.core.log import Level
+from rostui.core.master_errors import MasterUnreachableError
 
 __all__ = [
     "LEVEL_NAMES",
@@ -27,8 +30,8 @@ __all__ = [
     "DEFAULT_TIMEOUT",
     "LoggerNode",
     "LoggerLevel",
+    "LOGGER_ERRORS",
     "LoggerToolError",
-    "MasterGoneError",
     "NodeGoneError",
     "ServiceFailedError",
     "ServiceTimeoutError",
@@ -75,10 +78,6 @@ class LoggerToolError(Exception):
     """A one-line, user-facing reason a logger query or change failed."""
 
 
-class MasterGoneError(LoggerToolError):
-    """The master does not answer (not running, or went away)."""
-
-
 class NodeGoneError(LoggerToolError):
     """The node no longer serves its logger services or does not accept connections."""
 
@@ -89,6 +88,10 @@ class ServiceFailedError(LoggerToolError):
 
 class ServiceTimeoutError(LoggerToolError):
     """The node did not answer within the timeout."""
+
+
+#: Everything a logger query or change raises for the user to read: the master, the node, the service.
+LOGGER_ERRORS: tuple[type[Exception], ...] = (LoggerToolError, MasterUnreachableError)
 
 
 def display_level(text: str) -> str:
@@ -168,14 +171,14 @@ class LoggerLevels:
 
     async def nodes(self) -> list[LoggerNode]:
         """Nodes that serve ``get_loggers`` now, sorted by name."""
-        from rostui.core.node.node import MasterError
+        from rostui.core.master_errors import MasterError
 
         try:
             _, _, services = await asyncio.wait_for(self._node.master_call("getSystemState"), self.timeout)
         except asyncio.TimeoutError:
-            raise MasterGoneError(f"master at {self.master_uri} did not answer within {self.timeout:g} s") from None
+            raise MasterUnreachableError(self.master_uri, f"no answer within {self.timeout:g} s") from None
         except MasterError:
-            raise MasterGoneError(f"master at {self.master_uri} is not answering") from None
+            raise MasterUnreachableError(self.master_uri) from None
         return logger_nodes(services)
 
     async def ping(self, node: str) -> int:
@@ -184,15 +187,15 @@ class LoggerLevels:
         NodeGoneError when the master no longer knows it or it does not answer;
         ServiceTimeoutError when it accepts but does not answer in time.
         """
-        from rostui.core.node.node import MasterRefusedError, MasterUnreachableError
+        from rostui.core.master_errors import MasterRefusedError
         from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, XmlRpcError, ros_result
 
         try:
             uri = await asyncio.wait_for(self._node.master_call("lookupNode", node), self.timeout)
         except asyncio.TimeoutError:
-            raise MasterGoneError(f"master at {self.master_uri} did not answer within {self.timeout:g} s") from None
+            raise MasterUnreachableError(self.master_uri, f"no answer within {self.timeout:g} s") from None
         except MasterUnreachableError:
-            raise MasterGoneError(f"master at {self.master_uri} is not answering") from None
+            raise MasterUnreachableError(self.master_uri) from None
         except MasterRefusedError:
             raise NodeGoneError(f"node {node} is gone: the master no longer lists it") from None
         client = XmlRpcClient(str(uri), timeout=self.timeout + 1.0)  # wait_for below decides the timeout
@@ -224,7 +227,7 @@ class LoggerLevels:
 
     async def _call(self, node: str, service: str, type_name: str, **fields: Any) -> Any:
         from rostui.core.msg import get_service_class
-        from rostui.core.node.node import MasterRefusedError, MasterUnreachableError
+        from rostui.core.master_errors import MasterRefusedError
         from rostui.core.node.services import ServiceException
 
         name = f"{node.rstrip('/')}/{service}"
@@ -236,7 +239,7 @@ class LoggerLevels:
         except ServiceException as exc:
             cause = exc.__cause__
             if isinstance(cause, MasterUnreachableError):
-                raise MasterGoneError(f"master at {self.master_uri} is not answering") from None
+                raise MasterUnreachableError(self.master_uri) from None
             if isinstance(cause, MasterRefusedError):
                 raise NodeGoneError(f"{name} is not registered with the master: node {node} is not running") \
                     from None

@@ -30,7 +30,7 @@ from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.core import names
 from rostui.core.log import Level, LogRecord
 from rostui.core.log.console import format_line
-from rostui.core.master.embedded import EmbeddedMaster, MasterUnavailableError, ensure_master
+from rostui.core.master.embedded import EmbeddedMaster, MasterStartError, ensure_master
 from rostui.core.msg import get_message_class, get_service_class
 from rostui.core.network import master_uri_from_env
 from rostui.core.node.node import AsyncNode, MasterRefusedError, Publisher
@@ -178,7 +178,7 @@ class TurtlesimApp(ReleasesOnExit, KeysApp):
             await self.sim.start()
             if self.teleop:
                 await self._start_teleop_node()
-        except MasterUnavailableError as exc:
+        except MasterStartError as exc:
             await self._fail(f"ERROR: {exc}")
             return
         except Exception as exc:  # a node could not register: say why in one line

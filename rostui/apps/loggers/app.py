@@ -32,9 +32,9 @@ from rostui.apps.loggers.panels import LevelList, LoggerTable, NodeList, Notice
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
+from rostui.core.master_errors import MasterUnreachableError, unreachable_text
 from rostui.models.loggers import (
-    DEFAULT_TIMEOUT, LoggerLevel, LoggerLevels, LoggerNode, LoggerToolError, MasterGoneError, NodeGoneError,
-    preferred_logger,
+    DEFAULT_TIMEOUT, LOGGER_ERRORS, LoggerLevel, LoggerLevels, LoggerNode, NodeGoneError, preferred_logger,
 )
 
 #: Seconds between two readings of the master's node list.
@@ -138,7 +138,7 @@ class LoggersApp(ReleasesOnExit, KeysApp):
     async def _refresh_nodes(self) -> None:
         try:
             nodes = await self.client.nodes()
-        except LoggerToolError as exc:
+        except LOGGER_ERRORS as exc:
             self._master_lost(str(exc))
             return
         self._master_found(nodes)
@@ -150,7 +150,7 @@ class LoggersApp(ReleasesOnExit, KeysApp):
         self.nodes = {}
         self.query_one(NodeList).show_nodes([], None)
         if self.node:
-            self._drop_node(f"{self.node}: the master is not answering", "error")
+            self._drop_node(f"{self.node}: {unreachable_text(self.client.master_uri)}", "error")
 
     def _master_found(self, nodes: list[LoggerNode]) -> None:
         if self.master_ok is False:
@@ -221,7 +221,7 @@ class LoggersApp(ReleasesOnExit, KeysApp):
     async def _ping(self, node: str) -> None:
         try:
             await self.client.ping(node)
-        except LoggerToolError as exc:
+        except LOGGER_ERRORS as exc:
             if node == self.node:
                 self._loggers_failed(exc)
                 self._ping_failed = True
@@ -237,15 +237,15 @@ class LoggersApp(ReleasesOnExit, KeysApp):
     async def _load_loggers(self, node: str) -> None:
         try:
             items = await self.client.loggers(node)
-        except LoggerToolError as exc:
+        except LOGGER_ERRORS as exc:
             if node == self.node:
                 self._loggers_failed(exc)
             return
         if node == self.node:
             self._show_loggers(items)
 
-    def _loggers_failed(self, exc: LoggerToolError) -> None:
-        if isinstance(exc, (NodeGoneError, MasterGoneError)):
+    def _loggers_failed(self, exc: Exception) -> None:
+        if isinstance(exc, (NodeGoneError, MasterUnreachableError)):
             self._drop_node(str(exc), "error")
         else:  # the node is there but did not answer this time: keep the last rows, say why
             self.notice("loggers").say(str(exc), "error")
@@ -299,14 +299,14 @@ class LoggersApp(ReleasesOnExit, KeysApp):
         self.notice("levels").say(f"setting {logger} to {level}…")
         try:
             sent = await self.client.set_level(node, logger, level)
-        except LoggerToolError as exc:
+        except LOGGER_ERRORS as exc:
             self.notice("levels").say(str(exc), "error")
             if node == self.node:
                 self._loggers_failed(exc)
             return
         try:
             items = await self.client.loggers(node)
-        except LoggerToolError as exc:
+        except LOGGER_ERRORS as exc:
             self.notice("levels").say(f"{logger} was sent {sent}; reading it back failed: {exc}", "error")
             if node == self.node:
                 self._loggers_failed(exc)

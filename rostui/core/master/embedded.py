@@ -21,7 +21,7 @@ from rostui.core.rosout import RosoutNode
 PROBE_TIMEOUT = 2.0
 
 
-class MasterUnavailableError(Exception):
+class MasterStartError(Exception):
     """No master answers and none can be started here (remote URI, port taken, ...)."""
 
 
@@ -80,7 +80,7 @@ async def ensure_master(master_uri: str | None = None) -> EmbeddedMaster | None:
 
     Returns None when one already answers (it is reused), or the
     :class:`EmbeddedMaster` started on the running loop when none did and the
-    URI's host is this machine.  Raises :class:`MasterUnavailableError`, with
+    URI's host is this machine.  Raises :class:`MasterStartError`, with
     a one-line reason, when no master answers and none can be started.
     """
     uri = master_uri_from_env(master_uri)
@@ -93,9 +93,9 @@ async def ensure_master(master_uri: str | None = None) -> EmbeddedMaster | None:
     except ValueError:
         port = None
     if parts.scheme != "http" or not host or port is None:
-        raise MasterUnavailableError(f"ROS_MASTER_URI {uri} is not an http://host:port/ address")
+        raise MasterStartError(f"ROS_MASTER_URI {uri} is not an http://host:port/ address")
     if not is_local_host(host):
-        raise MasterUnavailableError(
+        raise MasterStartError(
             f"no master answers at {uri}, and {host} is not this machine, so none can be started here")
     addressing = resolve_addressing(uri)
     # A shutdown call must not terminate the program this master lives in; its owner may await
@@ -108,7 +108,7 @@ async def ensure_master(master_uri: str | None = None) -> EmbeddedMaster | None:
             return None  # another master won the race for the port
         reason = "the port is in use by something that is not a ROS master" \
             if exc.errno == errno.EADDRINUSE else (exc.strerror or str(exc))
-        raise MasterUnavailableError(f"cannot start a master at {uri}: {reason}") from None
+        raise MasterStartError(f"cannot start a master at {uri}: {reason}") from None
     rosout = RosoutNode(master.uri, master.run_id)
     try:
         await rosout.start()

@@ -18,7 +18,7 @@ import enum
 import logging
 from typing import Any, Awaitable, Callable, Protocol
 
-from rostui.core.node.master_errors import MasterUnreachableError
+from rostui.core.master_errors import MasterUnreachableError
 from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, XmlRpcError, XmlRpcFault, ros_result
 
 __all__ = ["CHECK_PERIOD", "CHECK_TIMEOUT", "MasterHost", "MasterState", "MasterWatch", "failure_reason"]

@@ -30,9 +30,9 @@ from rostui.core.network import Addressing, connect_host, master_uri_from_env, r
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.busypoll import BusyPoll, busy_poll_for
 from rostui.core.node.logging_link import NodeLogging
-from rostui.core.node.master_errors import MasterError as MasterError
-from rostui.core.node.master_errors import MasterRefusedError as MasterRefusedError
-from rostui.core.node.master_errors import MasterUnreachableError as MasterUnreachableError
+from rostui.core.master_errors import MasterError as MasterError
+from rostui.core.master_errors import MasterRefusedError as MasterRefusedError
+from rostui.core.master_errors import MasterUnreachableError as MasterUnreachableError
 from rostui.core.node.master_watch import CHECK_PERIOD, MasterWatch
 from rostui.core.node.header_check import HeaderCheck
 from rostui.core.node.params import ParamCache
@@ -207,7 +207,7 @@ class AsyncNode:
                 return
             except MasterError:
                 if self.is_shutdown:
-                    raise MasterUnreachableError("node shut down while waiting for the master") from None
+                    raise MasterUnreachableError(self.master_uri, "node shut down while waiting for it") from None
                 if deadline is not None and self.loop.time() >= deadline:
                     raise
                 if not warned and on_wait is not None:
@@ -351,7 +351,7 @@ class AsyncNode:
         try:
             return ros_result(await self._master.call(method, self.name, *args))
         except XmlRpcConnectionError as exc:
-            raise MasterUnreachableError(f"Unable to communicate with master at {self.master_uri}: {exc}") from exc
+            raise MasterUnreachableError(self.master_uri, str(exc)) from exc
         except RosApiError as exc:
             raise MasterRefusedError(f"master refused {method}: {exc}") from exc
 
@@ -543,7 +543,8 @@ class AsyncNode:
                 return
             except (ServiceException, OSError, asyncio.TimeoutError) as exc:
                 if self.is_shutdown:
-                    raise MasterUnreachableError(f"node shut down while waiting for service {resolved}") from None
+                    raise MasterUnreachableError(self.master_uri, f"node shut down while waiting for service {resolved}") \
+                        from None
                 if deadline is not None and self.loop.time() >= deadline:
                     raise TimeoutError(f"timeout exceeded while waiting for service {resolved}") from exc
             await asyncio.sleep(0.1)

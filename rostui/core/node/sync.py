@@ -39,6 +39,7 @@ from rostui.core.node.errors import ROSException as ROSException
 from rostui.core.node.errors import ROSInterruptException as ROSInterruptException
 from rostui.core.node.errors import ROSTimeMovedBackwardsException as ROSTimeMovedBackwardsException
 from rostui.core.node.engine import Engine
+from rostui.core.master_errors import unreachable_text
 from rostui.core.packages import package_of
 from rostui.core.msg import get_message_class, get_service_class
 from rostui.core.node.services import ServiceException, make_response, probe_service
@@ -134,7 +135,7 @@ def _start_sim_time(engine: Engine, node: _node.AsyncNode) -> None:
     try:
         code, _, value = call_sync(node.master_uri, "getParam", node.name, USE_SIM_TIME_PARAM)
     except XmlRpcConnectionError as exc:
-        raise ROSException(f"Unable to communicate with master at {node.master_uri}: {exc}") from exc
+        raise ROSException(unreachable_text(node.master_uri, str(exc))) from exc
     if code != 1 or not value:
         return
     clock = _state.clock
@@ -454,7 +455,7 @@ class DetachedCaller:
             try:
                 return str(ros_result(await client.call("lookupService", self.name, service)))
             except XmlRpcConnectionError as exc:
-                raise ServiceException(f"Unable to communicate with master at {self.master_uri}: {exc}") from exc
+                raise ServiceException(unreachable_text(self.master_uri, str(exc))) from exc
             except RosApiError as exc:
                 raise ServiceException(f"service [{service}] unavailable") from exc
 
@@ -526,7 +527,7 @@ def _param_call(method: str, *args: Any) -> Any:
     try:
         return ros_result(call_sync(node.master_uri, method, node.name, *args))
     except XmlRpcConnectionError as exc:
-        raise ROSException(f"Unable to communicate with master at {node.master_uri}: {exc}") from exc
+        raise ROSException(unreachable_text(node.master_uri, str(exc))) from exc
 
 
 _MISSING: Any = object()

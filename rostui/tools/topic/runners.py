@@ -67,12 +67,13 @@ class _Run:
 
 
 async def _master(node: Any, method: str, *args: Any) -> Any:
-    from rostui.core.node import MasterUnreachableError
+    """A master call; a master that does not answer raises MasterUnreachableError without its cause's details."""
+    from rostui.core.master_errors import MasterUnreachableError
 
     try:
         return await node.master_call(method, *args)
     except MasterUnreachableError:
-        raise TopicToolError(f"Unable to communicate with master at {node.master_uri}") from None
+        raise MasterUnreachableError(node.master_uri) from None
 
 
 async def _wait_for_topic(run: _Run, topic: str) -> tuple[str, str, str] | None:

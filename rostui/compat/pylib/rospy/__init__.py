@@ -24,6 +24,7 @@ from rostui.core.node.sync import (
     logwarn_throttle, myargv, on_shutdown, signal_shutdown, sleep, spin,
     wait_for_message,
 )
+from rostui.core.master_errors import unreachable_text
 from rostui.core.node.services import parse_rosrpc_uri
 from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync, ros_result
 from rostui.compat.rospy_console import RospyConsole
@@ -354,4 +355,4 @@ def get_published_topics(namespace: str = "/") -> list[list[str]]:
     try:
         return [list(pair) for pair in ros_result(call_sync(master, "getPublishedTopics", get_caller_id(), namespace))]
     except XmlRpcConnectionError as exc:
-        raise ROSException(f"Unable to communicate with master at {master}: {exc}") from exc
+        raise ROSException(unreachable_text(master, str(exc))) from exc

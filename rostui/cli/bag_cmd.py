@@ -255,132 +255,143 @@ PLAY_EXAMPLES = examples(
 )
 
 
+bag_app = typer.Typer(name="bag",
+                      help="Record, play and inspect bags: rosbag .bag by default, MCAP with --mcap or by name.",
+                      no_args_is_help=True, context_settings={"help_option_names": ["-h", "--help"]})
+
+
+@bag_app.command("record", context_settings=CONTEXT, epilog=RECORD_EXAMPLES)
+def record_command(
+    args: list[str] = typer.Argument(None, metavar="[TOPIC]...", help="Topics to record (and name:=value)."),
+    all_topics: bool = typer.Option(False, "-a", "--all", help="Record all topics, also those that appear later."),
+    regex: bool = typer.Option(False, "-e", "--regex",
+                               help="The topics are regular expressions: record every topic whose whole name "
+                                    "matches one, also those that appear later."),
+    exclude: str | None = typer.Option(None, "-x", "--exclude", metavar="REGEX",
+                                       help="Leave out topics whose whole name matches (from -a and -e)."),
+    name: str | None = typer.Option(None, "-O", "--output-name", metavar="NAME",
+                                    help="File name (.mcap: MCAP; otherwise rosbag v2.0, .bag added when "
+                                         "missing)."),
+    prefix: str | None = typer.Option(None, "-o", "--output-prefix", metavar="PREFIX",
+                                      help="Prepend PREFIX to the date-and-time file name."),
+    mcap: bool = typer.Option(False, "--mcap", help="Record MCAP instead of rosbag's .bag (rosbag cannot read "
+                                                    "it; `rostui bag convert` makes a .bag)."),
+    bz2_flag: bool = typer.Option(False, "-j", "--bz2", help="Compress: bz2 in .bag files, zstd in MCAP."),
+    lz4_flag: bool = typer.Option(False, "--lz4", help="lz4 compression."),
+    compression: str | None = typer.Option(None, "--compression", metavar="none|lz4|zstd|bz2",
+                                           help="Chunk compression."),
+    split: bool = typer.Option(False, "--split", help="Start a new file at --size or --duration."),
+    size: float | None = typer.Option(None, "--size", metavar="MB", help="File size limit in MB."),
+    duration: str | None = typer.Option(None, "--duration", metavar="DURATION",
+                                        help="File duration: seconds, or with s, m or h (30, 30s, 5m, 2h)."),
+    max_size: float | None = typer.Option(None, "--max-size", metavar="MB",
+                                          help="Stop when the recording reaches this many MB in all."),
+) -> None:
+    """Record topics into a bag until Ctrl-C (like `rosbag record`)."""
+    raise typer.Exit(run_record(list(args or []), all_topics=all_topics, regex=regex, exclude=exclude,
+                                name=name, prefix=prefix, bz2_flag=bz2_flag, lz4_flag=lz4_flag,
+                                compression=compression, split=split, size=size, duration=duration,
+                                max_size=max_size, mcap=mcap))
+
+
+@bag_app.command("play", context_settings=CONTEXT, epilog=PLAY_EXAMPLES)
+def play_command(
+    args: list[str] = typer.Argument(..., metavar="FILE...", help="Bags to play (and topic:=newtopic)."),
+    rate: float = typer.Option(1.0, "-r", "--rate", metavar="FACTOR", help="Multiply the publish rate by this factor."),
+    loop_play: bool = typer.Option(False, "-l", "--loop", help="Loop playback."),
+    pause: bool = typer.Option(False, "--pause", help="Start paused."),
+    start: float = typer.Option(0.0, "-s", "--start", metavar="SECONDS", help="Start SECONDS into the bag."),
+    duration: float | None = typer.Option(None, "-u", "--duration", metavar="SECONDS",
+                                          help="Play only SECONDS of the bag."),
+    delay: float = typer.Option(0.2, "-d", "--delay", metavar="SECONDS",
+                                help="Wait SECONDS after advertising each topic."),
+    clock: bool = typer.Option(False, "--clock", help="Publish the bag time on /clock."),
+    hz: float = typer.Option(100.0, "--hz", metavar="HZ", help="Rate of /clock messages."),
+    topics: list[str] | None = typer.Option(None, "--topics", metavar="TOPIC",
+                                            help="Play only these topics (repeat the option)."),
+    queue: int = typer.Option(100, "--queue", metavar="SIZE", help="Outgoing queue size of each publisher."),
+    quiet: bool = typer.Option(False, "-q", "--quiet", help="No status line."),
+) -> None:
+    """Play bags back with their original timing (like `rosbag play`)."""
+    raise typer.Exit(run_play(list(args), rate=rate, loop_play=loop_play, pause=pause, start=start,
+                              duration=duration, delay=delay, clock=clock, hz=hz, topics=topics, queue=queue,
+                              quiet=quiet))
+
+
+@bag_app.command("info")
+def info_command(
+    files: list[str] = typer.Argument(..., metavar="FILE...", help="Bags to describe."),
+    as_json: bool = typer.Option(False, "--json", help="Print machine-readable JSON instead of text."),
+    exact: bool = typer.Option(False, "--exact", help="Duration, start and end of the earliest and latest "
+                                                      "message (rosbag takes the first and last chunk)."),
+) -> None:
+    """Summarize bags: times, size, counts, types and topics (like `rosbag info`)."""
+    raise typer.Exit(run_info(list(files), as_json, exact))
+
+
+@bag_app.command("reindex")
+def reindex_command(
+    files: list[str] = typer.Argument(..., metavar="FILE...", help="Bags to rewrite with an index."),
+) -> None:
+    """Repair bags whose recording was cut short (the original is kept as NAME.orig.EXT)."""
+    raise typer.Exit(run_reindex(list(files)))
+
+
+@bag_app.command("convert")
+def convert_command(
+    src: str = typer.Argument(..., metavar="IN", help="The bag to read."),
+    dst: str = typer.Argument(..., metavar="OUT", help="The file to write (.bag: rosbag v2.0, else MCAP)."),
+    compression: str = typer.Option("none", "--compression", metavar="none|lz4|zstd|bz2",
+                                    help="Chunk compression of OUT."),
+) -> None:
+    """Convert between MCAP and rosbag .bag."""
+    raise typer.Exit(run_convert(src, dst, compression))
+
+
+@bag_app.command("filter")
+def filter_command(
+    src: str = typer.Argument(..., metavar="INBAG", help="The bag to read."),
+    dst: str = typer.Argument(..., metavar="OUTBAG", help="The file to write (.bag: rosbag v2.0, else MCAP)."),
+    expr: str = typer.Argument(..., metavar="EXPRESSION",
+                               help="Python expression over topic, m (the message) and t (its time)."),
+    print_expr: str | None = typer.Option(None, "-p", "--print", metavar="PRINT-EXPRESSION",
+                                          help="Print MATCH or NO MATCH and this expression for each message."),
+) -> None:
+    """Copy the messages for which EXPRESSION is true (like `rosbag filter`).
+
+    For example "topic == '/chatter'", "m.data > 5" or "t.to_sec() > 1700000000.5".
+    """
+    raise typer.Exit(run_filter(src, dst, expr, print_expr))
+
+
+@bag_app.command("compress")
+def compress_command(
+    files: list[str] = typer.Argument(..., metavar="BAGFILE...", help="Bags to compress."),
+    bz2_flag: bool = typer.Option(False, "-j", "--bz2", help="bz2 compression (the default; zstd in MCAP)."),
+    lz4_flag: bool = typer.Option(False, "--lz4", help="lz4 compression."),
+    output_dir: str | None = typer.Option(None, "--output-dir", metavar="DIR", help="Write to folder DIR."),
+    force: bool = typer.Option(False, "-f", "--force", help="Overwrite a backup file that exists."),
+    quiet: bool = typer.Option(False, "-q", "--quiet", help="Say nothing of skipped bags."),
+) -> None:
+    """Compress bags in place, keeping NAME.orig.EXT (like `rosbag compress`)."""
+    kind = "lz4" if lz4_flag and not bz2_flag else "strong"
+    raise typer.Exit(run_change_compression("compress", list(files), kind, output_dir, force, quiet))
+
+
+@bag_app.command("decompress")
+def decompress_command(
+    files: list[str] = typer.Argument(..., metavar="BAGFILE...", help="Bags to decompress."),
+    output_dir: str | None = typer.Option(None, "--output-dir", metavar="DIR", help="Write to folder DIR."),
+    force: bool = typer.Option(False, "-f", "--force", help="Overwrite a backup file that exists."),
+    quiet: bool = typer.Option(False, "-q", "--quiet", help="Say nothing of skipped bags."),
+) -> None:
+    """Decompress bags in place, keeping NAME.orig.EXT (like `rosbag decompress`)."""
+    raise typer.Exit(run_change_compression("decompress", list(files), "none", output_dir, force, quiet))
+
+
+bag_view_cmd.register(bag_app)
+
+
 def register(app: typer.Typer) -> None:
     """Add ``rostui bag ...``."""
-    bag_app = typer.Typer(name="bag",
-                          help="Record, play and inspect bags: rosbag .bag by default, MCAP with --mcap or by name.",
-                          no_args_is_help=True, context_settings={"help_option_names": ["-h", "--help"]})
     app.add_typer(bag_app, name="bag")
-
-    @bag_app.command("record", context_settings=CONTEXT, epilog=RECORD_EXAMPLES)
-    def record_command(
-        args: list[str] = typer.Argument(None, metavar="[TOPIC]...", help="Topics to record (and name:=value)."),
-        all_topics: bool = typer.Option(False, "-a", "--all", help="Record all topics, also those that appear later."),
-        regex: bool = typer.Option(False, "-e", "--regex",
-                                   help="The topics are regular expressions: record every topic whose whole name "
-                                        "matches one, also those that appear later."),
-        exclude: str | None = typer.Option(None, "-x", "--exclude", metavar="REGEX",
-                                           help="Leave out topics whose whole name matches (from -a and -e)."),
-        name: str | None = typer.Option(None, "-O", "--output-name", metavar="NAME",
-                                        help="File name (.mcap: MCAP; otherwise rosbag v2.0, .bag added when "
-                                             "missing)."),
-        prefix: str | None = typer.Option(None, "-o", "--output-prefix", metavar="PREFIX",
-                                          help="Prepend PREFIX to the date-and-time file name."),
-        mcap: bool = typer.Option(False, "--mcap", help="Record MCAP instead of rosbag's .bag (rosbag cannot read "
-                                                        "it; `rostui bag convert` makes a .bag)."),
-        bz2_flag: bool = typer.Option(False, "-j", "--bz2", help="Compress: bz2 in .bag files, zstd in MCAP."),
-        lz4_flag: bool = typer.Option(False, "--lz4", help="lz4 compression."),
-        compression: str | None = typer.Option(None, "--compression", metavar="none|lz4|zstd|bz2",
-                                               help="Chunk compression."),
-        split: bool = typer.Option(False, "--split", help="Start a new file at --size or --duration."),
-        size: float | None = typer.Option(None, "--size", metavar="MB", help="File size limit in MB."),
-        duration: str | None = typer.Option(None, "--duration", metavar="DURATION",
-                                            help="File duration: seconds, or with s, m or h (30, 30s, 5m, 2h)."),
-        max_size: float | None = typer.Option(None, "--max-size", metavar="MB",
-                                              help="Stop when the recording reaches this many MB in all."),
-    ) -> None:
-        """Record topics into a bag until Ctrl-C (like `rosbag record`)."""
-        raise typer.Exit(run_record(list(args or []), all_topics=all_topics, regex=regex, exclude=exclude,
-                                    name=name, prefix=prefix, bz2_flag=bz2_flag, lz4_flag=lz4_flag,
-                                    compression=compression, split=split, size=size, duration=duration,
-                                    max_size=max_size, mcap=mcap))
-
-    @bag_app.command("play", context_settings=CONTEXT, epilog=PLAY_EXAMPLES)
-    def play_command(
-        args: list[str] = typer.Argument(..., metavar="FILE...", help="Bags to play (and topic:=newtopic)."),
-        rate: float = typer.Option(1.0, "-r", "--rate", metavar="FACTOR", help="Multiply the publish rate by this factor."),
-        loop_play: bool = typer.Option(False, "-l", "--loop", help="Loop playback."),
-        pause: bool = typer.Option(False, "--pause", help="Start paused."),
-        start: float = typer.Option(0.0, "-s", "--start", metavar="SECONDS", help="Start SECONDS into the bag."),
-        duration: float | None = typer.Option(None, "-u", "--duration", metavar="SECONDS",
-                                              help="Play only SECONDS of the bag."),
-        delay: float = typer.Option(0.2, "-d", "--delay", metavar="SECONDS",
-                                    help="Wait SECONDS after advertising each topic."),
-        clock: bool = typer.Option(False, "--clock", help="Publish the bag time on /clock."),
-        hz: float = typer.Option(100.0, "--hz", metavar="HZ", help="Rate of /clock messages."),
-        topics: list[str] | None = typer.Option(None, "--topics", metavar="TOPIC",
-                                                help="Play only these topics (repeat the option)."),
-        queue: int = typer.Option(100, "--queue", metavar="SIZE", help="Outgoing queue size of each publisher."),
-        quiet: bool = typer.Option(False, "-q", "--quiet", help="No status line."),
-    ) -> None:
-        """Play bags back with their original timing (like `rosbag play`)."""
-        raise typer.Exit(run_play(list(args), rate=rate, loop_play=loop_play, pause=pause, start=start,
-                                  duration=duration, delay=delay, clock=clock, hz=hz, topics=topics, queue=queue,
-                                  quiet=quiet))
-
-    @bag_app.command("info")
-    def info_command(
-        files: list[str] = typer.Argument(..., metavar="FILE...", help="Bags to describe."),
-        as_json: bool = typer.Option(False, "--json", help="Print machine-readable JSON instead of text."),
-        exact: bool = typer.Option(False, "--exact", help="Duration, start and end of the earliest and latest "
-                                                          "message (rosbag takes the first and last chunk)."),
-    ) -> None:
-        """Summarize bags: times, size, counts, types and topics (like `rosbag info`)."""
-        raise typer.Exit(run_info(list(files), as_json, exact))
-
-    @bag_app.command("reindex")
-    def reindex_command(
-        files: list[str] = typer.Argument(..., metavar="FILE...", help="Bags to rewrite with an index."),
-    ) -> None:
-        """Repair bags whose recording was cut short (the original is kept as NAME.orig.EXT)."""
-        raise typer.Exit(run_reindex(list(files)))
-
-    @bag_app.command("convert")
-    def convert_command(
-        src: str = typer.Argument(..., metavar="IN", help="The bag to read."),
-        dst: str = typer.Argument(..., metavar="OUT", help="The file to write (.bag: rosbag v2.0, else MCAP)."),
-        compression: str = typer.Option("none", "--compression", metavar="none|lz4|zstd|bz2",
-                                        help="Chunk compression of OUT."),
-    ) -> None:
-        """Convert between MCAP and rosbag .bag."""
-        raise typer.Exit(run_convert(src, dst, compression))
-
-    @bag_app.command("filter")
-    def filter_command(
-        src: str = typer.Argument(..., metavar="INBAG", help="The bag to read."),
-        dst: str = typer.Argument(..., metavar="OUTBAG", help="The file to write (.bag: rosbag v2.0, else MCAP)."),
-        expr: str = typer.Argument(..., metavar="EXPRESSION",
-                                   help="Python expression over topic, m (the message) and t (its time)."),
-        print_expr: str | None = typer.Option(None, "-p", "--print", metavar="PRINT-EXPRESSION",
-                                              help="Print MATCH or NO MATCH and this expression for each message."),
-    ) -> None:
-        """Copy the messages for which EXPRESSION is true (like `rosbag filter`).
-
-        For example "topic == '/chatter'", "m.data > 5" or "t.to_sec() > 1700000000.5".
-        """
-        raise typer.Exit(run_filter(src, dst, expr, print_expr))
-
-    @bag_app.command("compress")
-    def compress_command(
-        files: list[str] = typer.Argument(..., metavar="BAGFILE...", help="Bags to compress."),
-        bz2_flag: bool = typer.Option(False, "-j", "--bz2", help="bz2 compression (the default; zstd in MCAP)."),
-        lz4_flag: bool = typer.Option(False, "--lz4", help="lz4 compression."),
-        output_dir: str | None = typer.Option(None, "--output-dir", metavar="DIR", help="Write to folder DIR."),
-        force: bool = typer.Option(False, "-f", "--force", help="Overwrite a backup file that exists."),
-        quiet: bool = typer.Option(False, "-q", "--quiet", help="Say nothing of skipped bags."),
-    ) -> None:
-        """Compress bags in place, keeping NAME.orig.EXT (like `rosbag compress`)."""
-        kind = "lz4" if lz4_flag and not bz2_flag else "strong"
-        raise typer.Exit(run_change_compression("compress", list(files), kind, output_dir, force, quiet))
-
-    @bag_app.command("decompress")
-    def decompress_command(
-        files: list[str] = typer.Argument(..., metavar="BAGFILE...", help="Bags to decompress."),
-        output_dir: str | None = typer.Option(None, "--output-dir", metavar="DIR", help="Write to folder DIR."),
-        force: bool = typer.Option(False, "-f", "--force", help="Overwrite a backup file that exists."),
-        quiet: bool = typer.Option(False, "-q", "--quiet", help="Say nothing of skipped bags."),
-    ) -> None:
-        """Decompress bags in place, keeping NAME.orig.EXT (like `rosbag decompress`)."""
-        raise typer.Exit(run_change_compression("decompress", list(files), "none", output_dir, force, quiet))
-
-    bag_view_cmd.register(bag_app)

@@ -60,22 +60,26 @@ def run_purge(yes: bool, size_mb: int | None = None) -> int:
     return 1 if result.failed else 0
 
 
+clean_app = typer.Typer(name="clean", help="Check and purge ROS log files (like `rosclean`).",
+                        no_args_is_help=True, context_settings={"help_option_names": ["-h", "--help"]})
+
+
+@clean_app.command("check")
+def clean_check_command() -> None:
+    """Print the disk usage of the ROS log directory (like `rosclean check`)."""
+    raise typer.Exit(run_check())
+
+
+@clean_app.command("purge")
+def clean_purge_command(
+    yes: bool = typer.Option(False, "-y", "--yes", help="Do not ask for confirmation."),
+    size: int | None = typer.Option(None, "--size", metavar="MB",
+                                    help="Remove oldest logs until at most this many MB remain."),
+) -> None:
+    """Delete old ROS logs, keeping the current run (like `rosclean purge`)."""
+    raise typer.Exit(run_purge(yes, size))
+
+
 def register(app: typer.Typer) -> None:
     """Add ``rostui clean check|purge``."""
-    clean_app = typer.Typer(name="clean", help="Check and purge ROS log files (like `rosclean`).",
-                            no_args_is_help=True, context_settings={"help_option_names": ["-h", "--help"]})
     app.add_typer(clean_app, name="clean")
-
-    @clean_app.command("check")
-    def clean_check_command() -> None:
-        """Print the disk usage of the ROS log directory (like `rosclean check`)."""
-        raise typer.Exit(run_check())
-
-    @clean_app.command("purge")
-    def clean_purge_command(
-        yes: bool = typer.Option(False, "-y", "--yes", help="Do not ask for confirmation."),
-        size: int | None = typer.Option(None, "--size", metavar="MB",
-                                        help="Remove oldest logs until at most this many MB remain."),
-    ) -> None:
-        """Delete old ROS logs, keeping the current run (like `rosclean purge`)."""
-        raise typer.Exit(run_purge(yes, size))

@@ -69,7 +69,7 @@ def _run_async(coro: Any) -> int:
     """Run a long-running tool; one-line errors for what it reports."""
     import asyncio
 
-    from rostui.core.master_errors import MasterUnreachableError
+    from rostui.core.master_errors import MasterUnreachableError, unreachable_text
     from rostui.tools.topic.common import TopicToolError
 
     runner: Callable[[Coroutine[Any, Any, int]], int]
@@ -81,7 +81,9 @@ def _run_async(coro: Any) -> int:
         runner = asyncio.run
     try:
         return runner(coro)
-    except (TopicToolError, MasterUnreachableError) as e:
+    except MasterUnreachableError as e:
+        _fail(f"ERROR: {unreachable_text(e.master_uri)}")
+    except TopicToolError as e:
         _fail(f"ERROR: {e}")
     except KeyboardInterrupt:
         return 0
@@ -91,6 +93,8 @@ def _run_async(coro: Any) -> int:
 
 
 def _check_master() -> None:
+    """Before `topic pub` reads its type, as rostopic does (echo, hz and bw learn it from their first master
+    call, in the runner)."""
     _call("getPid")
 
 
@@ -232,7 +236,6 @@ def echo_command(
         _echo_bag(bag, name, plot=plot, noarr=noarr, nostr=nostr, count=count, fixed_width=width, clear=clear,
                   as_json=as_json)
     assert name is not None
-    _check_master()
     raise typer.Exit(_run_async(run_echo(
         name, _out, plot=plot, noarr=noarr, nostr=nostr, offset=offset, count=count,
         fixed_width=width, clear=clear, as_json=as_json)))
@@ -263,7 +266,6 @@ def hz_command(
     from rostui.tools.topic.runners import run_hz
 
     names = [_resolve(t) for t in topics]
-    _check_master()
     raise typer.Exit(_run_async(run_hz(names, window, _out)))
 
 
@@ -276,7 +278,6 @@ def bw_command(
     from rostui.tools.topic.runners import run_bw
 
     name = _resolve(topic)
-    _check_master()
     raise typer.Exit(_run_async(run_bw(name, window, _out)))
 
 

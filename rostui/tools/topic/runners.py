@@ -66,28 +66,21 @@ class _Run:
             return False
 
 
-async def _master(node: Any, method: str, *args: Any) -> Any:
-    """A master call; a master that does not answer raises MasterUnreachableError without its cause's details."""
-    from rostui.core.master_errors import MasterUnreachableError
-
-    try:
-        return await node.master_call(method, *args)
-    except MasterUnreachableError:
-        raise MasterUnreachableError(node.master_uri) from None
-
-
 async def _wait_for_topic(run: _Run, topic: str) -> tuple[str, str, str] | None:
-    """Block until *topic* (or the topic holding that field) is published; None when stopped."""
+    """Block until *topic* (or the topic holding that field) is published; None when stopped.
+
+    Its first master call is the command's check of the master (MasterUnreachableError when none answers).
+    """
     warned = False
     while True:
-        types = await _master(run.node, "getTopicTypes")
+        types = await run.node.master_call("getTopicTypes")
         type_name, real_topic, path = find_topic_type(lambda _m: types, topic)
         if type_name is not None and real_topic is not None:
             return type_name, real_topic, path
         if not warned:
             from rostui.tools.suggest import did_you_mean, registered_topics
 
-            hint = did_you_mean(topic, registered_topics(await _master(run.node, "getSystemState")))
+            hint = did_you_mean(topic, registered_topics(await run.node.master_call("getSystemState")))
             sys.stderr.write(f"WARNING: topic [{topic}] does not appear to be published yet\n"
                              + (f"{hint}\n" if hint else ""))
             sys.stderr.flush()

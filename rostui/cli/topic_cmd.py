@@ -213,25 +213,14 @@ def echo_command(
                                                        "for jq): time as {secs, nsecs}, uint8[] as a list of ints."),
 ) -> None:
     """Print messages of a topic (like `rostopic echo`); waits until the topic is published, or reads a bag (-b)."""
-    if width is not None and width < 2:
-        _fail("ERROR: Fixed width for numeric values must be at least 2")
-    from rostui.tools.topic.common import UsageError
-    from rostui.tools.topic.echo import field_evaluator
+    from rostui.tools.topic.echo import echo_usage_problem
     from rostui.tools.topic.runners import run_echo
 
-    if as_json and (plot or clear or width is not None):
-        _fail("ERROR: --json cannot be combined with -p, -c or -w")
-    if all_topics and not bag:
-        _fail("ERROR: Display all option is only valid when echoing from bag files")
-    if offset and bag:
-        _fail("ERROR: offset time option is not valid with bag files")
-    if topic is None and not all_topics:
-        _fail("ERROR: topic must be specified")
     name = None if all_topics or topic is None else _resolve(topic)
-    try:
-        field_evaluator(name or "")  # malformed [index] specs are reported before connecting
-    except UsageError as e:
-        _fail(f"ERROR: {e}")
+    problem = echo_usage_problem(topic=name, bag=bool(bag), all_topics=all_topics, offset=offset, plot=plot,
+                                 clear=clear, width=width, as_json=as_json)
+    if problem is not None:
+        _fail(f"ERROR: {problem}")
     if bag:
         _echo_bag(bag, name, plot=plot, noarr=noarr, nostr=nostr, count=count, fixed_width=width, clear=clear,
                   as_json=as_json)

@@ -72,6 +72,31 @@ def field_evaluator(pattern: str) -> Callable[[Any], Any] | None:
     return lambda msg: run(msg, evals)
 
 
+def echo_usage_problem(*, topic: str | None, bag: bool, all_topics: bool, offset: bool, plot: bool, clear: bool,
+                       width: int | None, as_json: bool) -> str | None:
+    """What is wrong with ``topic echo``'s options taken together, in rostopic's words; None when they fit.
+
+    A malformed field index in ``topic`` (``/a/b[x]``) is one too, reported before any master is asked.
+    """
+    from rostui.tools.topic.common import UsageError
+
+    if width is not None and width < 2:
+        return "Fixed width for numeric values must be at least 2"
+    if as_json and (plot or clear or width is not None):
+        return "--json cannot be combined with -p, -c or -w"
+    if all_topics and not bag:
+        return "Display all option is only valid when echoing from bag files"
+    if offset and bag:
+        return "offset time option is not valid with bag files"
+    if topic is None and not all_topics:
+        return "topic must be specified"
+    try:
+        field_evaluator("" if all_topics or topic is None else topic)
+    except UsageError as exc:
+        return str(exc)
+    return None
+
+
 def field_type_of(cls: Any, path: str) -> str | None:
     """The declared type of the field at *path* (``header/stamp``) of *cls*, or None."""
     from rostui.core.msg.convert import field_class

@@ -445,7 +445,7 @@ def test_the_real_span_beside_rosbags_duration_in_a_terminal(rosbag_bags: Path, 
         pane.type(rostui_line({**ros_env, **TIME_ENV}, "SPAN_EXIT=", "bag", "info", "--exact", str(path)))
         pane.wait_until(lambda: "SPAN_EXIT=0" in pane.screen().replace("\n", ""), "bag info --exact")
         assert f"\nduration:    {human_duration(span)}\n" in pane.screen(), pane.screen()
-        pane.type("clear")
+        pane.clear()
         pane.type(rostui_line(ros_env, "SPAN_EXIT=", "bag", "view", str(path)))
         pane.wait_until(lambda: f"{span:.3f} s (bag info: {rosbag_duration}, first and last chunk)" in pane.screen(),
                         "bag view's header")

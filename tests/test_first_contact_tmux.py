@@ -21,8 +21,7 @@ EXIT_MARK = "FIRST_CONTACT_EXIT="
 
 def run_to_exit(pane: Pane, env: dict[str, str], *args: str) -> str:
     """Type `rostui ARGS` into the pane's shell and wait for it to end; the screen then."""
-    pane.tmux("clear-history", "-t", pane.session)
-    pane.type("clear")
+    pane.clear()
     pane.type(rostui_line(env, EXIT_MARK, *args))
     pane.wait_until(lambda: exit_status(pane.screen()) is not None, f"`rostui {' '.join(args)}` to end")
     return pane.screen()
@@ -49,7 +48,7 @@ def test_did_you_mean_offers_only_topics_that_exist_now(rostui_core: Any, ros_en
             screen = run_to_exit(pane, ros_env, "topic", command, "/chattr")
             assert "did you mean /chatter?" in screen and exit_status(screen) == 1, screen
         for command in ("echo", "hz"):
-            pane.type("clear")
+            pane.clear()
             pane.type(rostui_line(ros_env, EXIT_MARK, "topic", command, "/nope"))
             pane.wait_for_text("WARNING: topic [/nope] does not appear to be published yet")
             pane.keys("C-c")
@@ -125,7 +124,7 @@ def test_no_silent_empty_results_from_odd_bags(tmp_path: Path, ros_env: dict[str
         assert exit_status(screen) == 0 and screen.count("---") == 3, screen
         for bag, shown in ((hollow, "its definition has no fields, but the message holds 7 bytes"),
                            (empty, "(no fields: std_msgs/Empty is an empty message)")):
-            pane.type("clear")
+            pane.clear()
             pane.type(rostui_line(ros_env, EXIT_MARK, "bag", "view", str(bag)))
             pane.wait_until(lambda: "/thing" in pane.screen() and "PAUSED" in pane.screen(), "bag view")
             pane.keys("End")
@@ -175,7 +174,7 @@ def test_bag_record_writes_rosbags_format_and_says_so(tmp_path: Path, rostui_cor
         with shell_pane("record", 160, 20) as pane:
             pane.type(f"cd {tmp_path}")
             for flags, ending in (((), ".bag'."), (("--mcap",), ".mcap' (MCAP, not readable")):
-                pane.type("clear")
+                pane.clear()
                 pane.type(rostui_line(ros_env, EXIT_MARK, "bag", "record", "-a", *flags))
                 pane.wait_until(lambda: ending in pane.screen(), f"the start line to say {ending!r}")
                 pane.wait_until(lambda: re.search(r": [1-9]\d* msgs, ", pane.screen()) is not None,
@@ -292,7 +291,7 @@ def test_run_and_launch_take_the_installed_executable_first_as_rosrun_and_roslau
         pane.type(f"export {exports}")
         lists = []
         for command in ("rosrun twice_pkg node", rostui_line(env, EXIT_MARK, "run", "twice_pkg", "node")):
-            pane.type("clear")
+            pane.clear()
             pane.type(command)
             pane.wait_until(lambda: "#?" in pane.screen(), f"{command.split(';')[0]} to ask which executable")
             lists.append(re.findall(r"^\d\) (\S+)$", pane.screen(), re.MULTILINE))
@@ -301,7 +300,7 @@ def test_run_and_launch_take_the_installed_executable_first_as_rosrun_and_roslau
         assert lists[0] == lists[1] and "install/lib/twice_pkg/node" in lists[1][0], lists
         screen = run_to_exit(pane, env, "run", "twice_pkg", "only_here")
         assert "only-in-the-workspace" in screen and exit_status(screen) == 0, screen
-        pane.type("clear")
+        pane.clear()
         pane.type(rostui_line(env, EXIT_MARK, "launch", str(launch)))
         pane.wait_until(lambda: "from-the-installed-prefix" in pane.screen(), "the launched node's line")
         assert "from-the-workspace" not in pane.screen(), pane.screen()

@@ -73,6 +73,14 @@ class Pane:
         self.tmux("send-keys", "-t", self.session, "-l", line)
         self.tmux("send-keys", "-t", self.session, "Enter")
 
+    def clear(self) -> None:
+        """Clear the screen and its history, and wait until the shell did (only its prompt shows): a line typed
+        right after ``clear`` would otherwise be judged by the last command's screen."""
+        self.tmux("clear-history", "-t", self.session)
+        self.type("clear")
+        self.wait_until(lambda: [line.strip() for line in self.screen().splitlines() if line.strip()] == ["$"],
+                        "the screen to clear")
+
     def keys(self, *keys: str) -> None:
         """Send key names (``Up``, ``Enter``, ``C-c``, ``q``), or literal text after ``-l``."""
         self.tmux("send-keys", "-t", self.session, *keys)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import re
 import time
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterable, Sequence
+from typing import Any, Callable, Collection, Iterable, Mapping, Sequence
 
 from rostui.core import names
 
@@ -48,8 +48,29 @@ def quick_master_call(caller_id: str, method: str, *args: Any, timeout: float = 
         return None
 
 
+class Registrations:
+    """What one node holds, for anything with ``publishers``, ``subscribers`` and ``services`` maps (name -> nodes):
+    the master's state here and the graph view's model (:class:`rostui.models.graph.model.RosGraph`)."""
+
+    publishers: Mapping[str, Collection[str]]
+    subscribers: Mapping[str, Collection[str]]
+    services: Mapping[str, Collection[str]]
+
+    def publications_of(self, node: str) -> list[str]:
+        """Topics ``node`` publishes, sorted."""
+        return sorted(t for t, nodes in self.publishers.items() if node in nodes)
+
+    def subscriptions_of(self, node: str) -> list[str]:
+        """Topics ``node`` subscribes to, sorted."""
+        return sorted(t for t, nodes in self.subscribers.items() if node in nodes)
+
+    def services_of(self, node: str) -> list[str]:
+        """Services ``node`` provides, sorted."""
+        return sorted(s for s, nodes in self.services.items() if node in nodes)
+
+
 @dataclass
-class SystemState:
+class SystemState(Registrations):
     """``getSystemState`` as three maps: topic/service name -> node names."""
 
     publishers: dict[str, list[str]] = field(default_factory=dict)
@@ -70,17 +91,6 @@ class SystemState:
                 found.update(nodes)
         return sorted(found)
 
-    def publications_of(self, node: str) -> list[str]:
-        """Topics ``node`` publishes, sorted."""
-        return sorted(t for t, n in self.publishers.items() if node in n)
-
-    def subscriptions_of(self, node: str) -> list[str]:
-        """Topics ``node`` subscribes to, sorted."""
-        return sorted(t for t, n in self.subscribers.items() if node in n)
-
-    def services_of(self, node: str) -> list[str]:
-        """Services ``node`` provides, sorted."""
-        return sorted(s for s, n in self.services.items() if node in n)
 
 
 def system_state(call: Call) -> SystemState:

@@ -6,11 +6,13 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Callable, Collection, Mapping, Sequence
 
+from rostui.tools.node import Registrations
+
 __all__ = ["RosGraph", "fetch_graph", "fetch_graph_async"]
 
 
 @dataclass(frozen=True)
-class RosGraph:
+class RosGraph(Registrations):
     """What ``getSystemState`` and ``getTopicTypes`` report at one moment.
 
     Every mapping goes from a topic (or service) name to the sorted tuple of
@@ -76,17 +78,6 @@ class RosGraph:
         """The message type of ``topic`` as the master knows it."""
         return self.topic_types.get(topic, "unknown type")
 
-    def publications_of(self, node: str) -> list[str]:
-        """Topics ``node`` publishes, sorted."""
-        return sorted(t for t, nodes in self.publishers.items() if node in nodes)
-
-    def subscriptions_of(self, node: str) -> list[str]:
-        """Topics ``node`` subscribes to, sorted."""
-        return sorted(t for t, nodes in self.subscribers.items() if node in nodes)
-
-    def services_of(self, node: str) -> list[str]:
-        """Services ``node`` provides, sorted."""
-        return sorted(s for s, nodes in self.services.items() if node in nodes)
 
 
 def fetch_graph(call: Callable[..., Any]) -> RosGraph:

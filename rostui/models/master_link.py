@@ -139,7 +139,8 @@ class MasterLink:
     async def _keep_session(self, node: AsyncNode) -> None:
         """Run the session until the node is not connected any more, the link stops or the session fails."""
         assert self._session is not None
-        change = asyncio.ensure_future(self._next_change(self._changes))
+        seen = self._changes
+        change = asyncio.ensure_future(self._next_change(seen))
         session = asyncio.ensure_future(self._session(node))
         try:
             await asyncio.wait({session, change}, return_when=asyncio.FIRST_COMPLETED)
@@ -147,12 +148,15 @@ class MasterLink:
             for task in (session, change):
                 task.cancel()
             await asyncio.gather(session, change, return_exceptions=True)
-        if not session.cancelled() and session.done():
-            error = session.exception()
-            if error is not None and not isinstance(error, MASTER_ERRORS):
-                raise error
-            if error is not None:  # the master failed it: the node's next check says whether it is gone
-                await self._pause(self.check_period)
+        if session.cancelled() or not session.done():
+            return
+        error = session.exception()
+        if error is None:  # the session is over while connected: nothing more to run until the state changes
+            await self._next_change(seen)
+        elif isinstance(error, MASTER_ERRORS):  # the master failed it: the node's next check says whether it is gone
+            await self._pause(self.check_period)
+        else:
+            raise error
 
     async def _next_change(self, seen: int) -> None:
         """Wait until the link's state changed since it had made ``seen`` changes, or it stops."""

@@ -512,7 +512,7 @@ class AsyncNode:
         try:
             if self.registers:
                 await self.master_call("registerService", resolved, self.service_uri, self.uri)
-        except MasterError:
+        except BaseException:  # refused, unreachable or cancelled (a caller's timeout): not half-kept, so a retry can
             self.services.pop(resolved, None)
             raise
         return server

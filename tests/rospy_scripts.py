@@ -22,6 +22,8 @@ class Running:
     def __init__(self, cmd: list[str], env: dict[str, str], log: Path) -> None:
         self.log = log
         self.proc = subprocess.Popen(cmd, env=env, stdout=log.open("w"), stderr=subprocess.STDOUT, text=True)
+        self.outlived_ctrl_c = False
+        """True when :meth:`interrupt` had to end it with more than SIGINT."""
 
     def output(self) -> str:
         """What it printed so far."""
@@ -43,5 +45,6 @@ class Running:
             try:
                 self.proc.wait(timeout=20)
             except subprocess.TimeoutExpired:
+                self.outlived_ctrl_c = True
                 stop_process(self.proc)
         return self.output()

@@ -64,13 +64,14 @@ def master_call(caller_id: str, method: str, *args: Any) -> Any:
     No master: ``ERROR: Unable to communicate with master at <uri>``.  A
     refusal (code != 1) raises RosApiError for the caller to word.
     """
-    from rostui.core.master_errors import unreachable_text
     from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync, ros_result
 
     uri = master_uri()
     try:
         return ros_result(call_sync(uri, method, caller_id, *args, timeout=10.0))
     except XmlRpcConnectionError:
+        from rostui.core.master_errors import unreachable_text  # only on the way out: not on a quick command's start
+
         fail(f"ERROR: {unreachable_text(uri)}")
 
 

@@ -28,7 +28,6 @@ def _topic_list(args: Sequence[str]) -> int:
 def _param_get(args: Sequence[str]) -> int:
     """``param get NAME`` over :func:`quick_call`; PyYAML loads only for values it must format."""
     from rostui.cli.common import fail, master_uri
-    from rostui.core.master_errors import unreachable_text
     from rostui.core.xmlrpc import RosApiError, XmlRpcConnectionError, ros_result
     from rostui.core.xmlrpc.quick import quick_call
     from rostui.tools.param_quick import script_resolve, simple_value_text
@@ -38,6 +37,8 @@ def _param_get(args: Sequence[str]) -> int:
     try:
         value = ros_result(quick_call(uri, "getParam", "/rosparam", key, timeout=10.0))
     except XmlRpcConnectionError:
+        from rostui.core.master_errors import unreachable_text
+
         fail(f"ERROR: {unreachable_text(uri)}")
     except RosApiError:
         from rostui.cli.common import suggestion

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import packages
+from .action import ACTION_SUFFIXES, action_message_texts, split_action_type
 from .codegen import build_message_class
 from .errors import MessageSpecError, UnknownMessageTypeError
 from .message import Message, Service
@@ -106,6 +107,9 @@ class TypeStore:
                         spec = parse_msg_text(_read(path), type_name, str(path))
                         self._specs[type_name] = spec
                         return spec
+                    spec = self._action_spec(pkg, name, pkg_dirs)
+                    if spec is not None:
+                        return spec
                     for suffix in ("Request", "Response"):
                         if name.endswith(suffix) and len(name) > len(suffix):
                             srv_name = f"{pkg}/{name[: -len(suffix)]}"
@@ -117,6 +121,20 @@ class TypeStore:
                     raise UnknownMessageTypeError(type_name, f"no {name}.msg in package {pkg} ({_dirs_text(pkg_dirs)})")
                 raise UnknownMessageTypeError(type_name, f"package {pkg} not found")
             raise UnknownMessageTypeError(type_name)
+
+    def _action_spec(self, pkg: str, name: str, pkg_dirs: list[Path]) -> MsgSpec | None:
+        """The spec of ``pkg/name`` when it is one of the messages of an ``.action`` file of ``pkg`` (all seven of
+        that action's are registered then); None when no action makes it."""
+        for action in split_action_type(name):
+            path = _first_file(pkg_dirs, "action", f"{action}.action")
+            if path is None:
+                continue
+            for message, text in action_message_texts(action, _read(path), str(path)).items():
+                self._specs.setdefault(f"{pkg}/{message}", parse_msg_text(text, f"{pkg}/{message}", str(path)))
+            spec = self._specs.get(f"{pkg}/{name}")
+            if spec is not None:
+                return spec
+        return None
 
     def get_srv_spec(self, type_name: str) -> SrvSpec:
         """The spec of service type *type_name*."""
@@ -370,11 +388,15 @@ def split_definition(type_name: str, definition: str) -> list[MsgSpec]:
 
 
 def list_message_types(package: str) -> list[str]:
-    """The message types (``pkg/Name``) defined by *package*, sorted."""
+    """The message types (``pkg/Name``) defined by *package*, sorted: its .msg files and what its .action files
+    make (:mod:`rostui.core.msg.action`)."""
     dirs = packages.find_package_dirs(package)
     if not dirs:
         raise packages.PackageNotFoundError(package)
-    return sorted({f"{package}/{p.stem}" for d in dirs for p in (d / "msg").glob("*.msg")})
+    actions = {p.stem for d in dirs for p in (d / "action").glob("*.action")}
+    generated = {f"{name}{suffix}" for name in actions for suffix in ACTION_SUFFIXES}
+    return sorted({f"{package}/{p.stem}" for d in dirs for p in (d / "msg").glob("*.msg")}
+                  | {f"{package}/{name}" for name in generated})
 
 
 def list_service_types(package: str) -> list[str]:

@@ -26,6 +26,9 @@ __all__ = [
     "unit_vector", "vector_norm",
 ]
 
+#: Anything numpy reads as a vector: a list, a tuple, an array (tf's functions take them all).
+Vector = Any
+
 #: Below this, a length or a sine counts as zero (four machine epsilons, as tf).
 _EPS = np.finfo(float).eps * 4.0
 
@@ -71,7 +74,7 @@ def identity_matrix() -> np.ndarray:
     return np.identity(4)
 
 
-def translation_matrix(direction: Sequence[float]) -> np.ndarray:
+def translation_matrix(direction: Vector) -> np.ndarray:
     """The matrix that moves points by ``direction``."""
     matrix = np.identity(4)
     matrix[:3, 3] = direction[:3]
@@ -83,7 +86,7 @@ def translation_from_matrix(matrix: Any) -> np.ndarray:
     return np.array(matrix, copy=True)[:3, 3].copy()
 
 
-def reflection_matrix(point: Sequence[float], normal: Sequence[float]) -> np.ndarray:
+def reflection_matrix(point: Vector, normal: Vector) -> np.ndarray:
     """The mirror in the plane through ``point`` with ``normal``."""
     unit = unit_vector(normal[:3])
     matrix = np.identity(4)
@@ -92,7 +95,7 @@ def reflection_matrix(point: Sequence[float], normal: Sequence[float]) -> np.nda
     return matrix
 
 
-def rotation_matrix(angle: float, direction: Sequence[float], point: Sequence[float] | None = None) -> np.ndarray:
+def rotation_matrix(angle: float, direction: Vector, point: Vector | None = None) -> np.ndarray:
     """The rotation by ``angle`` (radians) about the axis ``direction`` through ``point`` (the origin if None)."""
     sine, cosine = math.sin(angle), math.cos(angle)
     axis = unit_vector(direction[:3])
@@ -107,8 +110,8 @@ def rotation_matrix(angle: float, direction: Sequence[float], point: Sequence[fl
     return matrix
 
 
-def scale_matrix(factor: float, origin: Sequence[float] | None = None,
-                 direction: Sequence[float] | None = None) -> np.ndarray:
+def scale_matrix(factor: float, origin: Vector | None = None,
+                 direction: Vector | None = None) -> np.ndarray:
     """Scaling by ``factor`` about ``origin``: in every direction, or only along ``direction``."""
     if direction is None:
         matrix = np.diag([factor, factor, factor, 1.0])
@@ -194,7 +197,7 @@ def euler_from_matrix(matrix: Any, axes: str | Sequence[int] = "sxyz") -> tuple[
     return ax, ay, az
 
 
-def euler_from_quaternion(quaternion: Sequence[float], axes: str | Sequence[int] = "sxyz"
+def euler_from_quaternion(quaternion: Vector, axes: str | Sequence[int] = "sxyz"
                           ) -> tuple[float, float, float]:
     """The Euler angles (radians) of an (x, y, z, w) quaternion in convention ``axes``."""
     return euler_from_matrix(quaternion_matrix(quaternion), axes)
@@ -225,7 +228,7 @@ def quaternion_from_euler(ai: float, aj: float, ak: float, axes: str | Sequence[
 
 
 # -- quaternions -------------------------------------------------------------------------------------------
-def quaternion_about_axis(angle: float, axis: Sequence[float]) -> np.ndarray:
+def quaternion_about_axis(angle: float, axis: Vector) -> np.ndarray:
     """The (x, y, z, w) quaternion of a rotation by ``angle`` (radians) about ``axis``."""
     quaternion = np.zeros(4)
     quaternion[:3] = axis[:3]
@@ -236,7 +239,7 @@ def quaternion_about_axis(angle: float, axis: Sequence[float]) -> np.ndarray:
     return quaternion
 
 
-def quaternion_matrix(quaternion: Sequence[float]) -> np.ndarray:
+def quaternion_matrix(quaternion: Vector) -> np.ndarray:
     """The 4x4 rotation matrix of an (x, y, z, w) quaternion (normalised first; the identity for a zero one)."""
     q = np.array(quaternion[:4], dtype=np.float64, copy=True)
     norm = np.dot(q, q)
@@ -271,7 +274,7 @@ def quaternion_from_matrix(matrix: Any) -> np.ndarray:
     return quaternion
 
 
-def quaternion_multiply(quaternion1: Sequence[float], quaternion0: Sequence[float]) -> np.ndarray:
+def quaternion_multiply(quaternion1: Vector, quaternion0: Vector) -> np.ndarray:
     """The product ``quaternion1 * quaternion0`` of two (x, y, z, w) quaternions (``quaternion0`` applied first)."""
     x0, y0, z0, w0 = quaternion0
     x1, y1, z1, w1 = quaternion1
@@ -282,17 +285,17 @@ def quaternion_multiply(quaternion1: Sequence[float], quaternion0: Sequence[floa
         w1 * w0 - x1 * x0 - y1 * y0 - z1 * z0], dtype=np.float64)
 
 
-def quaternion_conjugate(quaternion: Sequence[float]) -> np.ndarray:
+def quaternion_conjugate(quaternion: Vector) -> np.ndarray:
     """The conjugate of an (x, y, z, w) quaternion."""
     return np.array((-quaternion[0], -quaternion[1], -quaternion[2], quaternion[3]), dtype=np.float64)
 
 
-def quaternion_inverse(quaternion: Sequence[float]) -> np.ndarray:
+def quaternion_inverse(quaternion: Vector) -> np.ndarray:
     """The inverse of an (x, y, z, w) quaternion."""
     return quaternion_conjugate(quaternion) / np.dot(quaternion, quaternion)
 
 
-def quaternion_slerp(quat0: Sequence[float], quat1: Sequence[float], fraction: float, spin: int = 0,
+def quaternion_slerp(quat0: Vector, quat1: Vector, fraction: float, spin: int = 0,
                      shortestpath: bool = True) -> np.ndarray:
     """The spherical interpolation ``fraction`` of the way from ``quat0`` to ``quat1`` (``spin`` extra half turns;
     the shorter way round unless ``shortestpath`` is False)."""
@@ -318,7 +321,7 @@ def quaternion_slerp(quat0: Sequence[float], quat1: Sequence[float], fraction: f
     return q0
 
 
-def random_quaternion(rand: Sequence[float] | None = None) -> np.ndarray:
+def random_quaternion(rand: Vector | None = None) -> np.ndarray:
     """A uniformly random unit (x, y, z, w) quaternion; ``rand``: three numbers in [0, 1) to use instead of random."""
     if rand is None:
         rand = np.random.rand(3)
@@ -329,7 +332,7 @@ def random_quaternion(rand: Sequence[float] | None = None) -> np.ndarray:
     return np.array((math.sin(t1) * r1, math.cos(t1) * r1, math.sin(t2) * r2, math.cos(t2) * r2))
 
 
-def random_rotation_matrix(rand: Sequence[float] | None = None) -> np.ndarray:
+def random_rotation_matrix(rand: Vector | None = None) -> np.ndarray:
     """A uniformly random rotation matrix (``rand`` as for :func:`random_quaternion`)."""
     return quaternion_matrix(random_quaternion(rand))
 

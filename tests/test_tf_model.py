@@ -8,7 +8,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from rostui.models.tf import (
+from rostui.tools.tf import (
     ConnectivityError, ExtrapolationError, FrameNotFoundError, LoopError, TfBuffer, Transform, quat_from_rpy,
     quat_to_rpy,
 )
@@ -253,7 +253,7 @@ def test_raw_feed_takes_the_broadcaster_and_refuses_garbage_and_other_types() ->
 
 
 def test_an_edge_keeps_a_bounded_number_of_samples() -> None:
-    from rostui.models.tf.buffer import MAX_SAMPLES
+    from rostui.tools.tf.buffer import MAX_SAMPLES
 
     buf = TfBuffer()
     for i in range(MAX_SAMPLES + 500):
@@ -266,7 +266,7 @@ def test_an_edge_keeps_a_bounded_number_of_samples() -> None:
 
 def test_an_edges_first_receipts_in_a_burst_do_not_lift_its_rate() -> None:
     """Three transforms queued while the listener started, handed over at once, then 20 Hz: the rate reads 20."""
-    from rostui.models.tf.buffer import Edge
+    from rostui.tools.tf.buffer import Edge
 
     edge = Edge("odom", "map", False, "/b")
     edge.receipts.extend([100.0, 100.0001, 100.0002] + [100.0002 + 0.05 * i for i in range(1, 6)])

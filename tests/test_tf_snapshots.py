@@ -15,7 +15,7 @@ from textual.pilot import Pilot
 
 from rostui.apps.view.tf_tree_app import TfTreeApp
 from rostui.apps.view.tf_tree_view import TfTreeView
-from rostui.models.tf import Transform
+from rostui.tools.tf import Transform
 
 from test_tf_tree_view import chain_buffer
 from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)

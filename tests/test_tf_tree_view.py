@@ -21,7 +21,7 @@ from rostui.apps.view.app import ViewApp
 from rostui.apps.view.registry import view_class
 from rostui.apps.view.tf_tree_app import TfTreeApp
 from rostui.apps.view.tf_tree_view import TfTreeView
-from rostui.models.tf import TfBuffer, Transform, quat_from_rpy
+from rostui.tools.tf import TfBuffer, Transform, quat_from_rpy
 from rostui.models.tf.tree import format_age, format_rate, summary, tree_rows
 
 from interop_helpers import Spawn, spawn  # noqa: F401  (fixture)

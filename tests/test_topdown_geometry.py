@@ -185,8 +185,8 @@ def test_scene_occupancy_layer_and_unreadable_message_note() -> None:
 
 def test_buffer_lookup_projects_a_tf_chain_onto_the_plane() -> None:
     from rostui.models.sensors.tf_lookup import buffer_lookup
-    from rostui.models.tf.buffer import TfBuffer
-    from rostui.models.tf.transform import Transform
+    from rostui.tools.tf.buffer import TfBuffer
+    from rostui.tools.tf.transform import Transform
 
     buffer = TfBuffer()
     half = math.pi / 4
@@ -209,8 +209,8 @@ def test_buffer_lookup_projects_a_tf_chain_onto_the_plane() -> None:
 def test_an_upside_down_laser_is_drawn_mirrored() -> None:
     """roll 180 degrees: a return to the scanner's left (+y) lies to the right (-y) of the base."""
     from rostui.models.sensors.tf_lookup import buffer_lookup
-    from rostui.models.tf.buffer import TfBuffer
-    from rostui.models.tf.transform import Transform
+    from rostui.tools.tf.buffer import TfBuffer
+    from rostui.tools.tf.transform import Transform
 
     buffer = TfBuffer()
     buffer.set_transform("base_link", "laser", Transform.of((0.2, 0.0, 0.3), (1.0, 0.0, 0.0, 0.0)), 0.0,

@@ -30,8 +30,8 @@ from hostile_helpers import MB, RssSampler, record
 from interop_helpers import Spawn, rospy_peer, spawn  # noqa: F401  (fixture)
 from rostui.apps.view.tf_tree_app import TfTreeApp
 from rostui.apps.view.tf_tree_view import TfTreeView
-from rostui.models.tf import DepthError, LoopError, TfBuffer, TfError, Transform
-from rostui.models.tf.buffer import LOOP_TEXT, MAX_GRAPH_DEPTH
+from rostui.tools.tf import DepthError, LoopError, TfBuffer, TfError, Transform
+from rostui.tools.tf.buffer import LOOP_TEXT, MAX_GRAPH_DEPTH
 from rostui.models.tf.tree import MAX_INDENT, summary, tree_rows
 
 from conftest import REPO, SYSTEM_PYTHON, have_rospy, need_peer, until

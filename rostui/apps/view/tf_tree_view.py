@@ -23,9 +23,9 @@ from rostui.apps.view.registry import TopicView
 from rostui.core.msg import foreign_version
 from rostui.models.master_link import MasterState
 from rostui.models.frame_budget import FrameBudget
-from rostui.models.tf.buffer import Edge, TfBuffer, TfError
+from rostui.tools.tf.buffer import Edge, TfBuffer, TfError
 from rostui.models.tf.source import TfSource
-from rostui.models.tf.transform import Transform
+from rostui.tools.tf.transform import Transform
 from rostui.models.tf.tree import TreeRow, format_age, format_rate, summary, tree_rows
 
 __all__ = ["TfTreeView", "REFRESH_EVERY"]

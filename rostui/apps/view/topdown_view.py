@@ -37,7 +37,7 @@ from rostui.models.contrast import RGB, keep_hue
 from rostui.models.sensors.canvas2d import BRAILLE_BASE, Viewport
 from rostui.models.sensors.scene2d import Lookup, Scene2D, same_frame_only
 from rostui.models.sensors.tf_lookup import buffer_lookup
-from rostui.models.tf.buffer import TfBuffer
+from rostui.tools.tf.buffer import TfBuffer
 from rostui.models.tf.source import TfSource
 
 __all__ = ["TopDownView", "TOPIC_COLORS", "DEFAULT_SPAN"]

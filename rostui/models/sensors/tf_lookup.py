@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from rostui.models.sensors.pose2d import Planar
 from rostui.models.sensors.scene2d import Lookup
-from rostui.models.tf.buffer import TfBuffer, TfError
+from rostui.tools.tf.buffer import TfBuffer, TfError
 
 __all__ = ["buffer_lookup"]
 

@@ -7,7 +7,7 @@ import math
 import time
 from typing import Callable, TextIO
 
-from rostui.models.tf.buffer import StampedTransform, TfBuffer, TfError
+from rostui.tools.tf.buffer import StampedTransform, TfBuffer, TfError
 from rostui.models.tf.source import TfSource
 
 __all__ = ["format_echo", "format_failure", "run_echo"]

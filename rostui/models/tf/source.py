@@ -18,7 +18,7 @@ from rostui.core.msg import get_message_class
 from rostui.core.node import AnyMsg, AsyncNode
 from rostui.core.node.header_check import RefusalLog, of_type
 from rostui.models.master_link import LinkedSource, MasterLink, SourceState
-from rostui.models.tf.buffer import TfBuffer
+from rostui.tools.tf.buffer import TfBuffer
 
 __all__ = ["TF_TOPIC", "TF_STATIC_TOPIC", "TF_TYPE", "TfSource", "feed_raw"]
 

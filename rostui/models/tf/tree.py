@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from rostui.models.tf.buffer import Edge, TfBuffer
+from rostui.tools.tf.buffer import Edge, TfBuffer
 
 __all__ = ["TreeRow", "tree_rows", "loop_frames", "format_rate", "format_age", "summary", "MAX_INDENT"]
 

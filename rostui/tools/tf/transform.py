@@ -14,19 +14,14 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from rostui.tools.tf.transformations import quaternion_multiply
+
 FloatArray = npt.NDArray[np.float64]
 
 
 def quat_multiply(q1: FloatArray, q2: FloatArray) -> FloatArray:
     """The Hamilton product ``q1 * q2`` of two (x, y, z, w) quaternions."""
-    x1, y1, z1, w1 = q1
-    x2, y2, z2, w2 = q2
-    return np.array([
-        w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-        w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
-        w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
-        w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
-    ], dtype=np.float64)
+    return quaternion_multiply(q1, q2)
 
 
 def quat_rotate(q: FloatArray, v: FloatArray) -> FloatArray:

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from rostui.tools.topic.rates import window_rate
-from rostui.models.tf.transform import Transform
+from rostui.tools.tf.transform import Transform
 
 DEFAULT_CACHE_TIME = 10.0
 """Seconds of dynamic transforms kept per edge (tf2's default)."""

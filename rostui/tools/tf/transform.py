@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from rostui.tools.tf.transformations import quaternion_multiply
+from rostui.tools.tf.rotations import quaternion_multiply
 
 FloatArray = npt.NDArray[np.float64]
 

@@ -12,6 +12,7 @@ from rostui.tools.tf import (
     ConnectivityError, ExtrapolationError, FrameNotFoundError, LoopError, TfBuffer, Transform, quat_from_rpy,
     quat_to_rpy,
 )
+from rostui.tools.tf.buffer import stamp_ns as ns
 
 
 def rot_x(a: float) -> np.ndarray:
@@ -52,7 +53,7 @@ def chain_buffer(static_last: bool = False) -> TfBuffer:
     buf = TfBuffer()
     for i, (parent, child, t, rpy) in enumerate(CHAIN):
         static = static_last and i == len(CHAIN) - 1
-        buf.set_transform(parent, child, Transform.of(t, quat_from_rpy(*rpy)), 0.0 if static else 100.0,
+        buf.set_transform(parent, child, Transform.of(t, quat_from_rpy(*rpy)), ns(0.0 if static else 100.0),
                           static=static, broadcaster=f"/node{i}", received=1.0)
     return buf
 
@@ -105,13 +106,13 @@ def test_non_finite_or_zero_quaternion_refused() -> None:
 ])
 def test_lookup_through_the_tree(target: str, source: str) -> None:
     got = chain_buffer().lookup_transform(target, source)
-    assert got.stamp == (0.0 if target == source else 100.0)
+    assert got.stamp == 100.0  # a frame in itself too: tf2 stamps it with the frame's newest data
     assert np.allclose(got.transform.matrix(), expected(target, source), atol=1e-12)
 
 
 def test_lookup_between_branches_uses_the_common_ancestor() -> None:
     buf = chain_buffer()
-    buf.set_transform("base_link", "camera", Transform.of((0.1, 0.1, 0.5), quat_from_rpy(0, 0.4, 0)), 100.0,
+    buf.set_transform("base_link", "camera", Transform.of((0.1, 0.1, 0.5), quat_from_rpy(0, 0.4, 0)), ns(100.0),
                       static=False, broadcaster="/cam", received=1.0)
     base = np.linalg.inv(expected("base_link", "map"))  # base_link in map
     camera_in_map = base @ hom((0.1, 0.1, 0.5), rpy_matrix(0, 0.4, 0))
@@ -129,26 +130,29 @@ def test_static_edge_answers_any_time_and_sets_no_stamp() -> None:
 
 def test_latest_common_time_interpolates_the_newer_edge() -> None:
     buf = TfBuffer()
-    buf.set_transform("map", "odom", Transform.of((0, 0, 0), (0, 0, 0, 1)), 10.0, static=False,
+    buf.set_transform("map", "odom", Transform.of((0, 0, 0), (0, 0, 0, 1)), ns(10.0), static=False,
                       broadcaster="/a", received=0)
-    buf.set_transform("map", "odom", Transform.of((2, 0, 0), quat_from_rpy(0, 0, 1.0)), 12.0, static=False,
+    buf.set_transform("map", "odom", Transform.of((2, 0, 0), quat_from_rpy(0, 0, 1.0)), ns(12.0), static=False,
                       broadcaster="/a", received=1)
-    buf.set_transform("odom", "base", Transform.of((0, 1, 0), (0, 0, 0, 1)), 11.0, static=False,
+    buf.set_transform("odom", "base", Transform.of((0, 1, 0), (0, 0, 0, 1)), ns(11.0), static=False,
                       broadcaster="/b", received=1)
     got = buf.lookup_transform("map", "base")
     assert got.stamp == 11.0
     want = hom((1, 0, 0), rot_z(0.5)) @ hom((0, 1, 0), np.eye(3))
     assert np.allclose(got.transform.matrix(), want, atol=1e-12)
-    with pytest.raises(ExtrapolationError, match="into the future"):
-        buf.lookup_transform("map", "base", 12.0)
+    with pytest.raises(ExtrapolationError, match=r"at time 12\.000000000, but only time 11\.000000000 is in the buffer, "
+                                                 r"when looking up transform from frame \[base\] to frame \[map\]"):
+        buf.lookup_transform("map", "base", ns(12.0))
+    with pytest.raises(ExtrapolationError, match=r"1\.000000000s into the future"):
+        buf.lookup_transform("map", "odom", ns(13.0))
     with pytest.raises(ExtrapolationError, match="into the past"):
-        buf.lookup_transform("map", "odom", 9.0)
+        buf.lookup_transform("map", "odom", ns(9.0))
 
 
 def test_dynamic_window_drops_old_samples_and_rate_counts_receipts() -> None:
     buf = TfBuffer(cache_time=2.0)
     for i in range(50):
-        buf.set_transform("map", "odom", Transform.of((i, 0, 0), (0, 0, 0, 1)), 100.0 + i * 0.1, static=False,
+        buf.set_transform("map", "odom", Transform.of((i, 0, 0), (0, 0, 0, 1)), ns(100.0 + i * 0.1), static=False,
                           broadcaster="/odom_pub", received=i * 0.1)
     edge = buf.edge("odom")
     assert edge is not None
@@ -160,8 +164,8 @@ def test_dynamic_window_drops_old_samples_and_rate_counts_receipts() -> None:
 
 def test_time_jumping_back_starts_the_edge_again() -> None:
     buf = TfBuffer(cache_time=2.0)
-    buf.set_transform("map", "odom", Transform.identity(), 100.0, static=False, broadcaster="/a", received=0)
-    buf.set_transform("map", "odom", Transform.of((1, 0, 0), (0, 0, 0, 1)), 5.0, static=False,
+    buf.set_transform("map", "odom", Transform.identity(), ns(100.0), static=False, broadcaster="/a", received=0)
+    buf.set_transform("map", "odom", Transform.of((1, 0, 0), (0, 0, 0, 1)), ns(5.0), static=False,
                       broadcaster="/a", received=1)
     assert buf.lookup_transform("map", "odom").stamp == 5.0
 
@@ -170,13 +174,13 @@ def test_unknown_unconnected_and_looping_frames() -> None:
     buf = chain_buffer()
     with pytest.raises(FrameNotFoundError, match='"nowhere" passed to lookupTransform argument source_frame'):
         buf.lookup_transform("map", "nowhere")
-    buf.set_transform("world", "other", Transform.identity(), 100.0, static=False, broadcaster="/x", received=0)
+    buf.set_transform("world", "other", Transform.identity(), ns(100.0), static=False, broadcaster="/x", received=0)
     with pytest.raises(ConnectivityError, match="not part of the same tree"):
         buf.lookup_transform("map", "other")
     assert buf.roots() == ["map", "world"]
-    buf.set_transform("c", "a", Transform.identity(), 1.0, static=False, broadcaster="/x", received=0)
-    buf.set_transform("a", "b", Transform.identity(), 1.0, static=False, broadcaster="/x", received=0)
-    buf.set_transform("b", "c", Transform.identity(), 1.0, static=False, broadcaster="/x", received=0)
+    buf.set_transform("c", "a", Transform.identity(), ns(1.0), static=False, broadcaster="/x", received=0)
+    buf.set_transform("a", "b", Transform.identity(), ns(1.0), static=False, broadcaster="/x", received=0)
+    buf.set_transform("b", "c", Transform.identity(), ns(1.0), static=False, broadcaster="/x", received=0)
     with pytest.raises(LoopError, match="loop"):
         buf.lookup_transform("map", "a")
 
@@ -202,7 +206,7 @@ def test_message_feed_strips_slashes_and_reports_bad_transforms() -> None:
 
 def test_parent_change_replaces_the_edge() -> None:
     buf = chain_buffer()
-    buf.set_transform("map", "base_link", Transform.identity(), 100.0, static=False, broadcaster="/amcl",
+    buf.set_transform("map", "base_link", Transform.identity(), ns(100.0), static=False, broadcaster="/amcl",
                       received=2.0)
     assert buf.parent("base_link") == "map"
     assert buf.children("map") == ["base_link", "odom"]
@@ -211,10 +215,10 @@ def test_parent_change_replaces_the_edge() -> None:
 
 def test_frame_limit() -> None:
     buf = TfBuffer(max_frames=3)
-    buf.set_transform("a", "b", Transform.identity(), 1.0, static=False, broadcaster="/x", received=0)
-    buf.set_transform("b", "c", Transform.identity(), 1.0, static=False, broadcaster="/x", received=0)
+    buf.set_transform("a", "b", Transform.identity(), ns(1.0), static=False, broadcaster="/x", received=0)
+    buf.set_transform("b", "c", Transform.identity(), ns(1.0), static=False, broadcaster="/x", received=0)
     with pytest.raises(Exception, match="more than 3 frames"):
-        buf.set_transform("c", "d", Transform.identity(), 1.0, static=False, broadcaster="/x", received=0)
+        buf.set_transform("c", "d", Transform.identity(), ns(1.0), static=False, broadcaster="/x", received=0)
     assert buf.frames() == ["a", "b", "c"]
 
 
@@ -257,7 +261,7 @@ def test_an_edge_keeps_a_bounded_number_of_samples() -> None:
 
     buf = TfBuffer()
     for i in range(MAX_SAMPLES + 500):
-        buf.set_transform("map", "odom", Transform.of((i, 0, 0), (0, 0, 0, 1)), 100.0 + i * 1e-5, static=False,
+        buf.set_transform("map", "odom", Transform.of((i, 0, 0), (0, 0, 0, 1)), ns(100.0 + i * 1e-5), static=False,
                           broadcaster="/flood", received=0.0)
     edge = buf.edge("odom")
     assert edge is not None and len(edge.samples) == len(edge.stamps) == MAX_SAMPLES

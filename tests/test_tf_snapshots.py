@@ -16,6 +16,7 @@ from textual.pilot import Pilot
 from rostui.apps.view.tf_tree_app import TfTreeApp
 from rostui.apps.view.tf_tree_view import TfTreeView
 from rostui.tools.tf import Transform
+from rostui.tools.tf.buffer import stamp_ns as ns
 
 from test_tf_tree_view import chain_buffer
 from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
@@ -32,9 +33,9 @@ def truecolor(monkeypatch: pytest.MonkeyPatch) -> None:
 def still_app(with_camera: bool = False) -> TfTreeApp:
     buf = chain_buffer()
     if with_camera:
-        buf.set_transform("base_link", "camera", Transform.of((0.1, 0.0, 0.5), (0, 0, 0, 1)), 100.9, static=False,
+        buf.set_transform("base_link", "camera", Transform.of((0.1, 0.0, 0.5), (0, 0, 0, 1)), ns(100.9), static=False,
                           broadcaster="/camera_driver", received=1000.9)
-        buf.set_transform("world", "gps", Transform.identity(), 95.0, static=False, broadcaster="/gps_driver",
+        buf.set_transform("world", "gps", Transform.identity(), ns(95.0), static=False, broadcaster="/gps_driver",
                           received=996.0)
     return TfTreeApp(master_uri="http://localhost:11311/", view=TfTreeView(buffer=buf, clock=lambda: 101.25))
 

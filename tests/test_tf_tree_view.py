@@ -22,6 +22,7 @@ from rostui.apps.view.registry import view_class
 from rostui.apps.view.tf_tree_app import TfTreeApp
 from rostui.apps.view.tf_tree_view import TfTreeView
 from rostui.tools.tf import TfBuffer, Transform, quat_from_rpy
+from rostui.tools.tf.buffer import stamp_ns as ns
 from rostui.models.tf.tree import format_age, format_rate, summary, tree_rows
 
 from interop_helpers import Spawn, spawn  # noqa: F401  (fixture)
@@ -35,10 +36,10 @@ def chain_buffer() -> TfBuffer:
     buf = TfBuffer()
     for i in range(21):
         for parent, child, t, rpy in CHAIN[:2]:
-            buf.set_transform(parent, child, Transform.of(t, quat_from_rpy(*rpy)), 100.0 + i * 0.05, static=False,
+            buf.set_transform(parent, child, Transform.of(t, quat_from_rpy(*rpy)), ns(100.0 + i * 0.05), static=False,
                               broadcaster="/rospy_tf_chain", received=1000.0 + i * 0.05)
     parent, child, t, rpy = CHAIN[2]
-    buf.set_transform(parent, child, Transform.of(t, quat_from_rpy(*rpy)), 0.0, static=True,
+    buf.set_transform(parent, child, Transform.of(t, quat_from_rpy(*rpy)), ns(0.0), static=True,
                       broadcaster="/static_transform_publisher_1", received=1000.0)
     return buf
 
@@ -48,7 +49,7 @@ def test_rows_of_a_branching_tree_with_a_second_tree_and_a_loop() -> None:
     ident = Transform.identity()
     for parent, child in [("base_link", "camera"), ("camera", "camera_optical"), ("world", "other"), ("a", "b"),
                           ("b", "a")]:
-        buf.set_transform(parent, child, ident, 100.0, static=False, broadcaster="/x", received=1000.0)
+        buf.set_transform(parent, child, ident, ns(100.0), static=False, broadcaster="/x", received=1000.0)
     labels = [(row.label(), row.in_loop) for row in tree_rows(buf)]
     assert labels == [
         ("map", False),
@@ -95,7 +96,7 @@ def test_view_in_the_pilot_keeps_the_cursor_and_spells_out_the_frame() -> None:
             detail = str(view.detail.render())
             assert "laser in base_link: xyz [0.200, 0.000, 0.300]  rpy° [180.0, 0.0, -17.2]" in detail
             assert "laser in map: xyz [1.571, 2.160, 0.432]" in detail
-            buf.set_transform("map", "gps", Transform.identity(), 101.0, static=False, broadcaster="/gps",
+            buf.set_transform("map", "gps", Transform.identity(), ns(101.0), static=False, broadcaster="/gps",
                               received=1001.0)
             view.redraw()
             assert view.table.cursor_row == 4 and table_rows(view)[4][0] == "      └─ laser"

@@ -186,13 +186,14 @@ def test_scene_occupancy_layer_and_unreadable_message_note() -> None:
 def test_buffer_lookup_projects_a_tf_chain_onto_the_plane() -> None:
     from rostui.models.sensors.tf_lookup import buffer_lookup
     from rostui.tools.tf.buffer import TfBuffer
+    from rostui.tools.tf.buffer import stamp_ns as ns
     from rostui.tools.tf.transform import Transform
 
     buffer = TfBuffer()
     half = math.pi / 4
-    buffer.set_transform("map", "odom", Transform.of((1.0, 0.0, 0.0), (0, 0, math.sin(half), math.cos(half))), 10.0,
+    buffer.set_transform("map", "odom", Transform.of((1.0, 0.0, 0.0), (0, 0, math.sin(half), math.cos(half))), ns(10.0),
                          static=False, broadcaster="/test", received=10.0)
-    buffer.set_transform("odom", "laser", Transform.of((0.5, 0.0, 0.2), (0, 0, 0, 1)), 0.0, static=True,
+    buffer.set_transform("odom", "laser", Transform.of((0.5, 0.0, 0.2), (0, 0, 0, 1)), ns(0.0), static=True,
                          broadcaster="/test", received=10.0)
     lookup = buffer_lookup(buffer)
     where = lookup("map", "laser")
@@ -210,10 +211,11 @@ def test_an_upside_down_laser_is_drawn_mirrored() -> None:
     """roll 180 degrees: a return to the scanner's left (+y) lies to the right (-y) of the base."""
     from rostui.models.sensors.tf_lookup import buffer_lookup
     from rostui.tools.tf.buffer import TfBuffer
+    from rostui.tools.tf.buffer import stamp_ns as ns
     from rostui.tools.tf.transform import Transform
 
     buffer = TfBuffer()
-    buffer.set_transform("base_link", "laser", Transform.of((0.2, 0.0, 0.3), (1.0, 0.0, 0.0, 0.0)), 0.0,
+    buffer.set_transform("base_link", "laser", Transform.of((0.2, 0.0, 0.3), (1.0, 0.0, 0.0, 0.0)), ns(0.0),
                          static=True, broadcaster="/test", received=0.0)
     where = buffer_lookup(buffer)("base_link", "laser")
     assert where is not None

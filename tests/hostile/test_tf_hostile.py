@@ -32,6 +32,7 @@ from rostui.apps.view.tf_tree_app import TfTreeApp
 from rostui.apps.view.tf_tree_view import TfTreeView
 from rostui.tools.tf import DepthError, LoopError, TfBuffer, TfError, Transform
 from rostui.tools.tf.buffer import LOOP_TEXT, MAX_GRAPH_DEPTH
+from rostui.tools.tf.buffer import stamp_ns as ns
 from rostui.models.tf.tree import MAX_INDENT, summary, tree_rows
 
 from conftest import REPO, SYSTEM_PYTHON, have_rospy, need_peer, until
@@ -52,10 +53,10 @@ def hostile_buffer() -> TfBuffer:
     """:data:`EDGES`, static, and the legitimate chain map -> odom -> base_link at 20 Hz for a second."""
     buf = TfBuffer()
     for parent, child in EDGES:
-        buf.set_transform(parent, child, Transform.identity(), 0.0, static=True, broadcaster="/bomb", received=1.0)
+        buf.set_transform(parent, child, Transform.identity(), ns(0.0), static=True, broadcaster="/bomb", received=1.0)
     for i in range(21):
         for parent, child in (("map", "odom"), ("odom", "base_link")):
-            buf.set_transform(parent, child, Transform.of((1.0, 0.0, 0.0), (0, 0, 0, 1)), 100.0 + i * 0.05,
+            buf.set_transform(parent, child, Transform.of((1.0, 0.0, 0.0), (0, 0, 0, 1)), ns(100.0 + i * 0.05),
                               static=False, broadcaster="/legit", received=1000.0 + i * 0.05)
     return buf
 

@@ -72,6 +72,9 @@ MODULES: dict[str, str] = {
     "roscpp": "python3-roscpp-msg",
     "numpy": "python3-numpy",
     "tf2_ros": "python3-tf2-ros",
+    "tf2_py": "python3-tf2",
+    "tf2_geometry_msgs": "python3-tf2-geometry-msgs",
+    "tf": "python3-tf",
 }
 
 #: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.

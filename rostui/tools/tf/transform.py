@@ -154,3 +154,66 @@ class Transform:
         """The transform a fraction ``t`` of the way from this one to ``other`` (lerp and slerp)."""
         tr = self.translation + t * (other.translation - self.translation)
         return Transform(np.asarray(tr, dtype=np.float64), quat_slerp(self.rotation, other.rotation, t))
+
+
+def kdl_rotation(q: tuple[float, float, float, float] | FloatArray) -> FloatArray:
+    """The 3x3 rotation of a quaternion (x, y, z, w) as KDL's ``Rotation.Quaternion`` builds it (no normalising)."""
+    x, y, z, w = (float(c) for c in q)
+    x2, y2, z2, w2 = x * x, y * y, z * z, w * w
+    return np.array([
+        [w2 + x2 - y2 - z2, 2 * x * y - 2 * w * z, 2 * x * z + 2 * w * y],
+        [2 * x * y + 2 * w * z, w2 - x2 + y2 - z2, 2 * y * z - 2 * w * x],
+        [2 * x * z - 2 * w * y, 2 * y * z + 2 * w * x, w2 - x2 - y2 + z2],
+    ], dtype=np.float64)
+
+
+def kdl_quaternion(m: FloatArray) -> tuple[float, float, float, float]:
+    """The quaternion (x, y, z, w) of a rotation matrix as KDL's ``GetQuaternion`` picks it (trace first, then
+    the largest diagonal element), so its sign is KDL's."""
+    trace = float(m[0, 0] + m[1, 1] + m[2, 2])
+    if trace > 1e-12:
+        s = 0.5 / math.sqrt(trace + 1.0)
+        return (float(m[2, 1] - m[1, 2]) * s, float(m[0, 2] - m[2, 0]) * s, float(m[1, 0] - m[0, 1]) * s, 0.25 / s)
+    if m[0, 0] > m[1, 1] and m[0, 0] > m[2, 2]:
+        s = 2.0 * math.sqrt(1.0 + m[0, 0] - m[1, 1] - m[2, 2])
+        return 0.25 * s, float(m[0, 1] + m[1, 0]) / s, float(m[0, 2] + m[2, 0]) / s, float(m[2, 1] - m[1, 2]) / s
+    if m[1, 1] > m[2, 2]:
+        s = 2.0 * math.sqrt(1.0 + m[1, 1] - m[0, 0] - m[2, 2])
+        return float(m[0, 1] + m[1, 0]) / s, 0.25 * s, float(m[1, 2] + m[2, 1]) / s, float(m[0, 2] - m[2, 0]) / s
+    s = 2.0 * math.sqrt(1.0 + m[2, 2] - m[0, 0] - m[1, 1])
+    return float(m[0, 2] + m[2, 0]) / s, float(m[1, 2] + m[2, 1]) / s, 0.25 * s, float(m[1, 0] - m[0, 1]) / s
+
+
+def matrix_quaternion(m: FloatArray) -> tuple[float, float, float, float]:
+    """The quaternion (x, y, z, w) of a rotation matrix as tf2's ``Matrix3x3::getRotation`` picks it (w > 0 when
+    the trace is positive, else led by the largest diagonal element), so its sign is tf2's."""
+    trace = float(m[0, 0] + m[1, 1] + m[2, 2])
+    out = [0.0, 0.0, 0.0, 0.0]
+    if trace > 0.0:
+        s = math.sqrt(trace + 1.0)
+        out[3] = s * 0.5
+        s = 0.5 / s
+        out[0], out[1], out[2] = (float(m[2, 1] - m[1, 2]) * s, float(m[0, 2] - m[2, 0]) * s,
+                                  float(m[1, 0] - m[0, 1]) * s)
+    else:
+        if m[0, 0] < m[1, 1]:
+            i = 2 if m[1, 1] < m[2, 2] else 1
+        else:
+            i = 2 if m[0, 0] < m[2, 2] else 0
+        j, k = (i + 1) % 3, (i + 2) % 3
+        s = math.sqrt(float(m[i, i] - m[j, j] - m[k, k]) + 1.0)
+        out[i] = s * 0.5
+        s = 0.5 / s
+        out[3] = float(m[k, j] - m[j, k]) * s
+        out[j] = float(m[j, i] + m[i, j]) * s
+        out[k] = float(m[k, i] + m[i, k]) * s
+    return out[0], out[1], out[2], out[3]
+
+
+def compose_as_matrices(a: Transform, b: Transform) -> Transform:
+    """``a * b`` computed as tf2's ``tf2::Transform`` does, on rotation matrices, the quaternion read back with
+    :func:`matrix_quaternion` (the sign tf2's advanced lookup gives)."""
+    ra = _rotation_matrix(a.rotation)
+    rotation = ra @ _rotation_matrix(b.rotation)
+    return Transform(np.asarray(ra @ b.translation + a.translation, dtype=np.float64),
+                     np.array(matrix_quaternion(rotation), dtype=np.float64))

@@ -20,7 +20,7 @@ from collections.abc import Callable, Sequence
 from types import ModuleType
 from typing import Any
 
-from rostui.compat import PKGPY
+from rostui.compat import PKGPY, PYLIB
 from rostui.core import packages
 from rostui.core.msg import (
     MessageError,
@@ -128,6 +128,8 @@ class MessageModuleFinder(importlib.abc.MetaPathFinder):
         if len(parts) > 3 or not package.isidentifier():
             return None
         if len(parts) == 1:
+            if (PYLIB / package).is_dir():
+                return None  # rostui writes this package's Python (tf, actionlib...): its own __init__ is the module
             if not (message_names(package) or service_names(package)):
                 return None
             return self._spec(fullname, package, None, None)

@@ -75,6 +75,7 @@ MODULES: dict[str, str] = {
     "tf2_py": "python3-tf2",
     "tf2_geometry_msgs": "python3-tf2-geometry-msgs",
     "tf": "python3-tf",
+    "rostest": "python3-rostest",
 }
 
 #: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.

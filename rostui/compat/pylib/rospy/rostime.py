@@ -5,13 +5,19 @@ Their bases are rostui's times, which are the shim's ``genpy.Time`` and ``genpy.
 
 from __future__ import annotations
 
+import time
+
 from rostui.core import rostime as _base
 from rostui.core.node import sync as _sync
 
 from .exceptions import ROSInitException
 from .names import is_initialized
 
-__all__ = ["Time", "Duration", "get_rostime", "get_time", "is_wallclock", "is_rostime_initialized"]
+__all__ = ["Time", "Duration", "get_rostime", "get_time", "is_wallclock", "is_rostime_initialized",
+           "set_rostime_initialized"]
+
+_initialized_by_hand = False
+_time_set_by_hand: "Time | None" = None
 
 
 class Duration(_base.Duration):
@@ -43,8 +49,21 @@ class Time(_base.Time):
 
 
 def is_rostime_initialized() -> bool:
-    """True once ``init_node`` has run: before it rospy has no time to give."""
-    return is_initialized()
+    """True once ``init_node`` has run (or :func:`set_rostime_initialized` said so): before, rospy has no time."""
+    return _initialized_by_hand or is_initialized()
+
+
+def set_rostime_initialized(val: bool) -> None:
+    """Let a script (an offline unit test) use ROS time without ``init_node``: the wall clock, or the time
+    :func:`_set_rostime` gave."""
+    global _initialized_by_hand
+    _initialized_by_hand = bool(val)
+
+
+def _set_rostime(t: _base.Time) -> None:
+    """Make the current ROS time ``t`` (rospy's hook for simulated time, which unit tests call)."""
+    global _time_set_by_hand
+    _time_set_by_hand = Time(t.secs, t.nsecs)
 
 
 def is_wallclock() -> bool:
@@ -57,8 +76,12 @@ def get_rostime() -> Time:
 
     ROSInitException before ``init_node``, as in rospy.
     """
+    if _time_set_by_hand is not None:
+        return Time(_time_set_by_hand.secs, _time_set_by_hand.nsecs)
     if not is_initialized():
-        raise ROSInitException("time is not initialized. Have you called init_node()?")
+        if not _initialized_by_hand:
+            raise ROSInitException("time is not initialized. Have you called init_node()?")
+        return Time.from_sec(time.time())
     now = _sync.get_rostime()
     return Time(now.secs, now.nsecs)
 

@@ -10,6 +10,7 @@ are printed on stderr, as tf2's C++ console prints them, and the transform is ig
 from __future__ import annotations
 
 import math
+import os
 import sys
 import threading
 from typing import Any
@@ -87,7 +88,11 @@ def _transform_stamped(target: str, source: str, stamp: int, transform: Transfor
 
 
 def _print_problem(level: str, text: str) -> None:
-    print(f"{level}:   {text}" if level == "Error" else f"{level}: {text}", file=sys.stderr, flush=True)
+    """Say it on the process's stderr itself, as tf2's C++ console does (a test runner capturing
+    ``sys.stderr`` does not catch it)."""
+    line = f"{level}:   {text}\n" if level == "Error" else f"{level}: {text}\n"
+    sys.stderr.flush()
+    os.write(2, line.encode(errors="replace"))
 
 
 def _invalid_frame_text(frame: str, where: str) -> str | None:

@@ -39,6 +39,7 @@ FILES: dict[str, str] = {
     "/usr/share/bash-completion/completions/rosbash": "rosbash",
     "/usr/include/ros/ros.h": "libroscpp-dev",
     "/usr/lib/genpy/genmsg_py.py": "python3-genpy",
+    "/usr/lib/actionlib_msgs/genaction.py": "libactionlib-msgs-dev",
     "/usr/lib/genpy/gensrv_py.py": "python3-genpy",
     "/usr/lib/rostopic/rostopic": "python3-rostopic",
     "/usr/lib/rosbag/play": "python3-rosbag",
@@ -76,6 +77,7 @@ MODULES: dict[str, str] = {
     "tf2_geometry_msgs": "python3-tf2-geometry-msgs",
     "tf": "python3-tf",
     "rostest": "python3-rostest",
+    "actionlib": "python3-actionlib",
 }
 
 #: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.

@@ -101,6 +101,10 @@ class Subscriber:
         """How many publishers are connected."""
         return sum(1 for c in self.impl.connections.values() if c is not None) + len(self.impl.local_pubs)
 
+    def publisher_names(self) -> set[str]:
+        """Node names of the connected publishers."""
+        return self.impl.publisher_names()
+
     async def unregister(self) -> None:
         """Stop receiving; the last handle unregisters the topic."""
         if not self._closed:

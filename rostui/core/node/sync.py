@@ -376,6 +376,10 @@ class Subscriber:
         """Connected publishers."""
         return self._impl.get_num_connections()
 
+    def publisher_names(self) -> set[str]:
+        """Node names of the connected publishers."""
+        return self._impl.publisher_names()
+
     def unregister(self) -> None:
         """Stop receiving."""
         _unregister(self._engine, self._impl)

@@ -652,6 +652,12 @@ class Subscription:
         live = [uri for uri, conn in self.connections.items() if conn is not None and conn.header is not None]
         self.update_publishers(list(dict.fromkeys([*uris, *live, *self.local_pubs])))
 
+    def publisher_names(self) -> set[str]:
+        """Node names (callerids) of the connected publishers, remote and in-process."""
+        remote = {str(conn.header.get("callerid", "")) for conn in self.connections.values()
+                  if conn is not None and conn.header is not None}
+        return remote | {pub.node.name for pub in self.local_pubs.values()}
+
     def _types_match(self, md5: str) -> bool:
         ours = self.msg_class._md5sum
         return ours == "*" or md5 == "*" or ours == md5

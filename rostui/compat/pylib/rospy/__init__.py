@@ -32,6 +32,7 @@ from rostui.compat.rospy_console import RospyConsole
 from . import exceptions, msproxy, names, rostime
 from ._params import delete_param, get_param, get_param_names, has_param, search_param, set_param
 from ._callback_thread import CallbackThread
+from ._impl import PublisherImpl, SubscriberImpl
 from ._nodeless import caller as _nodeless_caller
 from ._peers import ListenerRelay, rospy_service_header
 from .exceptions import (
@@ -181,6 +182,11 @@ class Publisher(_Topic):
         """Publish a message, or one built from its fields given positionally or as keywords."""
         self._handle().publish(*args, **kwargs)
 
+    @property
+    def impl(self) -> PublisherImpl:
+        """The connections, as rospy's ``Publisher.impl`` shows them (``has_connection(callerid)``)."""
+        return PublisherImpl(self)
+
 
 class Subscriber(_Topic):
     """Call *callback* with each message of a topic, as ``rospy.Subscriber``; may be made before ``init_node``.
@@ -203,6 +209,11 @@ class Subscriber(_Topic):
         self._impl = _sync.Subscriber(self.resolved_name, self.data_class, self._calls,
                                       callback_args=self.callback_args, queue_size=self.queue_size,
                                       tcp_nodelay=self.tcp_nodelay)
+
+    @property
+    def impl(self) -> SubscriberImpl:
+        """The connections, as rospy's ``Subscriber.impl`` shows them (``connections[i].callerid_pub``)."""
+        return SubscriberImpl(self)
 
     def unregister(self) -> None:
         """Stop receiving; a callback under way finishes, queued messages are dropped."""

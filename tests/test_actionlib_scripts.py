@@ -1,0 +1,125 @@
+"""actionlib_tutorials' Fibonacci server and client, unmodified, under rostui's actionlib and Debian's, mixed.
+
+The tutorial's SimpleActionServer (node ``fibonacci``, feedback once a second) and SimpleActionClient
+(``wait_for_server``, a goal of order 20, ``wait_for_result``) run as real processes: both under `rostui
+python`, rostui's client against Debian's server, and Debian's client against rostui's server, so
+rostui's actionlib speaks the protocol to the real one both ways. The client prints the sequence; the
+server logs its start and success. Sources: tests/python_compat/real/SOURCES.md. Debian ships no
+actionlib_tutorials, so Debian's side gets its messages made by Debian's genaction and genpy.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from conftest import REPO, SYSTEM_PYTHON, need_peer, shared_build
+from rospy_scripts import Running, script_command
+from test_rospy_tutorials import masked
+
+TUTORIALS = REPO / "tests" / "python_compat" / "real" / "common_tutorials"
+PACKAGE = TUTORIALS / "actionlib_tutorials"
+SHARE = REPO / "rostui" / "share"
+GENACTION = Path("/usr/lib/actionlib_msgs/genaction.py")
+GENMSG = Path("/usr/lib/genpy/genmsg_py.py")
+FIBONACCI_20 = "Result: 0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55, 89, 144, 233, 377, 610, 987, 1597, 2584, 4181, 6765"
+
+
+def _generate(out: Path) -> None:
+    """actionlib_tutorials' action messages for Debian's rospy: genaction's .msg files, then genpy's modules."""
+    msg_dir, py_dir = out / "msg", out / "python" / "actionlib_tutorials" / "msg"
+    subprocess.run([SYSTEM_PYTHON, str(GENACTION), "-o", str(msg_dir), str(PACKAGE / "action" / "Fibonacci.action")],
+                   check=True, capture_output=True)
+    includes = [f"-Iactionlib_tutorials:{msg_dir}", f"-Iactionlib_msgs:{SHARE / 'actionlib_msgs' / 'msg'}",
+                f"-Istd_msgs:{SHARE / 'std_msgs' / 'msg'}"]
+    base = [SYSTEM_PYTHON, str(GENMSG), "-p", "actionlib_tutorials", "-o", str(py_dir), *includes]
+    subprocess.run([*base, *sorted(str(p) for p in msg_dir.iterdir())], check=True, capture_output=True)
+    subprocess.run([SYSTEM_PYTHON, str(GENMSG), "--initpy", "-p", "actionlib_tutorials", "-o", str(py_dir)],
+                   check=True, capture_output=True)
+    (py_dir.parent / "__init__.py").write_text("")
+
+
+@pytest.fixture(scope="session")
+def tutorials_python(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """Debian's Python modules of actionlib_tutorials, made once for the run."""
+    need_peer(GENACTION.exists() and GENMSG.exists(), "genaction and genpy (Debian libactionlib-msgs-dev, python3-genpy)")
+    need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import actionlib"], capture_output=True).returncode == 0,
+              "actionlib (Debian python3-actionlib)")
+    return shared_build(tmp_path_factory, "actionlib_tutorials_genpy", _generate) / "python"
+
+
+@pytest.mark.parametrize("client,server", [("shim", "shim"), ("shim", "real"), ("real", "shim")])
+def test_fibonacci_client_gets_the_sequence(client: str, server: str, rostui_core: object, ros_env: dict[str, str],
+                                            tutorials_python: Path, tmp_path: Path) -> None:
+    base = {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}
+    envs = {"shim": dict(base, ROS_PACKAGE_PATH=str(TUTORIALS)),
+            "real": dict(base, PYTHONPATH=os.pathsep.join(filter(None, [str(tutorials_python),
+                                                                         base.get("PYTHONPATH")])))}
+    scripts = PACKAGE / "scripts"
+    serving = Running(script_command(server, scripts / "fibonacci_server.py"), envs[server], tmp_path / "server.log")
+    asking = Running(script_command(client, scripts / "fibonacci_client.py"), envs[client], tmp_path / "client.log")
+    try:
+        asking.wait_for(FIBONACCI_20)
+        assert asking.proc.wait(timeout=60) == 0, asking.output()
+        serving.wait_for("fibonacci: Succeeded")
+    finally:
+        server_said = serving.interrupt()
+        asking.interrupt()
+    assert asking.output().strip().splitlines() == [FIBONACCI_20], asking.output()
+    assert masked(server_said)[:2] == [
+        "[INFO] /fibonacci: Executing, creating fibonacci sequence of order N with seeds N, N",
+        "[INFO] /fibonacci: Succeeded",
+    ], server_said
+
+
+EXERCISE = REPO / "tests" / "python_compat" / "real" / "actionlib" / "test"
+
+
+@pytest.mark.parametrize("client,server", [("shim", "shim"), ("shim", "real"), ("real", "shim")])
+def test_simple_client_exercise_passes(client: str, server: str, rostui_core: object, ros_env: dict[str, str],
+                                       tmp_path: Path) -> None:
+    """actionlib's own exercise of SimpleActionClient against its mock SimpleActionServer: success, abort,
+    preempt, a dropped goal, an execute callback that raises, an ignored cancel and a goal the server loses
+    (it deletes the goal from its status list), all seven passing in every pairing."""
+    need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import actionlib, rostest"], capture_output=True).returncode
+              == 0, "actionlib and rostest (Debian python3-actionlib, python3-rostest)")
+    env = {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}
+    serving = Running(script_command(server, EXERCISE / "mock_simple_server.py"), env, tmp_path / "server.log")
+    try:
+        serving.wait_for("Spinning")
+        out = subprocess.run(script_command(client, EXERCISE / "exercise_simple_client.py"), env=env,
+                             capture_output=True, text=True, timeout=240)
+    finally:
+        server_said = serving.interrupt()
+    said = out.stdout + out.stderr
+    assert out.returncode == 0, said + server_said
+    cases = [line for line in said.splitlines() if line.startswith("[Testcase: ")]
+    assert cases == [f"[Testcase: test_{name}] ... ok" for name in (
+        "drop", "exception", "ignore_cancel_and_succeed", "just_abort", "just_preempt", "just_succeed", "lose")], said
+    assert "\033[32m * RESULT: SUCCESS\033[0m" in said
+    assert "Your executeCallback did not set the goal to a terminal status." in server_said
+    assert "Exception in your execute callback: Terminating by throwing an exception" in server_said
+
+
+@pytest.mark.parametrize("client,server", [("shim", "shim"), ("shim", "real"), ("real", "shim")])
+def test_raw_action_client_against_the_reference_server(client: str, server: str, rostui_core: object,
+                                                       ros_env: dict[str, str], tmp_path: Path) -> None:
+    """actionlib's test of the raw ActionClient (goal handles, feedback callbacks, results) against its
+    reference ActionServer subclass (accept, succeed, abort, reject, feedback by hand), in every pairing."""
+    need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import actionlib, rostest"], capture_output=True).returncode
+              == 0, "actionlib and rostest (Debian python3-actionlib, python3-rostest)")
+    env = {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}
+    serving = Running(script_command(server, EXERCISE / "ref_server.py"), env, tmp_path / "server.log")
+    try:
+        out = subprocess.run(script_command(client, EXERCISE / "test_ref_action_server.py"), env=env,
+                             capture_output=True, text=True, timeout=240)
+    finally:
+        server_said = serving.interrupt()
+    said = out.stdout + out.stderr
+    assert out.returncode == 0, said + server_said
+    cases = [line for line in said.splitlines() if line.startswith("[Testcase: ")]
+    assert cases == [f"[Testcase: {name}] ... ok" for name in ("test_abort", "test_feedback", "test_result",
+                                                             "testsimple")], said

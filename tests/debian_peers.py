@@ -78,6 +78,7 @@ MODULES: dict[str, str] = {
     "tf": "python3-tf",
     "rostest": "python3-rostest",
     "actionlib": "python3-actionlib",
+    "message_filters": "python3-message-filters",
 }
 
 #: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.

@@ -186,3 +186,19 @@ def test_real_rospy_wins_unless_rostui_is_asked(rospy_available: None, args: lis
     assert out.returncode == 0, out.stderr
     assert out.stdout.startswith(origin), out.stdout
     assert len(out.stderr.splitlines()) == 1 and says in out.stderr, out.stderr
+
+
+def test_logging_before_init_node_as_rospy_does(tmp_path: Path) -> None:
+    """Before ``init_node`` rospy's log calls have no handler: DEBUG and INFO vanish, WARN and above print the
+    bare message on stderr. message_filters and actionlib log there from offline tests."""
+    need_peer(have_rospy(), "rospy (Debian python3-rospy)")
+    script = tmp_path / "early.py"
+    script.write_text("import rospy\n"
+                      "rospy.logdebug('d %d', 1)\nrospy.loginfo('i %d', 2)\nrospy.logwarn('w %d', 3)\n"
+                      "rospy.logerr('e %d', 4)\nrospy.logfatal('f %d', 5)\nrospy.logwarn_once('once')\n"
+                      "print('done')\n")
+    env = {"PATH": "/usr/bin:/bin", "ROS_HOME": str(tmp_path / "home")}
+    real = subprocess.run([SYSTEM_PYTHON, str(script)], env=env, capture_output=True, text=True, timeout=60)
+    ours = subprocess.run(rostui_cmd("python", "--rostui", str(script)), env=env, capture_output=True, text=True,
+                          timeout=60)
+    assert (ours.stdout, ours.stderr) == (real.stdout, real.stderr) == ("done\n", "w 3\ne 4\nf 5\nonce\n")

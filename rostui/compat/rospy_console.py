@@ -10,14 +10,16 @@ above to stderr, and INFO is never colored. Only the look differs from
 from __future__ import annotations
 
 import re
+import sys
 import threading
 from collections.abc import Callable
+from typing import TextIO
 
 from rostui.core.log.console import COLORS, RESET, Console
 from rostui.core.log.levels import Level
 from rostui.core.log.record import LogRecord
 
-__all__ = ["RospyConsole"]
+__all__ = ["RospyConsole", "RospyConsoleBeforeInit"]
 
 _TOKEN = re.compile(r"\$\{([a-z]+)\}")
 
@@ -54,3 +56,25 @@ class RospyConsole(Console):
         if color and record.level is not Level.INFO:
             return f"{COLORS.get(record.level, '')}{text}{RESET}"
         return text
+
+
+class RospyConsoleBeforeInit(Console):
+    """What rospy prints before ``init_node``: its log calls reach Python's logging with no handler set, so
+    DEBUG and INFO vanish and WARN and above appear bare (the message alone) on stderr, as Python's
+    last-resort handler writes them."""
+
+    def stream_for(self, level: Level) -> TextIO:
+        """stderr, for every level that is shown."""
+        return sys.stderr
+
+    def write(self, record: LogRecord) -> None:
+        """Write the bare message of a WARN or higher record."""
+        if record.level < Level.WARN:
+            return
+        try:
+            sys.stderr.write(record.message + "\n")
+            sys.stderr.flush()
+        except (BrokenPipeError, ValueError, OSError, AttributeError):
+            pass
+
+    __call__ = write

@@ -595,10 +595,11 @@ def get_param_names() -> list[str]:
 _console_only = NodeLog("", package_logger(None), LoggerTree(), Console())
 
 
-def use_console(console: Console) -> None:
-    """Write this process's log lines with *console*, before ``init_node`` and after (rospy's look, for one)."""
+def use_console(console: Console, before_init: Console | None = None) -> None:
+    """Write this process's log lines with *console* (rospy's look, for one); before ``init_node`` with
+    *before_init* if given, else with *console* too."""
     _state.console = console
-    _console_only.console = console
+    _console_only.console = console if before_init is None else before_init
     if _state.node is not None:
         _state.node.log.console = console
 

@@ -27,7 +27,7 @@ from rostui.core.node.sync import (
 from rostui.core.master_errors import unreachable_text
 from rostui.core.node.services import parse_rosrpc_uri
 from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync, ros_result
-from rostui.compat.rospy_console import RospyConsole
+from rostui.compat.rospy_console import RospyConsole, RospyConsoleBeforeInit
 
 from . import exceptions, msproxy, names, rostime
 from ._params import delete_param, get_param, get_param_names, has_param, search_param, set_param
@@ -70,7 +70,7 @@ FATAL = 16
 logout = loginfo
 """rospy's old name of :func:`loginfo`."""
 
-_sync.use_console(RospyConsole())  # log lines look like rospy's: [INFO] [1700000000.123456]: ...
+_sync.use_console(RospyConsole(), before_init=RospyConsoleBeforeInit())  # lines look like rospy's: [INFO] [1700...]: ...
 
 
 def __getattr__(name: str) -> Any:

@@ -17,6 +17,7 @@ import importlib.abc
 import importlib.machinery
 import sys
 from collections.abc import Callable, Sequence
+from pathlib import Path
 from types import ModuleType
 from typing import Any
 
@@ -49,6 +50,34 @@ def service_names(package: str) -> list[str]:
         return [t.rpartition("/")[2] for t in list_service_types(package)]
     except packages.PackageNotFoundError:
         return []
+
+
+DEBIAN_PYTHON = Path("/usr/lib/python3/dist-packages")
+"""Where Debian installs ROS packages' Python modules."""
+_MESSAGE_ONLY = {"msg", "srv", "__init__.py", "__pycache__"}
+
+
+def own_python(package: str) -> Path | None:
+    """The package's own Python package in its source tree (``<pkg>/src/<pkg>/__init__.py``, as catkin builds it)."""
+    try:
+        root = packages.find_package(package)
+    except OSError:
+        return None
+    if root is None:
+        return None
+    candidate = root / "src" / package
+    return candidate if (candidate / "__init__.py").is_file() else None
+
+
+def python_elsewhere(package: str) -> bool:
+    """Whether Debian's install of ``package`` has Python modules besides its messages that rostui lacks
+    (``sensor_msgs.point_cloud2`` is rostui's, in :data:`~rostui.compat.PKGPY`)."""
+    try:
+        ours = {entry.name for entry in (PKGPY / package).iterdir()} if (PKGPY / package).is_dir() else set()
+        return any(entry.name not in _MESSAGE_ONLY and entry.name not in ours
+                   for entry in (DEBIAN_PYTHON / package).iterdir())
+    except OSError:
+        return False
 
 
 def _names(package: str, kind: str) -> list[str]:
@@ -98,14 +127,19 @@ def _module_getattr(module: ModuleType, package: str, kind: str, only: str | Non
 class _Loader(importlib.abc.Loader):
     """Fills the module a :class:`MessageModuleFinder` spec names."""
 
-    def __init__(self, package: str, kind: str | None, only: str | None) -> None:
-        self.package, self.kind, self.only = package, kind, only
+    def __init__(self, package: str, kind: str | None, only: str | None, own: Path | None = None) -> None:
+        self.package, self.kind, self.only, self.own = package, kind, only, own
 
     def exec_module(self, module: ModuleType) -> None:
-        """Give the package module its kinds, and a kind module its (lazily built) classes."""
+        """Give the package module its kinds (or run the package's own ``__init__.py``), and a kind module its
+        (lazily built) classes."""
         module.__file__ = None
         if self.kind is None:
             module.__doc__ = f"ROS package {self.package} (message and service modules served by rostui)."
+            if self.own is not None:
+                init = self.own / "__init__.py"
+                module.__file__ = str(init)
+                exec(compile(init.read_bytes(), str(init), "exec"), module.__dict__)  # noqa: S102 (the package's own code)
             return
         names = _names(self.package, self.kind)
         if self.only is not None:
@@ -132,7 +166,12 @@ class MessageModuleFinder(importlib.abc.MetaPathFinder):
                 return None  # rostui writes this package's Python (tf, actionlib...): its own __init__ is the module
             if not (message_names(package) or service_names(package)):
                 return None
-            return self._spec(fullname, package, None, None)
+            own = own_python(package)
+            if own is None and python_elsewhere(package):
+                raise ModuleNotFoundError(
+                    f"No module named '{package}': rostui python serves {package}'s messages ({package}.msg) but "
+                    f"not its Python module; docs/rospy.md lists the modules rostui provides", name=package)
+            return self._spec(fullname, package, None, None, own)
         kind = parts[1]
         if kind not in _KINDS or not _names(package, kind):
             return None
@@ -144,11 +183,17 @@ class MessageModuleFinder(importlib.abc.MetaPathFinder):
         return self._spec(fullname, package, kind, name)
 
     @staticmethod
-    def _spec(fullname: str, package: str, kind: str | None, only: str | None) -> importlib.machinery.ModuleSpec:
-        spec = importlib.machinery.ModuleSpec(fullname, _Loader(package, kind, only), is_package=only is None)
+    def _spec(fullname: str, package: str, kind: str | None, only: str | None,
+              own: Path | None = None) -> importlib.machinery.ModuleSpec:
+        spec = importlib.machinery.ModuleSpec(fullname, _Loader(package, kind, only, own), is_package=only is None)
         if only is None:
-            extra = PKGPY / package
-            spec.submodule_search_locations = [str(extra)] if kind is None and extra.is_dir() else []
+            places = [own] if own is not None else []
+            if kind is None and (PKGPY / package).is_dir():
+                places.append(PKGPY / package)
+            spec.submodule_search_locations = [str(p) for p in places] if kind is None else []
+            if own is not None:
+                spec.origin = str(own / "__init__.py")
+                spec.has_location = True
         return spec
 
 

@@ -1,6 +1,6 @@
 """ROS package discovery: ROS_PACKAGE_PATH first, then rostui's built-in ``share/``, then Debian's.
 
-A package is a directory holding a ``package.xml``; each root is searched
+A package is a directory holding a ``package.xml`` (or a rosbuild ``manifest.xml``); each root is searched
 recursively (without descending into a package, like rospack) and the first
 package of a given name wins.  Results are cached and the cache is rebuilt
 whenever ROS_PACKAGE_PATH changes (or :func:`clear_cache` is called).
@@ -93,7 +93,7 @@ def _scan_root(root: Path, found: dict[str, list[Path]]) -> None:
         if real in seen:
             continue
         seen.add(real)
-        if (d / "package.xml").is_file():
+        if (d / "package.xml").is_file() or (d / "manifest.xml").is_file():  # catkin's, or rosbuild's (rospack)
             dirs = found.setdefault(_package_name(d), [])
             if d not in dirs:
                 dirs.append(d)
@@ -135,7 +135,7 @@ def _holds_definitions(d: Path) -> bool:
 
 
 def _package_name(pkg_dir: Path) -> str:
-    """The ``<name>`` in package.xml, or the directory name if it cannot be read."""
+    """The ``<name>`` in package.xml, or the directory name (a rosbuild package's name, or an unreadable file)."""
     try:
         text = (pkg_dir / "package.xml").read_text(encoding="utf-8", errors="replace")
     except OSError:

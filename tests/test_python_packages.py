@@ -56,7 +56,9 @@ def test_rosbuild_and_own_python_packages(tmp_path: Path) -> None:
 
 
 def test_a_module_rostui_lacks_fails_at_the_import(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Debian's install of a package with Python beside its messages (here a stand-in for dist-packages)."""
+    """Debian's install of a package with Python beside its messages (here a stand-in for dist-packages): its
+    messages still import, its Python modules fail at the import with the hint; so does a ROS module rostui
+    does not provide at all."""
     from rostui.compat import finder
 
     dist = tmp_path / "dist-packages"
@@ -67,9 +69,13 @@ def test_a_module_rostui_lacks_fails_at_the_import(tmp_path: Path, monkeypatch: 
     monkeypatch.setattr(finder, "DEBIAN_PYTHON", dist)
     hook = finder.MessageModuleFinder()
     assert hook.find_spec("std_msgs", None) is not None  # messages only: the package module, as genpy's
-    with pytest.raises(ModuleNotFoundError, match=r"No module named 'std_srvs': rostui python serves std_srvs's "
-                                                  r"messages \(std_srvs.msg\) but not its Python module; "
-                                                  r"docs/rospy.md") as caught:
-        hook.find_spec("std_srvs", None)
-    assert caught.value.name == "std_srvs"
-    assert hook.find_spec("std_srvs.srv", None) is not None  # its messages still import
+    assert hook.find_spec("std_msgs.helpers", []) is None  # an unknown module of it is Python's own error
+    assert hook.find_spec("std_srvs", None) is not None and hook.find_spec("std_srvs.srv", []) is not None
+    with pytest.raises(ModuleNotFoundError, match=r"No module named 'std_srvs.client': rostui python serves "
+                                                  r"std_srvs's messages \(std_srvs.msg\) but not its Python "
+                                                  r"modules; docs/rospy.md") as caught:
+        hook.find_spec("std_srvs.client", [])
+    assert caught.value.name == "std_srvs.client"
+    with pytest.raises(ModuleNotFoundError, match=r"No module named 'diagnostic_updater': rostui python does "
+                                                  r"not provide this ROS module yet; docs/rospy.md"):
+        hook.find_spec("diagnostic_updater", None)

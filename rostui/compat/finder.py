@@ -52,6 +52,15 @@ def service_names(package: str) -> list[str]:
         return []
 
 
+ROS_PYTHON_NOT_PROVIDED = frozenset({
+    "PyKDL", "angles", "cv_bridge", "diagnostic_updater", "dynamic_reconfigure", "image_geometry",
+    "interactive_markers", "kdl_parser_py", "laser_geometry", "moveit_commander", "rosgraph", "roslaunch",
+    "rosmsg", "rosnode", "rosparam", "rospkg", "rosservice", "rostopic", "smach", "smach_ros", "sound_play",
+    "tf_conversions", "topic_tools", "urdf_parser_py", "xacro",
+})
+"""ROS 1 Python modules scripts import that rostui python does not provide (yet): importing one says so and
+where to read which modules there are, unless a real one is installed."""
+
 DEBIAN_PYTHON = Path("/usr/lib/python3/dist-packages")
 """Where Debian installs ROS packages' Python modules."""
 _MESSAGE_ONLY = {"msg", "srv", "__init__.py", "__pycache__"}
@@ -78,6 +87,18 @@ def python_elsewhere(package: str) -> bool:
                    for entry in (DEBIAN_PYTHON / package).iterdir())
     except OSError:
         return False
+
+
+def _lacks_python(package: str) -> bool:
+    """Whether ``package`` has a Python API in ROS that rostui python does not give (its messages aside)."""
+    if (PYLIB / package).is_dir() or own_python(package) is not None:
+        return False
+    return package in ROS_PYTHON_NOT_PROVIDED or python_elsewhere(package)
+
+
+def _not_provided(name: str, what: str) -> ModuleNotFoundError:
+    return ModuleNotFoundError(f"No module named '{name}': rostui python {what}; docs/rospy.md lists the modules "
+                               "rostui provides", name=name)
 
 
 def _names(package: str, kind: str) -> list[str]:
@@ -165,14 +186,14 @@ class MessageModuleFinder(importlib.abc.MetaPathFinder):
             if (PYLIB / package).is_dir():
                 return None  # rostui writes this package's Python (tf, actionlib...): its own __init__ is the module
             if not (message_names(package) or service_names(package)):
+                if package in ROS_PYTHON_NOT_PROVIDED and importlib.machinery.PathFinder.find_spec(package) is None:
+                    raise _not_provided(package, "does not provide this ROS module yet")
                 return None
-            own = own_python(package)
-            if own is None and python_elsewhere(package):
-                raise ModuleNotFoundError(
-                    f"No module named '{package}': rostui python serves {package}'s messages ({package}.msg) but "
-                    f"not its Python module; docs/rospy.md lists the modules rostui provides", name=package)
-            return self._spec(fullname, package, None, None, own)
+            return self._spec(fullname, package, None, None, own_python(package))
         kind = parts[1]
+        if kind not in _KINDS and len(parts) == 2 and _lacks_python(package) \
+                and importlib.machinery.PathFinder.find_spec(fullname, path) is None:
+            raise _not_provided(fullname, f"serves {package}'s messages ({package}.msg) but not its Python modules")
         if kind not in _KINDS or not _names(package, kind):
             return None
         if len(parts) == 2:

@@ -79,6 +79,7 @@ MODULES: dict[str, str] = {
     "rostest": "python3-rostest",
     "actionlib": "python3-actionlib",
     "message_filters": "python3-message-filters",
+    "cv_bridge": "python3-cv-bridge",
 }
 
 #: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.
@@ -88,8 +89,10 @@ BASE_COMMANDS: frozenset[str] = frozenset({
 BASE_FILES: frozenset[str] = frozenset({"/usr/bin/python3", "/bin/sh", "/usr/share"})
 
 #: Modules the tests generate themselves (with genpy, from rostui's own .msg files) before importing, and
-#: demo_pkg, a package test_run_python.py writes whose messages rostui's import hook builds.
-GENERATED_MODULES: frozenset[str] = frozenset({"turtlesim", "rospy_tutorials", "beginner_tutorials", "demo_pkg"})
+#: packages the tests write whose messages rostui's import hook builds (demo_pkg in test_run_python.py,
+#: old_robot and new_robot in test_python_packages.py).
+GENERATED_MODULES: frozenset[str] = frozenset({"turtlesim", "rospy_tutorials", "beginner_tutorials", "demo_pkg",
+                                                "old_robot", "new_robot"})
 
 #: Programs a test looks for but passes without, checking the behaviour either way (named, so the
 #: scan knows they are not forgotten): xterm is a launch-prefix whose absence roslaunch reports too.

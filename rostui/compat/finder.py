@@ -53,7 +53,7 @@ def service_names(package: str) -> list[str]:
 
 
 ROS_PYTHON_NOT_PROVIDED = frozenset({
-    "PyKDL", "angles", "cv_bridge", "diagnostic_updater", "dynamic_reconfigure", "image_geometry",
+    "PyKDL", "angles", "diagnostic_updater", "dynamic_reconfigure", "image_geometry",
     "interactive_markers", "kdl_parser_py", "laser_geometry", "moveit_commander", "rosgraph", "roslaunch",
     "rosmsg", "rosnode", "rosparam", "rospkg", "smach", "smach_ros", "sound_play",
     "tf_conversions", "topic_tools", "urdf_parser_py", "xacro",

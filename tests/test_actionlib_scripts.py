@@ -76,27 +76,37 @@ def test_fibonacci_client_gets_the_sequence(client: str, server: str, rostui_cor
 
 
 EXERCISE = REPO / "tests" / "python_compat" / "real" / "actionlib" / "test"
+PAIRINGS = pytest.mark.parametrize("client,server", [("shim", "shim"), ("shim", "real"), ("real", "shim")])
 
 
-@pytest.mark.parametrize("client,server", [("shim", "shim"), ("shim", "real"), ("real", "shim")])
+def run_unittest_against(server: str, server_script: str, client: str, client_script: str, ros_env: dict[str, str],
+                         tmp_path: Path, ready: str | None = None) -> tuple[list[str], str, str]:
+    """Start ``server_script`` on one side, run the rostest-style ``client_script`` on the other; the client's
+    ``[Testcase: ...]`` lines, all it printed and all the server printed."""
+    need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import actionlib, rostest"], capture_output=True).returncode
+              == 0, "actionlib and rostest (Debian python3-actionlib, python3-rostest)")
+    env = {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}
+    serving = Running(script_command(server, EXERCISE / server_script), env, tmp_path / "server.log")
+    try:
+        if ready is not None:
+            serving.wait_for(ready)
+        out = subprocess.run(script_command(client, EXERCISE / client_script), env=env, capture_output=True,
+                             text=True, timeout=240)
+    finally:
+        server_said = serving.interrupt()
+    said = out.stdout + out.stderr
+    assert out.returncode == 0, said + server_said
+    return [line for line in said.splitlines() if line.startswith("[Testcase: ")], said, server_said
+
+
+@PAIRINGS
 def test_simple_client_exercise_passes(client: str, server: str, rostui_core: object, ros_env: dict[str, str],
                                        tmp_path: Path) -> None:
     """actionlib's own exercise of SimpleActionClient against its mock SimpleActionServer: success, abort,
     preempt, a dropped goal, an execute callback that raises, an ignored cancel and a goal the server loses
     (it deletes the goal from its status list), all seven passing in every pairing."""
-    need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import actionlib, rostest"], capture_output=True).returncode
-              == 0, "actionlib and rostest (Debian python3-actionlib, python3-rostest)")
-    env = {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}
-    serving = Running(script_command(server, EXERCISE / "mock_simple_server.py"), env, tmp_path / "server.log")
-    try:
-        serving.wait_for("Spinning")
-        out = subprocess.run(script_command(client, EXERCISE / "exercise_simple_client.py"), env=env,
-                             capture_output=True, text=True, timeout=240)
-    finally:
-        server_said = serving.interrupt()
-    said = out.stdout + out.stderr
-    assert out.returncode == 0, said + server_said
-    cases = [line for line in said.splitlines() if line.startswith("[Testcase: ")]
+    cases, said, server_said = run_unittest_against(server, "mock_simple_server.py", client,
+                                                    "exercise_simple_client.py", ros_env, tmp_path, ready="Spinning")
     assert cases == [f"[Testcase: test_{name}] ... ok" for name in (
         "drop", "exception", "ignore_cancel_and_succeed", "just_abort", "just_preempt", "just_succeed", "lose")], said
     assert "\033[32m * RESULT: SUCCESS\033[0m" in said
@@ -104,22 +114,12 @@ def test_simple_client_exercise_passes(client: str, server: str, rostui_core: ob
     assert "Exception in your execute callback: Terminating by throwing an exception" in server_said
 
 
-@pytest.mark.parametrize("client,server", [("shim", "shim"), ("shim", "real"), ("real", "shim")])
+@PAIRINGS
 def test_raw_action_client_against_the_reference_server(client: str, server: str, rostui_core: object,
                                                        ros_env: dict[str, str], tmp_path: Path) -> None:
     """actionlib's test of the raw ActionClient (goal handles, feedback callbacks, results) against its
     reference ActionServer subclass (accept, succeed, abort, reject, feedback by hand), in every pairing."""
-    need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import actionlib, rostest"], capture_output=True).returncode
-              == 0, "actionlib and rostest (Debian python3-actionlib, python3-rostest)")
-    env = {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}
-    serving = Running(script_command(server, EXERCISE / "ref_server.py"), env, tmp_path / "server.log")
-    try:
-        out = subprocess.run(script_command(client, EXERCISE / "test_ref_action_server.py"), env=env,
-                             capture_output=True, text=True, timeout=240)
-    finally:
-        server_said = serving.interrupt()
-    said = out.stdout + out.stderr
-    assert out.returncode == 0, said + server_said
-    cases = [line for line in said.splitlines() if line.startswith("[Testcase: ")]
+    cases, said, _ = run_unittest_against(server, "ref_server.py", client, "test_ref_action_server.py", ros_env,
+                                          tmp_path)
     assert cases == [f"[Testcase: {name}] ... ok" for name in ("test_abort", "test_feedback", "test_result",
                                                              "testsimple")], said

@@ -101,6 +101,13 @@ def _holds(stamps: list[int], stamp: int) -> bool:
     return i < len(stamps) and stamps[i] == stamp
 
 
+def _earliest(common: int, stamp: int) -> int:
+    """The earlier of two stamps, where 0 means none (a static link, or nothing seen yet)."""
+    if not stamp:
+        return common
+    return min(common, stamp) if common else stamp
+
+
 def _connectivity_text(target: str, source: str) -> str:
     return (f"Could not find a connection between '{target}' and '{source}' because they are not part of the "
             "same tree.Tf has two or more unconnected trees.")
@@ -420,8 +427,7 @@ class TfBuffer:
         common = 0
         frame, depth = source, 0
         while (edge := self._edges.get(frame)) is not None:
-            if edge.latest_time_ns():
-                common = min(common, edge.latest_time_ns()) if common else edge.latest_time_ns()
+            common = _earliest(common, edge.latest_time_ns())
             source_links.append((edge.latest_time_ns(), edge.parent))
             frame = edge.parent
             if frame == target:
@@ -433,8 +439,7 @@ class TfBuffer:
         meeting: str | None = None
         parents = {parent for _, parent in source_links}
         while (edge := self._edges.get(frame)) is not None:
-            if edge.latest_time_ns():
-                common = min(common, edge.latest_time_ns()) if common else edge.latest_time_ns()
+            common = _earliest(common, edge.latest_time_ns())
             if edge.parent in parents:
                 meeting = edge.parent
                 break
@@ -447,8 +452,7 @@ class TfBuffer:
         if meeting is None:
             raise ConnectivityError(_connectivity_text(target, source))
         for stamp, parent in source_links:
-            if stamp:
-                common = min(common, stamp) if common else stamp
+            common = _earliest(common, stamp)
             if parent == meeting:
                 break
         return common

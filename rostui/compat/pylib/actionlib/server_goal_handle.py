@@ -66,8 +66,11 @@ class ServerGoalHandle:
         """A default-constructed result of this action."""
         return self.action_server.ActionResultType().result
 
-    def _move(self, allowed: dict[int, int], text: str, publish_result: Any, wrong: str) -> bool:
-        """Move the goal by ``allowed`` (from-status: to-status); publish status, or the result if terminal."""
+    def _move(self, allowed: dict[int, int], text: str | None, publish_result: Any, wrong: str | None) -> bool:
+        """Move the goal by ``allowed`` (from-status: to-status); publish the status, or the result if it ended.
+
+        A status not in ``allowed`` is logged with ``wrong`` (quietly when None) and nothing changes.
+        """
         if not self.goal:
             rospy.logerr(_NOT_SET)
             return False
@@ -75,10 +78,12 @@ class ServerGoalHandle:
         with self.action_server.lock:
             status = self.status_tracker.status.status
             if status not in allowed:
-                rospy.logerr(wrong + ", it is currently in state: %d", status)
+                if wrong is not None:
+                    rospy.logerr(wrong + ", it is currently in state: %d", status)
                 return False
             self.status_tracker.status.status = allowed[status]
-            self.status_tracker.status.text = text
+            if text is not None:
+                self.status_tracker.status.text = text
             if publish_result is _NO_RESULT:
                 self.action_server.publish_status()
             else:
@@ -115,18 +120,8 @@ class ServerGoalHandle:
 
     def set_cancel_requested(self) -> bool:
         """A client asked to cancel: PENDING becomes RECALLING, ACTIVE becomes PREEMPTING; whether it moved."""
-        if not self.goal:
-            rospy.logerr(_NOT_SET)
-            return False
-        assert self.status_tracker is not None
-        with self.action_server.lock:
-            status = self.status_tracker.status.status
-            following = {GoalStatus.PENDING: GoalStatus.RECALLING, GoalStatus.ACTIVE: GoalStatus.PREEMPTING}
-            if status not in following:
-                return False
-            self.status_tracker.status.status = following[status]
-            self.action_server.publish_status()
-            return True
+        return self._move({GoalStatus.PENDING: GoalStatus.RECALLING, GoalStatus.ACTIVE: GoalStatus.PREEMPTING}, None,
+                          _NO_RESULT, None)
 
     def publish_feedback(self, feedback: Any) -> None:
         """Send feedback for this goal."""
@@ -143,19 +138,19 @@ class ServerGoalHandle:
 
     def get_goal_id(self) -> Any:
         """The goal's ``actionlib_msgs/GoalID``."""
-        if not self.goal:
-            rospy.logerr("Attempt to get a goal id on an uninitialized ServerGoalHandle")
-            return GoalID()
-        assert self.status_tracker is not None
-        with self.action_server.lock:
-            return self.status_tracker.status.goal_id
+        status = self._status("get a goal id")
+        return GoalID() if status is None else status.goal_id
 
     def get_goal_status(self) -> Any:
         """The goal's ``actionlib_msgs/GoalStatus``."""
-        if not self.goal:
-            rospy.logerr("Attempt to get goal status on an uninitialized ServerGoalHandle")
-            return GoalStatus()
-        assert self.status_tracker is not None
+        status = self._status("get goal status")
+        return GoalStatus() if status is None else status
+
+    def _status(self, what: str) -> Any:
+        """The goal's status (None, logged as actionlib does, for an empty handle)."""
+        if not self.goal or self.status_tracker is None:
+            rospy.logerr(f"Attempt to {what} on an uninitialized ServerGoalHandle")
+            return None
         with self.action_server.lock:
             return self.status_tracker.status
 

@@ -29,7 +29,6 @@ COMMANDS: dict[str, str] = {
     "ssh-keygen": "openssh-client",
     "ip": "iproute2",
     "nsenter": "util-linux",
-    "unshare": "util-linux",
     "prlimit": "util-linux",
     "chromium": "chromium",
     "chromedriver": "chromium-driver",

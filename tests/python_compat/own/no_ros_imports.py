@@ -1,4 +1,10 @@
-"""What a robot script imports beyond rospy, on a machine with no ROS: tests/test_python_no_ros.py runs it."""
+"""What a robot script imports beyond rospy, run by `rostui python` on a machine with no ROS.
+
+.ci/run runs it before it installs Debian's ROS and compares what it prints with no_ros_imports.expected;
+tests/test_python_no_ros.py runs it on any machine and checks that every module came from rostui.
+"""
+
+import sys
 
 import actionlib
 import cv_bridge
@@ -27,4 +33,10 @@ print("tf2", buffer.lookup_transform("map", "base_link", rospy.Time(0)).transfor
 print("tf", [round(float(v), 6) for v in tf.transformations.quaternion_from_euler(0, 0, 1.0)])
 image = cv_bridge.CvBridge().cv2_to_imgmsg(np.arange(12, dtype=np.uint8).reshape(2, 2, 3), "rgb8")
 print("cv_bridge", image.encoding, image.step, [int(v) for v in cv_bridge.CvBridge().imgmsg_to_cv2(image, "bgr8")[0, 0]])
-print("filters", message_filters.Cache.__name__, rospy.__file__.count("rostui") > 0)
+print("filters", message_filters.Cache.__name__)
+ros_modules = ("actionlib", "cv_bridge", "message_filters", "rospy", "tf", "tf2_ros", "tf2_py", "tf.transformations")
+if "--origins" in sys.argv:
+    for name in ros_modules:
+        print("origin", name, sys.modules[name].__file__)
+    for name in ("actionlib_msgs.msg", "move_base_msgs.msg", "visualization_msgs.msg"):
+        print("origin", name, sys.modules[name].__loader__.__class__.__module__)

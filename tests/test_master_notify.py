@@ -7,6 +7,7 @@ import time
 from typing import Any, Awaitable, Callable
 
 from rostui.core.master import Master
+from rostui.core.master.handler import SETTLE_SECONDS
 from rostui.core.xmlrpc import XmlRpcClient, XmlRpcServer
 
 
@@ -106,13 +107,30 @@ def test_register_does_not_wait_for_slow_subscriber_and_keeps_order() -> None:
             await asyncio.wait_for(slow.changed.wait(), 10)
         gate.set()
         await slow.wait_for(3, timeout=10)
-        # the pending /a update, queued behind /b, carries the newest list
-        assert slow.events == [
+        # the pending /a update, queued behind /b, carries the newest list (a repeat may follow: see below)
+        assert slow.events[:3] == [
             ("publisherUpdate", ("/master", "/a", ["http://127.0.0.1:1/"])),
             ("publisherUpdate", ("/master", "/b", ["http://127.0.0.1:1/"])),
             ("publisherUpdate", ("/master", "/a", ["http://127.0.0.1:1/", "http://127.0.0.1:2/"])),
         ]
     scenario(t, [FakeNode(gate=gate)])
+
+
+def test_a_subscriber_that_handles_its_reply_last_still_learns_the_publisher() -> None:
+    """rospy (and roscpp) apply a registerSubscriber reply and publisherUpdates in the order their threads get to
+    them: an update sent right after the reply can be applied first, and the reply's older, empty list then
+    wins. The master repeats a list that changed while the subscription settled, so the node ends knowing it."""
+    async def t(m: Master, c: XmlRpcClient, nodes: list[tuple[FakeNode, str]]) -> None:
+        (sub, sub_uri), (_, pub_uri) = nodes
+        reply = await c.call("registerSubscriber", "/sub", "/chatter", "std_msgs/String", sub_uri)
+        await c.call("registerPublisher", "/pub", "/chatter", "std_msgs/String", pub_uri)
+        first = await sub.wait_for(1)
+        applied = [first[0][1][2], reply[2]]  # the node handled the update, then its (older) reply
+        assert applied[-1] == []
+        events = await sub.wait_for(2, timeout=SETTLE_SECONDS + 10)
+        applied.append(events[1][1][2])
+        assert applied[-1] == [pub_uri]
+    scenario(t, [FakeNode(), FakeNode()])
 
 
 def test_dead_subscriber_does_not_block_others() -> None:

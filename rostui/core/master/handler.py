@@ -11,6 +11,7 @@ tables: serialise them, do not mutate them.
 
 from __future__ import annotations
 
+import asyncio
 import logging
 import os
 from typing import Any, Callable
@@ -32,6 +33,13 @@ ApiReturn = tuple[int, str, Any]
 
 REPLACED_REASON = "new node registered with same name"
 
+SETTLE_SECONDS = 2.0
+"""How long after a registerSubscriber a publisher change is sent to the subscriber a second time.
+
+A node may handle a publisherUpdate before the registerSubscriber reply that was computed earlier: rospy
+then keeps the reply's older list as the newest and never connects (roscpp drops the connection). The
+master cannot see when the node handled its reply, so it repeats the current list once, later."""
+
 
 class MasterHandler:
     """The XML-RPC methods of a ROS 1 master (graph registrations + parameter server)."""
@@ -44,6 +52,7 @@ class MasterHandler:
         self.params = ParamTree()
         self.topic_types: dict[str, str] = {}
         self._on_shutdown = on_shutdown
+        self._settling: dict[tuple[str, str], bool] = {}
 
     # -- internal ----------------------------------------------------------
 
@@ -53,12 +62,31 @@ class MasterHandler:
         for topic in removed.get(PUBLICATIONS, ()):
             self._notify_subscribers(topic)
 
-    def _notify_subscribers(self, topic: str) -> None:
+    def _notify_subscribers(self, topic: str) -> list[str]:
+        """Send *topic*'s publishers to each of its subscribers; the subscribers' URIs."""
         subs = self.reg.subscribers.get_apis(topic)
         if subs:
             pubs = self.reg.publishers.get_apis(topic)
             for sub_api in subs:
                 self.notifier.publisher_update(sub_api, topic, pubs)
+                if (sub_api, topic) in self._settling:
+                    self._settling[(sub_api, topic)] = True
+        return subs
+
+    def _settle(self, sub_api: str, topic: str) -> None:
+        """Repeat *topic*'s publishers to a subscriber registered :data:`SETTLE_SECONDS` ago, if they changed since."""
+        try:
+            loop = asyncio.get_running_loop()
+        except RuntimeError:
+            return  # called outside a served master (a unit test of the handler): nothing to repeat later
+        key = (sub_api, topic)
+        self._settling[key] = False
+
+        def repeat() -> None:
+            if self._settling.pop(key, False) and sub_api in self.reg.subscribers.get_apis(topic):
+                self.notifier.publisher_update(sub_api, topic, self.reg.publishers.get_apis(topic))
+
+        loop.call_later(SETTLE_SECONDS, repeat)
 
     def _notify_params(self, updates: list[Update]) -> None:
         for subscribers, key, value in updates:
@@ -195,6 +223,7 @@ class MasterHandler:
         self.reg.register_subscriber(topic, caller_id, caller_api)
         if topic_type != ANYTYPE and topic not in self.topic_types:
             self.topic_types[topic] = topic_type
+        self._settle(caller_api, topic)
         return 1, f"Subscribed to [{topic}]", self.reg.publishers.get_apis(topic)
 
     @api(0, (is_graph_resource("topic"), is_api("caller_api")))
@@ -209,11 +238,7 @@ class MasterHandler:
         self.reg.register_publisher(topic, caller_id, caller_api)
         if topic_type != ANYTYPE or topic not in self.topic_types:
             self.topic_types[topic] = topic_type
-        subs = self.reg.subscribers.get_apis(topic)
-        if subs:
-            pubs = self.reg.publishers.get_apis(topic)
-            for sub_api in subs:
-                self.notifier.publisher_update(sub_api, topic, pubs)
+        subs = self._notify_subscribers(topic)
         return 1, f"Registered [{caller_id}] as publisher of [{topic}]", subs
 
     @api(0, (is_graph_resource("topic"), is_api("caller_api")))

@@ -50,6 +50,8 @@ FILES: dict[str, str] = {
     "/usr/share/rosgraph_msgs/package.xml": "libros-rosgraph-msgs-dev",
     "/usr/lib/tf2_ros/static_transform_publisher": "tf2-tools",
     "/usr/lib/tf/tf_echo": "tf-tools",
+    "/usr/lib/dynamic_reconfigure/dynparam": "python3-dynamic-reconfigure",
+    "/usr/share/dynamic_reconfigure": "libdynamic-reconfigure-config-init-mutex-dev",
 }
 
 #: Top-level modules a test imports under the system Python (/usr/bin/python3), and their packages.
@@ -80,6 +82,7 @@ MODULES: dict[str, str] = {
     "actionlib": "python3-actionlib",
     "message_filters": "python3-message-filters",
     "cv_bridge": "python3-cv-bridge",
+    "dynamic_reconfigure": "python3-dynamic-reconfigure",
 }
 
 #: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.
@@ -89,10 +92,11 @@ BASE_COMMANDS: frozenset[str] = frozenset({
 BASE_FILES: frozenset[str] = frozenset({"/usr/bin/python3", "/bin/sh", "/usr/share"})
 
 #: Modules the tests generate themselves (with genpy, from rostui's own .msg files) before importing, and
-#: packages the tests write whose messages rostui's import hook builds (demo_pkg in test_run_python.py,
-#: old_robot and new_robot in test_python_packages.py).
+#: packages the tests write whose messages or .cfg modules rostui's import hook builds (demo_pkg in
+#: test_run_python.py, old_robot and new_robot in test_python_packages.py, broken_cfg in
+#: test_dynamic_reconfigure.py).
 GENERATED_MODULES: frozenset[str] = frozenset({"turtlesim", "rospy_tutorials", "beginner_tutorials", "demo_pkg",
-                                                "old_robot", "new_robot"})
+                                                "old_robot", "new_robot", "broken_cfg"})
 
 #: Programs a test looks for but passes without, checking the behaviour either way (named, so the
 #: scan knows they are not forgotten): xterm is a launch-prefix whose absence roslaunch reports too.

@@ -25,7 +25,7 @@ def test_robot_imports_come_from_rostui() -> None:
     expected = (OWN / "no_ros_imports.expected").read_text().splitlines()
     assert lines[:len(expected)] == expected
     origins = {line.split()[1]: line.split()[2] for line in lines[len(expected):]}
-    assert len(origins) == 11
+    assert len(origins) == 12
     assert {name: where for name, where in origins.items()
             if not (where.startswith(str(COMPAT / "pylib")) or where == "rostui.compat.finder")} == {}
 

@@ -34,6 +34,8 @@ from rostui.core.msg import (
 __all__ = ["MessageModuleFinder", "install", "message_names", "service_names"]
 
 _KINDS = ("msg", "srv")
+CFG = "cfg"
+"""The subpackage of a ROS package that holds its dynamic_reconfigure modules (``<pkg>.cfg.<Name>Config``)."""
 
 
 def message_names(package: str) -> list[str]:
@@ -53,7 +55,7 @@ def service_names(package: str) -> list[str]:
 
 
 ROS_PYTHON_NOT_PROVIDED = frozenset({
-    "PyKDL", "angles", "diagnostic_updater", "dynamic_reconfigure", "image_geometry",
+    "PyKDL", "angles", "diagnostic_updater", "image_geometry",
     "interactive_markers", "kdl_parser_py", "laser_geometry", "moveit_commander", "rosgraph", "roslaunch",
     "rosmsg", "rosnode", "rosparam", "rospkg", "smach", "smach_ros", "sound_play",
     "tf_conversions", "topic_tools", "urdf_parser_py", "xacro",
@@ -76,6 +78,17 @@ def own_python(package: str) -> Path | None:
         return None
     candidate = root / "src" / package
     return candidate if (candidate / "__init__.py").is_file() else None
+
+
+def workspace_python(module: str) -> Path | None:
+    """The ``src`` folder of a package that holds the top-level Python module *module* under another name
+    (navigation's ``base_local_planner/src/local_planner_limits``), as a catkin workspace puts every package's
+    ``src`` Python on the path; None when no package has it."""
+    for root in packages.list_packages().values():
+        src = root / "src"
+        if (src / module / "__init__.py").is_file() or (src / f"{module}.py").is_file():
+            return src
+    return None
 
 
 def python_elsewhere(package: str) -> bool:
@@ -172,6 +185,46 @@ class _Loader(importlib.abc.Loader):
         module.__dir__ = lambda: sorted(set(public) | set(module.__dict__))  # type: ignore[method-assign]
 
 
+class _CfgLoader(importlib.abc.Loader):
+    """Fills ``<pkg>.cfg`` (a package listing its ``.cfg`` modules) or ``<pkg>.cfg.<Name>Config`` (from the file)."""
+
+    def __init__(self, package: str, module: str | None, cfg: ModuleType) -> None:
+        self.package, self.module, self.cfg = package, module, cfg
+
+    def exec_module(self, module: ModuleType) -> None:
+        """Run the generated source of a ``<Name>Config`` module into *module*, or list the package's names."""
+        if self.module is None:
+            module.__doc__ = f"{self.package}.cfg: dynamic_reconfigure modules of {self.package}'s .cfg files."
+            module.__all__ = self.cfg.config_names(self.package)  # type: ignore[attr-defined]
+            return
+        source, path = self.cfg.config_module(self.package, self.module)
+        module.__file__ = str(path)
+        exec(compile(source, f"<{self.module} generated from {path}>", "exec"), module.__dict__)  # noqa: S102
+
+
+def _cfg_modules() -> ModuleType | None:
+    """rostui's ``dynamic_reconfigure.cfg_modules``, or None when the dynamic_reconfigure imported is a real one."""
+    try:
+        return importlib.import_module("dynamic_reconfigure.cfg_modules")
+    except ImportError:
+        return None
+
+
+def _has_cfg(package: str) -> bool:
+    """Whether *package* has ``.cfg`` files rostui can turn into modules."""
+    cfg = _cfg_modules()
+    return cfg is not None and bool(cfg.cfg_files(package))
+
+
+def _cfg_spec(fullname: str, package: str, module: str | None) -> importlib.machinery.ModuleSpec | None:
+    """A spec for ``<pkg>.cfg`` or ``<pkg>.cfg.<Name>Config`` when rostui's dynamic_reconfigure is the one imported
+    and *package* has ``.cfg`` files."""
+    cfg = _cfg_modules()
+    if cfg is None or not cfg.cfg_files(package):
+        return None  # a real dynamic_reconfigure's packages have their generated modules from their build
+    return importlib.machinery.ModuleSpec(fullname, _CfgLoader(package, module, cfg), is_package=module is None)
+
+
 class MessageModuleFinder(importlib.abc.MetaPathFinder):
     """Finds ``<pkg>``, ``<pkg>.msg``, ``<pkg>.srv`` and ``<pkg>.<kind>._<Name>`` for rostui's packages."""
 
@@ -185,12 +238,18 @@ class MessageModuleFinder(importlib.abc.MetaPathFinder):
         if len(parts) == 1:
             if (PYLIB / package).is_dir():
                 return None  # rostui writes this package's Python (tf, actionlib...): its own __init__ is the module
-            if not (message_names(package) or service_names(package)):
+            own = own_python(package)
+            if not (message_names(package) or service_names(package) or own is not None or _has_cfg(package)):
+                elsewhere = workspace_python(package)
+                if elsewhere is not None:
+                    return importlib.machinery.PathFinder.find_spec(fullname, [str(elsewhere)])
                 if package in ROS_PYTHON_NOT_PROVIDED and importlib.machinery.PathFinder.find_spec(package) is None:
                     raise _not_provided(package, "does not provide this ROS module yet")
                 return None
-            return self._spec(fullname, package, None, None, own_python(package))
+            return self._spec(fullname, package, None, None, own)
         kind = parts[1]
+        if kind == CFG:
+            return _cfg_spec(fullname, package, parts[2] if len(parts) == 3 else None)
         if kind not in _KINDS and len(parts) == 2 and _lacks_python(package) \
                 and importlib.machinery.PathFinder.find_spec(fullname, path) is None:
             raise _not_provided(fullname, f"serves {package}'s messages ({package}.msg) but not its Python modules")

@@ -8,12 +8,14 @@ import sys
 
 import actionlib
 import cv_bridge
+import dynamic_reconfigure.client
 import message_filters
 import numpy as np
 import rospy
 import tf
 import tf2_ros
 from actionlib_msgs.msg import GoalStatus
+from dynamic_reconfigure.cfg import TestConfig
 from geometry_msgs.msg import TransformStamped
 from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
 from visualization_msgs.msg import Marker
@@ -34,7 +36,9 @@ print("tf", [round(float(v), 6) for v in tf.transformations.quaternion_from_eule
 image = cv_bridge.CvBridge().cv2_to_imgmsg(np.arange(12, dtype=np.uint8).reshape(2, 2, 3), "rgb8")
 print("cv_bridge", image.encoding, image.step, [int(v) for v in cv_bridge.CvBridge().imgmsg_to_cv2(image, "bgr8")[0, 0]])
 print("filters", message_filters.Cache.__name__)
-ros_modules = ("actionlib", "cv_bridge", "message_filters", "rospy", "tf", "tf2_ros", "tf2_py", "tf.transformations")
+print("reconfigure", dynamic_reconfigure.client.Client.__name__, TestConfig.Test_Medium, TestConfig.max["int_"])
+ros_modules = ("actionlib", "cv_bridge", "dynamic_reconfigure.client", "message_filters", "rospy", "tf", "tf2_ros",
+               "tf2_py", "tf.transformations")
 if "--origins" in sys.argv:
     for name in ros_modules:
         print("origin", name, sys.modules[name].__file__)

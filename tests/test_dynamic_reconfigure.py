@@ -1,0 +1,308 @@
+"""dynamic_reconfigure under `rostui python` against Debian's python3-dynamic-reconfigure, with real scripts and peers.
+
+- The generator: real ``.cfg`` files (navigation's costmap_2d, move_base and dwa_local_planner, the last
+  importing base_local_planner's ``local_planner_limits``; turtlebot3_autorace's camera configs;
+  dynamic_reconfigure's own ``Test.cfg``) become ``<pkg>.cfg.<Name>Config`` modules with the same names
+  and values as the modules Debian's generator writes.
+- The server and client: dynamic_reconfigure's own ``test/testserver.py`` changed by the real ``dynparam``
+  (list, get, set with enum names, booleans as words and values out of range, dump, load, an unknown name),
+  and its ``test/testclient.py`` against the server, each pairing of rostui's side and Debian's compared
+  with Debian's on both sides. ``testserver_multiple_ns.py``'s four servers are listed and read alike.
+- Hostile descriptions: groups that are their own ancestors and an ``edit_method`` holding code cost
+  nothing (Debian's client evaluates the text).
+
+Sources and licences: tests/python_compat/real/SOURCES.md.
+"""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+from collections import Counter
+from pathlib import Path
+
+import pytest
+
+from conftest import REPO, SYSTEM_PYTHON, need_peer, rostui_cmd, wait_until
+from rospy_scripts import Running, script_command
+
+REAL = REPO / "tests" / "python_compat" / "real"
+DR = REAL / "dynamic_reconfigure"
+DYNPARAM = DR / "scripts" / "dynparam"
+DEBIAN_DYNPARAM = Path("/usr/lib/dynamic_reconfigure/dynparam")
+DEBIAN_GENERATOR_DIR = Path("/usr/share/dynamic_reconfigure")
+DUMP = REPO / "tests" / "python_compat" / "own" / "dump_config_module.py"
+WHOLE_PRINT = REPO / "tests" / "python_compat" / "own" / "atomic_print_run.py"
+NODE = "/dynamic_reconfigure_test_server"
+PREFIX = re.compile(r"^\[(DEBUG|INFO|WARN|ERROR|FATAL)\] \[\d+\.\d+\]: ", re.M)
+
+CFG_PACKAGES = {  # package -> (its folder under tests/python_compat/real, the .cfg names it has)
+    "costmap_2d": ("navigation/costmap_2d", ["Costmap2D"]),
+    "move_base": ("navigation/move_base", ["MoveBase"]),
+    "dwa_local_planner": ("navigation/dwa_local_planner", ["DWAPlanner"]),
+    "base_local_planner": ("navigation/base_local_planner", []),
+    "turtlebot3_autorace_camera": ("turtlebot3_autorace_2020/turtlebot3_autorace_camera",
+                                   ["ImageProjectionParams", "ImageCompensationParams"]),
+}
+
+
+def need_debian_dynamic_reconfigure() -> None:
+    """Debian's dynamic_reconfigure: its Python modules, dynparam, and the package files dynparam and the
+    generator read."""
+    imports = subprocess.run([SYSTEM_PYTHON, "-c", "import dynamic_reconfigure.server, dynamic_reconfigure.client, "
+                              "dynamic_reconfigure.cfg.TestConfig"], capture_output=True)
+    need_peer(imports.returncode == 0 and DEBIAN_DYNAMIC_FILES_PRESENT(),
+              "dynamic_reconfigure (Debian python3-dynamic-reconfigure, libdynamic-reconfigure-config-init-mutex-dev)")
+
+
+def DEBIAN_DYNAMIC_FILES_PRESENT() -> bool:  # noqa: N802 (reads as the condition it is)
+    return DEBIAN_DYNPARAM.is_file() and (DEBIAN_GENERATOR_DIR / "templates" / "ConfigType.py.template").is_file()
+
+
+def clean_env(ros_env: dict[str, str]) -> dict[str, str]:
+    """The test's ROS environment without rostui python's own choices."""
+    return {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}
+
+
+# -- the generator ---------------------------------------------------------------------------------------------
+
+
+def _package_tree(root: Path) -> Path:
+    """A ROS_PACKAGE_PATH folder holding the real .cfg packages (one without its package.xml here gets one)."""
+    root.mkdir()
+    for package, (folder, _) in CFG_PACKAGES.items():
+        target = root / package
+        shutil.copytree(REAL / folder, target)
+        if not (target / "package.xml").is_file():
+            (target / "package.xml").write_text(f"<package><name>{package}</name></package>\n")
+    return root
+
+
+def _debian_generated(cfg: Path, out: Path, env: dict[str, str]) -> Path:
+    """Run a .cfg file through Debian's generator as catkin does; the Python module it wrote."""
+    done = subprocess.run([SYSTEM_PYTHON, str(cfg), str(DEBIAN_GENERATOR_DIR), str(out / "bin"), str(out / "cpp"),
+                           str(out / "py")], env=env, cwd=out, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return out / "py" / "cfg" / f"{cfg.stem}Config.py"
+
+
+def test_cfg_files_make_the_modules_debians_generator_writes(tmp_path: Path, ros_env: dict[str, str]) -> None:
+    need_debian_dynamic_reconfigure()
+    tree = _package_tree(tmp_path / "packages")
+    env = dict(clean_env(ros_env), PYTHONPATH=str(tree / "base_local_planner" / "src"))
+    pairs: list[tuple[str, Path | None]] = [("dynamic_reconfigure.cfg.TestConfig", None)]
+    for package, (_, names) in CFG_PACKAGES.items():
+        pairs += [(f"{package}.cfg.{name}Config", tree / package / "cfg" / f"{name}.cfg") for name in names]
+    ours_env = dict(clean_env(ros_env), ROS_PACKAGE_PATH=str(tree))
+    for module, cfg in pairs:
+        debian_module = module if cfg is None else str(_debian_generated(cfg, tmp_path, env))
+        debian = subprocess.run([SYSTEM_PYTHON, str(DUMP), debian_module], env=env, capture_output=True, text=True)
+        ours = subprocess.run(rostui_cmd("python", "--rostui", str(DUMP), module), env=ours_env, capture_output=True,
+                              text=True)
+        assert debian.returncode == 0 and ours.returncode == 0, debian.stderr + ours.stderr
+        assert "config_description = {'name': 'Default'" in ours.stdout
+        assert ours.stdout == debian.stdout, module
+
+
+def test_a_broken_cfg_file_fails_the_import_naming_its_line(tmp_path: Path, ros_env: dict[str, str]) -> None:
+    package = tmp_path / "broken_cfg"
+    (package / "cfg").mkdir(parents=True)
+    (package / "package.xml").write_text("<package><name>broken_cfg</name></package>\n")
+    (package / "cfg" / "Bad.cfg").write_text(
+        "from dynamic_reconfigure.parameter_generator_catkin import *\n"
+        "gen = ParameterGenerator()\n"
+        "gen.add('fine', int_t, 0, 'A fine one', 1, 0, 5)\n"
+        "gen.add('not-a-name', int_t, 0, 'A dash', 1)\n"
+        "exit(gen.generate('broken_cfg', 'node', 'Bad'))\n")
+    env = dict(clean_env(ros_env), ROS_PACKAGE_PATH=str(tmp_path))
+    done = subprocess.run(rostui_cmd("python", "--rostui", "-c", "import broken_cfg.cfg.BadConfig"), env=env,
+                          capture_output=True, text=True)
+    assert done.returncode != 0
+    assert f"{package / 'cfg' / 'Bad.cfg'}:4: Exception: The name of field 'not-a-name' does not follow the ROS " \
+           "naming conventions" in done.stderr, done.stderr
+    missing = subprocess.run(rostui_cmd("python", "--rostui", "-c", "from broken_cfg.cfg import OtherConfig"),
+                             env=env, capture_output=True, text=True)
+    assert missing.stderr.splitlines()[-1].endswith("no .cfg file of package broken_cfg generates OtherConfig"), \
+        missing.stderr
+
+
+# -- the server and the client -----------------------------------------------------------------------------
+
+
+def wait_for_services(env: dict[str, str], *names: str) -> None:
+    """Wait until the master lists every service in *names*."""
+    from rostui.core.xmlrpc import call_sync
+
+    def listed() -> bool:
+        services = {name for name, _ in call_sync(env["ROS_MASTER_URI"], "getSystemState", "/test")[2][2]}
+        return services.issuperset(names)
+
+    wait_until(listed, f"services {names}")
+
+
+def forget_parameters(env: dict[str, str], *namespaces: str) -> None:
+    """Delete what a server left on the parameter server (a new server starts from those values)."""
+    from rostui.core.xmlrpc import call_sync
+
+    for ns in namespaces:
+        call_sync(env["ROS_MASTER_URI"], "deleteParam", "/test", ns)
+
+
+def start_server(side: str, env: dict[str, str], log: Path, script: str = "testserver.py",
+                 namespaces: tuple[str, ...] = (NODE,)) -> Running:
+    """dynamic_reconfigure's test server, named as its client expects, once its services are on the master."""
+    server = Running(script_command(side, DR / "test" / script, f"__name:={NODE[1:]}"), env, log)
+    try:
+        wait_for_services(env, *(f"{ns}/set_parameters" for ns in namespaces))
+    except AssertionError:
+        raise AssertionError(f"the {side} server did not offer its services; it printed:\n{server.interrupt()}")
+    return server
+
+
+def dynparam(side: str, env: dict[str, str], cwd: Path, *args: str) -> str:
+    """Run the real dynparam (rostui python on the repository's copy, or Debian's); what it said, tracebacks cut to
+    their last line (the files in them differ)."""
+    cmd = script_command("shim", DYNPARAM, *args) if side == "shim" else [SYSTEM_PYTHON, str(DEBIAN_DYNPARAM), *args]
+    done = subprocess.run(cmd, env=env, cwd=cwd, capture_output=True, text=True, timeout=120)
+    said = [line for line in (done.stdout + done.stderr).splitlines()
+            if not line.startswith(("  ", "Traceback (most recent call last)"))]
+    return "\n".join([f"$ dynparam {' '.join(args)} -> exit {done.returncode}", *said, ""])
+
+
+SESSION = [
+    ("list",),
+    ("get", NODE),
+    ("set", NODE, "{'int_': 5, 'int_enum_': 'Large', 'double_': 20, 'bool_': 'yes', 'str_': 'hi'}"),
+    ("set", NODE, "int_", "-30"),
+    ("dump", NODE, "dump.yaml"),
+    ("set", NODE, "int_", "3"),
+    ("get", NODE),
+    ("set", NODE, "no_such_parameter", "1"),
+]
+LOAD = ("load", NODE, "dump.yaml")
+DEBIAN_LOAD_FAILS = "error processing request: 'list' object has no attribute 'items'"
+"""What Debian's Python server answers any request that carries group states, as every dump does: its
+decode_config walks the generated description's list of groups as if it were a dict."""
+
+
+class Session:
+    """What a dynparam session against testserver.py gave: its transcript with the file it dumped, what the
+    server printed meanwhile, and what loading the dump back then said and left (a get after it)."""
+
+    def __init__(self, server_side: str, dynparam_side: str, env: dict[str, str], work: Path) -> None:
+        work.mkdir()
+        server = start_server(server_side, env, work / "server.log")
+        try:
+            self.transcript = "".join(dynparam(dynparam_side, env, work, *args) for args in SESSION)
+            self.transcript += (work / "dump.yaml").read_text()
+            self.server_said = PREFIX.sub("[\\1] ", server.output())
+            self.loaded = dynparam(dynparam_side, env, work, *LOAD) + dynparam(dynparam_side, env, work, "get", NODE)
+        finally:
+            server.interrupt()
+            forget_parameters(env, NODE)
+
+
+def check_session(server_side: str, dynparam_side: str, env: dict[str, str], work: Path) -> None:
+    """The session with rostui on one side or both gives what it gives with Debian on both; loading a dump
+    fails against Debian's server and works against rostui's."""
+    expected = Session("real", "real", env, work / "debian")
+    session = Session(server_side, dynparam_side, env, work / "mixed")
+    assert "'int_enum_': 2" in session.transcript and "'str_': 'hiAAA'" in session.transcript, session.transcript
+    assert "error updating parameters: don't know parameter: no_such_parameter" in session.transcript
+    assert session.transcript == expected.transcript
+    assert session.server_said == expected.server_said
+    assert DEBIAN_LOAD_FAILS in expected.loaded, expected.loaded
+    if server_side == "real":
+        assert DEBIAN_LOAD_FAILS in session.loaded, session.loaded
+    else:  # the dump's int_ (-9) and str_ ('hiAA') are back, through the server's callback (int_ |= 1, str_ += 'A')
+        assert f"$ dynparam {' '.join(LOAD)} -> exit 0" in session.loaded, session.loaded
+        assert "'int_': -9," in session.loaded and "'str_': 'hiAAA'," in session.loaded, session.loaded
+
+
+@pytest.mark.parametrize("server_side,dynparam_side", [("shim", "real"), ("real", "shim"), ("shim", "shim")])
+def test_dynparam_session_matches_debians(server_side: str, dynparam_side: str, rostui_core: object,
+                                          ros_env: dict[str, str], tmp_path: Path) -> None:
+    need_debian_dynamic_reconfigure()
+    check_session(server_side, dynparam_side, clean_env(ros_env), tmp_path)
+
+
+def test_debians_dynparam_changes_a_rostui_server_on_roscore(real_roscore: object, ros_env: dict[str, str],
+                                                             tmp_path: Path) -> None:
+    need_debian_dynamic_reconfigure()
+    check_session("shim", "real", clean_env(ros_env), tmp_path)
+
+
+def client_lines(client_side: str, server_side: str, env: dict[str, str], work: Path) -> Counter[str]:
+    """Every line testclient.py printed against testserver.py. Its config callback prints from a subscriber thread
+    while the main thread prints: each print is made whole (WHOLE_PRINT), and the lines compared as a multiset."""
+    work.mkdir()
+    server = start_server(server_side, env, work / "server.log")
+    try:
+        done = subprocess.run(script_command(client_side, WHOLE_PRINT, str(DR / "test" / "testclient.py")), env=env,
+                              capture_output=True, text=True, timeout=120)
+    finally:
+        server.interrupt()
+        forget_parameters(env, NODE)
+    assert done.returncode == 0 and "Traceback" not in done.stderr, done.stdout + done.stderr
+    return Counter(done.stdout.splitlines())
+
+
+@pytest.mark.parametrize("client_side,server_side", [("shim", "real"), ("real", "shim"), ("shim", "shim")])
+def test_testclient_prints_what_it_prints_under_debian(client_side: str, server_side: str, rostui_core: object,
+                                                       ros_env: dict[str, str], tmp_path: Path) -> None:
+    need_debian_dynamic_reconfigure()
+    env = clean_env(ros_env)
+    expected = client_lines("real", "real", env, tmp_path / "debian")
+    said = client_lines(client_side, server_side, env, tmp_path / "mixed")
+    assert said["Medium is a constant that is set to 1: 1"] == 1
+    assert said["New callback is done..."] == 1
+    assert said == expected
+
+
+def test_four_servers_of_one_node_list_and_read_alike(rostui_core: object, ros_env: dict[str, str],
+                                                     tmp_path: Path) -> None:
+    need_debian_dynamic_reconfigure()
+    env = clean_env(ros_env)
+    outputs = []
+    namespaces = ("/absolute_ns", NODE, f"{NODE}/alternate_ns", f"{NODE}/alternate_ns/second_lvl")
+    for side in ("real", "shim"):
+        work = tmp_path / side
+        work.mkdir()
+        server = start_server(side, env, work / "server.log", "testserver_multiple_ns.py", namespaces)
+        try:
+            outputs.append("".join(dynparam("real", env, work, *args) for args in (
+                ("list",), ("get", "/absolute_ns"), ("get", f"{NODE}/alternate_ns/second_lvl"))))
+        finally:
+            server.interrupt()
+            forget_parameters(env, "/absolute_ns", NODE)
+    debian, ours = outputs
+    assert ours.splitlines()[1:5] == list(namespaces)
+    assert ours == debian
+
+
+def test_hostile_descriptions_cost_nothing(ros_env: dict[str, str], tmp_path: Path) -> None:
+    script = tmp_path / "hostile.py"
+    script.write_text(
+        "from dynamic_reconfigure.encoding import decode_description, get_tree\n"
+        "from dynamic_reconfigure.client import Client\n"
+        "from dynamic_reconfigure.msg import ConfigDescription, Group, ParamDescription\n"
+        "loop = ConfigDescription(groups=[Group(name='Default', id=0, parent=0),\n"
+        "    Group(name='a', id=1, parent=0), Group(name='b', id=2, parent=1), Group(name='back', id=1, parent=2),\n"
+        "    Group(name='c', id=4, parent=0, parameters=[ParamDescription(name='x', type='int',\n"
+        "        edit_method=\"__import__('os').system('touch PWNED')\")])])\n"
+        "tree = decode_description(loop)\n"
+        "print(sorted(tree['groups']), list(tree['groups']['a']['groups']), list(tree['groups']['a']['groups']['b']['groups']))\n"
+        "print(sorted(get_tree(loop)['groups']))\n"
+        "client = Client.__new__(Client)\n"
+        "client._description_callback = None\n"
+        "import threading; client._cv = threading.Condition()\n"
+        "client._descriptions_msg(loop)\n"
+        "print(client._convert('x', 'Small'))\n")
+    done = subprocess.run(rostui_cmd("python", "--rostui", str(script)), env=clean_env(ros_env), cwd=tmp_path,
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode != 0  # 'Small' is no int and no enum constant: the conversion fails, nothing runs
+    # the group that would be its own grandparent is left out; the rest of the tree is read
+    assert done.stdout.splitlines()[:2] == ["['a', 'c'] ['b'] []", "['a', 'c']"], done.stdout + done.stderr
+    assert "can't set parameter 'x'" in done.stderr, done.stderr
+    assert not (tmp_path / "PWNED").exists()

@@ -83,6 +83,7 @@ MODULES: dict[str, str] = {
     "message_filters": "python3-message-filters",
     "cv_bridge": "python3-cv-bridge",
     "dynamic_reconfigure": "python3-dynamic-reconfigure",
+    "diagnostic_updater": "python3-diagnostic-updater",
 }
 
 #: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.

@@ -76,6 +76,6 @@ def test_a_module_rostui_lacks_fails_at_the_import(tmp_path: Path, monkeypatch: 
                                                   r"modules; docs/rospy.md") as caught:
         hook.find_spec("std_srvs.client", [])
     assert caught.value.name == "std_srvs.client"
-    with pytest.raises(ModuleNotFoundError, match=r"No module named 'diagnostic_updater': rostui python does "
+    with pytest.raises(ModuleNotFoundError, match=r"No module named 'image_geometry': rostui python does "
                                                   r"not provide this ROS module yet; docs/rospy.md"):
-        hook.find_spec("diagnostic_updater", None)
+        hook.find_spec("image_geometry", None)

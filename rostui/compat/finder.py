@@ -13,6 +13,7 @@ the user chose rostui's modules over a real ROS (then it sits first).
 
 from __future__ import annotations
 
+import importlib
 import importlib.abc
 import importlib.machinery
 import sys
@@ -55,7 +56,7 @@ def service_names(package: str) -> list[str]:
 
 
 ROS_PYTHON_NOT_PROVIDED = frozenset({
-    "PyKDL", "angles", "diagnostic_updater", "image_geometry",
+    "PyKDL", "angles", "image_geometry",
     "interactive_markers", "kdl_parser_py", "laser_geometry", "moveit_commander", "rosgraph", "roslaunch",
     "rosmsg", "rosnode", "rosparam", "rospkg", "smach", "smach_ros", "sound_play",
     "tf_conversions", "topic_tools", "urdf_parser_py", "xacro",
@@ -119,8 +120,18 @@ def _names(package: str, kind: str) -> list[str]:
 
 
 def _expose(cls: type, package: str, kind: str, name: str) -> type:
-    """Give *cls* the module genpy's class of the same type has (``std_msgs.msg._String``)."""
+    """Give *cls* the module genpy's class of the same type has (``std_msgs.msg._String``), and import the message
+    modules of the packages its fields use, as genpy's module does (so ``std_msgs.msg`` is an attribute of
+    ``std_msgs`` once ``diagnostic_msgs.msg.DiagnosticArray`` is loaded, which scripts rely on)."""
     cls.__module__ = f"{package}.{kind}._{name}"
+    for half in (cls, getattr(cls, "_request_class", None), getattr(cls, "_response_class", None)):
+        for field_type in getattr(half, "_slot_types", ()):
+            used = field_type.split("[", 1)[0].partition("/")[0] if "/" in field_type else ""
+            if used and used != package and used.isidentifier():
+                try:
+                    importlib.import_module(f"{used}.msg")
+                except ImportError:
+                    pass  # the class was built, so the type is known; its module is only a convenience
     return cls
 
 
@@ -188,41 +199,40 @@ class _Loader(importlib.abc.Loader):
 class _CfgLoader(importlib.abc.Loader):
     """Fills ``<pkg>.cfg`` (a package listing its ``.cfg`` modules) or ``<pkg>.cfg.<Name>Config`` (from the file)."""
 
-    def __init__(self, package: str, module: str | None, cfg: ModuleType) -> None:
-        self.package, self.module, self.cfg = package, module, cfg
+    def __init__(self, package: str, module: str | None) -> None:
+        self.package, self.module = package, module
 
     def exec_module(self, module: ModuleType) -> None:
-        """Run the generated source of a ``<Name>Config`` module into *module*, or list the package's names."""
+        """Run the generated source of a ``<Name>Config`` module into *module*, or list the package's names.
+
+        The generator is rostui's ``dynamic_reconfigure``; with a real one imported instead (whose packages'
+        modules come from their catkin build) this fails with ModuleNotFoundError."""
+        cfg = importlib.import_module("dynamic_reconfigure.cfg_modules")
         if self.module is None:
             module.__doc__ = f"{self.package}.cfg: dynamic_reconfigure modules of {self.package}'s .cfg files."
-            module.__all__ = self.cfg.config_names(self.package)  # type: ignore[attr-defined]
+            module.__all__ = cfg.config_names(self.package)  # type: ignore[attr-defined]
             return
-        source, path = self.cfg.config_module(self.package, self.module)
+        source, path = cfg.config_module(self.package, self.module)
         module.__file__ = str(path)
         exec(compile(source, f"<{self.module} generated from {path}>", "exec"), module.__dict__)  # noqa: S102
 
 
-def _cfg_modules() -> ModuleType | None:
-    """rostui's ``dynamic_reconfigure.cfg_modules``, or None when the dynamic_reconfigure imported is a real one."""
-    try:
-        return importlib.import_module("dynamic_reconfigure.cfg_modules")
-    except ImportError:
-        return None
-
-
 def _has_cfg(package: str) -> bool:
-    """Whether *package* has ``.cfg`` files rostui can turn into modules."""
-    cfg = _cfg_modules()
-    return cfg is not None and bool(cfg.cfg_files(package))
+    """Whether *package* has ``.cfg`` files (``<dir>/cfg/*.cfg``) rostui can turn into modules."""
+    for folder in packages.find_package_dirs(package):
+        try:
+            if next((folder / CFG).glob("*.cfg"), None) is not None:
+                return True
+        except OSError:
+            continue
+    return False
 
 
 def _cfg_spec(fullname: str, package: str, module: str | None) -> importlib.machinery.ModuleSpec | None:
-    """A spec for ``<pkg>.cfg`` or ``<pkg>.cfg.<Name>Config`` when rostui's dynamic_reconfigure is the one imported
-    and *package* has ``.cfg`` files."""
-    cfg = _cfg_modules()
-    if cfg is None or not cfg.cfg_files(package):
-        return None  # a real dynamic_reconfigure's packages have their generated modules from their build
-    return importlib.machinery.ModuleSpec(fullname, _CfgLoader(package, module, cfg), is_package=module is None)
+    """A spec for ``<pkg>.cfg`` or ``<pkg>.cfg.<Name>Config`` when *package* has ``.cfg`` files."""
+    if not _has_cfg(package):
+        return None
+    return importlib.machinery.ModuleSpec(fullname, _CfgLoader(package, module), is_package=module is None)
 
 
 class MessageModuleFinder(importlib.abc.MetaPathFinder):

@@ -114,6 +114,25 @@ def log_text(app: LaunchMonitorApp) -> str:
     return "\n".join(strip.text for strip in app.log_view.lines)
 
 
+def table_settled(app: LaunchMonitorApp) -> bool:
+    """Whether the node table's self-sizing columns are as wide as their widest cell now.
+
+    The DataTable fits a column to changed cells only when its message queue next runs dry: on a busy
+    machine a screenshot taken right after a state change can show a column still as wide as an earlier,
+    longer state ("starting"). Snapshots wait for this before they are taken."""
+    from rich.cells import cell_len
+    from textual.widgets.data_table import ColumnKey
+
+    from rostui.apps.launchmon.rows import COLUMNS
+
+    for key, heading, width in COLUMNS:
+        if width is None:
+            widest = max([cell_len(heading)] + [cell_len(getattr(row, key)) for row in app.rows.values()])
+            if app.table.columns[ColumnKey(key)].content_width != widest:
+                return False
+    return True
+
+
 def fixed_row(row: NodeRow) -> NodeRow:
     """A row with the columns that differ from run to run (pid, CPU, memory) replaced by fixed text."""
     from dataclasses import replace

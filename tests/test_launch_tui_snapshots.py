@@ -21,7 +21,7 @@ from rostui.apps.launchmon.app import LaunchMonitorApp
 
 from conftest import until
 from launch_tui_helpers import (  # noqa: F401  (tui_env is a fixture)
-    cell, fixed_row, fixed_text, log_text, monitor, tui_env, write_launch,
+    cell, fixed_row, fixed_text, log_text, monitor, table_settled, tui_env, write_launch,
 )
 from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
 
@@ -52,6 +52,7 @@ def test_running_launch(snap_compare, tui_env: dict[str, str], tmp_path: Path) -
         await until(lambda: len(app.rows) == 3 and all(r.state == "running" for r in app.rows.values()),
                     "three running nodes")
         await until(lambda: "a warning from chatty" in log_text(app), "the talker's output")
+        await until(lambda: table_settled(app), "the node table's columns fitted to their cells")
         await pilot.pause(0.3)
 
     assert snap_compare(fixed_monitor(launch, tmp_path, tui_env), run_before=run_before, terminal_size=(110, 24))
@@ -70,6 +71,7 @@ def test_followed_output(snap_compare, tui_env: dict[str, str], tmp_path: Path) 
                     "both nodes running")
         await pilot.press("down")
         await until(lambda: "a warning from chatty" in log_text(app), "the chatterbox's last line")
+        await until(lambda: table_settled(app), "the node table's columns fitted to their cells")
         await pilot.pause(0.3)
 
     assert snap_compare(fixed_monitor(launch, tmp_path, tui_env), run_before=run_before, terminal_size=(100, 22))
@@ -89,6 +91,7 @@ def test_died_node(snap_compare, tui_env: dict[str, str], tmp_path: Path) -> Non
                     and cell(app, "/survivor", "state") == "running", "the quitter's death")
         await pilot.press("down")
         await until(lambda: "process has died" in log_text(app), "the quitter's output")
+        await until(lambda: table_settled(app), "the node table's columns fitted to their cells")
         await pilot.pause(0.3)
 
     assert snap_compare(fixed_monitor(launch, tmp_path, tui_env), run_before=run_before, terminal_size=(110, 20))
@@ -104,6 +107,7 @@ def test_running_launch_at_80x24(snap_compare, tui_env: dict[str, str], tmp_path
         await until(lambda: len(app.rows) == 1 and all(r.state == "running" for r in app.rows.values()),
                     "the running node")
         await until(lambda: "a warning from chatty" in log_text(app), "the talker's output")
+        await until(lambda: table_settled(app), "the node table's columns fitted to their cells")
         await pilot.pause(0.3)
 
     assert snap_compare(fixed_monitor(launch, tmp_path, tui_env), run_before=run_before, terminal_size=(80, 24))

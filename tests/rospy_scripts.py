@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import signal
 import subprocess
+import sys
 from pathlib import Path
 
 from conftest import SYSTEM_PYTHON, rostui_cmd, stop_process, wait_until
@@ -16,6 +17,16 @@ def script_command(side: str, script: Path, *args: str) -> list[str]:
     return [SYSTEM_PYTHON, str(script), *args]
 
 
+def python_stacks(pid: int) -> str:
+    """Every thread's Python stack in process *pid*, as py-spy dumps them (what it said when it cannot)."""
+    spy = Path(sys.executable).with_name("py-spy")
+    try:
+        done = subprocess.run([str(spy), "dump", "--pid", str(pid)], capture_output=True, text=True, timeout=30)
+    except (OSError, subprocess.TimeoutExpired) as exc:
+        return f"(py-spy: {exc})"
+    return done.stdout + done.stderr
+
+
 class Running:
     """A process running in the background, its output collected in a file."""
 
@@ -24,6 +35,8 @@ class Running:
         self.proc = subprocess.Popen(cmd, env=env, stdout=log.open("w"), stderr=subprocess.STDOUT, text=True)
         self.outlived_ctrl_c = False
         """True when :meth:`interrupt` had to end it with more than SIGINT."""
+        self.stacks_when_stuck = ""
+        """The process's Python stacks (py-spy) when it outlived Ctrl-C, to show where it hung."""
 
     def output(self) -> str:
         """What it printed so far."""
@@ -46,5 +59,6 @@ class Running:
                 self.proc.wait(timeout=20)
             except subprocess.TimeoutExpired:
                 self.outlived_ctrl_c = True
+                self.stacks_when_stuck = python_stacks(self.proc.pid)
                 stop_process(self.proc)
         return self.output()

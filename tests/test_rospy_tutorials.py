@@ -81,8 +81,9 @@ def start(tmp_path: Path, envs: dict[str, dict[str, str]]) -> Iterator[Start]:
     for proc in started:
         stop_process(proc.proc)
     # Debian's rospy may miss a Ctrl-C (its known race); rostui's must not: a user's Ctrl-C ends the script.
-    assert [p.proc.args for p in started if p.outlived_ctrl_c and p.proc.args[:1] != [SYSTEM_PYTHON]
-            and "rostopic" not in p.proc.args[0]] == []
+    stuck = [p for p in started if p.outlived_ctrl_c and p.proc.args[:1] != [SYSTEM_PYTHON]
+             and "rostopic" not in p.proc.args[0]]
+    assert [p.proc.args for p in stuck] == [], "\n".join(p.output() + p.stacks_when_stuck for p in stuck)
 
 
 _MASKS = [

@@ -149,7 +149,24 @@ def _start_sim_time(engine: Engine, node: _node.AsyncNode) -> None:
 
 
 def _on_signal(signum: int, _frame: Any) -> None:
-    signal_shutdown("signal-interrupt" if signum == signal.SIGINT else "signal-terminate")
+    """Ctrl-C or SIGTERM: begin the shutdown on the engine thread.
+
+    A signal handler runs between two bytecodes of the main thread, which may at that moment hold the lock of
+    the shutdown Event it sleeps on (``Rate.sleep``, ``spin``): threading.Event's lock is not reentrant, so
+    setting the Event here could block the main thread for good. The handler only schedules; the engine thread
+    sets the Event, wakes the sleepers and unregisters the node (an exit waits for that, see :func:`_atexit`).
+    """
+    engine, node = _state.engine, _state.node
+    if engine is not None and node is not None:
+        engine.call_soon(_begin_shutdown, node, "signal-interrupt" if signum == signal.SIGINT else "signal-terminate")
+
+
+def _begin_shutdown(node: _node.AsyncNode, reason: str) -> None:
+    """On the engine thread: say the node is shutting down and start its shutdown."""
+    _state.shutdown.set()
+    _state.clock.wake()
+    if node.shutdown_reason is None:
+        node.loop.create_task(node.shutdown(reason))
 
 
 def _on_node_shutdown(reason: str) -> None:

@@ -84,6 +84,7 @@ MODULES: dict[str, str] = {
     "cv_bridge": "python3-cv-bridge",
     "dynamic_reconfigure": "python3-dynamic-reconfigure",
     "diagnostic_updater": "python3-diagnostic-updater",
+    "rospkg": "python3-rospkg",
 }
 
 #: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.

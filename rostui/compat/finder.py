@@ -57,8 +57,8 @@ def service_names(package: str) -> list[str]:
 
 ROS_PYTHON_NOT_PROVIDED = frozenset({
     "PyKDL", "angles", "image_geometry",
-    "interactive_markers", "kdl_parser_py", "laser_geometry", "moveit_commander", "rosgraph", "roslaunch",
-    "rosmsg", "rosnode", "rosparam", "rospkg", "smach", "smach_ros", "sound_play",
+    "interactive_markers", "kdl_parser_py", "laser_geometry", "moveit_commander", "roslaunch",
+    "rosmsg", "rosnode", "rosparam", "smach", "smach_ros", "sound_play",
     "tf_conversions", "topic_tools", "urdf_parser_py", "xacro",
 })
 """ROS 1 Python modules scripts import that rostui python does not provide (yet): importing one says so and

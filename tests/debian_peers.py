@@ -49,6 +49,7 @@ FILES: dict[str, str] = {
     "/usr/lib/python3/dist-packages/paramiko/": "python3-paramiko",
     "/usr/share/rosgraph_msgs/package.xml": "libros-rosgraph-msgs-dev",
     "/usr/lib/tf2_ros/static_transform_publisher": "tf2-tools",
+    "/usr/lib/tf2_ros/buffer_server": "tf2-tools",
     "/usr/lib/tf/tf_echo": "tf-tools",
     "/usr/lib/dynamic_reconfigure/dynparam": "python3-dynamic-reconfigure",
     "/usr/share/dynamic_reconfigure": "libdynamic-reconfigure-config-init-mutex-dev",

@@ -51,9 +51,13 @@ def tutorials_python(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return shared_build(tmp_path_factory, "actionlib_tutorials_genpy", _generate) / "python"
 
 
-@pytest.mark.parametrize("client,server", [("shim", "shim"), ("shim", "real"), ("real", "shim")])
-def test_fibonacci_client_gets_the_sequence(client: str, server: str, rostui_core: object, ros_env: dict[str, str],
-                                            tutorials_python: Path, tmp_path: Path) -> None:
+@pytest.mark.parametrize("client,server,master", [("shim", "shim", "rostui"), ("shim", "real", "rostui"),
+                                                  ("real", "shim", "rostui"), ("shim", "real", "roscore"),
+                                                  ("real", "shim", "roscore")])
+def test_fibonacci_client_gets_the_sequence(client: str, server: str, master: str, request: pytest.FixtureRequest,
+                                            ros_env: dict[str, str], tutorials_python: Path, tmp_path: Path) -> None:
+    """Each side against the other on rostui core and on a real roscore (and rostui's on both sides)."""
+    request.getfixturevalue("rostui_core" if master == "rostui" else "real_roscore")
     base = {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}
     envs = {"shim": dict(base, ROS_PACKAGE_PATH=str(TUTORIALS)),
             "real": dict(base, PYTHONPATH=os.pathsep.join(filter(None, [str(tutorials_python),

@@ -4,7 +4,7 @@ The names tf2_ros exports: ``Buffer``, ``TransformListener``, ``TransformBroadca
 ``StaticTransformBroadcaster``, the ``BufferInterface`` and its registries, and tf2's exceptions
 (``TransformException``, ``LookupException``, ``ConnectivityException``, ``ExtrapolationException``,
 ``InvalidArgumentException``, ``TimeoutException``). As in tf2_ros there is no ``tf2_ros.Exception``.
-``BufferClient`` (lookups through a tf2 buffer server's action) is not provided.
+``BufferClient`` asks a tf2 buffer server (its ``LookupTransform`` action) instead of keeping a buffer.
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ from tf2_py import (
 )
 
 from .buffer import DEFAULT_CAN_TRANSFORM_POLLING_SCALE, Buffer
+from .buffer_client import BufferClient
 from .buffer_interface import (
     BufferInterface, ConvertRegistration, NotImplementedException, Stamped, TransformRegistration, TypeException,
     convert,
@@ -24,7 +25,7 @@ from .transform_broadcaster import TransformBroadcaster
 from .transform_listener import TransformListener
 
 __all__ = [
-    "Buffer", "BufferCore", "BufferInterface", "ConnectivityException", "ConvertRegistration",
+    "Buffer", "BufferClient", "BufferCore", "BufferInterface", "ConnectivityException", "ConvertRegistration",
     "DEFAULT_CAN_TRANSFORM_POLLING_SCALE", "ExtrapolationException", "InvalidArgumentException", "LookupException",
     "NotImplementedException", "Stamped", "StaticTransformBroadcaster", "TimeoutException", "TransformBroadcaster",
     "TransformException", "TransformListener", "TransformRegistration", "TypeException", "convert",

@@ -4,7 +4,8 @@ The example (tests/python_compat/real/diagnostics, sources in tests/python_compa
 function, method, composite and DiagnosticTask-subclass tasks, broadcasts, watches its ``topic1`` rate with a
 HeaderlessTopicDiagnostic, forces an update, removes a task and then updates once a second. Debian's
 ``rostopic echo /diagnostics`` watches each run; from the topic watcher's first status on, the distinct
-messages are the same under both (stamps, sequence numbers and measured values masked).
+messages are the same under both (stamps, sequence numbers and measured values masked), on rostui core and on
+a real roscore.
 """
 
 from __future__ import annotations
@@ -30,6 +31,8 @@ MASKS = [
 
 def distinct_messages(echoed: str) -> set[str]:
     """The distinct masked messages rostopic echo printed, from the first one that holds the topic watcher's."""
+    # rostopic echo says so while /diagnostics is not published yet; the line joins the first message it prints
+    echoed = "\n".join(line for line in echoed.splitlines() if not line.startswith("WARNING: topic ["))
     blocks = [block.strip() for block in echoed.split("\n---")]
     first = next((i for i, block in enumerate(blocks) if WATCHER in block), len(blocks))
     found = set()
@@ -60,7 +63,7 @@ def watch_example(side: str, env: dict[str, str], work: Path) -> set[str]:
     return distinct_messages(echoed)
 
 
-def test_example_publishes_what_it_publishes_under_debian(rostui_core: object, ros_env: dict[str, str],
+def test_example_publishes_what_it_publishes_under_debian(any_master: str, ros_env: dict[str, str],
                                                           tmp_path: Path) -> None:
     need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import diagnostic_updater"], capture_output=True).returncode == 0,
               "diagnostic_updater (Debian python3-diagnostic-updater)")

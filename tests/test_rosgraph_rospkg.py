@@ -3,7 +3,8 @@
 One probe script (tests/python_compat/own/rosgraph_rospkg_probe.py) calls the master through
 ``rosgraph.Master`` (parameters, errors, state, a master that is not there, bad URIs), rosgraph's name
 functions over a battery of names and namespaces, and rospkg's ``RosPack`` on a package tree of three packages
-(package.xml with exports and dependencies, a rosbuild manifest.xml): it prints the same under both. The
+(package.xml with exports and dependencies, a rosbuild manifest.xml): it prints the same under both, on rostui
+core and on a real roscore. The
 dependencies rospkg reports are compared with the rospack command's (Debian's rospkg lists a package.xml's
 dependencies only when a rosdep database is installed; rostui's lists them as rospack does).
 """
@@ -60,7 +61,7 @@ def package_tree(root: Path) -> Path:
     return root
 
 
-def test_probe_prints_what_it_prints_under_debian(rostui_core: object, ros_env: dict[str, str],
+def test_probe_prints_what_it_prints_under_debian(any_master: str, ros_env: dict[str, str],
                                                   tmp_path: Path) -> None:
     need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import rosgraph, rospkg"], capture_output=True).returncode == 0,
               "rosgraph and rospkg (Debian python3-rosgraph, python3-rospkg)")

@@ -3,7 +3,7 @@
 The server (tf2-tools' ``buffer_server``) hears two of Debian's static_transform_publishers (world -> robot and a
 separate sea -> island); one probe script (tests/python_compat/own/buffer_client_probe.py) looks transforms up
 through the server's action, simply and through a fixed frame, and asks for frames it cannot join or does not
-know: it prints the same under both.
+know: it prints the same under both, on rostui core and on a real roscore.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ BUFFER_SERVER = Path("/usr/lib/tf2_ros/buffer_server")
 STATIC_PUBLISHER = Path("/usr/lib/tf2_ros/static_transform_publisher")
 
 
-def test_buffer_client_prints_what_it_prints_under_debian(rostui_core: object, ros_env: dict[str, str],
+def test_buffer_client_prints_what_it_prints_under_debian(any_master: str, ros_env: dict[str, str],
                                                           tmp_path: Path) -> None:
     need_peer(BUFFER_SERVER.is_file() and STATIC_PUBLISHER.is_file(), "tf2_ros's buffer_server (Debian tf2-tools)")
     env = {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}

@@ -15,6 +15,8 @@ import sys
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from rostui.core import names as _core_names
+
 from .rosenv import ROS_NAMESPACE
 
 __all__ = [
@@ -142,14 +144,7 @@ def resolve_name(name: str, namespace_: str, remappings: Mapping[str, str] | Non
     """*name* resolved against the node name *namespace_* (``~x`` under the node, ``x`` beside it), then remapped."""
     if not name:
         return namespace(namespace_)
-    name = canonicalize_name(name)
-    if is_global(name):
-        resolved = name
-    elif is_private(name):
-        resolved = canonicalize_name(namespace_ + SEP + name[1:])
-    else:
-        resolved = namespace(namespace_) + name
-    return remappings[resolved] if remappings and resolved in remappings else resolved
+    return _core_names.resolve_name(name, namespace(namespace_), node_name=namespace_, remappings=remappings)
 
 
 def script_resolve_name(script_name: str, name: str) -> str:

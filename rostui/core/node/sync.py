@@ -54,6 +54,8 @@ class _State:
     engine: Engine | None = None
     node: _node.AsyncNode | None = None
     shutdown = threading.Event()
+    signalled = False
+    """Set (a plain assignment, no lock) by the Ctrl-C/SIGTERM handler before the engine sets ``shutdown``."""
     reason = ""
     hooks: list[Callable[..., Any]] = []
     clock = Clock()
@@ -109,6 +111,7 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     node.shutdown_hooks.append(_on_node_shutdown)
     _state.engine, _state.node = engine, node
     _state.shutdown.clear()
+    _state.signalled = False
     if not disable_signals and threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGINT, _on_signal)
         signal.signal(signal.SIGTERM, _on_signal)
@@ -156,6 +159,7 @@ def _on_signal(signum: int, _frame: Any) -> None:
     setting the Event here could block the main thread for good. The handler only schedules; the engine thread
     sets the Event, wakes the sleepers and unregisters the node (an exit waits for that, see :func:`_atexit`).
     """
+    _state.signalled = True  # seen by is_shutdown() at once, even if the engine thread were stuck
     engine, node = _state.engine, _state.node
     if engine is not None and node is not None:
         engine.call_soon(_begin_shutdown, node, "signal-interrupt" if signum == signal.SIGINT else "signal-terminate")
@@ -227,20 +231,20 @@ def on_shutdown(hook: Callable[..., Any]) -> None:
 
 
 def is_shutdown() -> bool:
-    """True once the node has begun shutting down."""
-    return _state.shutdown.is_set()
+    """True once the node has begun shutting down (or Ctrl-C has asked it to)."""
+    return _state.signalled or _state.shutdown.is_set()
 
 
 def ok() -> bool:
     """The opposite of is_shutdown(), as roscpp's ros::ok()."""
-    return not _state.shutdown.is_set()
+    return not is_shutdown()
 
 
 def spin() -> None:
     """Block until the node shuts down (Ctrl-C, or the master's shutdown request)."""
     _require()
     try:
-        while not _state.shutdown.wait(0.5):
+        while not _state.shutdown.wait(0.5) and not _state.signalled:
             pass
     except KeyboardInterrupt:
         signal_shutdown("keyboard interrupt")

@@ -93,6 +93,9 @@ BASE_COMMANDS: frozenset[str] = frozenset({
     "bash", "sh", "du", "stty", "dpkg", "env", "kill", "ps", "pgrep", "python3", "git", "cat", "true", "sleep",
 })
 BASE_FILES: frozenset[str] = frozenset({"/usr/bin/python3", "/bin/sh", "/usr/share"})
+#: Paths that real test data names as values only, never reading them: rospkg's own test compares
+#: ``get_etc_ros_dir()`` with ``/etc/ros`` (tests/python_compat/real/rospkg_tests).
+NAMED_NOT_READ: frozenset[str] = frozenset({"/etc/ros"})
 
 #: Modules the tests generate themselves (with genpy, from rostui's own .msg files) before importing, and
 #: packages the tests write whose messages or .cfg modules rostui's import hook builds (demo_pkg in

@@ -4,11 +4,12 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-__all__ = ["MANIFEST_FILE", "PACKAGE_FILE", "STACK_FILE", "ResourceNotFound"]
+__all__ = ["MANIFEST_FILE", "PACKAGE_FILE", "ROS_STACK", "STACK_FILE", "ResourceNotFound"]
 
 MANIFEST_FILE = "manifest.xml"
 PACKAGE_FILE = "package.xml"
 STACK_FILE = "stack.xml"
+ROS_STACK = "ros"
 
 
 class ResourceNotFound(Exception):

@@ -12,13 +12,15 @@ from collections.abc import Mapping
 from rostui.core.packages import BUILTIN_SHARE, SYSTEM_SHARE
 
 __all__ = [
-    "ROS_HOME", "ROS_LOG_DIR", "ROS_PACKAGE_PATH", "ROS_ROOT", "ROS_TEST_RESULTS_DIR", "get_log_dir", "get_ros_home",
-    "get_ros_package_path", "get_ros_paths", "get_ros_root", "get_test_results_dir",
+    "ROS_ETC_DIR", "ROS_HOME", "ROS_LOG_DIR", "ROS_PACKAGE_PATH", "ROS_ROOT", "ROS_TEST_RESULTS_DIR", "get_etc_ros_dir",
+    "get_log_dir", "get_ros_home", "get_ros_package_path", "get_ros_paths", "get_ros_root", "get_test_results_dir",
+    "on_ros_path",
 ]
 
 ROS_ROOT = "ROS_ROOT"
 ROS_PACKAGE_PATH = "ROS_PACKAGE_PATH"
 ROS_HOME = "ROS_HOME"
+ROS_ETC_DIR = "ROS_ETC_DIR"
 ROS_LOG_DIR = "ROS_LOG_DIR"
 ROS_TEST_RESULTS_DIR = "ROS_TEST_RESULTS_DIR"
 
@@ -38,11 +40,40 @@ def get_ros_package_path(env: Mapping[str, str] | None = None) -> str:
     return os.pathsep.join(filter(None, [_env(env).get(ROS_PACKAGE_PATH, ""), str(BUILTIN_SHARE), str(SYSTEM_SHARE)]))
 
 
+def _compute_package_paths(ros_root: str | None, ros_package_path: str | None) -> list[str]:
+    """ROS_ROOT (when set) followed by the non-empty entries of a ROS_PACKAGE_PATH value."""
+    paths = [ros_root] if ros_root else []
+    return paths + [p for p in (ros_package_path or "").split(os.pathsep) if p.strip()]
+
+
 def get_ros_paths(env: Mapping[str, str] | None = None) -> list[str]:
     """The directories searched for packages, in order."""
-    root = get_ros_root(env)
-    paths = [root] if root else []
-    return paths + [p for p in get_ros_package_path(env).split(os.pathsep) if p.strip()]
+    return _compute_package_paths(get_ros_root(env), get_ros_package_path(env))
+
+
+def _resolve_path(path: str) -> str:
+    """*path* absolute and normalised, ``~`` expanded."""
+    return os.path.abspath(os.path.normpath(os.path.expanduser(path)))
+
+
+def _resolve_paths(paths: str) -> str:
+    """Each entry of a path list (``os.pathsep``-separated) resolved as :func:`_resolve_path` does."""
+    return os.pathsep.join(_resolve_path(p) for p in paths.split(os.pathsep) if p.strip())
+
+
+def on_ros_path(path: str, env: Mapping[str, str] | None = None) -> bool:
+    """True when *path* is inside one of the ROS paths (ROS_ROOT or a ROS_PACKAGE_PATH entry)."""
+    target = _resolve_path(path)
+    for root in get_ros_paths(env):
+        root = _resolve_path(root)
+        if target == root or target.startswith(root.rstrip(os.sep) + os.sep):
+            return True
+    return False
+
+
+def get_etc_ros_dir(env: Mapping[str, str] | None = None) -> str:
+    """``ROS_ETC_DIR``, else ``/etc/ros``."""
+    return _env(env).get(ROS_ETC_DIR) or "/etc/ros"
 
 
 def get_ros_home(env: Mapping[str, str] | None = None) -> str:

@@ -16,6 +16,7 @@ from __future__ import annotations
 import importlib
 import importlib.abc
 import importlib.machinery
+import os
 import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -81,15 +82,36 @@ def own_python(package: str) -> Path | None:
     return candidate if (candidate / "__init__.py").is_file() else None
 
 
+def _python_module_name(entry: Path) -> str | None:
+    """The top-level module *entry* is (``name.py`` or a folder with ``__init__.py``), or None."""
+    if entry.suffix == ".py" and entry.is_file():
+        return entry.stem
+    return entry.name if (entry / "__init__.py").is_file() else None
+
+
+_workspace_modules: tuple[str, dict[str, Path]] | None = None
+
+
 def workspace_python(module: str) -> Path | None:
     """The ``src`` folder of a package that holds the top-level Python module *module* under another name
     (navigation's ``base_local_planner/src/local_planner_limits``), as a catkin workspace puts every package's
-    ``src`` Python on the path; None when no package has it."""
-    for root in packages.list_packages().values():
-        src = root / "src"
-        if (src / module / "__init__.py").is_file() or (src / f"{module}.py").is_file():
-            return src
-    return None
+    ``src`` Python on the path; None when no package has it. The map is made once per ROS_PACKAGE_PATH."""
+    global _workspace_modules
+    key = os.environ.get("ROS_PACKAGE_PATH", "")
+    if _workspace_modules is None or _workspace_modules[0] != key:
+        found: dict[str, Path] = {}
+        for root in packages.list_packages().values():
+            src = root / "src"
+            try:
+                entries = sorted(src.iterdir())
+            except OSError:
+                continue
+            for entry in entries:
+                name = _python_module_name(entry)
+                if name is not None:
+                    found.setdefault(name, src)
+        _workspace_modules = (key, found)
+    return _workspace_modules[1].get(module)
 
 
 def python_elsewhere(package: str) -> bool:
@@ -219,13 +241,7 @@ class _CfgLoader(importlib.abc.Loader):
 
 def _has_cfg(package: str) -> bool:
     """Whether *package* has ``.cfg`` files (``<dir>/cfg/*.cfg``) rostui can turn into modules."""
-    for folder in packages.find_package_dirs(package):
-        try:
-            if next((folder / CFG).glob("*.cfg"), None) is not None:
-                return True
-        except OSError:
-            continue
-    return False
+    return bool(packages.package_files(package, CFG, "*.cfg"))
 
 
 def _cfg_spec(fullname: str, package: str, module: str | None) -> importlib.machinery.ModuleSpec | None:

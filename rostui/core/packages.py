@@ -35,6 +35,7 @@ __all__ = [
     "get_package_path",
     "clear_cache",
     "package_of",
+    "package_files",
     "executable_dirs",
     "is_executable_file",
     "find_executables",
@@ -198,6 +199,20 @@ def clear_cache() -> None:
     global _cache_key
     with _lock:
         _cache_key = None
+
+
+def package_files(name: str, folder: str, pattern: str) -> list[Path]:
+    """The files matching *pattern* in *folder* of each directory of package *name*, sorted by file name; where
+    two directories hold the same file name, the first directory's (``cfg/*.cfg`` of a package)."""
+    found: dict[str, Path] = {}
+    for root in find_package_dirs(name):
+        try:
+            entries = sorted((root / folder).glob(pattern))
+        except OSError:
+            continue
+        for path in entries:
+            found.setdefault(path.name, path)
+    return [found[file_name] for file_name in sorted(found)]
 
 
 def package_of(path: Path | str) -> str | None:

@@ -31,15 +31,7 @@ class CfgError(ImportError):
 
 def cfg_files(package: str) -> list[Path]:
     """The ``.cfg`` files of *package* (``<dir>/cfg/*.cfg`` of each of its directories), sorted by name."""
-    found: dict[str, Path] = {}
-    for folder in packages.find_package_dirs(package):
-        try:
-            entries = sorted((folder / "cfg").glob("*.cfg"))
-        except OSError:
-            continue
-        for path in entries:
-            found.setdefault(path.name, path)
-    return [found[name] for name in sorted(found)]
+    return packages.package_files(package, "cfg", "*.cfg")
 
 
 def config_names(package: str) -> list[str]:
@@ -82,16 +74,14 @@ def config_module(package: str, module: str) -> tuple[str, Path]:
     if not module.endswith(SUFFIX):
         raise CfgError(f"{package}.cfg.{module}: generated modules are named <Name>{SUFFIX}")
     wanted = module[: -len(SUFFIX)]
-    files = cfg_files(package)
-    named = [p for p in files if p.stem == wanted]
-    for path in named:  # the usual case: Name.cfg makes NameConfig; its errors are the user's to see
-        for gen in run_cfg(path):
-            if gen.name == wanted:
-                return generator.module_source(gen), path
-    for path in (p for p in files if p.stem != wanted):  # a file named otherwise may generate it
+    # Name.cfg first: it makes NameConfig as a rule, and its errors are the user's to see; a file named
+    # otherwise may generate it too, and its errors are not the point.
+    for path in sorted(cfg_files(package), key=lambda p: p.stem != wanted):
         try:
             made = run_cfg(path)
         except CfgError:
+            if path.stem == wanted:
+                raise
             continue
         for gen in made:
             if gen.name == wanted:

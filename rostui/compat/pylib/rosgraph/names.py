@@ -34,6 +34,7 @@ PRIV_NAME = "~"
 REMAP = ":="
 ANYTYPE = "*"
 _NS_ARG = "__ns:="
+# \w without re.ASCII, as rosgraph has it: a non-ASCII letter is legal here (rostui.core.names is stricter).
 _LEGAL_NAME = re.compile(r"[~/A-Za-z][\w/]*")
 _LEGAL_BASE_NAME = re.compile(r"[A-Za-z]\w*")
 _LEGAL_REMAP = re.compile(r"(?:[~/A-Za-z]|_|__)[\w/]*" + REMAP + r".*", re.S)
@@ -72,13 +73,7 @@ def get_ros_namespace(env: Mapping[str, str] | None = None, argv: Sequence[str] 
 
 def ns_join(ns: str, name: str) -> str:
     """*name* inside *ns* (a ``~`` or ``/`` name is returned as it is; an empty *ns* gives *name*)."""
-    if is_private(name) or is_global(name):
-        return name
-    if ns == PRIV_NAME:
-        return PRIV_NAME + name
-    if not ns:
-        return name
-    return ns + name if ns.endswith(SEP) else ns + SEP + name
+    return _core_names.join_names(ns, name)
 
 
 def make_caller_id(name: str) -> str:
@@ -101,10 +96,7 @@ def namespace(name: str) -> str:
 
 def canonicalize_name(name: str) -> str:
     """*name* without repeated or trailing ``/`` (an empty name and ``/`` stay as they are)."""
-    if not name or name == SEP:
-        return name
-    parts = SEP.join(part for part in name.split(SEP) if part)
-    return SEP + parts if name[0] == SEP else parts
+    return _core_names.canonicalize_name(name)
 
 
 def is_legal_name(name: str | None) -> bool:

@@ -108,6 +108,11 @@ def _earliest(common: int, stamp: int) -> int:
     return min(common, stamp) if common else stamp
 
 
+def _lookup_suffix(target: str, source: str) -> str:
+    """What tf2 appends to an extrapolation error of a lookup."""
+    return f", when looking up transform from frame [{source}] to frame [{target}]"
+
+
 def _connectivity_text(target: str, source: str) -> str:
     return (f"Could not find a connection between '{target}' and '{source}' because they are not part of the "
             "same tree.Tf has two or more unconnected trees.")
@@ -498,7 +503,6 @@ class TfBuffer:
                 walked.extend(up + down[::-1])
 
     def _walk_both(self, target: str, source: str, time: int, up: list[str], down: list[str]) -> Transform:
-        suffix = f", when looking up transform from frame [{source}] to frame [{target}]"
         source_to_top = Transform.identity()
         frame, top, depth = source, source, 0
         extrapolation: str | None = None
@@ -526,7 +530,7 @@ class TfBuffer:
             try:
                 link = edge.at(time)
             except ExtrapolationError as exc:
-                raise ExtrapolationError(f"{exc}{suffix}") from None
+                raise ExtrapolationError(f"{exc}{_lookup_suffix(target, source)}") from None
             if frame == source:
                 return target_to_top.inverse()
             target_to_top = link * target_to_top
@@ -536,7 +540,7 @@ class TfBuffer:
                 raise self._too_deep(target)
         if frame != top:
             if extrapolation is not None:
-                raise ExtrapolationError(f"{extrapolation}{suffix}")
+                raise ExtrapolationError(f"{extrapolation}{_lookup_suffix(target, source)}")
             raise ConnectivityError(_connectivity_text(target, source))
         return target_to_top.inverse() * source_to_top
 

@@ -19,7 +19,7 @@ from typing import Any, Iterator
 
 import pytest
 from conftest import stop_process, until, wait_until
-from graph_helpers import book_system, has_edges, master_graph, settled, stop_programs
+from graph_helpers import book_system, has_edges, master_graph, settled, status, stop_programs
 from live_helpers import Program
 from textual.pilot import Pilot
 from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
@@ -69,6 +69,8 @@ def test_topic_selected_with_details(snap_compare, book: list[Program]) -> None:
         app = pilot.app
         assert isinstance(app, GraphApp)
         app.select("t:/turtle1/command_velocity")
+        await until(lambda: app.graph_view.overflows() and "arrows scroll" in status(app),
+                    "the status to say that the drawing beside the details overflows")
         await pilot.pause()
 
     assert snap_compare(GraphApp(book_setup(), period=0.2), run_before=run_before, terminal_size=(110, 18))

@@ -331,11 +331,17 @@ class GraphApp(ReleasesOnExit, KeysApp):
         """Select ``vertex`` (None: clear), show its details and bring it on screen."""
         self.selected = vertex
         self.graph_view.select(vertex)
-        self.query_one("#details-pane").display = vertex is not None
+        pane = self.query_one("#details-pane")
+        resized = pane.display != (vertex is not None)
+        pane.display = vertex is not None
+        if resized:  # the drawing's share of the screen changed: whether it still fits, once laid out again
+            self.call_after_refresh(self.update_status)
         if vertex is None:
             return
         if scroll:
             self.graph_view.scroll_to_vertex(vertex)
+            if resized:
+                self.call_after_refresh(self.graph_view.scroll_to_vertex, vertex)
         if kind_of(vertex) is Kind.NODE:
             self.node_infos.pop(vertex, None)
             self.run_worker(self._fetch_node_info(vertex), group="node-info", exclusive=True, exit_on_error=False)

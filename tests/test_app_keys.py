@@ -33,6 +33,7 @@ from rostui.apps.launchmon.app import LaunchMonitorApp
 from rostui.apps.loggers.app import LoggersApp
 from rostui.apps.loggers.panels import LevelList, LoggerTable, NodeList
 from rostui.apps.monitor.app import MonitorApp
+from rostui.apps.reconfigure.app import ReconfigureApp
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.help import HelpScreen
 from rostui.apps.widgets.keys import ESSENTIAL_KEYS
@@ -75,6 +76,8 @@ CASES: dict[str, Case] = {
                    all(row.state == "running" for row in app.rows.values())),
     "turtlesim": Case(lambda tmp: TurtlesimApp(), "↑ / ↓  drive forward / backward",
                       lambda app: app.started.is_set()),
+    "reconfigure": Case(lambda tmp: ReconfigureApp(server_period=0.3), "shift+→  a number ten steps up",
+                        lambda app: app.source.servers_read),
 }
 
 

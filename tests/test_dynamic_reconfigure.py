@@ -24,17 +24,16 @@ from pathlib import Path
 
 import pytest
 
-from conftest import REPO, SYSTEM_PYTHON, need_peer, rostui_cmd, wait_until
-from rospy_scripts import Running, script_command
+from conftest import REPO, SYSTEM_PYTHON, rostui_cmd
+from reconfigure_helpers import (
+    DEBIAN_DYNPARAM, DEBIAN_GENERATOR_DIR, DR, NODE, REAL, clean_env, forget_parameters,
+    need_debian_dynamic_reconfigure, start_server,
+)
+from rospy_scripts import script_command
 
-REAL = REPO / "tests" / "python_compat" / "real"
-DR = REAL / "dynamic_reconfigure"
 DYNPARAM = DR / "scripts" / "dynparam"
-DEBIAN_DYNPARAM = Path("/usr/lib/dynamic_reconfigure/dynparam")
-DEBIAN_GENERATOR_DIR = Path("/usr/share/dynamic_reconfigure")
 DUMP = REPO / "tests" / "python_compat" / "own" / "dump_config_module.py"
 WHOLE_PRINT = REPO / "tests" / "python_compat" / "own" / "atomic_print_run.py"
-NODE = "/dynamic_reconfigure_test_server"
 PREFIX = re.compile(r"^\[(DEBUG|INFO|WARN|ERROR|FATAL)\] \[\d+\.\d+\]: ", re.M)
 PROBE_NOISE = "Inbound TCP/IP connection failed: connection from sender terminated before handshake header received"
 """What Debian's rospy server logs, now and then, when a client's wait_for_service probe (a connection closed
@@ -48,24 +47,6 @@ CFG_PACKAGES = {  # package -> (its folder under tests/python_compat/real, the .
     "turtlebot3_autorace_camera": ("turtlebot3_autorace_2020/turtlebot3_autorace_camera",
                                    ["ImageProjectionParams", "ImageCompensationParams"]),
 }
-
-
-def need_debian_dynamic_reconfigure() -> None:
-    """Debian's dynamic_reconfigure: its Python modules, dynparam, and the package files dynparam and the
-    generator read."""
-    imports = subprocess.run([SYSTEM_PYTHON, "-c", "import dynamic_reconfigure.server, dynamic_reconfigure.client, "
-                              "dynamic_reconfigure.cfg.TestConfig"], capture_output=True)
-    need_peer(imports.returncode == 0 and DEBIAN_DYNAMIC_FILES_PRESENT(),
-              "dynamic_reconfigure (Debian python3-dynamic-reconfigure, libdynamic-reconfigure-config-init-mutex-dev)")
-
-
-def DEBIAN_DYNAMIC_FILES_PRESENT() -> bool:  # noqa: N802 (reads as the condition it is)
-    return DEBIAN_DYNPARAM.is_file() and (DEBIAN_GENERATOR_DIR / "templates" / "ConfigType.py.template").is_file()
-
-
-def clean_env(ros_env: dict[str, str]) -> dict[str, str]:
-    """The test's ROS environment without rostui python's own choices."""
-    return {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}
 
 
 # -- the generator ---------------------------------------------------------------------------------------------
@@ -133,40 +114,15 @@ def test_a_broken_cfg_file_fails_the_import_naming_its_line(tmp_path: Path, ros_
 # -- the server and the client -----------------------------------------------------------------------------
 
 
-def wait_for_services(env: dict[str, str], *names: str) -> None:
-    """Wait until the master lists every service in *names*."""
-    from rostui.core.xmlrpc import call_sync
-
-    def listed() -> bool:
-        services = {name for name, _ in call_sync(env["ROS_MASTER_URI"], "getSystemState", "/test")[2][2]}
-        return services.issuperset(names)
-
-    wait_until(listed, f"services {names}")
-
-
-def forget_parameters(env: dict[str, str], *namespaces: str) -> None:
-    """Delete what a server left on the parameter server (a new server starts from those values)."""
-    from rostui.core.xmlrpc import call_sync
-
-    for ns in namespaces:
-        call_sync(env["ROS_MASTER_URI"], "deleteParam", "/test", ns)
-
-
-def start_server(side: str, env: dict[str, str], log: Path, script: str = "testserver.py",
-                 namespaces: tuple[str, ...] = (NODE,)) -> Running:
-    """dynamic_reconfigure's test server, named as its client expects, once its services are on the master."""
-    server = Running(script_command(side, DR / "test" / script, f"__name:={NODE[1:]}"), env, log)
-    try:
-        wait_for_services(env, *(f"{ns}/set_parameters" for ns in namespaces))
-    except AssertionError:
-        raise AssertionError(f"the {side} server did not offer its services; it printed:\n{server.interrupt()}")
-    return server
-
-
 def dynparam(side: str, env: dict[str, str], cwd: Path, *args: str) -> str:
-    """Run the real dynparam (rostui python on the repository's copy, or Debian's); what it said, tracebacks cut to
-    their last line (the files in them differ)."""
-    cmd = script_command("shim", DYNPARAM, *args) if side == "shim" else [SYSTEM_PYTHON, str(DEBIAN_DYNPARAM), *args]
+    """Run dynparam: the real one (rostui python on the repository's copy, or Debian's) or ``rostui dynparam``;
+    what it said, tracebacks cut to their last line (the files in them differ)."""
+    if side == "rostui":
+        cmd = rostui_cmd("dynparam", *args)
+    elif side == "shim":
+        cmd = script_command("shim", DYNPARAM, *args)
+    else:
+        cmd = [SYSTEM_PYTHON, str(DEBIAN_DYNPARAM), *args]
     done = subprocess.run(cmd, env=env, cwd=cwd, capture_output=True, text=True, timeout=120)
     said = [line for line in (done.stdout + done.stderr).splitlines()
             if not line.startswith(("  ", "Traceback (most recent call last)"))]
@@ -207,6 +163,12 @@ class Session:
             forget_parameters(env, NODE)
 
 
+UNKNOWN_NAME_EXIT = (f"$ dynparam set {NODE} no_such_parameter 1 -> exit 0",
+                     f"$ dynparam set {NODE} no_such_parameter 1 -> exit 1")
+"""dynparam's exit status for an unknown parameter, and `rostui dynparam`'s: the same line said, but an error
+exits non-zero."""
+
+
 def check_session(server_side: str, dynparam_side: str, env: dict[str, str], work: Path) -> None:
     """The session with rostui on one side or both gives what it gives with Debian on both; loading a dump
     fails against Debian's server and works against rostui's."""
@@ -214,6 +176,9 @@ def check_session(server_side: str, dynparam_side: str, env: dict[str, str], wor
     session = Session(server_side, dynparam_side, env, work / "mixed")
     assert "'int_enum_': 2" in session.transcript and "'str_': 'hiAAA'" in session.transcript, session.transcript
     assert "error updating parameters: don't know parameter: no_such_parameter" in session.transcript
+    if dynparam_side == "rostui":
+        assert UNKNOWN_NAME_EXIT[1] in session.transcript, session.transcript
+        expected.transcript = expected.transcript.replace(*UNKNOWN_NAME_EXIT)
     assert session.transcript == expected.transcript
     assert session.server_said == expected.server_said
     assert DEBIAN_LOAD_FAILS in expected.loaded, expected.loaded
@@ -229,6 +194,13 @@ def test_dynparam_session_matches_debians(server_side: str, dynparam_side: str, 
                                           ros_env: dict[str, str], tmp_path: Path) -> None:
     need_debian_dynamic_reconfigure()
     check_session(server_side, dynparam_side, clean_env(ros_env), tmp_path)
+
+
+@pytest.mark.parametrize("server_side", ["real", "shim"])
+def test_rostui_dynparam_session_matches_debians(server_side: str, rostui_core: object, ros_env: dict[str, str],
+                                                 tmp_path: Path) -> None:
+    need_debian_dynamic_reconfigure()
+    check_session(server_side, "rostui", clean_env(ros_env), tmp_path)
 
 
 def test_debians_dynparam_changes_a_rostui_server_on_roscore(real_roscore: object, ros_env: dict[str, str],
@@ -310,3 +282,30 @@ def test_hostile_descriptions_cost_nothing(ros_env: dict[str, str], tmp_path: Pa
     assert done.stdout.splitlines()[:2] == ["['a', 'c'] ['b'] []", "['a', 'c']"], done.stdout + done.stderr
     assert "can't set parameter 'x'" in done.stderr, done.stderr
     assert not (tmp_path / "PWNED").exists()
+
+
+def test_debians_server_on_roscore_is_changed_by_rostui_dynparam(real_roscore: object, ros_env: dict[str, str],
+                                                                 tmp_path: Path) -> None:
+    need_debian_dynamic_reconfigure()
+    check_session("real", "rostui", clean_env(ros_env), tmp_path)
+
+
+def test_rostui_dynparam_says_what_is_wrong_in_one_line(rostui_core: object, ros_env: dict[str, str],
+                                                        tmp_path: Path) -> None:
+    env = clean_env(ros_env)
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("int_: 1\nstr_: [unclosed\n")
+    cases = [
+        (("get", "/nope"), "ERROR: no reconfigure server [/nope]: no service /nope/set_parameters on the master"),
+        (("load", "/nope", str(bad)), f"ERROR: {bad}:3: "),
+        (("load", "/nope", str(tmp_path / "missing.yaml")), f"ERROR: cannot read [{tmp_path / 'missing.yaml'}]: "),
+        (("set", "/nope", "[1, 2]"), "rostui dynparam set: give a parameter and its value, or a YAML mapping"),
+    ]
+    for args, first_line in cases:
+        done = subprocess.run(rostui_cmd("dynparam", *args), env=env, capture_output=True, text=True, timeout=60)
+        assert done.returncode == 1, (args, done.stdout, done.stderr)
+        assert done.stderr.startswith(first_line) and len(done.stderr.splitlines()) == 1, (args, done.stderr)
+    unreachable = dict(env, ROS_MASTER_URI="http://127.0.0.1:9/")
+    done = subprocess.run(rostui_cmd("dynparam", "get", "/x"), env=unreachable, capture_output=True, text=True,
+                          timeout=60)
+    assert (done.returncode, done.stderr) == (1, "ERROR: Unable to communicate with master at http://127.0.0.1:9/\n")

@@ -137,6 +137,7 @@ APPS = {
     "bag view": (["bag", "view"], "/count"),
     "launch --tui": (["launch", "--tui"], "quiet is up"),
     "view": (["view", "/rosout"], "/rosout"),
+    "reconfigure": (["reconfigure"], "no reconfigure server"),
 }
 
 

@@ -17,6 +17,10 @@ from typing import Any, Sequence
 NEGATIVE = re.compile(r"-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?")
 """A negative integer or float as a shell word (``-3``, ``-1.5``, ``-.5``, ``-2e-3``)."""
 
+TAKE_NEGATIVES = frozenset({("dynparam", "set")})
+"""Commands that read a negative number as an argument (they keep unknown options as arguments), as the ROS
+tool does: ``dynparam set NODE int_ -30``."""
+
 
 def looks_negative(word: str) -> bool:
     """True for a word that is a negative number."""
@@ -57,7 +61,8 @@ def bare_negative(root: Any, argv: Sequence[str]) -> tuple[str, str] | None:
     ``root`` is the Click command Typer builds.  None when there is none: numbers
     after ``--``, values of options (``-r -1``), words after the first argument
     of a command that stops reading options there (``service call``, ``run``)
-    and spellings that are options (``topic pub -1``) are left alone.
+    and spellings that are options (``topic pub -1``) are left alone, and so are numbers given to the commands
+    of :data:`TAKE_NEGATIVES`, as long as they do not start with one of their options.
     """
     found = _leaf(root, argv)
     if found is None:
@@ -66,6 +71,7 @@ def bare_negative(root: Any, argv: Sequence[str]) -> tuple[str, str] | None:
     arity = _option_arity(command)
     settings = getattr(command, "context_settings", None) or {}
     interspersed = settings.get("allow_interspersed_args", getattr(command, "allow_interspersed_args", True))
+    takes_negatives = tuple(path) in TAKE_NEGATIVES
     options: list[str] = []
     positionals: list[str] = []
     culprit: str | None = None
@@ -82,7 +88,8 @@ def bare_negative(root: Any, argv: Sequence[str]) -> tuple[str, str] | None:
                     options.append(value)
             continue
         if looks_negative(word):
-            culprit = culprit or word
+            if not (takes_negatives and word[:2] not in arity):
+                culprit = culprit or word
             positionals.append(word)
         elif word.startswith("-") and word != "-":
             options.append(word)

@@ -12,8 +12,9 @@ from typing import Sequence
 __all__ = ["App", "APPS", "COMMAND_GROUPS", "app_of", "served_apps"]
 
 #: Every command group, as ``rostui/cli/<group>_cmd.py`` registers it, in the order the help lists them.
-COMMAND_GROUPS = ("core", "run", "node", "topic", "msg", "service", "param", "pkg", "wtf", "clean", "turtlesim", "graph",
-                  "console", "loggers", "launch", "bag", "monitor", "serve", "python", "tf", "view")
+COMMAND_GROUPS = ("core", "run", "node", "topic", "msg", "service", "param", "dynparam", "pkg", "wtf", "clean",
+                  "turtlesim", "graph", "console", "loggers", "launch", "bag", "monitor", "serve", "python", "tf", "view",
+                  "reconfigure")
 
 
 @dataclass(frozen=True)
@@ -42,6 +43,7 @@ APPS = (
     App(("turtlesim",), "rostui.turtlesim"),
     App(("launch",), "rostui.apps.launchmon", option="--tui"),
     App(("view",), "rostui.apps.view"),
+    App(("reconfigure",), "rostui.apps.reconfigure"),
 )
 
 

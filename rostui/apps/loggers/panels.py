@@ -10,10 +10,14 @@ from __future__ import annotations
 from typing import Iterable, Sequence
 
 from rich.text import Text
-from textual.widgets import DataTable, OptionList, Static
+from textual.widgets import DataTable, OptionList
 from textual.widgets.option_list import Option
 
+from rostui.apps.widgets.name_list import NameList
+from rostui.apps.widgets.notice import NOTICE_KINDS, Notice
 from rostui.models.loggers import LEVEL_NAMES, LoggerLevel, LoggerNode
+
+__all__ = ["LEVEL_STYLES", "LevelList", "LoggerTable", "NOTICE_KINDS", "NodeList", "Notice", "level_text"]
 
 #: How each level is coloured in the logger table and the level list (rqt_console's hues).
 LEVEL_STYLES = {
@@ -28,57 +32,23 @@ LEVEL_STYLES = {
 CURRENT_MARK = "●"
 NOT_CURRENT_MARK = "\u00a0"
 
-#: Notice kinds and the CSS class each one sets.
-NOTICE_KINDS = ("info", "ok", "error")
-
 
 def level_text(level: str) -> Text:
     """A level name in its colour."""
     return Text(level, style=LEVEL_STYLES.get(level, ""))
 
 
-class Notice(Static):
-    """One line under a panel: what it shows (``info``), a change made (``ok``) or an ``error``."""
-
-    def __init__(self, *, id: str | None = None) -> None:
-        super().__init__("", id=id, markup=False)
-        self.text = ""
-        self.kind = "info"
-
-    def say(self, text: str, kind: str = "info") -> None:
-        """Show ``text`` styled as ``kind`` (one of :data:`NOTICE_KINDS`)."""
-        if kind not in NOTICE_KINDS:
-            raise ValueError(f"unknown notice kind {kind!r}")
-        self.text, self.kind = text, kind
-        for other in NOTICE_KINDS:
-            self.set_class(other == kind, f"-{other}")
-        self.update(Text(text))
-
-
-class NodeList(OptionList):
+class NodeList(NameList):
     """Nodes that serve ``get_loggers``; the highlighted one is the selected node."""
 
-    def __init__(self, *, id: str | None = None) -> None:
-        super().__init__(id=id, markup=False)
-        self.node_names: list[str] = []
-
     @property
-    def highlighted_name(self) -> str | None:
-        """The highlighted node's name, if any."""
-        option = self.highlighted_option
-        return None if option is None else option.id
+    def node_names(self) -> list[str]:
+        """The nodes listed."""
+        return self.names
 
     def show_nodes(self, nodes: Sequence[LoggerNode], keep: str | None) -> bool:
         """List ``nodes``, keeping ``keep`` highlighted when it is still there; False when nothing changed."""
-        names = [node.name for node in nodes]
-        if names == self.node_names:
-            return False
-        self.node_names = names
-        with self.prevent(OptionList.OptionHighlighted):  # a rebuild keeps the cursor; it selects nothing
-            self.set_options(Option(Text(name), id=name) for name in names)
-            if keep in names:
-                self.highlighted = names.index(keep)
-        return True
+        return self.show_names([node.name for node in nodes], keep)
 
 
 class LoggerTable(DataTable[Text]):

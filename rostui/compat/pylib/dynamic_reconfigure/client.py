@@ -1,9 +1,9 @@
 """``dynamic_reconfigure.client.Client``: read and change a running node's reconfigurable parameters.
 
 The client waits for the server's ``set_parameters`` service, follows its ``parameter_descriptions`` and
-``parameter_updates`` topics, and sends changes converted to each parameter's declared type (a bool from
-"yes"/"true"/"t"/"1", an enum value from its constant's name). Without a timeout it waits a second, says
-on stderr what it waits for, then waits for good, as dynamic_reconfigure's client does.
+``parameter_updates`` topics, and sends changes converted to each parameter's declared type
+(:mod:`rostui.tools.reconfigure.values`). Without a timeout it waits a second, says on stderr what it waits
+for, then waits for good, as dynamic_reconfigure's client does.
 
 Unlike dynamic_reconfigure's client, an enum's ``edit_method`` (text the server sends) is read as a
 Python literal, never evaluated as code.
@@ -11,7 +11,6 @@ Python literal, never evaluated as code.
 
 from __future__ import annotations
 
-import ast
 import sys
 import threading
 import time
@@ -24,6 +23,8 @@ from .encoding import Config, decode_config, decode_description, encode_config, 
 from .encoding import ConfigDescrMsg, ConfigMsg
 
 from rostui.core.msg import get_service_class
+from rostui.tools.reconfigure.live import set_group_states
+from rostui.tools.reconfigure.values import ParameterValueError, convert_value, type_of
 
 ReconfigureSrv = get_service_class("dynamic_reconfigure/Reconfigure")
 
@@ -31,18 +32,6 @@ __all__ = ["Client"]
 
 FIRST_WAIT = 1.0
 """Seconds waited quietly before saying on stderr what the client waits for."""
-_TYPES: dict[str, type] = {"int": int, "double": float, "str": str, "bool": bool}
-_TRUE_WORDS = ("yes", "true", "t", "1")
-
-
-def _enum_constants(edit_method: str) -> list[dict[str, Any]]:
-    """The constants of an enum's ``edit_method`` text ([] when it is no enum or cannot be read)."""
-    try:
-        described = ast.literal_eval(edit_method)
-        constants = described["enum"]
-    except (ValueError, TypeError, SyntaxError, KeyError, MemoryError, RecursionError):
-        return []
-    return [c for c in constants if isinstance(c, dict)] if isinstance(constants, list) else []
 
 
 class Client:
@@ -93,24 +82,11 @@ class Client:
 
     def _convert(self, name: str, value: Any) -> Any:
         """*value* as the declared type of parameter *name*."""
-        assert self._param_types is not None and self.param_description is not None
-        dest_type = self._param_types.get(name)
-        if dest_type is None:
-            raise DynamicReconfigureParameterException(f"don't know parameter: {name}")
+        assert self.param_description is not None
         try:
-            descr = [p for p in self.param_description if p["name"].lower() == name.lower()][0]
-            if dest_type is bool and type(value) is str:
-                return value.lower() in _TRUE_WORDS
-            if type(value) is str and descr["edit_method"] != "":
-                converted: Any = None
-                for const in _enum_constants(descr["edit_method"]):
-                    if value.lower() == str(const.get("name", "")).lower():
-                        converted = self._param_type_from_string(const["type"])(const["value"])
-                if converted is not None:
-                    return converted
-            return dest_type(value)
-        except ValueError as exc:
-            raise DynamicReconfigureParameterException(f"can't set parameter '{name}' of {dest_type}: {exc}") from exc
+            return convert_value(self.param_description, name, value)
+        except ParameterValueError as exc:
+            raise DynamicReconfigureParameterException(str(exc)) from exc.__cause__
 
     def update_configuration(self, changes: dict[str, Any]) -> Config:
         """Send *changes* (name to value; ``groups`` to open or close groups) and return the server's new
@@ -133,20 +109,9 @@ class Client:
         return decode_config(msg, self.group_description)
 
     def update_groups(self, changes: dict[str, bool]) -> Any:
-        """The group tree with the states of the groups named in *changes* set."""
-        descr = self.get_group_descriptions()
-
-        def update_state(group: str, description: Any) -> Any:
-            for key, child in description["groups"].items():
-                if child["name"] == group:
-                    description["groups"][key]["state"] = changes[group]
-                else:
-                    update_state(group, child)
-            return description
-
-        for change in changes:
-            descr = update_state(change, descr)
-        return descr
+        """The group tree with the states of the groups named in *changes* set (the tree kept here changes too,
+        as dynamic_reconfigure's does)."""
+        return set_group_states(self.get_group_descriptions(), changes)
 
     def close(self) -> None:
         """Stop following the server's topics."""
@@ -214,7 +179,6 @@ class Client:
     @staticmethod
     def _param_type_from_string(type_str: str) -> type:
         try:
-            return _TYPES[type_str]
-        except KeyError:
-            raise DynamicReconfigureParameterException(
-                f"parameter has unknown type: {type_str}. This is a bug in dynamic_reconfigure.") from None
+            return type_of(type_str)
+        except ParameterValueError as exc:
+            raise DynamicReconfigureParameterException(str(exc)) from None

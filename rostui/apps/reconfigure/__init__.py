@@ -1,0 +1,1 @@
+"""The reconfigure app (rqt_reconfigure in the terminal)."""

@@ -192,6 +192,7 @@ class ReconfigureApp(ReleasesOnExit, KeysApp):
         """Follow server *name*."""
         self.wanted = None
         self.last_change = None
+        self.query_one(NameList).highlight_name(name)
         self.query_one(ParamTable).clear_rows()
         self.notice("params").say(f"asking {name}…")
         self.run_worker(self.source.select(name), group="select", exclusive=True, exit_on_error=False)

@@ -24,6 +24,12 @@ class NameList(OptionList):
         option = self.highlighted_option
         return None if option is None else option.id
 
+    def highlight_name(self, name: str) -> None:
+        """Put the cursor on *name* (if listed) without announcing it as a new selection."""
+        if name in self.names and self.highlighted_name != name:
+            with self.prevent(OptionList.OptionHighlighted):
+                self.highlighted = self.names.index(name)
+
     def show_names(self, names: Sequence[str], keep: str | None) -> bool:
         """List *names*, keeping *keep* highlighted when it is still there; False when nothing changed."""
         names = list(names)

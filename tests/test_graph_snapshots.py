@@ -22,21 +22,13 @@ from conftest import stop_process, until, wait_until
 from graph_helpers import book_system, has_edges, master_graph, settled, status, stop_programs
 from live_helpers import Program
 from textual.pilot import Pilot
-from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
+from textual_snapshots import snapshot, truecolor  # noqa: F401  (SVGs in snapshots/; one colour system)
 
 from rostui.apps.graph.app import GraphApp
 from rostui.models.graph.model import RosGraph
 from rostui.models.graph.view import GraphOptions, ViewMode, book_setup
 
 SIZE = (110, 16)
-
-
-@pytest.fixture(autouse=True)
-def truecolor(monkeypatch: pytest.MonkeyPatch) -> None:
-    """The same colour system on every machine."""
-    monkeypatch.setenv("COLORTERM", "truecolor")
-    monkeypatch.setenv("TERM", "xterm-256color")
-    monkeypatch.delenv("NO_COLOR", raising=False)
 
 
 @pytest.fixture

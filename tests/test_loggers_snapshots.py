@@ -20,7 +20,7 @@ from rostui.core.node import AsyncNode
 from rostui.core.node.engine import Engine
 
 from loggers_helpers import DEADLINE, listed_nodes, notice, select_node, until
-from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
+from textual_snapshots import snapshot, truecolor  # noqa: F401  (SVGs in snapshots/; one colour system)
 
 
 class StillMasterApp(LoggersApp):
@@ -29,14 +29,6 @@ class StillMasterApp(LoggersApp):
     def master_label(self) -> str:
         """The default master URI."""
         return "http://localhost:11311/"
-
-
-@pytest.fixture(autouse=True)
-def truecolor(monkeypatch: pytest.MonkeyPatch) -> None:
-    """The same colour system on every machine."""
-    monkeypatch.setenv("COLORTERM", "truecolor")
-    monkeypatch.setenv("TERM", "xterm-256color")
-    monkeypatch.delenv("NO_COLOR", raising=False)
 
 
 class Graph:

@@ -22,18 +22,10 @@ from rostui.core.rostime import Time
 
 from conftest import until
 from live_helpers import Watcher
-from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
+from textual_snapshots import snapshot, truecolor  # noqa: F401  (SVGs in snapshots/; one colour system)
 
 DEADLINE = 30.0
 TOPICS = ("/diagnostics/log", "/turtle1/cmd_vel")
-
-
-@pytest.fixture(autouse=True)
-def truecolor(monkeypatch: pytest.MonkeyPatch) -> None:
-    """The same colour system on every machine."""
-    monkeypatch.setenv("COLORTERM", "truecolor")
-    monkeypatch.setenv("TERM", "xterm-256color")
-    monkeypatch.delenv("NO_COLOR", raising=False)
 
 
 class SteppedClock:

@@ -20,7 +20,7 @@ from rostui.models.reconfigure import ParamRow
 
 from conftest import until
 from reconfigure_helpers import NODE, clean_env, forget_parameters, need_debian_dynamic_reconfigure, start_server
-from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
+from textual_snapshots import snapshot, truecolor  # noqa: F401  (SVGs in snapshots/; one colour system)
 
 
 class StillApp(ReconfigureApp):
@@ -34,14 +34,6 @@ class StillApp(ReconfigureApp):
     def elapsed_text(self, seconds: float) -> str:
         """A fixed figure."""
         return "3 ms"
-
-
-@pytest.fixture(autouse=True)
-def truecolor(monkeypatch: pytest.MonkeyPatch) -> None:
-    """The same colour system on every machine."""
-    monkeypatch.setenv("COLORTERM", "truecolor")
-    monkeypatch.setenv("TERM", "xterm-256color")
-    monkeypatch.delenv("NO_COLOR", raising=False)
 
 
 @pytest.fixture

@@ -19,15 +19,7 @@ from rostui.tools.tf import Transform
 from rostui.tools.tf.buffer import stamp_ns as ns
 
 from test_tf_tree_view import chain_buffer
-from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
-
-
-@pytest.fixture(autouse=True)
-def truecolor(monkeypatch: pytest.MonkeyPatch) -> None:
-    """The same colour system on every machine."""
-    monkeypatch.setenv("COLORTERM", "truecolor")
-    monkeypatch.setenv("TERM", "xterm-256color")
-    monkeypatch.delenv("NO_COLOR", raising=False)
+from textual_snapshots import snapshot, truecolor  # noqa: F401  (SVGs in snapshots/; one colour system)
 
 
 def still_app(with_camera: bool = False) -> TfTreeApp:

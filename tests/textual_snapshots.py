@@ -50,3 +50,11 @@ def snapshot(snapshot: SnapshotAssertion) -> SnapshotAssertion:
         test_location=snapshot.test_location,
         session=snapshot.session,
     )
+
+
+@pytest.fixture(autouse=True)
+def truecolor(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The same colour system on every machine (autouse in each module that imports it)."""
+    monkeypatch.setenv("COLORTERM", "truecolor")
+    monkeypatch.setenv("TERM", "xterm-256color")
+    monkeypatch.delenv("NO_COLOR", raising=False)

@@ -80,6 +80,18 @@ def master_caller(caller_id: str) -> Callable[..., Any]:
     return lambda method, *args: master_call(caller_id, method, *args)
 
 
+def write_output(file: str, text: str) -> None:
+    """Write *text* to *file* (``-``: stdout); one ``ERROR: cannot write`` line and exit 1 when it cannot be."""
+    if file == "-":
+        sys.stdout.write(text)
+        return
+    try:
+        with open(file, "w", encoding="utf-8") as out:
+            out.write(text)
+    except OSError as exc:
+        fail(f"ERROR: cannot write [{file}]: {exc.strerror or exc}")
+
+
 def print_json(value: Any) -> None:
     """Write ``value`` as indented JSON on stdout (``--json`` output)."""
     import json

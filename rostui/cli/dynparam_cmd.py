@@ -151,22 +151,14 @@ def dump_command(
     timeout: Optional[float] = TIMEOUT_OPTION,
 ) -> None:
     """Write NODE's configuration to FILE (like `dynparam dump`)."""
-    import sys
-
     from rostui.tools.reconfigure.files import dump_text
 
     async def get(link: Any) -> Any:
         return await link.wait_config(timeout)
 
-    text = dump_text(_with_server(node, timeout, get))
-    if file == "-":
-        sys.stdout.write(text)
-        return
-    try:
-        with open(file, "w", encoding="utf-8") as out:
-            out.write(text)
-    except OSError as exc:
-        _fail(f"ERROR: cannot write [{file}]: {exc.strerror or exc}")
+    from rostui.cli.common import write_output
+
+    write_output(file, dump_text(_with_server(node, timeout, get)))
 
 
 @dynparam_app.command("load")

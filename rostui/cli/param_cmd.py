@@ -174,18 +174,9 @@ def dump_command(
     text = format_dump(value)
     if verbose:
         print(f"dumping namespace [{key}] to file [{file}]")
-    if file == "-":
-        import sys
+    from rostui.cli.common import write_output
 
-        sys.stdout.write(text)
-        return
-    try:
-        with open(file, "w", encoding="utf-8") as f:
-            f.write(text)
-    except OSError as exc:
-        from rostui.cli.common import fail
-
-        fail(f"ERROR: cannot write [{file}]: {exc.strerror or exc}")
+    write_output(file, text)
 
 
 @param_app.command("load")

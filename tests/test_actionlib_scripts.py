@@ -103,6 +103,16 @@ def run_unittest_against(server: str, server_script: str, client: str, client_sc
     return [line for line in said.splitlines() if line.startswith("[Testcase: ")], said, server_said
 
 
+#: Debian's SimpleActionClient (actionlib 1.14, the noetic release) drops an answer that comes before its
+#: send_goal has stored the goal handle ("Got a transition callback on a goal handle that we're not tracking",
+#: https://github.com/ros/actionlib/issues/206, never fixed upstream) and then waits out the exercise's 60 s
+#: wait_for_result before it reads the result it already holds: the case still passes, 60 s late. rostui's
+#: server answers within a millisecond, so on a loaded machine about one run in seven of the real-client
+#: pairing meets it once (measured: 5 of 35 runs). Two such cases in one run must not end the test.
+UPSTREAM_RACE_TIMEOUT = 300
+
+
+@pytest.mark.timeout(UPSTREAM_RACE_TIMEOUT)
 @PAIRINGS
 def test_simple_client_exercise_passes(client: str, server: str, rostui_core: object, ros_env: dict[str, str],
                                        tmp_path: Path) -> None:

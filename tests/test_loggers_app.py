@@ -97,6 +97,34 @@ def test_level_keys_set_the_selected_logger(rostui_core: Any) -> None:
     run_app(quick_app(), scenario)
 
 
+def test_a_level_is_refused_only_when_the_master_still_lacks_set_logger_level(rostui_core: Any) -> None:
+    """A node listed while it served get_loggers alone: w asks the master again before refusing, so a node that
+    has registered set_logger_level since the app's last look gets its level (a node announces one service after
+    the other, and a poll may fall between them)."""
+    async def scenario(pilot: Pilot, app: LoggersApp) -> None:
+        from rostui.core.msg import get_service_class
+
+        half = await AsyncNode("half", argv=[], package="agitr").start(announce=False)
+        link = half.logging
+        try:
+            await half.advertise_service("~get_loggers", get_service_class("roscpp/GetLoggers"), link.get_loggers)
+            await pilot.press("r")  # the app looks at the master now, and then not for 60 s
+            await select_node(pilot, app, "/half")
+            await select_logger(pilot, app, "ros.agitr")
+            await pilot.press("w")
+            await until(lambda: notice(app, "levels") == ("/half does not serve set_logger_level", "error"),
+                        "the refusal while the service is missing", app=app)
+            await half.advertise_service("~set_logger_level", get_service_class("roscpp/SetLoggerLevel"),
+                                         link.set_logger_level)
+            await pilot.press("w")  # before the app's next look at the master (every 60 s here)
+            await until(lambda: notice(app, "levels") == ("ros.agitr set to WARN", "ok"), "the level set", app=app)
+            assert half.log.tree.effective_level("ros.agitr") == Level.WARN
+        finally:
+            await half.shutdown()
+
+    run_app(quick_app(node_period=60.0), scenario)
+
+
 def test_enter_walks_node_logger_and_level_lists(rostui_core: Any) -> None:
     """Enter on a node goes to its loggers, Enter on a logger to the levels, Enter on a level sets it."""
     async def scenario(pilot: Pilot, app: LoggersApp) -> None:

@@ -290,12 +290,19 @@ class LoggersApp(ReleasesOnExit, KeysApp):
             self.notice("levels").say("select a node and a logger first", "error")
             return
         node = self.nodes.get(self.node)
-        if node is not None and not node.can_set:
-            self.notice("levels").say(f"{self.node} does not serve set_logger_level", "error")
-            return
-        self.run_worker(self._set_level(self.node, self.logger, level), group="set", exit_on_error=False)
+        self.run_worker(self._set_level(self.node, self.logger, level, ask_first=node is not None and not node.can_set),
+                        group="set", exit_on_error=False)
 
-    async def _set_level(self, node: str, logger: str, level: str) -> None:
+    async def _set_level(self, node: str, logger: str, level: str, *, ask_first: bool = False) -> None:
+        if ask_first:  # the last poll may have come between the node's two services: ask again before refusing
+            try:
+                served = {found.name: found for found in await self.client.nodes()}
+            except LOGGER_ERRORS as exc:
+                self.notice("levels").say(str(exc), "error")
+                return
+            if node in served and not served[node].can_set:
+                self.notice("levels").say(f"{node} does not serve set_logger_level", "error")
+                return
         self.notice("levels").say(f"setting {logger} to {level}…")
         try:
             sent = await self.client.set_level(node, logger, level)

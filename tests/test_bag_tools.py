@@ -370,17 +370,30 @@ def _counts_bag(path: Path, count: int) -> None:
     writer.close()
 
 
+@pytest.fixture(scope="session")
+def big_counts_bag(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A bag of 2,000,000 Int32 messages, written once per run and shared read-only (copy it before changing it):
+    filter and compress spend about 25 s on it on a quiet machine, so Ctrl-C always lands mid-way."""
+    from conftest import shared_build
+
+    return shared_build(tmp_path_factory, "counts_2m", lambda folder: _counts_bag(folder / "counts.bag",
+                                                                                 2_000_000)) / "counts.bag"
+
+
 @pytest.mark.parametrize("command", ["filter", "compress"])
-def test_ctrl_c_leaves_no_half_file_and_the_original_as_it_was(command: str, tmp_path: Path,
-                                                               ros_env: dict[str, str]) -> None:
+def test_ctrl_c_leaves_no_half_file_and_the_original_as_it_was(command: str, tmp_path: Path, ros_env: dict[str, str],
+                                                               big_counts_bag: Path) -> None:
+    import shutil
     import signal
+    import time
 
     from conftest import wait_until
 
     src = tmp_path / "counts.bag"
-    _counts_bag(src, 400_000)
+    shutil.copyfile(big_counts_bag, src)
     before = src.read_bytes()
     args = {"filter": [str(src), str(tmp_path / "out.bag"), "m.data % 3 == 0"], "compress": [str(src)]}[command]
+    started = time.monotonic()
     proc = subprocess.Popen([sys.executable, "-m", "rostui", "bag", command, *args], env=ros_env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
@@ -388,12 +401,14 @@ def test_ctrl_c_leaves_no_half_file_and_the_original_as_it_was(command: str, tmp
         wait_until(lambda: any(p.name.endswith(".partial") for p in tmp_path.iterdir()) or proc.poll() is not None,
                    "the new file to be started")
         assert proc.poll() is None, "finished before it could be interrupted"
+        signalled = time.monotonic() - started
         proc.send_signal(signal.SIGINT)
-        _out, err = proc.communicate(timeout=60)
+        out, err = proc.communicate(timeout=60)
     finally:
         if proc.poll() is None:
             proc.kill()
-    assert proc.returncode == 1
+    assert proc.returncode == 1, (f"Ctrl-C {signalled:.1f} s after the start: status {proc.returncode}, "
+                                  f"out {out!r}, err {err!r}, files {sorted(p.name for p in tmp_path.iterdir())}")
     assert err.startswith(f"rostui bag {command}: interrupted; ") and err.count("\n") == 1, err
     assert sorted(p.name for p in tmp_path.iterdir() if p.name != "ros_home") == ["counts.bag"]
     assert src.read_bytes() == before

@@ -53,6 +53,7 @@ FILES: dict[str, str] = {
     "/usr/lib/tf/tf_echo": "tf-tools",
     "/usr/lib/dynamic_reconfigure/dynparam": "python3-dynamic-reconfigure",
     "/usr/share/dynamic_reconfigure": "libdynamic-reconfigure-config-init-mutex-dev",
+    "/usr/lib/diagnostic_aggregator/aggregator_node": "libdiagnostic-aggregator-tools",
 }
 
 #: Top-level modules a test imports under the system Python (/usr/bin/python3), and their packages.
@@ -85,6 +86,8 @@ MODULES: dict[str, str] = {
     "cv_bridge": "python3-cv-bridge",
     "dynamic_reconfigure": "python3-dynamic-reconfigure",
     "diagnostic_updater": "python3-diagnostic-updater",
+    "rosdiagnostic": "rosdiagnostic",
+    "dateutil": "python3-dateutil",
     "rospkg": "python3-rospkg",
 }
 

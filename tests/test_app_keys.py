@@ -33,6 +33,7 @@ from rostui.apps.launchmon.app import LaunchMonitorApp
 from rostui.apps.loggers.app import LoggersApp
 from rostui.apps.loggers.panels import LevelList, LoggerTable, NodeList
 from rostui.apps.monitor.app import MonitorApp
+from rostui.apps.diagnostics.app import DiagnosticsApp
 from rostui.apps.reconfigure.app import ReconfigureApp
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.help import HelpScreen
@@ -78,6 +79,8 @@ CASES: dict[str, Case] = {
                       lambda app: app.started.is_set()),
     "reconfigure": Case(lambda tmp: ReconfigureApp(server_period=0.3), "shift+→  a number ten steps up",
                         lambda app: app.source.servers_read),
+    "diagnostics": Case(lambda tmp: DiagnosticsApp(), "↑/↓ PgUp/PgDn  move between statuses",
+                        lambda app: app.source.state.status.name == "CONNECTED"),
 }
 
 

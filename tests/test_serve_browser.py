@@ -138,6 +138,7 @@ APPS = {
     "launch --tui": (["launch", "--tui"], "quiet is up"),
     "view": (["view", "/rosout"], "/rosout"),
     "reconfigure": (["reconfigure"], "no reconfigure server"),
+    "diagnostics": (["diagnostics"], "no status yet"),
 }
 
 

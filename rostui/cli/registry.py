@@ -14,7 +14,7 @@ __all__ = ["App", "APPS", "COMMAND_GROUPS", "app_of", "served_apps"]
 #: Every command group, as ``rostui/cli/<group>_cmd.py`` registers it, in the order the help lists them.
 COMMAND_GROUPS = ("core", "run", "node", "topic", "msg", "service", "param", "dynparam", "pkg", "wtf", "clean",
                   "turtlesim", "graph", "console", "loggers", "launch", "bag", "monitor", "serve", "python", "tf", "view",
-                  "reconfigure")
+                  "reconfigure", "diagnostics")
 
 
 @dataclass(frozen=True)
@@ -44,6 +44,7 @@ APPS = (
     App(("launch",), "rostui.apps.launchmon", option="--tui"),
     App(("view",), "rostui.apps.view"),
     App(("reconfigure",), "rostui.apps.reconfigure"),
+    App(("diagnostics",), "rostui.apps.diagnostics"),
 )
 
 

@@ -102,7 +102,7 @@ class ServerLink:
 
         :class:`~rostui.tools.reconfigure.values.ParameterValueError` for an unknown name or a value of the
         wrong kind; the service's own errors as the node raises them."""
-        await asyncio.wait_for(self._described.wait(), None)
+        await self._described.wait()
         assert self.parameters is not None and self.description is not None
         message: dict[str, Any] = {}
         for name, value in changes.items():

@@ -11,6 +11,7 @@ actionlib_tutorials, so Debian's side gets its messages made by Debian's genacti
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 from pathlib import Path
 
@@ -26,6 +27,10 @@ SHARE = REPO / "rostui" / "share"
 GENACTION = Path("/usr/lib/actionlib_msgs/genaction.py")
 GENMSG = Path("/usr/lib/genpy/genmsg_py.py")
 FIBONACCI_20 = "Result: 0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55, 89, 144, 233, 377, 610, 987, 1597, 2584, 4181, 6765"
+#: What Debian's SimpleActionClient logs when it meets actionlib#206 (see UPSTREAM_RACE_TIMEOUT below): a status that
+#: came before its send_goal stored the goal handle is dropped, and the client goes on with the next one.
+UNTRACKED_GOAL_LOG = re.compile(r"\[ERROR\] \[\d+\.\d+\]: "
+                                r"Got a transition callback on a goal handle that we're not tracking")
 
 
 def _generate(out: Path) -> None:
@@ -56,7 +61,9 @@ def tutorials_python(tmp_path_factory: pytest.TempPathFactory) -> Path:
                                                   ("real", "shim", "roscore")])
 def test_fibonacci_client_gets_the_sequence(client: str, server: str, master: str, request: pytest.FixtureRequest,
                                             ros_env: dict[str, str], tutorials_python: Path, tmp_path: Path) -> None:
-    """Each side against the other on rostui core and on a real roscore (and rostui's on both sides)."""
+    """Each side against the other on rostui core and on a real roscore (and rostui's on both sides). Debian's
+    client may log actionlib#206's complaint beside the result (rostui's server answers fast enough to meet it);
+    that line, and only that one, is not held against the pairing."""
     request.getfixturevalue("rostui_core" if master == "rostui" else "real_roscore")
     base = {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}
     envs = {"shim": dict(base, ROS_PACKAGE_PATH=str(TUTORIALS)),
@@ -72,7 +79,9 @@ def test_fibonacci_client_gets_the_sequence(client: str, server: str, master: st
     finally:
         server_said = serving.interrupt()
         asking.interrupt()
-    assert asking.output().strip().splitlines() == [FIBONACCI_20], asking.output()
+    client_said = [line for line in asking.output().strip().splitlines()
+                   if not (client == "real" and UNTRACKED_GOAL_LOG.fullmatch(line))]
+    assert client_said == [FIBONACCI_20], asking.output()
     assert masked(server_said)[:2] == [
         "[INFO] /fibonacci: Executing, creating fibonacci sequence of order N with seeds N, N",
         "[INFO] /fibonacci: Succeeded",

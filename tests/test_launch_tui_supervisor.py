@@ -94,7 +94,7 @@ def test_usage_counts_the_whole_process_tree(tmp_path: Path) -> None:
     import sys
     import time
 
-    from rostui.launch.usage import UsageSampler, children_map, tree_of
+    from rostui.tools.usage import UsageSampler, children_map, tree_of
 
     busy = subprocess.Popen(["/bin/sh", "-c", f"{sys.executable} -c 'while True: pass' & wait"])
     try:

@@ -13,20 +13,11 @@ from __future__ import annotations
 import getpass
 import socket
 
-import psutil
-
 from rostui.launch.errors import LaunchError
 from rostui.launch.model import LaunchConfig, Machine
+from rostui.tools.hosts import local_addresses
 
-
-def local_addresses() -> set[str]:
-    """Every address of this host's interfaces, plus ``localhost``."""
-    found = {"localhost"}
-    for addresses in psutil.net_if_addrs().values():
-        for address in addresses:
-            if address.family in (socket.AF_INET, socket.AF_INET6):
-                found.add(address.address.split("%", 1)[0])
-    return found
+__all__ = ["assign_machines", "is_machine_local", "local_addresses", "resolve_address", "unknown_machine"]
 
 
 def resolve_address(address: str) -> list[str]:

@@ -22,6 +22,7 @@ from typing import Any, Iterable, Sequence
 
 from rostui.core.log import Level
 from rostui.core.master_errors import MasterUnreachableError
+from rostui.models.calling_node import CallingNode
 
 __all__ = [
     "LEVEL_NAMES",
@@ -137,7 +138,7 @@ def preferred_logger(names: Sequence[str]) -> str | None:
     return names[0] if names else None
 
 
-class LoggerLevels:
+class LoggerLevels(CallingNode):
     """Lists logger nodes and reads and sets their levels, on the running event loop.
 
     The node used for the calls registers nothing with the master, so it does
@@ -146,35 +147,15 @@ class LoggerLevels:
     """
 
     def __init__(self, master_uri: str | None = None, *, timeout: float = DEFAULT_TIMEOUT) -> None:
-        from rostui.core.node import AsyncNode
-
+        super().__init__("rostui_loggers", master_uri, "rostui loggers done")
         self.timeout = timeout
-        self._node = AsyncNode("rostui_loggers", anonymous=True, argv=[], master_uri=master_uri)
-        self._started = False
-
-    @property
-    def master_uri(self) -> str:
-        """The master this client asks."""
-        return self._node.master_uri
-
-    async def start(self) -> "LoggerLevels":
-        """Open the node's servers (no master needed yet)."""
-        if not self._started:
-            await self._node.start(announce=False)
-            self._started = True
-        return self
-
-    async def close(self) -> None:
-        """Shut the calling node down."""
-        if self._started:
-            await self._node.shutdown("rostui loggers done")
 
     async def nodes(self) -> list[LoggerNode]:
         """Nodes that serve ``get_loggers`` now, sorted by name."""
         from rostui.core.master_errors import MasterError
 
         try:
-            _, _, services = await asyncio.wait_for(self._node.master_call("getSystemState"), self.timeout)
+            _, _, services = await asyncio.wait_for(self.node.master_call("getSystemState"), self.timeout)
         except asyncio.TimeoutError:
             raise MasterUnreachableError(self.master_uri, f"no answer within {self.timeout:g} s") from None
         except MasterError:
@@ -191,7 +172,7 @@ class LoggerLevels:
         from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, XmlRpcError, ros_result
 
         try:
-            uri = await asyncio.wait_for(self._node.master_call("lookupNode", node), self.timeout)
+            uri = await asyncio.wait_for(self.node.master_call("lookupNode", node), self.timeout)
         except asyncio.TimeoutError:
             raise MasterUnreachableError(self.master_uri, f"no answer within {self.timeout:g} s") from None
         except MasterUnreachableError:
@@ -200,7 +181,7 @@ class LoggerLevels:
             raise NodeGoneError(f"node {node} is gone: the master no longer lists it") from None
         client = XmlRpcClient(str(uri), timeout=self.timeout + 1.0)  # wait_for below decides the timeout
         try:
-            return int(ros_result(await asyncio.wait_for(client.call("getPid", self._node.name), self.timeout)))
+            return int(ros_result(await asyncio.wait_for(client.call("getPid", self.node.name), self.timeout)))
         except asyncio.TimeoutError:
             raise ServiceTimeoutError(f"node {node} did not answer within {self.timeout:g} s") from None
         except XmlRpcConnectionError as exc:
@@ -231,7 +212,7 @@ class LoggerLevels:
         from rostui.core.node.services import ServiceException
 
         name = f"{node.rstrip('/')}/{service}"
-        proxy = self._node.service_proxy(name, get_service_class(type_name))
+        proxy = self.node.service_proxy(name, get_service_class(type_name))
         try:
             return await asyncio.wait_for(proxy.call(**fields), self.timeout)
         except asyncio.TimeoutError:

@@ -131,7 +131,7 @@ class DiagnosticsApp(ReleasesOnExit, KeysApp):
         table = self.store.table(topic)
         make = flat_rows if topic == FLAT else tree_rows
         self.rows = make(table, now, self.store.stale_after, self.only)
-        self.query_one(StatusTree).show(self.rows)
+        self.query_one(StatusTree).show_rows(self.rows)
         every = make(table, now, self.store.stale_after) if self.only.active else self.rows
         self.query_one("#summary", Notice).say(
             summary_text(topic, topic != FLAT, counts(every)),
@@ -156,7 +156,7 @@ class DiagnosticsApp(ReleasesOnExit, KeysApp):
         lines = detail_lines(self.query_one(StatusTree).current, self.rows, self.clock())
         self.query_one("#detail", Static).update(Text("\n".join(lines)))
 
-    def on_status_tree_moved(self, event: StatusTree.Moved) -> None:
+    def on_line_table_moved(self, event: StatusTree.Moved) -> None:
         """The detail follows the cursor."""
         self.show_detail()
 

@@ -35,7 +35,7 @@ from rostui.launch.errors import LaunchError
 from rostui.launch.output import OutputBuffer
 from rostui.launch.process import ManagedProcess, NodeState
 from rostui.launch.supervisor import Supervisor
-from rostui.launch.usage import Usage, UsageSampler, children_map
+from rostui.tools.usage import Usage, UsageSampler, children_map
 
 __all__ = ["LaunchMonitorApp", "KEYS", "run_app"]
 

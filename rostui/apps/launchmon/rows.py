@@ -7,7 +7,7 @@ import time
 from dataclasses import dataclass
 
 from rostui.launch.process import ManagedProcess, NodeState
-from rostui.launch.usage import Usage, UsageSampler, tree_of
+from rostui.tools.usage import Usage, UsageSampler, tree_of
 
 #: The table's columns: key, heading and fixed width (None: as wide as the widest cell now).
 COLUMNS = (("node", "Node", None), ("state", "State", None), ("pid", "Pid", 7), ("cpu", "CPU %", 6),
@@ -95,7 +95,7 @@ def node_row(process: ManagedProcess, usage: Usage | None, now: float | None = N
 def measure(sampler: UsageSampler, process: ManagedProcess, children: dict[int, list[int]]) -> Usage | None:
     """CPU and memory of the node's whole process tree (None when it does not run).
 
-    ``children`` is :func:`~rostui.launch.usage.children_map`, taken once for every node of a refresh.
+    ``children`` is :func:`~rostui.tools.usage.children_map`, taken once for every node of a refresh.
     """
     if not process.running or process.pid is None or not process.local:
         return None  # a node on another machine is not measured here

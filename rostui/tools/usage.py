@@ -1,4 +1,5 @@
-"""CPU and memory of a node's processes, measured with psutil between two samples."""
+"""CPU, memory, threads and connections of processes (a launch's nodes, `rostui top`), measured with psutil between
+two samples."""
 
 from __future__ import annotations
 
@@ -37,6 +38,23 @@ class Usage:
     rss_bytes: int
 
 
+@dataclass(frozen=True)
+class ProcessSample:
+    """One process now: CPU in percent of one core since the previous sample, resident memory in bytes, threads,
+    open TCP connections and command line; None where the system does not tell this user."""
+
+    cpu_percent: float
+    rss_bytes: int
+    threads: int
+    connections: int | None
+    command: str | None
+
+
+def _tcp_connections(handle: psutil.Process) -> int:
+    method = getattr(handle, "net_connections", None) or handle.connections  # psutil < 6 has only the old name
+    return len(method(kind="tcp"))
+
+
 class UsageSampler:
     """Measures groups of pids; keeps one psutil handle per pid so CPU is the share since the previous sample.
 
@@ -67,6 +85,29 @@ class UsageSampler:
                 continue
             alive = True
         return Usage(cpu, rss) if alive else None
+
+    def sample(self, pid: int) -> ProcessSample | None:
+        """What process ``pid`` uses now (None when it is gone or a zombie)."""
+        handle = self._handle(pid)
+        if handle is None:
+            return None
+        try:
+            with handle.oneshot():
+                if handle.status() == psutil.STATUS_ZOMBIE:
+                    return None
+                cpu, rss, threads = handle.cpu_percent(None), handle.memory_info().rss, handle.num_threads()
+                try:
+                    command: str | None = " ".join(handle.cmdline())
+                except psutil.AccessDenied:
+                    command = None
+            try:
+                connections: int | None = _tcp_connections(handle)
+            except psutil.AccessDenied:
+                connections = None
+        except psutil.Error:
+            self._handles.pop(pid, None)
+            return None
+        return ProcessSample(cpu, rss, threads, connections, command)
 
     def forget_dead(self) -> None:
         """Drop the handles of processes that have ended."""

@@ -35,6 +35,8 @@ from rostui.apps.loggers.panels import LevelList, LoggerTable, NodeList
 from rostui.apps.monitor.app import MonitorApp
 from rostui.apps.diagnostics.app import DiagnosticsApp
 from rostui.apps.reconfigure.app import ReconfigureApp
+from rostui.apps.top.app import TopApp
+from rostui.apps.action.app import ActionApp
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.help import HelpScreen
 from rostui.apps.widgets.keys import ESSENTIAL_KEYS
@@ -81,6 +83,8 @@ CASES: dict[str, Case] = {
                         lambda app: app.source.servers_read),
     "diagnostics": Case(lambda tmp: DiagnosticsApp(), "↑/↓ PgUp/PgDn  move between statuses",
                         lambda app: app.source.state.status.name == "CONNECTED"),
+    "top": Case(lambda tmp: TopApp(interval=0.3), "↑/↓ PgUp/PgDn  move between nodes", lambda app: app.polls >= 1),
+    "action": Case(lambda tmp: ActionApp(period=0.3), "^x  cancel the goal running", lambda app: app.polls >= 1),
 }
 
 

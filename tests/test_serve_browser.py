@@ -139,6 +139,8 @@ APPS = {
     "view": (["view", "/rosout"], "/rosout"),
     "reconfigure": (["reconfigure"], "no reconfigure server"),
     "diagnostics": (["diagnostics"], "no status yet"),
+    "top": (["top"], "/rosout"),
+    "action": (["action"], "no action server"),
 }
 
 

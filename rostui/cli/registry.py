@@ -14,7 +14,7 @@ __all__ = ["App", "APPS", "COMMAND_GROUPS", "app_of", "served_apps"]
 #: Every command group, as ``rostui/cli/<group>_cmd.py`` registers it, in the order the help lists them.
 COMMAND_GROUPS = ("core", "run", "node", "topic", "msg", "service", "param", "dynparam", "pkg", "wtf", "clean",
                   "turtlesim", "graph", "console", "loggers", "launch", "bag", "monitor", "serve", "python", "tf", "view",
-                  "reconfigure", "diagnostics")
+                  "reconfigure", "diagnostics", "top", "action")
 
 
 @dataclass(frozen=True)
@@ -45,6 +45,8 @@ APPS = (
     App(("view",), "rostui.apps.view"),
     App(("reconfigure",), "rostui.apps.reconfigure"),
     App(("diagnostics",), "rostui.apps.diagnostics"),
+    App(("top",), "rostui.apps.top"),
+    App(("action",), "rostui.apps.action"),
 )
 
 

@@ -149,6 +149,17 @@ def spec_text(kind: Kind, type_name: str, raw: bool = False) -> str:
     return "".join(line + "\n" for line in lines) + "\n"
 
 
+def message_lines(type_name: str) -> list[str]:
+    """A message type's fields as rosmsg show lists them (nested types indented), for any type rostui can load:
+    a .msg file's, or one an .action generates. :class:`TypeLookupError` otherwise."""
+    lines: list[str] = []
+    try:
+        _spec_lines(default_store().get_spec(type_name), "", lines)
+    except (UnknownMessageTypeError, MessageSpecError, OSError) as exc:
+        raise _load_error("msg", type_name, str(exc)) from None
+    return lines
+
+
 def _not_found(kind: Kind, arg: str) -> TypeLookupError:
     # rossrv says "msg" here too
     return TypeLookupError(f"Could not find msg '{arg}'")

@@ -278,8 +278,8 @@ def test_rospy_clock_publisher(any_master: str, envs: dict[str, dict[str, str]],
     periods = [dt for dt in _echoed(started, UPDATE_DT[consumer]) if dt > 0]
     assert all(0.7 <= dt <= 1.3 for dt in periods), periods
     talker.send_signal(2)
-    try:
-        talker.wait(timeout=60)
+    try:  # Debian's talker under /use_sim_time has been seen to outlive Ctrl-C: it is given 10 s, rostui's 60
+        talker.wait(timeout=60 if consumer == "shim" else 10)
     except subprocess.TimeoutExpired:
         if consumer == "shim":  # rostui's rospy must end on Ctrl-C; how fast Debian's does is not ours to test
             raise

@@ -138,8 +138,9 @@ class GoalSession:
                          await self.node.subscribe(self.topic("feedback"), self.feedback_class, self._on_feedback),
                          await self.node.subscribe(self.topic("result"), self.result_class, self._on_result)]
         deadline = time.monotonic() + timeout
-        while not (self.server_seen.is_set() and self._goal_pub.get_num_connections()
-                   and self._cancel_pub.get_num_connections()):
+        # as actionlib's wait_for_server: the server's status heard, and all five topics connected both ways (a
+        # feedback or result published before its subscription is connected would be lost)
+        while not (self.server_seen.is_set() and all(handle.get_num_connections() for handle in self._handles)):
             if time.monotonic() > deadline:
                 raise ActionError(f"no action server answered on {self.ns or '/'} within {timeout:g} s")
             await asyncio.sleep(0.02)

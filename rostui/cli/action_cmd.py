@@ -107,7 +107,7 @@ def send_command(
     from rostui.cli.common import fail, master_uri
     from rostui.tools.action import ActionError
     from rostui.tools.topic.common import TopicToolError, UsageError
-    from rostui.tools.topic.pub_args import build_message, parse_yaml_args
+    from rostui.tools.topic.pub_args import parse_yaml_args
 
     if not timeout > 0:
         fail("--timeout must be more than 0 seconds")
@@ -120,14 +120,14 @@ def send_command(
     except (UsageError, TopicToolError) as exc:
         fail(str(exc))
     try:
-        raise typer.Exit(asyncio.run(_send(master_uri(), action.name, kind, args, timeout, quiet, build_message)))
+        raise typer.Exit(asyncio.run(_send(master_uri(), action.name, kind, args, timeout, quiet)))
     except ActionError as exc:
         fail(f"ERROR: {exc}")
     except TopicToolError as exc:
         fail(f"ERROR: {exc}")
 
 
-async def _send(uri: str, ns: str, kind: str, args: list[Any], timeout: float, quiet: bool, build: Any) -> int:
+async def _send(uri: str, ns: str, kind: str, args: list[Any], timeout: float, quiet: bool) -> int:
     """The goal session: connect, send, print what comes; Ctrl-C cancels and waits a little for the answer."""
     import asyncio
     import signal
@@ -135,6 +135,7 @@ async def _send(uri: str, ns: str, kind: str, args: list[Any], timeout: float, q
     from rostui.core.msg.convert import message_to_yaml
     from rostui.core.node.node import AsyncNode
     from rostui.tools.action import STATUS_NAMES, GoalSession
+    from rostui.tools.topic.pub_args import build_message
 
     def said_status(state: int, text: str) -> None:
         print(f"status: {STATUS_NAMES.get(state, state)}" + (f" ({text})" if text else ""), flush=True)
@@ -149,7 +150,7 @@ async def _send(uri: str, ns: str, kind: str, args: list[Any], timeout: float, q
     loop.add_signal_handler(signal.SIGINT, interrupted.set)
     try:
         session = GoalSession(node, ns, kind, on_feedback=said_feedback, on_status=said_status)
-        goal = build(session.goal_class, args)
+        goal = build_message(session.goal_class, args)
         await session.connect(timeout)
         print(f"goal {session.send_goal(goal)} sent to {ns} [{kind}]", flush=True)
         sending = asyncio.ensure_future(session.result())

@@ -29,7 +29,7 @@ from rostui.tools.hosts import is_local_host, local_addresses
 from rostui.tools.usage import ProcessSample, UsageSampler
 
 __all__ = ["NodeRow", "TopSource", "SORTS", "sort_rows", "format_rows", "format_bytes", "CALL_TIMEOUT",
-           "STOP_GRACE", "StopRefused"]
+           "STOP_GRACE", "StopRefused", "table_lines"]
 
 #: Seconds a master or node call may take.
 CALL_TIMEOUT = 2.0
@@ -236,10 +236,15 @@ def cells(row: NodeRow) -> tuple[str, ...]:
             row.where + (f": {row.problem}" if row.problem else ""))
 
 
-def format_rows(rows: list[NodeRow]) -> str:
-    """The rows as a table for a terminal or a script (``rostui top --once``)."""
+def table_lines(rows: list[NodeRow]) -> list[str]:
+    """The header and one line per row, each column as wide as its widest cell (names left, figures right)."""
     table = [COLUMNS, *(cells(row) for row in rows)]
     widths = [max(len(line[i]) for line in table) for i in range(len(COLUMNS) - 1)]
-    return "\n".join("  ".join([*(cell.ljust(width) if i == 0 else cell.rjust(width)
-                                  for i, (cell, width) in enumerate(zip(line, widths))), line[-1]])
-                     for line in table)
+    return ["  ".join([*(cell.ljust(width) if i == 0 else cell.rjust(width)
+                         for i, (cell, width) in enumerate(zip(line, widths))), line[-1]])
+            for line in table]
+
+
+def format_rows(rows: list[NodeRow]) -> str:
+    """The rows as a table for a terminal or a script (``rostui top --once``)."""
+    return "\n".join(table_lines(rows))

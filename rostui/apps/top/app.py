@@ -26,7 +26,7 @@ from rostui.apps.widgets.line_table import Line, LineTable
 from rostui.apps.widgets.notice import Notice
 from rostui.core.master_errors import MasterUnreachableError
 from rostui.core.masteruri import master_uri_from_env
-from rostui.models.top import COLUMNS, SORTS, NodeRow, StopRefused, TopSource, cells, sort_rows
+from rostui.models.top import SORTS, NodeRow, StopRefused, TopSource, sort_rows, table_lines
 
 __all__ = ["TopApp", "NodeTable", "run_app"]
 
@@ -46,16 +46,9 @@ class NodeTable(LineTable):
 
     def show_rows(self, rows: list[NodeRow]) -> None:
         """Draw ``rows`` in this order, the columns as wide as their widest cell."""
-        table = [COLUMNS, *(cells(row) for row in rows)]
-        widths = [max(len(line[i]) for line in table) for i in range(len(COLUMNS) - 1)]
-
-        def text(line: tuple[str, ...]) -> str:
-            return "  ".join([*(cell.ljust(w) if i == 0 else cell.rjust(w)
-                                for i, (cell, w) in enumerate(zip(line, widths))), line[-1]])
-
-        self.show(text(COLUMNS), [Line(row.name, text(line), "node-table--problem" if row.problem else
-                                       "" if row.here else "node-table--remote")
-                                  for row, line in zip(rows, table[1:])])
+        header, *lines = table_lines(rows)
+        self.show(header, [Line(row.name, line, "node-table--problem" if row.problem else
+                                "" if row.here else "node-table--remote") for row, line in zip(rows, lines)])
 
 
 class TopApp(ReleasesOnExit, KeysApp):

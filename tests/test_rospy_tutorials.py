@@ -175,6 +175,22 @@ def test_listener_with_user_data(any_master: str, start: Start) -> None:
     ]
 
 
+HEY = "I heard Hey everyone, we have a new friend!"
+
+
+def _without_rospy_resend(lines: list[str]) -> list[str]:
+    """Debian's listener lines less the copy of "Hey everyone" that Debian's talker may send twice.
+
+    Debian's rospy calls peer_subscribe's topic_publish (_PublisherImpl.publish) without the publock that
+    Publisher.publish holds, so it races the script's own publish on the topic's one serialisation buffer:
+    that publish may send the "Hey everyone" frame again, in the same write as its "hello world" (seen under
+    roscore and rostui core alike). Only such a copy goes: a second "Hey" directly followed by a hello world.
+    """
+    hey = [i for i, line in enumerate(lines) if line.endswith(HEY)]
+    stale = [i for i in hey if i + 1 < len(lines) and "I heard hello world" in lines[i + 1]]
+    return [line for i, line in enumerate(lines) if not (len(hey) == 2 and stale and i == stale[-1])]
+
+
 @MASTERS
 def test_listener_subscribe_notify(any_master: str, start: Start) -> None:
     """004 listener_subscribe_notify.py: peer_subscribe publishes to all and to the newcomer; peer_unsubscribe.
@@ -193,7 +209,11 @@ def test_listener_subscribe_notify(any_master: str, start: Start) -> None:
         talker.wait_for("I have no friends")
         said = talker.interrupt()
         told = [line for line in said.splitlines() if not line.startswith("hello world")]
-        greeted = [line for line in heard.splitlines() if "I heard hello world" not in line][:2]
+        lines = heard.splitlines()
+        if side == "real":
+            lines = _without_rospy_resend(lines)
+        assert said.count("a peer subscribed") == 1 and sum(HEY in line for line in lines) == 1, said + heard
+        greeted = [line for line in lines if "I heard hello world" not in line][:2]
         return "\n".join(told + greeted)
 
     assert both(scenario) == [

@@ -18,6 +18,7 @@ import socket
 import subprocess
 import sys
 import time
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable, Iterator
 
@@ -210,22 +211,69 @@ def ros_env(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
 
     It is also applied to this test process, so in-process rostui nodes see it.
     """
+    env = new_ros_env(tmp_path)
+    apply_ros_env(monkeypatch, env)
+    return env
+
+
+def new_ros_env(where: Path) -> dict[str, str]:
+    """This process's environment with a master URI on a free port and a private ROS_HOME under *where*."""
     port = free_port()
-    home = tmp_path / "ros_home"
+    home = where / "ros_home"
     home.mkdir()
-    values = {
+    env = {k: v for k, v in os.environ.items() if k not in _FOREIGN_ROS_VARIABLES}
+    env.update({
         "ROS_MASTER_URI": f"http://127.0.0.1:{port}",
         "ROS_HOME": str(home),
         "ROS_IP": "127.0.0.1",
         "PYTHONUNBUFFERED": "1",
-    }
-    for key in ("ROS_HOSTNAME", "ROS_NAMESPACE", "ROS_LOG_DIR", "ROSCONSOLE_FORMAT"):
-        monkeypatch.delenv(key, raising=False)
-    for key, value in values.items():
-        monkeypatch.setenv(key, value)
-    env = dict(os.environ)
-    env["ROSTUI_TEST_MASTER_PORT"] = str(port)
+        "ROSTUI_TEST_MASTER_PORT": str(port),
+    })
     return env
+
+
+_FOREIGN_ROS_VARIABLES = ("ROS_HOSTNAME", "ROS_NAMESPACE", "ROS_LOG_DIR", "ROSCONSOLE_FORMAT")
+
+
+def apply_ros_env(monkeypatch: pytest.MonkeyPatch, env: dict[str, str]) -> None:
+    """Make *env*'s ROS variables this test process's own (in-process rostui nodes and completions read them)."""
+    for key in _FOREIGN_ROS_VARIABLES:
+        monkeypatch.delenv(key, raising=False)
+    for key in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP", "PYTHONUNBUFFERED"):
+        monkeypatch.setenv(key, env[key])
+
+
+@pytest.fixture(scope="module")
+def module_ros_env(tmp_path_factory: pytest.TempPathFactory) -> dict[str, str]:
+    """A ROS environment for a graph that one module's read-only tests share (its own port and ROS_HOME).
+
+    Starting a core and its peers costs a few CPU seconds; tests that only look at a graph share one
+    per worker instead of making their own. Not applied to this process: see :func:`apply_ros_env`.
+    """
+    return new_ros_env(tmp_path_factory.mktemp("module_ros"))
+
+
+@pytest.fixture(scope="module", params=["rostui", "roscore"])
+def module_master(request: pytest.FixtureRequest, module_ros_env: dict[str, str]) -> Iterator[str]:
+    """``any_master`` for a module's shared graph: a `rostui core` or a real roscore on module_ros_env's port."""
+    if request.param == "roscore":
+        need_command("roscore")
+    with running_core(request.param, module_ros_env):
+        yield request.param
+
+
+@contextmanager
+def running_core(kind: str, env: dict[str, str]) -> Iterator[subprocess.Popen]:
+    """A `rostui core` (*kind* "rostui") or a real `roscore` (*kind* "roscore") on *env*'s port, rosout up."""
+    port = master_port(env)
+    argv = rostui_cmd("core", "-p", str(port)) if kind == "rostui" else ["roscore", "-p", str(port)]
+    proc = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                            start_new_session=kind == "roscore")
+    try:
+        wait_for_core(port, proc, timeout=30 if kind == "rostui" else 60)
+        yield proc
+    finally:
+        stop_process(proc)
 
 
 def master_port(env: dict[str, str]) -> int:
@@ -272,32 +320,16 @@ def start_rostui_core(env: dict[str, str]) -> subprocess.Popen:
 @pytest.fixture
 def rostui_core(ros_env: dict[str, str]) -> Iterator[subprocess.Popen]:
     """A `rostui core` master (with rosout) on the ros_env port."""
-    port = master_port(ros_env)
-    proc = subprocess.Popen(
-        rostui_cmd("core", "-p", str(port)), env=ros_env,
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-    )
-    try:
-        wait_for_core(port, proc)
+    with running_core("rostui", ros_env) as proc:
         yield proc
-    finally:
-        stop_process(proc)
 
 
 @pytest.fixture
 def real_roscore(ros_env: dict[str, str]) -> Iterator[subprocess.Popen]:
     """A real ROS 1 `roscore` on the ros_env port (required in CI)."""
     need_command("roscore")
-    port = master_port(ros_env)
-    proc = subprocess.Popen(
-        ["roscore", "-p", str(port)], env=ros_env,
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True,
-    )
-    try:
-        wait_for_core(port, proc, timeout=60)
+    with running_core("roscore", ros_env) as proc:
         yield proc
-    finally:
-        stop_process(proc)
 
 
 @pytest.fixture(params=["rostui", "roscore"])

@@ -14,6 +14,7 @@ import subprocess
 import sys
 import threading
 import time
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable, Iterator, Sequence
 
@@ -108,13 +109,13 @@ class Peer:
 Spawn = Callable[..., Peer]
 
 
-@pytest.fixture
-def spawn(ros_env: dict[str, str]) -> Iterator[Spawn]:
-    """``spawn(argv, label=..., env=...)`` starts a Peer that is stopped when the test ends."""
+@contextmanager
+def peers(default_env: dict[str, str]) -> Iterator[Spawn]:
+    """``spawn(argv, label=..., env=...)`` starts a Peer (in *default_env* unless told); all stop when this ends."""
     started: list[Peer] = []
 
     def start(argv: Sequence[str], label: str | None = None, env: dict[str, str] | None = None) -> Peer:
-        peer = Peer(argv, env or ros_env, label or Path(argv[1] if len(argv) > 1 else argv[0]).name)
+        peer = Peer(argv, env or default_env, label or Path(argv[1] if len(argv) > 1 else argv[0]).name)
         started.append(peer)
         return peer
 
@@ -123,6 +124,13 @@ def spawn(ros_env: dict[str, str]) -> Iterator[Spawn]:
     finally:
         for peer in reversed(started):
             peer.stop()
+
+
+@pytest.fixture
+def spawn(ros_env: dict[str, str]) -> Iterator[Spawn]:
+    """``spawn(argv, label=..., env=...)`` starts a Peer that is stopped when the test ends."""
+    with peers(ros_env) as start:
+        yield start
 
 
 def rospy_peer(script: str, *args: str) -> list[str]:
@@ -154,21 +162,52 @@ def run_tool(argv: Sequence[str], env: dict[str, str], timeout: float = PATIENCE
 
 
 
-def wait_for_node(env: dict[str, str], node: str, peer: Peer | None = None) -> None:
-    """Wait until ``rosnode list`` shows a node (it has registered something).
-
-    On failure the message holds the last `rosnode list` and, when given, the ``peer`` that should be ``node``.
-    """
-    last: list[subprocess.CompletedProcess] = []
-
-    def listed() -> bool:
-        last[:] = [run_tool(["rosnode", "list"], env, check=False)]
-        return node in last[0].stdout.split()
+def graph_nodes(env: dict[str, str]) -> set[str] | str:
+    """The nodes the master at ``env``'s ROS_MASTER_URI knows (what `rosnode list` lists), or why it did not say."""
+    from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync
 
     try:
-        wait_until(listed, f"{node} in `rosnode list`")
+        code, msg, state = call_sync(env["ROS_MASTER_URI"], "getSystemState", "/test")
+    except (OSError, XmlRpcConnectionError) as exc:
+        return f"no answer from the master: {exc}"
+    if code != 1:
+        return f"getSystemState: {msg}"
+    return {node for kind in state for _, nodes in kind for node in nodes}
+
+
+def wait_for_param(env: dict[str, str], name: str) -> None:
+    """Wait until the master at ``env``'s ROS_MASTER_URI has the parameter ``name`` (roscore sets /run_id late)."""
+    from rostui.core.xmlrpc import call_sync
+
+    wait_until(lambda: call_sync(env["ROS_MASTER_URI"], "hasParam", "/test", name)[2] is True, f"{name} to be set")
+
+
+def wait_for_publisher(env: dict[str, str], topic: str) -> None:
+    """Wait until the master at ``env``'s ROS_MASTER_URI has a publisher of ``topic`` (as `topic list` shows)."""
+    from rostui.core.xmlrpc import call_sync
+
+    def published() -> bool:
+        return topic in {name for name, _ in call_sync(env["ROS_MASTER_URI"], "getPublishedTopics", "/test", "")[2]}
+
+    wait_until(published, f"a publisher of {topic}")
+
+
+def wait_for_node(env: dict[str, str], node: str, peer: Peer | None = None) -> None:
+    """Wait until the master knows a node (it has registered something), as `rosnode list` would show it.
+
+    The master is asked directly: a `rosnode list` process per poll cost a third of a CPU second each time.
+    On failure the message holds the last answer and, when given, the ``peer`` that should be ``node``.
+    """
+    last: list[set[str] | str] = []
+
+    def listed() -> bool:
+        last[:] = [graph_nodes(env)]
+        return node in last[0]
+
+    try:
+        wait_until(listed, f"{node} known to the master")
     except AssertionError as exc:
-        seen = f"last `rosnode list`: rc={last[0].returncode}\n{last[0].stdout}{last[0].stderr}" if last else ""
+        seen = f"last answer: {sorted(last[0]) if isinstance(last[0], set) else last[0]}" if last else ""
         raise AssertionError(f"{exc}\n{seen}\n{peer.describe() if peer else ''}") from None
 
 

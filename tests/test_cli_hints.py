@@ -13,8 +13,7 @@ from rostui.cli.negative import bare_negative
 from rostui.tools.suggest import closest_names, did_you_mean, with_namespaces
 
 from cli_helpers import rostui
-from conftest import wait_until
-from interop_helpers import Peer, Spawn, rospy_peer, spawn  # noqa: F401
+from interop_helpers import Peer, Spawn, rospy_peer, spawn, wait_for_publisher  # noqa: F401
 
 ROOT = typer.main.get_command(app)
 
@@ -132,7 +131,7 @@ def test_service_did_you_mean(any_master: str, ros_env: dict[str, str], spawn: S
 def test_topic_echo_hints_while_it_waits(any_master: str, ros_env: dict[str, str], spawn: Spawn,
                                          rospy_available: None) -> None:
     talker = spawn(rospy_peer("rospy_talker.py", "/turtle1/pose", "3", "10"), label="talker")
-    wait_until(lambda: "/turtle1/pose" in rostui(["topic", "list"], ros_env).stdout.split(), "the talker's topic")
+    wait_for_publisher(ros_env, "/turtle1/pose")
     echo = spawn([sys.executable, "-m", "rostui", "topic", "echo", "/turtle1/pos"], label="echo")
     echo.wait_for(r"^WARNING: topic \[/turtle1/pos\] does not appear to be published yet$")
     echo.wait_for(r"^did you mean /turtle1/pose\?$")

@@ -8,20 +8,32 @@ import xmlrpc.client
 import pytest
 
 from cli_helpers import normalize, rostui
-from conftest import free_port
-from interop_helpers import example, run_tool, spawn, wait_for_node, wait_until  # noqa: F401
+from conftest import apply_ros_env, free_port
+from interop_helpers import Peer, Spawn, example, peers, run_tool, spawn, wait_for_node, wait_until  # noqa: F401
+
+
+def start_graph(spawn: Spawn, env: dict[str, str]) -> tuple[Peer, Peer, Peer]:
+    """rostui talker /mouth, listener /ears, toggle_server /toggle_server, connected."""
+    listener = spawn(example("listener.py", "__name:=ears"), label="listener")
+    wait_for_node(env, "/ears", listener)
+    talker = spawn(example("talker.py", "__name:=mouth"), label="talker")
+    server = spawn(example("toggle_server.py"), label="toggle_server")
+    listener.wait_for(r"I heard: hello world \d+$")
+    wait_for_node(env, "/toggle_server", server)
+    return talker, listener, server
 
 
 @pytest.fixture
 def graph(any_master, spawn, ros_env):
-    """rostui talker /mouth, listener /ears, toggle_server /toggle_server, connected."""
-    listener = spawn(example("listener.py", "__name:=ears"), label="listener")
-    wait_for_node(ros_env, "/ears", listener)
-    talker = spawn(example("talker.py", "__name:=mouth"), label="talker")
-    server = spawn(example("toggle_server.py"), label="toggle_server")
-    listener.wait_for(r"I heard: hello world \d+$")
-    wait_for_node(ros_env, "/toggle_server", server)
-    return talker, listener, server
+    """The graph of :func:`start_graph`, for a test that changes it (kills or adds nodes)."""
+    return start_graph(spawn, ros_env)
+
+
+@pytest.fixture(scope="module")
+def shared(module_master, module_ros_env):
+    """The graph of :func:`start_graph` and its environment, shared by the module's tests that only look at it."""
+    with peers(module_ros_env) as spawn:
+        yield start_graph(spawn, module_ros_env), module_ros_env
 
 
 def same(ours, theirs):
@@ -30,9 +42,10 @@ def same(ours, theirs):
 
 @pytest.mark.parametrize("args", [["list"], ["list", "-u"], ["list", "-a"], ["list", "/ears"], ["list", "/nons"],
                                   ["list", "ears"]])
-def test_list(graph, ros_env, args):
-    theirs = run_tool(["rosnode", *args], ros_env)
-    ours = rostui(["node", *args], ros_env)
+def test_list(shared, args):
+    _, env = shared
+    theirs = run_tool(["rosnode", *args], env)
+    ours = rostui(["node", *args], env)
     assert ours.returncode == 0, ours.stderr
     if "-u" in args or "-a" in args:  # URIs are ephemeral: compare as sets of lines
         assert sorted(ours.stdout.splitlines()) == sorted(theirs.stdout.splitlines())
@@ -40,18 +53,20 @@ def test_list(graph, ros_env, args):
         assert ours.stdout == theirs.stdout
 
 
-def test_list_json(graph, ros_env):
+def test_list_json(shared):
+    _, env = shared
     import json
 
-    ours = json.loads(rostui(["node", "list", "--json"], ros_env).stdout)
+    ours = json.loads(rostui(["node", "list", "--json"], env).stdout)
     assert [e["node"] for e in ours] == ["/ears", "/mouth", "/rosout", "/toggle_server"]
     assert all(e["uri"].startswith("http://") for e in ours)
 
 
 @pytest.mark.parametrize("node", ["/mouth", "/ears", "/toggle_server", "/nope"])
-def test_info(graph, ros_env, node):
-    theirs = run_tool(["rosnode", "info", node], ros_env)
-    ours = rostui(["node", "info", node], ros_env)
+def test_info(shared, node):
+    _, env = shared
+    theirs = run_tool(["rosnode", "info", node], env)
+    ours = rostui(["node", "info", node], env)
     assert ours.returncode == theirs.returncode
     # Connection lists come in the node's own order; compare sorted blocks.
     assert normalize(ours.stdout).split("Connections:")[0] == normalize(theirs.stdout).split("Connections:")[0]
@@ -59,32 +74,35 @@ def test_info(graph, ros_env, node):
     assert ours.stderr == theirs.stderr
 
 
-def test_info_quiet_and_json(graph, ros_env):
+def test_info_quiet_and_json(shared):
+    graph, env = shared
     import json
 
-    same(rostui(["node", "info", "-q", "/toggle_server"], ros_env),
-         run_tool(["rosnode", "info", "-q", "/toggle_server"], ros_env))
+    same(rostui(["node", "info", "-q", "/toggle_server"], env),
+         run_tool(["rosnode", "info", "-q", "/toggle_server"], env))
     talker = graph[0]
-    data = json.loads(rostui(["node", "info", "--json", "/mouth"], ros_env).stdout)
+    data = json.loads(rostui(["node", "info", "--json", "/mouth"], env).stdout)
     assert data["pid"] == talker.proc.pid
     assert {"topic": "/chatter", "type": "std_msgs/String"} in data["publications"]
 
 
-def test_ping(graph, ros_env):
-    theirs = run_tool(["rosnode", "ping", "-c", "2", "/ears"], ros_env)
-    ours = rostui(["node", "ping", "-c", "2", "/ears"], ros_env)
+def test_ping(shared):
+    _, env = shared
+    theirs = run_tool(["rosnode", "ping", "-c", "2", "/ears"], env)
+    ours = rostui(["node", "ping", "-c", "2", "/ears"], env)
     assert ours.returncode == 0
     mask = lambda t: re.sub(r"[\d.]+ms", "Xms", normalize(t))  # noqa: E731
     assert mask(ours.stdout) == mask(theirs.stdout)
     assert ours.stdout.count("xmlrpc reply from ") == 2 and "ping average: " in ours.stdout
-    theirs = run_tool(["rosnode", "ping", "-c", "1", "/nope"], ros_env, check=False)
-    ours = rostui(["node", "ping", "-c", "1", "/nope"], ros_env)
+    theirs = run_tool(["rosnode", "ping", "-c", "1", "/nope"], env, check=False)
+    ours = rostui(["node", "ping", "-c", "1", "/nope"], env)
     assert (ours.stdout, ours.stderr, ours.returncode) == (theirs.stdout, theirs.stderr, theirs.returncode)
 
 
-def test_ping_all(graph, ros_env):
-    ours = rostui(["node", "ping", "-a"], ros_env)
-    theirs = run_tool(["rosnode", "ping", "-a"], ros_env)
+def test_ping_all(shared):
+    _, env = shared
+    ours = rostui(["node", "ping", "-a"], env)
+    theirs = run_tool(["rosnode", "ping", "-a"], env)
     strip = lambda t: sorted(re.sub(r"[\d.]+ms", "Xms", normalize(t)).splitlines())  # noqa: E731
     assert strip(ours.stdout) == strip(theirs.stdout)
 
@@ -154,7 +172,9 @@ def test_completion_without_master(ros_env):
     assert complete_nodes("/") == []
 
 
-def test_completion_live(graph, ros_env):
+def test_completion_live(shared, monkeypatch):
+    _, env = shared
+    apply_ros_env(monkeypatch, env)
     from rostui.cli.node_cmd import complete_nodes
 
     assert complete_nodes("/m") == ["/mouth"]

@@ -94,9 +94,9 @@ def test_fast_path_matches_full_command(any_master, ros_env):
     import subprocess
     import sys
 
-    from interop_helpers import wait_until
+    from interop_helpers import wait_for_param
 
-    wait_until(lambda: "/run_id" in run_tool(["rosparam", "list"], ros_env).stdout, "/run_id to be set")
+    wait_for_param(ros_env, "/run_id")
     full_cli = "import sys; sys.argv[0] = 'rostui'; from rostui.cli.main import main; main()"
     for key in ("/run_id", "/", "/nope"):
         fast = rostui(["param", "get", key], ros_env)

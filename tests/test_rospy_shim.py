@@ -19,8 +19,9 @@ import pytest
 
 from rostui.compat import PYLIB
 
-from conftest import REPO, SYSTEM_PYTHON, have_rospy, need_peer, rostui_cmd, shared_build, stop_process, wait_until
+from conftest import REPO, SYSTEM_PYTHON, have_rospy, need_peer, rostui_cmd, shared_build, stop_process
 from rospy_scripts import Running, script_command
+from live_helpers import wait_for_service
 
 REAL = REPO / "tests" / "python_compat" / "real"
 PACKAGE_PATH = REAL / "ros_package_path"
@@ -138,8 +139,7 @@ def test_add_two_ints(any_master: str, envs: dict[str, dict[str, str]], running,
 def test_shim_server_called_by_rosservice(any_master: str, envs: dict[str, dict[str, str]], running) -> None:
     """`rosservice call` (real) gets the shim add_two_ints_server's sum."""
     running(script_command("shim", CORPORA["ros_tutorials"].script("server")), envs["shim"], "server")
-    wait_until(lambda: subprocess.run(["rosservice", "list"], env=envs["real"], capture_output=True,
-                                      text=True).stdout.count("/add_two_ints") > 0, "add_two_ints registered")
+    wait_for_service(envs["real"], "/add_two_ints")
     out = subprocess.run(["rosservice", "call", "/add_two_ints", "5", "6"], env=envs["real"], capture_output=True,
                          text=True, timeout=60)
     assert out.stdout.strip() == "sum: 11", out.stdout + out.stderr

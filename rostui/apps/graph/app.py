@@ -23,6 +23,7 @@ from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, VerticalScroll
 from textual.widgets import Input, Static
+from textual.worker import Worker
 
 from rostui.apps.graph.canvas import Canvas, draw, layout_view
 from rostui.apps.graph.widget import GraphView
@@ -168,7 +169,8 @@ class GraphApp(ReleasesOnExit, KeysApp):
         """Ask the master for the graph (skipped while the previous poll still runs)."""
         if not self._polling and not self.released:
             self._polling = True
-            self.run_worker(self._poll(), group="poll", exit_on_error=False)
+            # the function, not a coroutine object: a worker cancelled before it starts leaves nothing unawaited
+            self._poll_worker: Worker[None] = self.run_worker(self._poll, group="poll", exit_on_error=False)
 
     async def _poll(self) -> None:
         try:

@@ -20,7 +20,8 @@ import pytest
 from conftest import start_rostui_core, stop_process
 from live_helpers import Program
 from loggers_helpers import (
-    listed_nodes, marked_level, notice, quick_app, run_app, select_logger, select_node, shown_levels, until,
+    highlight_node, listed_nodes, marked_level, notice, quick_app, run_app, select_logger, select_node, shown_levels,
+    until,
 )
 from textual.pilot import Pilot
 
@@ -132,7 +133,7 @@ def test_enter_walks_node_logger_and_level_lists(rostui_core: Any) -> None:
         try:
             await until(lambda: "/alpha" in listed_nodes(app), "/alpha listed")
             await pilot.press("down", "enter")
-            await until(lambda: app.node == "/alpha" and app.logger == "ros.agitr", "/alpha's loggers")
+            await until(lambda: app.node == "/alpha" and app.logger == "ros.agitr", "/alpha's loggers", app=app)
             assert app.focused is app.query_one(LoggerTable)
             await pilot.press("enter")
             assert app.focused is app.query_one(LevelList)
@@ -152,7 +153,8 @@ def test_mouse_selects_node_logger_and_level(rostui_core: Any) -> None:
         try:
             await until(lambda: "/alpha" in listed_nodes(app), "/alpha listed")
             assert await pilot.click(NodeList, offset=(2, listed_nodes(app).index("/alpha")))
-            await until(lambda: app.node == "/alpha" and len(app.loggers) == 3, "/alpha's loggers after a click")
+            await until(lambda: app.node == "/alpha" and len(app.loggers) == 3, "/alpha's loggers after a click",
+                        app=app)
             row = app.query_one(LoggerTable).logger_names.index("ros.agitr.motor")
             assert await pilot.click(LoggerTable, offset=(2, 1 + row))  # row 0 is the header
             await until(lambda: app.logger == "ros.agitr.motor", "the clicked logger selected")
@@ -205,6 +207,29 @@ def test_node_killed_while_selected(rostui_core: Any, ros_env: dict[str, str], t
 
         run_app(quick_app(), scenario)
     finally:
+        count.stop()
+
+
+def test_a_node_too_slow_at_first_shows_its_loggers_once_it_answers(rostui_core: Any, ros_env: dict[str, str],
+                                                                    tmp_path: Path) -> None:
+    """The first get_loggers times out (the node is stopped, as a busy machine can stall it): the timeout is said;
+    once the node answers again its loggers appear with no key pressed (a loaded CI machine found this)."""
+    count = Program(ros_env, tmp_path, "agitr", "count")
+    try:
+        async def scenario(pilot: Pilot, app: LoggersApp) -> None:
+            await until(lambda: "/count_and_log" in listed_nodes(app), "/count_and_log listed")
+            count.proc.send_signal(signal.SIGSTOP)
+            await highlight_node(pilot, app, "/count_and_log")
+            await until(lambda: notice(app, "loggers")[1] == "error", "the stopped node's timeout said", app=app)
+            assert app.loggers == {}
+            count.proc.send_signal(signal.SIGCONT)
+            await until(lambda: app.node == "/count_and_log" and app.logger == "ros.agitr",
+                        "its loggers, once it answers", app=app)
+            assert notice(app, "loggers")[1] == "info"
+
+        run_app(quick_app(timeout=1.0), scenario)
+    finally:
+        count.proc.send_signal(signal.SIGCONT)
         count.stop()
 
 

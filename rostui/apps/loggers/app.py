@@ -81,6 +81,7 @@ class LoggersApp(ReleasesOnExit, KeysApp):
         self._nodes_worker: Worker[None] | None = None
         self._loggers_worker: Worker[None] | None = None
         self._ping_failed = False
+        self._loggers_read = False  # whether the selected node's loggers were read since it was selected
         self._picked_first = False
 
     # -- composition -----------------------------------------------------------------
@@ -201,6 +202,7 @@ class LoggersApp(ReleasesOnExit, KeysApp):
         self.query_one(LoggerTable).clear_loggers()
         self._show_levels()
         self.notice("loggers").say(f"asking {name}…")
+        self._loggers_read = False
         self._load(name)
 
     def _drop_node(self, message: str, kind: str) -> None:
@@ -226,7 +228,11 @@ class LoggersApp(ReleasesOnExit, KeysApp):
                 self._loggers_failed(exc)
                 self._ping_failed = True
             return
-        if node == self.node and self._ping_failed:  # it answers again: its loggers are still the last read
+        if node != self.node:
+            return
+        if not self._loggers_read:  # the first ask failed (a slow node or machine): ask for its loggers again
+            await self._load_loggers(node)
+        elif self._ping_failed:  # it answers again: its loggers are still the last read
             self._ping_failed = False
             self._say_logger_count()
 
@@ -258,6 +264,7 @@ class LoggersApp(ReleasesOnExit, KeysApp):
         before, self.logger = self.logger, table.highlighted_name or ""
         self._show_levels(hint=self.logger != before)
         self._ping_failed = False
+        self._loggers_read = True
         self._say_logger_count()
 
     def _say_logger_count(self) -> None:

@@ -16,8 +16,8 @@ from typing import Iterator
 import pytest
 
 from cli_helpers import normalize, rostui
-from conftest import need_command
-from interop_helpers import Peer, Spawn, example, rospy_peer, rostui_peer, run_tool, spawn, wait_for_node, wait_until  # noqa: F401
+from conftest import have_rospy, need_command, need_peer
+from interop_helpers import Peer, Spawn, example, peers, rospy_peer, rostui_peer, run_tool, spawn, wait_for_node, wait_until  # noqa: F401
 
 RATE_LINE = re.compile(r"average rate: (\d+\.\d{3})")
 
@@ -31,8 +31,7 @@ def need_rostopic() -> None:
     need_command("rostopic")
 
 
-@pytest.fixture
-def live(any_master: str, ros_env: dict[str, str], spawn: Spawn, rospy_available: None) -> Iterator[dict[str, Peer]]:
+def start_live(spawn: Spawn) -> dict[str, Peer]:
     """A talker (rostui, 10 Hz on /chatter), a rospy listener on /chatter and a latched /latched."""
     need_rostopic()
     talker = spawn(example("talker.py"), label="talker")
@@ -41,7 +40,25 @@ def live(any_master: str, ros_env: dict[str, str], spawn: Spawn, rospy_available
     listener.wait_for("subscribed")
     latcher.wait_for("ready")
     listener.wait_for("data: hello world")
-    yield {"talker": talker, "listener": listener, "latcher": latcher}
+    return {"talker": talker, "listener": listener, "latcher": latcher}
+
+
+@pytest.fixture
+def live(any_master: str, ros_env: dict[str, str], spawn: Spawn, rospy_available: None) -> dict[str, Peer]:
+    """The graph of :func:`start_live`, for a test that adds to it (hz, bw, pub)."""
+    return start_live(spawn)
+
+
+@pytest.fixture(scope="module")
+def shared(module_master: str, module_ros_env: dict[str, str]) -> Iterator[dict[str, str]]:
+    """The graph of :func:`start_live` plus a latched geometry_msgs/Point on /point from real `rostopic pub`,
+    shared by the module's tests that only read it; its environment."""
+    need_peer(have_rospy(), "rospy (Debian python3-rospy)")
+    with peers(module_ros_env) as spawn:
+        start_live(spawn)
+        point = spawn(["rostopic", "pub", "/point", "geometry_msgs/Point", "--", "1.5", "-2", "3"], label="rostopic pub")
+        point.wait_for("publishing and latching message")
+        yield module_ros_env
 
 
 def both(args: list[str], env: dict[str, str]) -> tuple[tuple[int, str, str], tuple[int, str, str]]:
@@ -59,68 +76,60 @@ def both(args: list[str], env: dict[str, str]) -> tuple[tuple[int, str, str], tu
     ["type", "/chatter"], ["type", "/rosout/header/stamp"], ["type", "/rosout/header"],
     ["find", "std_msgs/String"], ["find", "rosgraph_msgs/Log"], ["find", "nothing/Here"],
 ], ids=lambda a: " ".join(a))
-def test_master_commands_match_rostopic(live: dict[str, Peer], ros_env: dict[str, str], args: list[str]) -> None:
-    real, ours = both(args, ros_env)
+def test_master_commands_match_rostopic(shared: dict[str, str], args: list[str]) -> None:
+    real, ours = both(args, shared)
     assert ours == real
 
 
 @pytest.mark.parametrize("args", [["info", "/nope"], ["type", "/nope"]], ids=lambda a: " ".join(a))
-def test_unknown_topic_errors_match_rostopic(live: dict[str, Peer], ros_env: dict[str, str], args: list[str]) -> None:
-    real, ours = both(args, ros_env)
+def test_unknown_topic_errors_match_rostopic(shared: dict[str, str], args: list[str]) -> None:
+    real, ours = both(args, shared)
     assert ours == real
     assert ours[0] == 1 and ours[1] == "" and ours[2].count("\n") == 1
 
 
-def test_json_outputs(live: dict[str, Peer], ros_env: dict[str, str]) -> None:
+def test_json_outputs(shared: dict[str, str]) -> None:
     import json
 
-    listed = json.loads(rostui(["topic", "list", "--json"], ros_env).stdout)
+    listed = json.loads(rostui(["topic", "list", "--json"], shared).stdout)
     chatter = next(t for t in listed if t["topic"] == "/chatter")
     assert chatter["type"] == "std_msgs/String" and len(chatter["publishers"]) == 1 and chatter["subscribers"]
-    info = json.loads(rostui(["topic", "info", "/chatter", "--json"], ros_env).stdout)
+    info = json.loads(rostui(["topic", "info", "/chatter", "--json"], shared).stdout)
     assert info["type"] == "std_msgs/String"
     assert info["publishers"][0]["uri"].startswith("http://")
-    assert json.loads(rostui(["topic", "type", "/rosout/header/stamp", "--json"], ros_env).stdout) == {
+    assert json.loads(rostui(["topic", "type", "/rosout/header/stamp", "--json"], shared).stdout) == {
         "topic": "/rosout/header/stamp", "type": "rosgraph_msgs/Log", "field": "header/stamp", "field_type": "time"}
-    assert json.loads(rostui(["topic", "find", "std_msgs/String", "--json"], ros_env).stdout) == ["/chatter", "/latched"] or \
-        sorted(json.loads(rostui(["topic", "find", "std_msgs/String", "--json"], ros_env).stdout)) == ["/chatter", "/latched"]
+    assert json.loads(rostui(["topic", "find", "std_msgs/String", "--json"], shared).stdout) == ["/chatter", "/latched"] or \
+        sorted(json.loads(rostui(["topic", "find", "std_msgs/String", "--json"], shared).stdout)) == ["/chatter", "/latched"]
 
 
 # ----------------------------------------------------------------------------- echo
-@pytest.fixture
-def latched_point(live: dict[str, Peer], spawn: Spawn) -> Peer:
-    """A latched geometry_msgs/Point on /point published by real `rostopic pub`."""
-    peer = spawn(["rostopic", "pub", "/point", "geometry_msgs/Point", "--", "1.5", "-2", "3"], label="rostopic pub")
-    peer.wait_for("publishing and latching message")
-    return peer
-
-
 @pytest.mark.parametrize("args", [
     ["echo", "-n", "1", "/latched"], ["echo", "-n1", "--nostr", "/latched"], ["echo", "-n", "1", "/point"],
     ["echo", "-n", "1", "/point/y"], ["echo", "-n", "1", "-w", "4", "/point"], ["echo", "-n", "1", "--noarr", "/point"],
 ], ids=lambda a: " ".join(a))
-def test_echo_latched_matches_rostopic(latched_point: Peer, ros_env: dict[str, str], args: list[str]) -> None:
-    real, ours = both(args, ros_env)
+def test_echo_latched_matches_rostopic(shared: dict[str, str], args: list[str]) -> None:
+    real, ours = both(args, shared)
     assert ours == real
     assert ours[0] == 0 and ours[1].endswith("---\n")
 
 
-def test_echo_plot_matches_rostopic(latched_point: Peer, ros_env: dict[str, str]) -> None:
-    real, ours = both(["echo", "-n", "1", "-p", "/point"], ros_env)
+def test_echo_plot_matches_rostopic(shared: dict[str, str]) -> None:
+    real, ours = both(["echo", "-n", "1", "-p", "/point"], shared)
     stamp = re.compile(r"^\d{19},", re.M)
     assert ours[1].startswith("%time,field.x,field.y,field.z\n")
     assert stamp.sub("T,", ours[1]) == stamp.sub("T,", real[1])
 
 
-def test_echo_live_topic_and_field(live: dict[str, Peer], ros_env: dict[str, str]) -> None:
-    r = rostui(["topic", "echo", "-n", "2", "/chatter"], ros_env)
+def test_echo_live_topic_and_field(shared: dict[str, str]) -> None:
+    r = rostui(["topic", "echo", "-n", "2", "/chatter"], shared)
     assert r.returncode == 0, r.stderr
     assert re.fullmatch(r'data: "hello world \d+"\n---\ndata: "hello world \d+"\n---\n', r.stdout)
-    r = rostui(["topic", "echo", "-n", "1", "/rosout/topics"], ros_env)
+    r = rostui(["topic", "echo", "-n", "1", "/rosout/topics"], shared)
     assert r.returncode == 0, r.stderr
-    assert r.stdout == run_tool(["rostopic", "echo", "-n", "1", "/rosout/topics"], ros_env).stdout
-    real = run_tool(["rostopic", "echo", "-n", "1", "--noarr", "--nostr", "/rosout"], ros_env)
-    ours = rostui(["topic", "echo", "-n", "1", "--noarr", "--nostr", "/rosout"], ros_env)
+    assert r.stdout == run_tool(["rostopic", "echo", "-n", "1", "/rosout/topics"], shared).stdout
+    real = run_tool(["rostopic", "echo", "-n", "1", "--noarr", "--nostr", "/rosout"], shared)
+    ours = rostui(["topic", "echo", "-n", "1", "--noarr", "--nostr", "/rosout"], shared)
     digits = re.compile(r" *\d+")  # two different messages: nsecs is padded to width 9 when shorter
     assert digits.sub(" N", ours.stdout) == digits.sub(" N", real.stdout)
 

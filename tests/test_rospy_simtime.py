@@ -178,7 +178,10 @@ def test_timer_fires_each_simulated_second_of_a_bag(any_master: str, player: str
         assert all(BAG_START <= t <= BAG_END + 1 for t in stamps), (side, stamps, log)
         assert stamps == sorted(stamps), (side, stamps)
         assert 0.95 <= statistics.median(periods) <= 1.05, (side, periods)
-        assert all(0.7 <= dt <= 1.3 for dt in periods), (side, periods)
+        # No simulated second is skipped. A firing may be late (its stamp is read when the callback runs, and a
+        # loaded machine delays it) and the next comes on schedule, soon after it: Debian's rospy gave periods
+        # of 0.04 then 1.03 s that way, so a short period alone is no fault.
+        assert max(periods) < 1.9, (side, periods)
         counts[side] = len(stamps)
         assert "Traceback" not in log, log
     assert counts["shim"] >= 15 and abs(counts["shim"] - counts["real"]) <= 2, counts

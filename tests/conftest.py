@@ -205,6 +205,16 @@ def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo) -> Itera
         report.longrepr = f"skipped under ROSTUI_REQUIRE_INTEROP=1 (CI runs every test): {reason}"
 
 
+@pytest.hookimpl(trylast=True)
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Tests marked ``long`` first, the rest in pytest's order (which keeps each module's fixtures together).
+
+    Every worker collects the same order, and xdist hands the tests out in it: a long test started near the
+    end would keep the run waiting while the other workers have nothing left.
+    """
+    items[:] = sorted(items, key=lambda item: item.get_closest_marker("long") is None)
+
+
 @pytest.fixture
 def ros_env(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
     """An environment with a private ROS_HOME and a master URI on a free port.

@@ -34,13 +34,17 @@ CHILD = textwrap.dedent("""
     for spec in split_definition(type_name, definition):
         store.add_spec(spec)
     cls = store.get_class(type_name)
-    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    def peak_kb():  # VmHWM: this program's own peak (ru_maxrss would start at the parent's, hiding any growth)
+        with open("/proc/self/status") as status:
+            return next(int(line.split()[1]) for line in status if line.startswith("VmHWM:"))
+
+    before = peak_kb()
     try:
         msg = cls.deserialize(frame)
         error = None
     except Exception as exc:
         msg, error = None, f"{type(exc).__name__}: {exc}"
-    after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    after = peak_kb()
     print(json.dumps({"error": error, "growth_mb": (after - before) / 1024}))
 """)
 

@@ -15,14 +15,20 @@ VALUES = ["1.0", "'1'", "[1,2]", "!!str 5", "true", "hello world", "''", "42", "
 
 
 @pytest.mark.parametrize("value", VALUES)
-def test_set_then_get_like_rosparam(any_master, ros_env, value):
-    """Each value is set once by rosparam and once by rostui; every get output matches byte for byte."""
-    assert rostui(["param", "set", "/ours", value], ros_env).returncode == 0
-    run_tool(["rosparam", "set", "/theirs", value], ros_env)
-    for tool_get in (lambda k: run_tool(["rosparam", "get", k], ros_env).stdout,
-                     lambda k: rostui(["param", "get", k], ros_env).stdout):
-        assert tool_get("/ours") == tool_get("/theirs")
-    assert rostui(["param", "get", "/ours"], ros_env).stdout == run_tool(["rosparam", "get", "/theirs"], ros_env).stdout
+def test_set_then_get_like_rosparam(module_master, module_ros_env, value):
+    """Each value is set once by rosparam and once by rostui; every get output matches byte for byte.
+
+    The tests share a parameter server (per worker and master kind); each value has names of its own, as
+    setting a dictionary over an existing one merges them.
+    """
+    env, key = module_ros_env, VALUES.index(value)
+    ours, theirs = f"/ours{key}", f"/theirs{key}"
+    assert rostui(["param", "set", ours, value], env).returncode == 0
+    run_tool(["rosparam", "set", theirs, value], env)
+    for tool_get in (lambda k: run_tool(["rosparam", "get", k], env).stdout,
+                     lambda k: rostui(["param", "get", k], env).stdout):
+        assert tool_get(ours) == tool_get(theirs)
+    assert rostui(["param", "get", ours], env).stdout == run_tool(["rosparam", "get", theirs], env).stdout
 
 
 def test_book_duck_colors_merge(any_master, ros_env):

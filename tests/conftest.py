@@ -205,27 +205,6 @@ def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo) -> Itera
         report.longrepr = f"skipped under ROSTUI_REQUIRE_INTEROP=1 (CI runs every test): {reason}"
 
 
-@pytest.hookimpl(trylast=True)
-def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """Tests marked ``long`` spread evenly over the first quarter of the run; the rest in pytest's order.
-
-    Every worker collects the same order and xdist hands out consecutive runs of it: long tests kept in
-    their modules could start in the last minutes and keep the run waiting while the other workers have
-    nothing left, and long tests all at the front would go to one worker together. Spread out early, each
-    worker gets its share of them while plenty of short tests remain to even out the end. The others keep
-    pytest's order, which keeps each module's shared fixtures together.
-    """
-    long = [item for item in items if item.get_closest_marker("long") is not None]
-    rest = [item for item in items if item.get_closest_marker("long") is None]
-    step = max(1, len(rest) // 4 // max(1, len(long)))
-    spread: list[pytest.Item] = []
-    for index, item in enumerate(long):
-        spread.append(item)
-        spread.extend(rest[index * step:(index + 1) * step])
-    spread.extend(rest[len(long) * step:])
-    items[:] = spread
-
-
 @pytest.fixture
 def ros_env(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
     """An environment with a private ROS_HOME and a master URI on a free port.

@@ -41,6 +41,7 @@ FILES: dict[str, str] = {
     "/usr/lib/genpy/genmsg_py.py": "python3-genpy",
     "/usr/lib/actionlib_msgs/genaction.py": "libactionlib-msgs-dev",
     "/usr/lib/genpy/gensrv_py.py": "python3-genpy",
+    "/usr/bin/roslaunch": "python3-roslaunch",
     "/usr/lib/rostopic/rostopic": "python3-rostopic",
     "/usr/lib/rosbag/play": "python3-rosbag",
     "/usr/lib/python3/dist-packages/rospy/": "python3-rospy",

@@ -59,7 +59,6 @@ def tutorials_python(tmp_path_factory: pytest.TempPathFactory) -> Path:
 @pytest.mark.parametrize("client,server,master", [("shim", "shim", "rostui"), ("shim", "real", "rostui"),
                                                   ("real", "shim", "rostui"), ("shim", "real", "roscore"),
                                                   ("real", "shim", "roscore")])
-@pytest.mark.long
 def test_fibonacci_client_gets_the_sequence(client: str, server: str, master: str, request: pytest.FixtureRequest,
                                             ros_env: dict[str, str], tutorials_python: Path, tmp_path: Path) -> None:
     """Each side against the other on rostui core and on a real roscore (and rostui's on both sides). Debian's

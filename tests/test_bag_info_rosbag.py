@@ -221,7 +221,6 @@ def _rows(text: str) -> dict[str, str]:
     return {key: value.strip() for key, value in pairs}
 
 
-@pytest.mark.long
 def test_the_odd_shapes_are_really_odd(rosbag_bags: Path, ros_env: dict[str, str]) -> None:
     """The bags exercise what they are meant to (guards the comparisons above against bland bags)."""
     text = {name: _both(rosbag_bags / f"{name}.bag", ros_env)[0]

@@ -105,7 +105,6 @@ def record_squares(ros_env: dict[str, str], tmp_path: Path, items: list, recorde
     return watcher
 
 
-@pytest.mark.long
 def test_the_book_bag_of_squares_records_and_replays_into_a_fresh_turtlesim(
         ros_env: dict[str, str], rostui_core: Any, tmp_path: Path) -> None:
     items: list = []
@@ -150,7 +149,6 @@ def test_the_book_bag_of_squares_records_and_replays_into_a_fresh_turtlesim(
         stop_all(items)
 
 
-@pytest.mark.long
 def test_rostui_bag_plays_with_real_rosbag_and_real_bags_play_with_rostui(
         ros_env: dict[str, str], real_roscore: Any, tmp_path: Path) -> None:
     need_command("rosbag")

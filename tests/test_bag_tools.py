@@ -381,7 +381,6 @@ def big_counts_bag(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @pytest.mark.parametrize("command", ["filter", "compress"])
-@pytest.mark.long
 def test_ctrl_c_leaves_no_half_file_and_the_original_as_it_was(command: str, tmp_path: Path, ros_env: dict[str, str],
                                                                big_counts_bag: Path) -> None:
     import shutil

@@ -63,7 +63,6 @@ def watch_example(side: str, env: dict[str, str], work: Path) -> set[str]:
     return distinct_messages(echoed)
 
 
-@pytest.mark.long
 def test_example_publishes_what_it_publishes_under_debian(any_master: str, ros_env: dict[str, str],
                                                           tmp_path: Path) -> None:
     need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import diagnostic_updater"], capture_output=True).returncode == 0,

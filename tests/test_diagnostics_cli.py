@@ -49,7 +49,6 @@ def robot(any_master: str, ros_env: dict[str, str], tmp_path: Path) -> Iterator[
         publisher.interrupt()
 
 
-@pytest.mark.long
 def test_the_rosdiagnostic_format_prints_what_rosdiagnostic_prints(robot: dict[str, str]) -> None:
     """All levels, the details, rosdiagnostic's default (WARN and worse) and a filter, each as Debian's prints it."""
     for args in (["-l", "0"], ["-d", "-l", "0"], [], ["--filter", "Power|Motors"]):

@@ -190,7 +190,6 @@ def check_session(server_side: str, dynparam_side: str, env: dict[str, str], wor
 
 
 @pytest.mark.parametrize("server_side,dynparam_side", [("shim", "real"), ("real", "shim"), ("shim", "shim")])
-@pytest.mark.long
 def test_dynparam_session_matches_debians(server_side: str, dynparam_side: str, rostui_core: object,
                                           ros_env: dict[str, str], tmp_path: Path) -> None:
     need_debian_dynamic_reconfigure()
@@ -198,14 +197,12 @@ def test_dynparam_session_matches_debians(server_side: str, dynparam_side: str, 
 
 
 @pytest.mark.parametrize("server_side", ["real", "shim"])
-@pytest.mark.long
 def test_rostui_dynparam_session_matches_debians(server_side: str, rostui_core: object, ros_env: dict[str, str],
                                                  tmp_path: Path) -> None:
     need_debian_dynamic_reconfigure()
     check_session(server_side, "rostui", clean_env(ros_env), tmp_path)
 
 
-@pytest.mark.long
 def test_debians_dynparam_changes_a_rostui_server_on_roscore(real_roscore: object, ros_env: dict[str, str],
                                                              tmp_path: Path) -> None:
     need_debian_dynamic_reconfigure()
@@ -228,7 +225,6 @@ def client_lines(client_side: str, server_side: str, env: dict[str, str], work: 
 
 
 @pytest.mark.parametrize("client_side,server_side", [("shim", "real"), ("real", "shim"), ("shim", "shim")])
-@pytest.mark.long
 def test_testclient_prints_what_it_prints_under_debian(client_side: str, server_side: str, rostui_core: object,
                                                        ros_env: dict[str, str], tmp_path: Path) -> None:
     need_debian_dynamic_reconfigure()
@@ -240,7 +236,6 @@ def test_testclient_prints_what_it_prints_under_debian(client_side: str, server_
     assert said == expected
 
 
-@pytest.mark.long
 def test_four_servers_of_one_node_list_and_read_alike(rostui_core: object, ros_env: dict[str, str],
                                                      tmp_path: Path) -> None:
     need_debian_dynamic_reconfigure()
@@ -289,7 +284,6 @@ def test_hostile_descriptions_cost_nothing(ros_env: dict[str, str], tmp_path: Pa
     assert not (tmp_path / "PWNED").exists()
 
 
-@pytest.mark.long
 def test_debians_server_on_roscore_is_changed_by_rostui_dynparam(real_roscore: object, ros_env: dict[str, str],
                                                                  tmp_path: Path) -> None:
     need_debian_dynamic_reconfigure()

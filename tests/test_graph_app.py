@@ -389,7 +389,6 @@ def test_only_tool_nodes_running_explains_hide_debug(rostui_core: Any, ros_env: 
         stop_process(pub)
 
 
-@pytest.mark.long
 def test_real_rospy_node_with_its_topics(real_roscore: Any, rospy_available: None, ros_env: dict[str, str],
                                          tmp_path: Path) -> None:
     """Against a real roscore: rospy talker -> /chatter -> rospy listener, with the talker's pid and rate."""
@@ -423,7 +422,6 @@ def test_real_rospy_node_with_its_topics(real_roscore: Any, rospy_available: Non
         stop_process(talker)
 
 
-@pytest.mark.long
 def test_user_rostui_listener_shown_with_its_edges(real_roscore: Any, rospy_available: None,
                                                    ros_env: dict[str, str]) -> None:
     """Real roscore: a rospy node the user named rostui_listener is drawn with its /chatter edge, labelled;

@@ -6,14 +6,11 @@ test runs under both `rostui core` and a real roscore.
 
 from __future__ import annotations
 
-import pytest
-
 from interop_helpers import example, roscpp_peer_bin, rostui_peer, spawn, wait_for_node  # noqa: F401
 
 COUNT = 5
 
 
-@pytest.mark.long
 def test_roscpp_talker_to_rostui_listener(any_master, roscpp_peer_bin, spawn, ros_env):
     listener = spawn(example("listener.py", "__name:=ears"), label="rostui listener")
     wait_for_node(ros_env, "/ears")

@@ -135,7 +135,6 @@ def test_rosparam_set_get_list_dump(rostui_core, ros_env, tmp_path):
 
 
 
-@pytest.mark.long
 def test_rosnode_ping_and_kill(any_master, spawn, ros_env):
     """`rosnode ping` reaches a rostui node; `rosnode kill` makes it exit and unregister.
 

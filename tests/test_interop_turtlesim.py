@@ -121,7 +121,6 @@ def test_rostopic_pub_command_velocity_moves_the_turtle(rostui_turtlesim, tool_e
     assert pose["y"] == pytest.approx(CENTRE, abs=1e-5) and pose["theta"] == 0.0
 
 
-@pytest.mark.long
 def test_rostopic_pub_twist_drives_an_arc(rostui_turtlesim, tool_env) -> None:
     # The ROS wiki's form (publish once, latched) ...
     run_tool(["rostopic", "pub", "-1", "/turtle1/cmd_vel", "geometry_msgs/Twist", "--",

@@ -125,7 +125,6 @@ NODE_ARGS_CASES = [(words, args, part, PARTS.get(Path(words[-1]).name, 1))
 @pytest.mark.parametrize("words,args,part,parts", NODE_ARGS_CASES,
                          ids=[f"{_id(w)}-{part + 1}of{parts}" if parts > 1 else _id(w)
                               for w, _, part, parts in NODE_ARGS_CASES])
-@pytest.mark.long
 def test_node_args_equal_roslaunch(env: dict[str, str], words: list[str], args: list[str], part: int,
                                    parts: int) -> None:
     """``--args NODE`` for every node (those of this ``part`` of ``parts``), remote ones included.

@@ -62,7 +62,6 @@ NAMED = [(case, case_id) for case, case_id in zip(CASES, IDS) if case[1] != "ano
 
 
 @pytest.mark.parametrize("pkg,name,extra", [c for c, _ in NAMED], ids=[i for _, i in NAMED])
-@pytest.mark.long
 def test_node_args_equal_roslaunch(env: dict[str, str], pkg: str, name: str, extra: list[str]) -> None:
     listing = run_roslaunch(["--nodes", pkg, name, *extra], env)
     assert listing.returncode == 0, listing.stderr

@@ -443,7 +443,6 @@ def test_a_missing_env_loader_is_one_error(three_hosts: NetnsHosts, tmp_path: Pa
     wait_until(lambda: not leftovers(b), "host B to have no process left", 30)
 
 
-@pytest.mark.long
 def test_a_host_cut_off_the_network_stops_its_nodes(three_hosts: NetnsHosts, tmp_path: Path) -> None:
     """B loses its network: its child stops its nodes (the parent no longer answers), and A reports them lost."""
     hosts = three_hosts

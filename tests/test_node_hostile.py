@@ -193,7 +193,6 @@ def test_pipelined_requests_not_read_keep_the_server_flat(victim: tuple[subproce
     assert setbool_call(port, "/toggle", False).message == "got false"
 
 
-@pytest.mark.long
 def test_pipelined_requests_are_all_answered_in_order(victim: tuple[subprocess.Popen, int, int]) -> None:
     """Flow control loses nothing: every pipelined request is answered, in order, while memory stays bounded."""
     proc, port, _ = victim

@@ -129,7 +129,6 @@ def _without_definition(entry: dict[str, Any]) -> dict[str, Any]:
 
 
 @pytest.mark.timeout(600)
-@pytest.mark.long
 def test_custom_packages_serialize_as_genpy_does(tmp_path: Path) -> None:
     """The corpus packages: genpy's classes from genpy.dynamic, rostui's from `<pkg>.msg` on ROS_PACKAGE_PATH."""
     need_genpy()

@@ -85,7 +85,6 @@ def server(request: pytest.FixtureRequest, rostui_core: Any, ros_env: dict[str, 
 
 
 @pytest.mark.parametrize("server", ["real", "shim"], indirect=True)
-@pytest.mark.long
 def test_keys_change_the_real_server(server: dict[str, str]) -> None:
     env = server
 

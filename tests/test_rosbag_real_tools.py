@@ -86,7 +86,6 @@ def test_topic_renamer_renames_one_topic(inputs: Path) -> None:
     assert "/renamed std_msgs/Int32 30 1" in dump and "/numbers" not in dump
 
 
-@pytest.mark.long
 def test_fix_md5sums_rewrites_in_place_and_keeps_the_original(inputs: Path) -> None:
     runs = _run_both(inputs, "fix_md5sums.py", ["in.bag"], ["in.bag", "in.bag.old"])
     assert runs["rostui"] == runs["debian"]
@@ -106,7 +105,6 @@ def test_savemsg_prints_definitions(inputs: Path, args: list[str]) -> None:
         assert _ours([script, *[a.format(bag="in.mcap") for a in args]], inputs) == real
 
 
-@pytest.mark.long
 def test_scripts_read_mcap_and_write_bags_debian_reads(inputs: Path) -> None:
     """fastrebag and topic_renamer read the MCAP copy under rostui; the .bag files they write hold what
     Debian's rosbag wrote from the .bag."""

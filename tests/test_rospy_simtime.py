@@ -149,7 +149,6 @@ def _play(env: dict[str, str], bag: Path, *args: str, player: str = "rosbag") ->
 
 @pytest.mark.parametrize(("any_master", "player"), [("rostui", "rosbag"), ("real", "rosbag"), ("real", "rostui")],
                          indirect=["any_master"])
-@pytest.mark.long
 def test_timer_fires_each_simulated_second_of_a_bag(any_master: str, player: str, envs: dict[str, dict[str, str]],
                                                     clock_bag: Path, started: Started) -> None:
     """timer_test.py (rospy.Timer) publishes event.current_real once per second of the bag's clock.

@@ -34,7 +34,6 @@ def services(env: dict[str, str]) -> list[str]:
 
 
 @pytest.mark.parametrize("demo", ["turtle_tf", "turtle_tf2"])
-@pytest.mark.long
 def test_turtle2_follows_turtle1(demo: str, world, sides: dict[str, dict[str, str]]) -> None:  # noqa: F811
     suffix = demo.removeprefix("turtle_")
     nodes = DEMOS / demo / "nodes"

@@ -67,7 +67,6 @@ def test_driver_turns_across_the_pi_boundary() -> None:
     assert driver.step(FakePose(1.0, 1.0, -math.pi + 0.002, angular=0.4)) == (0.0, 0.0)  # pi and -pi meet
 
 
-@pytest.mark.long
 def test_draw_square_resets_then_drives_a_two_metre_square(sim: tuple[Watcher, list[Any]],
                                                            ros_env: dict[str, str], tmp_path: Path) -> None:
     watcher, items = sim

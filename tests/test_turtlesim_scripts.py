@@ -223,7 +223,6 @@ def _timeless(lines: list[str]) -> list[str]:
     return [re.sub(r"^\[(\w+)\] \[\d+\.\d{6}\]: ", r"[\1] [T]: ", line) for line in lines]
 
 
-@pytest.mark.long
 def test_timed_out_and_back_rests_at_the_same_places(world, sides: dict[str, dict[str, str]]) -> None:
     """rbx1's timed_out_and_back.py (ROS by Example), remapped to turtle1: 1 m forward at 0.2 m/s, a half turn
     at 1 rad/s, 1 m back, a half turn, each timed by a 50 Hz rospy.Rate; the four places the turtle rests

@@ -28,7 +28,6 @@ TURTLESIM_SERVICES = {"/clear", "/kill", "/reset", "/spawn", "/turtle1/set_pen",
                       "/turtle1/teleport_relative", "/turtlesim/get_loggers", "/turtlesim/set_logger_level"}
 
 
-@pytest.mark.long
 def test_turtlesim_in_three_terminals(desk: Desk) -> None:
     env = desk.env
     # 2.3: roscore, turtlesim_node and turtle_teleop_key in three terminals; the arrow keys drive the turtle.

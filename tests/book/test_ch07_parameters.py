@@ -36,7 +36,6 @@ def world_shows(sim: Terminal, rgb: tuple[int, int, int]) -> bool:
     return f"48;2;{code}m" in sim.colours() or f"38;2;{code}m" in sim.colours()
 
 
-@pytest.mark.long
 def test_parameters_of_chapter_7(desk: Desk, tmp_path: Path) -> None:
     env = desk.env
     start_core(desk)

@@ -19,7 +19,6 @@ BOOK_SERVICES = ["/clear", "/kill", "/reset", "/rosout/get_loggers", "/rosout/se
                  "/turtlesim/get_loggers", "/turtlesim/set_logger_level"]
 
 
-@pytest.mark.long
 def test_services_of_chapter_8(desk: Desk) -> None:
     env = desk.env
     start_core(desk)

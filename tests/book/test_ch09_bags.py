@@ -24,7 +24,6 @@ pytestmark = pytest.mark.timeout(300)  # one chapter, start to end, on a busy ma
 ANON = r"\d+_\d+"
 
 
-@pytest.mark.long
 def test_bag_of_squares(desk: Desk, tmp_path: Path) -> None:
     env = desk.env
     start_core(desk)

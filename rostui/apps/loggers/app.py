@@ -20,6 +20,7 @@ only looked at.
 from __future__ import annotations
 
 import asyncio
+from functools import partial
 from pathlib import Path
 
 from textual.app import ComposeResult
@@ -217,7 +218,8 @@ class LoggersApp(ReleasesOnExit, KeysApp):
     # -- loggers --------------------------------------------------------------------------
     def _tick_ping(self) -> None:
         if self.node and (self._loggers_worker is None or self._loggers_worker.is_finished):
-            self._loggers_worker = self.run_worker(self._ping(self.node), group="loggers", exclusive=True,
+            # the function, not a coroutine object: a worker cancelled before it starts leaves nothing unawaited
+            self._loggers_worker = self.run_worker(partial(self._ping, self.node), group="loggers", exclusive=True,
                                                    exit_on_error=False)
 
     async def _ping(self, node: str) -> None:
@@ -237,7 +239,7 @@ class LoggersApp(ReleasesOnExit, KeysApp):
             self._say_logger_count()
 
     def _load(self, node: str) -> None:
-        self._loggers_worker = self.run_worker(self._load_loggers(node), group="loggers", exclusive=True,
+        self._loggers_worker = self.run_worker(partial(self._load_loggers, node), group="loggers", exclusive=True,
                                                exit_on_error=False)
 
     async def _load_loggers(self, node: str) -> None:

@@ -216,30 +216,26 @@ def ros_env(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
     return env
 
 
+#: What a test's ROS environment sets, and the ROS variables of the machine it leaves out.
+_OWN_VARIABLES = ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP", "PYTHONUNBUFFERED")
+_FOREIGN_ROS_VARIABLES = ("ROS_HOSTNAME", "ROS_NAMESPACE", "ROS_LOG_DIR", "ROSCONSOLE_FORMAT")
+
+
 def new_ros_env(where: Path) -> dict[str, str]:
     """This process's environment with a master URI on a free port and a private ROS_HOME under *where*."""
     port = free_port()
     home = where / "ros_home"
     home.mkdir()
+    own = dict(zip(_OWN_VARIABLES, (f"http://127.0.0.1:{port}", str(home), "127.0.0.1", "1")))
     env = {k: v for k, v in os.environ.items() if k not in _FOREIGN_ROS_VARIABLES}
-    env.update({
-        "ROS_MASTER_URI": f"http://127.0.0.1:{port}",
-        "ROS_HOME": str(home),
-        "ROS_IP": "127.0.0.1",
-        "PYTHONUNBUFFERED": "1",
-        "ROSTUI_TEST_MASTER_PORT": str(port),
-    })
-    return env
-
-
-_FOREIGN_ROS_VARIABLES = ("ROS_HOSTNAME", "ROS_NAMESPACE", "ROS_LOG_DIR", "ROSCONSOLE_FORMAT")
+    return {**env, **own, "ROSTUI_TEST_MASTER_PORT": str(port)}
 
 
 def apply_ros_env(monkeypatch: pytest.MonkeyPatch, env: dict[str, str]) -> None:
     """Make *env*'s ROS variables this test process's own (in-process rostui nodes and completions read them)."""
     for key in _FOREIGN_ROS_VARIABLES:
         monkeypatch.delenv(key, raising=False)
-    for key in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP", "PYTHONUNBUFFERED"):
+    for key in _OWN_VARIABLES:
         monkeypatch.setenv(key, env[key])
 
 
@@ -262,12 +258,16 @@ def module_master(request: pytest.FixtureRequest, module_ros_env: dict[str, str]
         yield request.param
 
 
+def core_argv(kind: str, port: int) -> list[str]:
+    """The command of a `rostui core` (*kind* "rostui") or a real `roscore` (*kind* "roscore") on *port*."""
+    return rostui_cmd("core", "-p", str(port)) if kind == "rostui" else ["roscore", "-p", str(port)]
+
+
 @contextmanager
 def running_core(kind: str, env: dict[str, str]) -> Iterator[subprocess.Popen]:
     """A `rostui core` (*kind* "rostui") or a real `roscore` (*kind* "roscore") on *env*'s port, rosout up."""
     port = master_port(env)
-    argv = rostui_cmd("core", "-p", str(port)) if kind == "rostui" else ["roscore", "-p", str(port)]
-    proc = subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+    proc = subprocess.Popen(core_argv(kind, port), env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                             start_new_session=kind == "roscore")
     try:
         wait_for_core(port, proc, timeout=30 if kind == "rostui" else 60)
@@ -311,8 +311,7 @@ def wait_for_core(port: int, proc: subprocess.Popen, timeout: float = 30.0) -> N
 def start_rostui_core(env: dict[str, str]) -> subprocess.Popen:
     """A `rostui core` on the ros_env port, with rosout registered when this returns (output discarded)."""
     port = master_port(env)
-    proc = subprocess.Popen(rostui_cmd("core", "-p", str(port)), env=env, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL)
+    proc = subprocess.Popen(core_argv("rostui", port), env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     wait_for_core(port, proc)
     return proc
 

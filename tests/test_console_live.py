@@ -14,7 +14,7 @@ from typing import Any
 
 import pytest
 from conftest import (
-    SYSTEM_PYTHON, have_rospy, master_port, need_command, need_peer, rostui_cmd, stop_process, until, wait_for_port,
+    SYSTEM_PYTHON, core_argv, have_rospy, master_port, need_command, need_peer, stop_process, until, wait_for_port,
 )
 from console_helpers import DEADLINE, log_until_seen
 from textual.pilot import Pilot
@@ -83,8 +83,7 @@ def test_a_rospy_nodes_messages_appear_under_real_roscore(real_roscore: Any, ros
 def start_master(kind: str, env: dict[str, str]) -> subprocess.Popen:
     """Start `rostui core` or a real `roscore` on the environment's port and wait for it."""
     port = master_port(env)
-    command = rostui_cmd("core", "-p", str(port)) if kind == "rostui" else ["roscore", "-p", str(port)]
-    proc = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+    proc = subprocess.Popen(core_argv(kind, port), env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)
     wait_for_port(port, timeout=DEADLINE, proc=proc)
     return proc

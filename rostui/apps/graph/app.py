@@ -127,6 +127,7 @@ class GraphApp(ReleasesOnExit, KeysApp):
         self._prompt: str | None = None
         self._prompt_before = ""
         self._polling = False
+        self._poll_worker: Worker[None] | None = None
 
     # -- composition -------------------------------------------------------------------
     def compose(self) -> ComposeResult:
@@ -170,7 +171,7 @@ class GraphApp(ReleasesOnExit, KeysApp):
         if not self._polling and not self.released:
             self._polling = True
             # the function, not a coroutine object: a worker cancelled before it starts leaves nothing unawaited
-            self._poll_worker: Worker[None] = self.run_worker(self._poll, group="poll", exit_on_error=False)
+            self._poll_worker = self.run_worker(self._poll, group="poll", exit_on_error=False)
 
     async def _poll(self) -> None:
         try:

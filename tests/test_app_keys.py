@@ -37,6 +37,7 @@ from rostui.apps.diagnostics.app import DiagnosticsApp
 from rostui.apps.reconfigure.app import ReconfigureApp
 from rostui.apps.top.app import TopApp
 from rostui.apps.action.app import ActionApp
+from rostui.apps.form.app import FormApp
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.help import HelpScreen
 from rostui.apps.widgets.keys import ESSENTIAL_KEYS
@@ -85,6 +86,10 @@ CASES: dict[str, Case] = {
                         lambda app: app.source.state.status.name == "CONNECTED"),
     "top": Case(lambda tmp: TopApp(interval=0.3), "↑/↓ PgUp/PgDn  move between nodes", lambda app: app.polls >= 1),
     "action": Case(lambda tmp: ActionApp(period=0.3), "^x  cancel the goal running", lambda app: app.polls >= 1),
+    "publish": Case(lambda tmp: FormApp("publish", name="/keys_words", type_name="std_msgs/String"),
+                    "shift+→  slider up ×10", lambda app: app.ready.is_set()),
+    "call": Case(lambda tmp: FormApp("call", name="/rosout/get_loggers"), "^o  load a form from YAML",
+                 lambda app: app.form is not None),
 }
 
 

@@ -141,6 +141,8 @@ APPS = {
     "diagnostics": (["diagnostics"], "no status yet"),
     "top": (["top"], "/rosout"),
     "action": (["action"], "no action server"),
+    "publish": (["publish", "/serve_words", "std_msgs/String"], "Fields · std_msgs/String"),
+    "call": (["call", "/rosout/get_loggers"], "Fields · roscpp/GetLoggers"),
 }
 
 

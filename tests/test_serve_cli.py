@@ -13,7 +13,7 @@ import pytest
 from cli_helpers import rostui
 from conftest import REPO, free_port
 
-APPS = "graph, console, loggers, monitor, bag view, turtlesim, launch --tui, view, reconfigure, diagnostics, top, action"
+APPS = "graph, console, loggers, monitor, bag view, turtlesim, launch --tui, view, reconfigure, diagnostics, top, action, publish, call"
 
 
 def one_error_line(r: subprocess.CompletedProcess[str]) -> str:

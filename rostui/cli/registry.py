@@ -14,7 +14,7 @@ __all__ = ["App", "APPS", "COMMAND_GROUPS", "app_of", "served_apps"]
 #: Every command group, as ``rostui/cli/<group>_cmd.py`` registers it, in the order the help lists them.
 COMMAND_GROUPS = ("core", "run", "node", "topic", "msg", "service", "param", "dynparam", "pkg", "wtf", "clean",
                   "turtlesim", "graph", "console", "loggers", "launch", "bag", "monitor", "serve", "python", "tf", "view",
-                  "reconfigure", "diagnostics", "top", "action")
+                  "reconfigure", "diagnostics", "top", "action", "publish", "call")
 
 
 @dataclass(frozen=True)
@@ -47,6 +47,8 @@ APPS = (
     App(("diagnostics",), "rostui.apps.diagnostics"),
     App(("top",), "rostui.apps.top"),
     App(("action",), "rostui.apps.action"),
+    App(("publish",), "rostui.apps.form"),
+    App(("call",), "rostui.apps.form"),
 )
 
 

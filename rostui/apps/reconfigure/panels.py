@@ -13,21 +13,11 @@ from textual.screen import ModalScreen
 from textual.widgets import DataTable, Input, OptionList, Static
 from textual.widgets.option_list import Option
 
+from rostui.apps.widgets.bar_text import bar_text
 from rostui.models.reconfigure import GroupRow, ParamRow
 from rostui.tools.reconfigure.values import ParameterValueError
 
-__all__ = ["BAR_CELLS", "EditScreen", "ParamTable", "bar_text", "detail_text"]
-
-BAR_CELLS = 10
-"""How many cells wide a ranged number's bar is."""
-_FULL, _EMPTY = "█", "░"
-
-
-def bar_text(fraction: float) -> str:
-    """A bar *fraction* (0 to 1) full, :data:`BAR_CELLS` cells wide."""
-    filled = round(fraction * BAR_CELLS)
-    return _FULL * filled + _EMPTY * (BAR_CELLS - filled)
-
+__all__ = ["EditScreen", "ParamTable", "detail_text"]
 
 def _name_cell(row: GroupRow | ParamRow) -> Text:
     if isinstance(row, GroupRow):

@@ -1,4 +1,4 @@
-"""Status bars that wrap between their parts, never inside one."""
+"""Text bars: status bars that wrap between their parts, never inside one, and a value's bar in its range."""
 
 from __future__ import annotations
 
@@ -6,7 +6,11 @@ from collections.abc import Sequence
 
 from rich.cells import cell_len
 
-__all__ = ["join_parts"]
+__all__ = ["BAR_CELLS", "bar_text", "join_parts"]
+
+BAR_CELLS = 10
+"""How many cells wide a ranged number's bar is."""
+_FULL, _EMPTY = "█", "░"
 
 SEPARATOR = " │ "
 
@@ -20,3 +24,9 @@ def join_parts(parts: Sequence[str], width: int) -> str:
         else:
             lines.append(part)
     return "\n".join(lines)
+
+
+def bar_text(fraction: float) -> str:
+    """A bar *fraction* (0 to 1, clamped) full, :data:`BAR_CELLS` cells wide."""
+    filled = round(min(max(fraction, 0.0), 1.0) * BAR_CELLS)
+    return _FULL * filled + _EMPTY * (BAR_CELLS - filled)

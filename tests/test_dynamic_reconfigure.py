@@ -5,7 +5,8 @@
   dynamic_reconfigure's own ``Test.cfg``) become ``<pkg>.cfg.<Name>Config`` modules with the same names
   and values as the modules Debian's generator writes.
 - The server and client: dynamic_reconfigure's own ``test/testserver.py`` changed by the real ``dynparam``
-  (list, get, set with enum names, booleans as words and values out of range, dump, load, an unknown name),
+  (list, get, set with enum names, booleans as words and values out of range, dump, load, an unknown name,
+  set_from_parameters from the parameter server and from ``_name:=value`` words),
   and its ``test/testclient.py`` against the server, each pairing of rostui's side and Debian's compared
   with Debian's on both sides. ``testserver_multiple_ns.py``'s four servers are listed and read alike.
 - Hostile descriptions: groups that are their own ancestors and an ``edit_method`` holding code cost
@@ -309,3 +310,42 @@ def test_rostui_dynparam_says_what_is_wrong_in_one_line(rostui_core: object, ros
     done = subprocess.run(rostui_cmd("dynparam", "get", "/x"), env=unreachable, capture_output=True, text=True,
                           timeout=60)
     assert (done.returncode, done.stderr) == (1, "ERROR: Unable to communicate with master at http://127.0.0.1:9/\n")
+
+
+FROM_PARAMETERS = [  # (this dynparam's node name, what the parameter server holds under it, the _name:=value words)
+    ("adjust_server", {"int_": 4, "double_": 2.5}, ["_str_:=from_words"]),
+    ("adjust_words", {}, ["_int_:=-20", "_bool_:=true"]),
+]
+
+
+def test_set_from_parameters_does_what_debians_does(rostui_core: object, ros_env: dict[str, str],
+                                                    tmp_path: Path) -> None:
+    """`dynparam set_from_parameters NODE` sends NODE what the parameter server holds under its own name and its
+    ``_name:=value`` words (as a launch file's <param> tags put them): Debian's dynparam and rostui's, each against
+    a fresh Debian test server and each change followed by a `get`, give the same transcript; with nothing to send
+    both say so, and rostui's exits 1."""
+    from rostui.core.xmlrpc import call_sync
+
+    need_debian_dynamic_reconfigure()
+    env = clean_env(ros_env)
+    said: dict[str, str] = {}
+    for side in ("real", "rostui"):
+        server = start_server("real", env, tmp_path / f"server_{side}.log")
+        said[side] = ""
+        try:
+            for me, stored, words in FROM_PARAMETERS:
+                for name, value in stored.items():
+                    call_sync(env["ROS_MASTER_URI"], "setParam", "/test", f"/{me}/{name}", value)
+                said[side] += dynparam(side, env, tmp_path, "set_from_parameters", NODE, f"__name:={me}", *words)
+                said[side] += dynparam(side, env, tmp_path, "get", NODE)
+                forget_parameters(env, f"/{me}")
+            said[side] += dynparam(side, env, tmp_path, "set_from_parameters", NODE, "__name:=adjust_nothing")
+        finally:
+            server.interrupt()
+            forget_parameters(env, NODE)
+    assert "'int_': 5," in said["real"] and "'str_': 'from_wordsA'," in said["real"], said["real"]
+    assert "'int_': -9," in said["real"], said["real"]  # -20 clamped to the minimum -10, then the server's | 1
+    nothing = f"$ dynparam set_from_parameters {NODE} __name:=adjust_nothing -> exit 0\n" \
+        "error updating parameters: no parameters found on parameter server\n"
+    assert said["real"].endswith(nothing), said["real"]
+    assert said["rostui"] == said["real"][:-len(nothing)] + nothing.replace("exit 0", "exit 1"), said

@@ -1,4 +1,5 @@
-"""`rostui dynparam`: a running node's reconfigurable parameters: list, get, set, dump, load (like `dynparam`)."""
+"""`rostui dynparam`: a running node's reconfigurable parameters: list, get, set, set_from_parameters, dump, load
+(like `dynparam`)."""
 
 from __future__ import annotations
 
@@ -12,7 +13,8 @@ CONTEXT = {"help_option_names": ["-h", "--help"]}
 
 dynparam_app = typer.Typer(
     name="dynparam", no_args_is_help=True, context_settings=CONTEXT,
-    help="Reconfigurable parameters of running nodes: list, get, set, dump, load (like `dynparam`).",
+    help="Reconfigurable parameters of running nodes: list, get, set, set_from_parameters, dump, load (like "
+         "`dynparam`).",
     epilog=examples(("the nodes that can be reconfigured", "rostui dynparam list"),
                     ("one parameter", "rostui dynparam set /camera exposure 30"),
                     ("several at once", "rostui dynparam set /camera \"{'exposure': 30, 'auto': false}\"")),
@@ -141,6 +143,42 @@ def set_command(
     else:
         _fail("rostui dynparam set: too many arguments (a parameter and its value, or one YAML mapping)")
     assert values is not None
+    _set(node, values, timeout)
+
+
+@dynparam_app.command("set_from_parameters", context_settings={"ignore_unknown_options": True})
+def set_from_parameters_command(
+    node: str = typer.Argument(..., metavar="NODE", help="The node (its reconfigure server's name)."),
+    words: Optional[List[str]] = typer.Argument(None, metavar="[ARGS]...",
+                                                help="_name:=value private parameters; __name:=ME, this command's own "
+                                                     "node name."),
+    timeout: Optional[float] = TIMEOUT_OPTION,
+) -> None:
+    """Send NODE the parameters under this command's own private namespace (like `dynparam set_from_parameters`).
+
+    They are the `_name:=value` words and what the parameter server holds
+    under `~` (in a launch file, the param tags of the node that runs it,
+    named with `__name:=`)."""
+    from rostui.core.names import InvalidNameError, node_global_name, parse_argv
+    from rostui.core.xmlrpc import RosApiError
+
+    args = parse_argv(list(words or []))
+    if args.args:
+        _fail(f"rostui dynparam set_from_parameters: too many arguments: {' '.join(args.args)} (give NODE, then "
+              "_name:=value words)")
+    try:
+        me = node_global_name("dynparam", args, anonymous=True)
+    except InvalidNameError as exc:
+        _fail(f"ERROR: {exc}")
+    from rostui.cli.common import master_call
+
+    try:
+        stored = master_call(CALLER, "getParam", me)
+    except RosApiError:  # nothing under ~
+        stored = {}
+    values = {**(stored if isinstance(stored, dict) else {}), **args.params}
+    if not values:
+        _fail("error updating parameters: no parameters found on parameter server")
     _set(node, values, timeout)
 
 

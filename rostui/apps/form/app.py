@@ -11,6 +11,7 @@ master line says where things go.
 from __future__ import annotations
 
 import asyncio
+from functools import partial
 from pathlib import Path
 from typing import Any, ClassVar
 
@@ -19,6 +20,7 @@ from textual.app import ComposeResult
 from textual.binding import Binding, BindingType
 from textual.containers import Horizontal, Vertical
 from textual.widgets import DataTable, Input, Label, Log, Static
+from textual.worker import Worker
 
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
@@ -75,6 +77,9 @@ class FormApp(ReleasesOnExit, KeysApp):
         self.caller = ServiceCaller(self.master_uri)
         self.repeater: Repeater | None = None
         self.ready = asyncio.Event()
+        self.starting: Worker[None] | None = None
+        self.sending: Worker[None] | None = None
+        self.loading: Worker[bool] | None = None
         self.title = f"rostui {kind}"
 
     # -- layout ------------------------------------------------------------------------------------
@@ -104,7 +109,7 @@ class FormApp(ReleasesOnExit, KeysApp):
         self.query_one("#log-panel").border_title = "Sent" if self.kind == "publish" else "Response"
         self.say_master()
         quit_on_signals(self)
-        self.run_worker(self._start, name="start", exit_on_error=False)
+        self.starting = self.run_worker(partial(self._start), name="start", exit_on_error=False)
 
     async def _start(self) -> None:
         try:
@@ -286,7 +291,7 @@ class FormApp(ReleasesOnExit, KeysApp):
         if self.form is None:
             self.status("no form yet: type a " + ("topic and type" if self.kind == "publish" else "service"), "error")
             return
-        self.run_worker(self._send_once(), group="send", exit_on_error=False)
+        self.sending = self.run_worker(partial(self._send_once), group="send", exit_on_error=False)
 
     async def _send_once(self) -> None:
         assert self.form is not None
@@ -404,7 +409,8 @@ class FormApp(ReleasesOnExit, KeysApp):
         """ctrl+o: load a form saved as YAML (asks for the file's path)."""
         def done(text: str | None) -> None:
             if text is not None:
-                self.run_worker(self.load_form(Path(text.strip()).expanduser()), group="load", exit_on_error=False)
+                self.loading = self.run_worker(
+                    partial(self.load_form, Path(text.strip()).expanduser()), group="load", exit_on_error=False)
 
         self.push_screen(LineScreen("load a form", "the file to read (YAML, as ctrl+w writes it)",
                                     self._default_path(),

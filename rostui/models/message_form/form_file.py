@@ -144,7 +144,8 @@ def _compose(text: str, where: str) -> yaml.Node | None:
     try:
         for event in yaml.parse(text, Loader=yaml.SafeLoader):
             if isinstance(event, yaml.AliasEvent):
-                raise FormFileError(f"{where}:{event.start_mark.line + 1}: YAML aliases are not allowed in a form")
+                line = f":{event.start_mark.line + 1}" if event.start_mark is not None else ""
+                raise FormFileError(f"{where}{line}: YAML aliases are not allowed in a form")
         return yaml.compose(text, Loader=yaml.SafeLoader)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
@@ -172,7 +173,7 @@ def _mapping(node: yaml.Node, where: str) -> dict[str, tuple[yaml.Node, yaml.Nod
 
 
 def _value(node: yaml.Node) -> Any:
-    return yaml.SafeLoader("").construct_object(node, deep=True)  # type: ignore[no-untyped-call]
+    return yaml.SafeLoader("").construct_object(node, deep=True)
 
 
 def _text(node: yaml.Node, where: str, what: str) -> str:

@@ -22,6 +22,16 @@ def pane() -> Iterator[Pane]:
         yield pane
 
 
+def send_data(pane: Pane, expression: str) -> None:
+    """Enter on the form's first field (``data``), its expression typed over, Enter, then ctrl+s."""
+    pane.keys("Enter")
+    pane.wait_until(lambda: pane.shows("Enter takes it"), "the expression editor")
+    pane.keys("C-u")
+    pane.type(expression)
+    pane.wait_until(lambda: pane.shows(f"data = {expression}"), "the new expression")
+    pane.keys("C-s")
+
+
 def test_publish_in_tmux(pane: Pane, env: dict[str, str]) -> None:
     with peers(env) as spawn:
         listener = spawn(rospy_peer("rospy_typed_listener.py", "/tmux_words=std_msgs/String"), label="listener")
@@ -29,12 +39,7 @@ def test_publish_in_tmux(pane: Pane, env: dict[str, str]) -> None:
         pane.type(rostui_line(env, EXIT_MARK, "publish", "/tmux_words", "std_msgs/String"))
         pane.wait_until(lambda: pane.shows("Fields · std_msgs/String", "nothing is published until ctrl+s"),
                         "the form")
-        pane.keys("Enter")
-        pane.wait_until(lambda: pane.shows("Enter takes it"), "the expression editor")
-        pane.keys("C-u")
-        pane.type("'hello from tmux'")
-        pane.wait_until(lambda: pane.shows("data = 'hello from tmux'"), "the new expression")
-        pane.keys("C-s")
+        send_data(pane, "'hello from tmux'")
         pane.wait_until(lambda: pane.shows("published one std_msgs/String on /tmux_words"), "the message sent")
         pane.wait_until(lambda: [m.data for m in received(listener, "/tmux_words", "std_msgs/String")]
                         == ["hello from tmux"], "the String at rospy")
@@ -49,12 +54,7 @@ def test_call_in_tmux(pane: Pane, env: dict[str, str]) -> None:
         pane.type(rostui_line(env, EXIT_MARK, "call", "/tmux_flag"))
         pane.wait_until(lambda: pane.shows("/tmux_flag [std_srvs/SetBool]", "nothing is called until ctrl+s"),
                         "the request's form")
-        pane.keys("Enter")
-        pane.wait_until(lambda: pane.shows("Enter takes it"), "the expression editor")
-        pane.keys("C-u")
-        pane.type("True")
-        pane.wait_until(lambda: pane.shows("data = True"), "the new expression")
-        pane.keys("C-s")
+        send_data(pane, "True")
         pane.wait_until(lambda: pane.shows("success: True", 'message: "got true"'), "the response")
         server.wait_for("request data=True")
         pane.keys("q")

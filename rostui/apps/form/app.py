@@ -108,6 +108,7 @@ class FormApp(ReleasesOnExit, KeysApp):
         self.query_one("#fields-panel").border_title = "Fields"
         self.query_one("#log-panel").border_title = "Sent" if self.kind == "publish" else "Response"
         self.say_master()
+        self.set_interval(0.5, self._watch_repeater, name="repeat-watch")
         quit_on_signals(self)
         self.starting = self.run_worker(partial(self._start), name="start", exit_on_error=False)
 
@@ -355,7 +356,6 @@ class FormApp(ReleasesOnExit, KeysApp):
         self.repeater.start()
         self.status(f"publishing {topic} at {rate:g} Hz: sliders and edits apply to the next message")
         self.say_master()
-        self.set_interval(0.5, self._watch_repeater, name="repeat-watch")
 
     def _watch_repeater(self) -> None:
         repeater = self.repeater

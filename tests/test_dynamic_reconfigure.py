@@ -349,3 +349,15 @@ def test_set_from_parameters_does_what_debians_does(rostui_core: object, ros_env
         "error updating parameters: no parameters found on parameter server\n"
     assert said["real"].endswith(nothing), said["real"]
     assert said["rostui"] == said["real"][:-len(nothing)] + nothing.replace("exit 0", "exit 1"), said
+
+
+@pytest.mark.parametrize("word, says", [
+    ("_x:=[1", "ERROR: invalid value for parameter '_x': '[1' is not valid YAML"),
+    ("_a b:=1", "ERROR: invalid ROS parameter name '_a b'"),
+    ("extra", "rostui dynparam set_from_parameters: too many arguments: extra"),
+])
+def test_set_from_parameters_refuses_bad_words_in_one_line(ros_env: dict[str, str], tmp_path: Path, word: str,
+                                                           says: str) -> None:
+    done = dynparam("rostui", ros_env, tmp_path, "set_from_parameters", NODE, word)
+    assert done.startswith(f"$ dynparam set_from_parameters {NODE} {word} -> exit 1\n{says}"), done
+    assert done.count("\n") == 2, done

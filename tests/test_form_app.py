@@ -76,6 +76,21 @@ async def edit(pilot: Pilot, app: FormApp, path: str, expression: str) -> None:
     await until(lambda: app.focused is table, f"{path}'s editor to close")
 
 
+async def settled(count: Callable[[], int], quiet: float = 1.0) -> None:
+    """Wait until ``count()`` has not changed for ``quiet`` seconds (what was in flight has arrived), then check
+    that it stays so for as long again: nothing is sent any more."""
+    loop = asyncio.get_running_loop()
+    last, since = count(), loop.time()
+    deadline = since + DEADLINE
+    while loop.time() - since < quiet:
+        assert loop.time() < deadline, "messages kept arriving after the rate was stopped"
+        await asyncio.sleep(0.05)
+        if count() != last:
+            last, since = count(), loop.time()
+    await asyncio.sleep(quiet)
+    assert count() == last, "a message arrived after the rate was stopped and the stream had gone quiet"
+
+
 def status(app: FormApp) -> str:
     """The status line."""
     return app.query_one("#status").text  # type: ignore[attr-defined,no-any-return]
@@ -107,13 +122,13 @@ def test_a_twist_edited_and_slid_reaches_rospy_once_then_at_a_rate(env: dict[str
             await until(lambda: len(received(listener, "/form_vel", "geometry_msgs/Twist")) >= 8,
                         "seven more Twists at 20 Hz", DEADLINE)
             assert "publishing /form_vel at 20 Hz" in app.query_one("#master").text  # type: ignore
+            await pilot.press("ctrl+s")
+            assert status(app) == "publishing /form_vel at a rate: ctrl+r stops it first"
             await pilot.press("ctrl+r")
             assert "stopped after" in status(app)
-            count = len(received(listener, "/form_vel", "geometry_msgs/Twist"))
-            await asyncio.sleep(0.5)
+            await settled(lambda: len(received(listener, "/form_vel", "geometry_msgs/Twist")))
             repeated = received(listener, "/form_vel", "geometry_msgs/Twist")[1:]
-            assert len(repeated) + 1 <= count + 1
-            assert [msg.linear.y for msg in repeated] == [float(i) for i in range(len(repeated))]
+            assert [msg.linear.y for msg in repeated] == [float(i) for i in range(1, len(repeated) + 1)]
             assert all(msg.linear.x == 1.5 for msg in repeated)
 
         run(FormApp("publish", name="/form_vel", type_name="geometry_msgs/Twist"), scenario)
@@ -163,10 +178,10 @@ def test_a_topic_alone_takes_its_type_from_the_master_and_mistakes_are_said(env:
                         "the editor's complaint")
             await pilot.press("escape")
             assert app.form.row("data").expression == "2 ** 40"  # type: ignore[union-attr]
-            await edit(pilot, app, "data", "-7")
+            await edit(pilot, app, "data", "-7 * i")
             await pilot.press("ctrl+s")
             await until(lambda: received(listener, "/form_count", "std_msgs/Int32"), "the Int32 at rospy", DEADLINE)
-            assert received(listener, "/form_count", "std_msgs/Int32")[0].data == -7
+            assert received(listener, "/form_count", "std_msgs/Int32")[0].data == -7  # i is 1 for the first
 
         run(FormApp("publish", name="/form_count"), scenario)
 
@@ -198,9 +213,26 @@ def test_a_call_reaches_a_rospy_server_and_its_response_shows(env: dict[str, str
             name.focus()
             await pilot.press("enter")
             await until(lambda: "service /form_nothing" in status(app), "the missing service said")
+            assert app.form is None and app.table.rows_shown == []
+            app.table.focus()  # in the service field, ctrl+w deletes a word
+            await pilot.press("ctrl+w")
+            assert status(app) == "no form to save yet"
 
         run(FormApp("call", name="/form_flag"), scenario)
         server.wait_for("request data=False")
+
+
+def test_a_value_the_wire_cannot_hold_is_said_and_the_app_goes_on(env: dict[str, str]) -> None:
+    async def scenario(pilot: Pilot, app: FormApp) -> None:
+        await edit(pilot, app, "data", "1e39")
+        await pilot.press("ctrl+s")
+        await until(lambda: "cannot send it" in status(app), "the float32 overflow said", DEADLINE)
+        assert "\n" not in status(app) and app.is_running
+        await edit(pilot, app, "data", "1e38")
+        await pilot.press("ctrl+s")
+        await until(lambda: "published one std_msgs/Float32" in status(app), "a float32 that fits sent", DEADLINE)
+
+    run(FormApp("publish", name="/form_big", type_name="std_msgs/Float32"), scenario)
 
 
 def test_ctrl_w_saves_the_form_and_ctrl_o_loads_it(env: dict[str, str], tmp_path: Path) -> None:

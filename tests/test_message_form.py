@@ -22,6 +22,7 @@ from rostui.models.message_form.rows import FormError, MessageForm
     ("1.5", 1.5), ("-2", -2), ("[1, 2.5]", [1, 2.5]), ("'map'", "map"), ("True", True),
     ("sin(pi / 2)", 1.0), ("math.cos(0) * 3", 3.0), ("2 ** 10", 1024), ("i * 2 + 1", 7), ("t if t > 1 else 0", 2.5),
     ("{'x': 1, 'y': [2]}", {"x": 1, "y": [2]}), ("max(1, i)", 3), ("round(2.567, 2)", 2.57), ("(1, 2)", [1, 2]),
+    ("true and not false", True), ("round(7.5)", 8), ("len([[0] * 1000] * 999)", 999),
     ("1 < i <= 3", True), ("not i", False), ("[0.0] * 3", [0.0, 0.0, 0.0]), ("abs(-t)", 2.5),
 ])
 def test_expressions_compute_what_rqt_publisher_users_type(text: str, value: object) -> None:
@@ -41,7 +42,7 @@ def test_expressions_compute_what_rqt_publisher_users_type(text: str, value: obj
     ("9 ** 9 ** 9", "is too large"),
     ("'x' * 10 ** 9", f"longer than {MAX_ITEMS} items"),
     ("[0] * 10 ** 8", f"longer than {MAX_ITEMS} items"),
-    ("[0] * 999999 + [0] * 999999", f"longer than {MAX_ITEMS} items"),
+    ("[0] * 999999 + [0] * 999999", f"more than {MAX_ITEMS} items"),
     ("10.0 ** 400", "OverflowError"),
     ("1 / 0", "ZeroDivisionError"),
     ("sqrt(-1)", "ValueError"),
@@ -51,6 +52,13 @@ def test_expressions_compute_what_rqt_publisher_users_type(text: str, value: obj
     ("'a'[0]", "indexing is not allowed"),
     ("math.sin", "math.sin is a function"),
     ("min(*[1])", "only plain arguments"),
+    ("~1", "~ is not allowed"),
+    ("'%(a)s' % {}", "% formatting of text is not allowed"),
+    ("'%01000000000d' % 0", "% formatting of text is not allowed"),
+    ("round(1, -10 ** 9)", "round to at most 400 digits"),
+    ("[[0] * 10 ** 6] * 10 ** 6", f"more than {MAX_ITEMS} items"),
+    ("[[0] * 1000] * 1001", f"longer than {MAX_ITEMS} items"),
+    ("1 < 'a'", "TypeError"),
     pytest.param("[" * 300 + "]" * 300, "not an expression", id="lists-300-deep"),
     pytest.param("-" * 50_000 + "1", "not an expression", id="signs-50000-deep"),
 ])
@@ -136,6 +144,36 @@ def test_sliders_move_by_hundredths_of_their_range_and_stay_in_it() -> None:
     assert text is not None and not text.numeric and not text.nudge(1)
 
 
+@pytest.mark.parametrize("expression", ["inf", "-inf", "nan", "1e308", "2 ** 2000", "uniform(-1, 1)", "pi", "0.5 + i"])
+def test_only_a_plain_finite_number_has_a_slider(expression: str) -> None:
+    row = MessageForm.of(get_message_class("sensor_msgs/Range")).row("max_range")
+    assert row is not None
+    row.expression = expression
+    assert row.number() is None and row.fraction() is None and not row.nudge(1)
+    assert row.expression == expression and row.slider_range() == (-1.0, 1.0)
+
+
+def test_an_integer_slider_stays_within_its_type() -> None:
+    count = MessageForm.of(get_message_class("std_msgs/UInt8")).row("data")
+    assert count is not None
+    count.expression = "255"
+    assert count.slider_range() == (0.0, 255.0) and count.fraction() == 1.0
+    assert count.nudge(1) and count.expression == "255"
+    wide = MessageForm.of(get_message_class("std_msgs/Float64")).row("data")
+    assert wide is not None
+    wide.low, wide.high = 47.1230, 47.1240
+    wide.expression = "47.1230"
+    assert wide.nudge(1) and wide.expression == "47.12301"
+
+
+def test_a_string_field_takes_what_its_expression_gives_as_text() -> None:
+    form = MessageForm.of(get_message_class("std_msgs/String"))
+    for expression, text in (("i", "4"), ("'a' + str(i)", "a4"), ("2024-01-01", "2024-01-01"), ("1 - 2", "-1"),
+                             ("no", "no"), ("True", "True")):
+        form.rows[0].expression = expression
+        assert form.build(i=4).data == text, expression
+
+
 def test_a_service_request_is_a_form_too() -> None:
     form = MessageForm.of(get_service_class("turtlesim/Spawn")._request_class)
     assert [row.path for row in form.rows] == ["x", "y", "theta", "name"]
@@ -163,12 +201,12 @@ def test_a_saved_form_reads_back_as_it_was(tmp_path: Path) -> None:
     assert again == form
 
 
-def test_values_written_by_hand_are_expressions_too(tmp_path: Path) -> None:
+def test_values_written_by_hand_are_expressions_as_written(tmp_path: Path) -> None:
     path = tmp_path / "spawn.yaml"
-    path.write_text("call: /spawn\nfields:\n  x: 5.5\n  name: leo\n  theta: [1]\n")
+    path.write_text("call: /spawn\nfields:\n  x: 5.5\n  name: no\n  theta: [1]\n  y: 2024-01-01\n  z: 1e3\n")
     spec = read_form(path)
     assert (spec.kind, spec.name, spec.type_name) == ("call", "/spawn", "")
-    assert spec.expressions == {"x": "5.5", "name": "leo", "theta": "[1]"}
+    assert spec.expressions == {"x": "5.5", "name": "no", "theta": "[1]", "y": "2024-01-01", "z": "1e3"}
 
 
 @pytest.mark.parametrize("text, says", [
@@ -184,6 +222,12 @@ def test_values_written_by_hand_are_expressions_too(tmp_path: Path) -> None:
     ("publish: /a\n  type: [oops\n", ":2: YAML error"),
     ("- 1\n- 2\n", ":1: a form is a mapping"),
     ("a: &x [1]\nb: *x\n", ":2: YAML aliases are not allowed"),
+    ("publish: /a\nfields: {}\n", ":1: a publish form needs `type: pkg/Type`"),
+    ("publish: /a\ntype: std_msgs/Int8\nrate: !!float x\n", ":3: not a value"),
+    ("publish: /a\ntype: std_msgs/Int8\nfields:\n  data: !!binary '@@'\n", ":4: data: not an expression"),
+    ("publish: /a\ntype: std_msgs/Int8\nfields:\n  data: 1 +\n", ":4: data: not an expression"),
+    ("publish: /a\ntype: std_msgs/Int8\nfields:\n  data: " + "[" * 5000 + "\n", ":4: YAML nested more than 64 deep"),
+    ("publish: /a\ntype: std_msgs/Int8\nfields:\n  data: '" + "[" * 5000 + "'\n", ":4: data: not an expression"),
 ])
 def test_every_mistake_in_a_form_file_is_one_line_with_its_line(tmp_path: Path, text: str, says: str) -> None:
     path = tmp_path / "bad.yaml"

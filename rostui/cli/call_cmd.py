@@ -20,7 +20,7 @@ def call_command(
     """Call a service from a form of its request (like rqt_service_caller).
 
     The service's type is asked of the service itself. Each field is an
-    expression (1.5, [1, 2], 'text', now, i: the calls made before); Enter
+    expression (1.5, [1, 2], 'text', now, i: the call's number); Enter
     edits a field, left/right move a number's slider, ctrl+s calls the
     service and shows its response. Nothing is called before that.
     """

@@ -162,14 +162,14 @@ def set_from_parameters_command(
     from rostui.core.names import InvalidNameError, node_global_name, parse_argv
     from rostui.core.xmlrpc import RosApiError
 
-    args = parse_argv(list(words or []))
+    try:
+        args = parse_argv(list(words or []))
+        me = node_global_name("dynparam", args, anonymous=True, lenient=True)  # rospy takes `adjust-camera`
+    except (InvalidNameError, ValueError) as exc:
+        _fail(f"ERROR: {' '.join(str(exc).split())}")
     if args.args:
         _fail(f"rostui dynparam set_from_parameters: too many arguments: {' '.join(args.args)} (give NODE, then "
               "_name:=value words)")
-    try:
-        me = node_global_name("dynparam", args, anonymous=True)
-    except InvalidNameError as exc:
-        _fail(f"ERROR: {exc}")
     from rostui.cli.common import master_call
 
     try:

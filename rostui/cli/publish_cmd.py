@@ -23,7 +23,7 @@ def publish_command(
     """Publish a message from a form of its fields (like rqt_publisher).
 
     Each field is an expression: 1.5, [1, 2], 'text', now, and per message
-    i (messages sent before) and t (seconds since the first), as in
+    i (the message's number, 1 first) and t (seconds since the first), as in
     sin(t). Enter edits a field, left/right move a number's slider, ctrl+s
     publishes one message (latched), ctrl+r publishes at the rate until
     pressed again. Nothing is published before that.

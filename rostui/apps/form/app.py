@@ -55,8 +55,8 @@ class FormApp(ReleasesOnExit, KeysApp):
         Binding("q", "quit", "quit"),
         Binding("ctrl+s", "send", "publish once / call", priority=True),
         Binding("ctrl+r", "repeat", "publish at the rate, or stop", priority=True),
-        Binding("ctrl+w", "save", "save the form as YAML", priority=True),
-        Binding("ctrl+o", "load", "load a form from YAML", priority=True),
+        Binding("ctrl+w", "save", "save the form as YAML"),  # not over a field's own ctrl+w (delete a word)
+        Binding("ctrl+o", "load", "load a form from YAML"),
     ]
     KEY_NOTES: ClassVar[tuple[tuple[str, str], ...]] = (
         ("Enter", "on a field: edit its expression (numbers, lists, sin(t), i, t, now, 'text')"),
@@ -161,7 +161,11 @@ class FormApp(ReleasesOnExit, KeysApp):
 
     # -- the form ----------------------------------------------------------------------------------
     def show_form(self, form: MessageForm, what: str) -> None:
-        """Make ``form`` the one edited."""
+        """Make ``form`` the one edited (a rate publishing the last one stops)."""
+        if self.repeater is not None and self.repeater.running and form is not self.form:
+            self.repeater.stop()
+            self.repeater = None
+            self.say_master()
         self.form = form
         self.table.show_rows(form.rows)
         self.query_one("#fields-panel").border_title = f"Fields · {what}"
@@ -184,7 +188,9 @@ class FormApp(ReleasesOnExit, KeysApp):
         try:
             self.srv_class = await self.caller.service_class(service)
         except SendFailed as exc:
-            self.srv_class = None
+            self.srv_class, self.form = None, None
+            self.table.show_rows([])
+            self.query_one("#fields-panel").border_title = "Fields"
             self.status(str(exc), "error")
             return False
         self.show_form(MessageForm.of(self.srv_class._request_class), self.srv_class._type)
@@ -249,7 +255,7 @@ class FormApp(ReleasesOnExit, KeysApp):
                 self._show_detail()
                 self.status(f"{row.path} = {row.expression}")
 
-        about = f"{row.path} ({row.type}): an expression; i counts the messages sent, t is seconds since the first"
+        about = f"{row.path} ({row.type}): an expression; i is the message's number, t seconds since the first"
         self.push_screen(LineScreen(row.path, about, row.expression, check), done)
 
     @on(Input.Submitted, "#name")
@@ -292,6 +298,9 @@ class FormApp(ReleasesOnExit, KeysApp):
         if self.form is None:
             self.status("no form yet: type a " + ("topic and type" if self.kind == "publish" else "service"), "error")
             return
+        if self.repeater is not None and self.repeater.running:
+            self.status(f"publishing {self.repeater.topic} at a rate: ctrl+r stops it first", "error")
+            return
         self.sending = self.run_worker(partial(self._send_once), group="send", exit_on_error=False)
 
     async def _send_once(self) -> None:
@@ -315,6 +324,8 @@ class FormApp(ReleasesOnExit, KeysApp):
             self.status(f"published one {self.form.type_name} on {topic} (latched)", "ok")
         except (SendFailed, PublishError) as exc:
             self.status(str(exc), "error")
+        except Exception as exc:  # a value the wire refuses (a float32 of 1e39): said, and the app goes on
+            self.status(f"not sent: {type(exc).__name__}: {' '.join(str(exc).split())[:200]}", "error")
 
     def _topic(self) -> str:
         topic = check_topic(self.name_input.value)
@@ -346,11 +357,11 @@ class FormApp(ReleasesOnExit, KeysApp):
         if rate is None:
             self.status("type a rate in Hz first (ctrl+s sends one message)", "error")
             return
-        form = self.form
         self.sender.restart_count()
 
         async def send() -> None:
-            await self.sender.send(topic, form)
+            if self.form is not None:  # the form on screen: edits and sliders go into the next message
+                await self.sender.send(topic, self.form)
 
         self.repeater = Repeater(topic, rate, send)
         self.repeater.start()

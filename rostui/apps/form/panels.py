@@ -24,11 +24,10 @@ EXPRESSION_CELLS = 40
 def slider_cell(row: FieldRow) -> Text:
     """A numeric row's bar in its range, or nothing (a row that is not a number, or an expression such as
     ``sin(t)``, has no position to show)."""
-    value = row.number() if row.numeric else None
-    if value is None:
+    fraction = row.fraction()
+    if fraction is None:
         return Text(" " * BAR_CELLS)
-    low, high = row.slider_range()
-    return Text(bar_text((value - low) / (high - low)), style="bold")
+    return Text(bar_text(fraction), style="bold")
 
 
 def _expression_cell(row: FieldRow) -> Text:
@@ -41,7 +40,7 @@ def detail_text(row: FieldRow | None) -> str:
     if row is None:
         return ""
     facts = [row.type]
-    if row.numeric:
+    if row.number() is not None:
         low, high = row.slider_range()
         facts.append(f"slider {low:g} … {high:g}")
     return f"{row.path} ({', '.join(facts)}) = {row.expression}"

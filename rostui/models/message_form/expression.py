@@ -1,11 +1,13 @@
 """Expressions in a form's rows, as rqt_publisher takes them, evaluated without running Python code.
 
 A row holds a Python-like expression: literals (numbers, strings, ``True``, lists, dicts), arithmetic,
-comparisons, ``a if c else b``, the variables a form gives (``i`` the number of messages sent before this one,
-``t`` seconds since publishing started, ``now`` the current time) and the functions of :data:`FUNCTIONS`
-(``sin(t)``, ``math.cos(2*pi*t)``, ``random()``). Nothing else is allowed: no attribute but ``math.X``, no
-import, no name the form did not give. Results are bounded so a typed expression cannot take the memory:
-integers to :data:`MAX_INT_BITS` bits, strings and lists to :data:`MAX_ITEMS` items.
+comparisons, ``a if c else b``, the variables a form gives (``i`` the message's number, 1 for the first, as
+rqt_publisher counts; ``t`` seconds since the first message; ``now`` the current time) and the functions of
+:data:`FUNCTIONS` (``sin(t)``, ``math.cos(2*pi*t)``, ``random()``). Nothing else is allowed: no attribute but
+``math.X``, no import, no name the form did not give, no ``%`` formatting of strings. Every value an expression
+makes is bounded, and checked before the larger ones are computed: integers to :data:`MAX_INT_BITS` bits, all the
+items of a string, list or dict and of the lists inside it to :data:`MAX_ITEMS` together, ``round``'s digits to
+:data:`MAX_DIGITS`; so a typed expression costs bounded time and memory.
 """
 
 from __future__ import annotations
@@ -16,7 +18,8 @@ import operator
 import random
 from typing import Any, Callable, Mapping
 
-__all__ = ["ExpressionError", "FUNCTIONS", "CONSTANTS", "MAX_ITEMS", "MAX_INT_BITS", "MAX_TEXT", "evaluate"]
+__all__ = ["ExpressionError", "FUNCTIONS", "CONSTANTS", "MAX_DIGITS", "MAX_ITEMS", "MAX_INT_BITS", "MAX_TEXT",
+           "evaluate", "check_syntax", "is_number_literal"]
 
 #: Longest expression text taken.
 MAX_TEXT = 100_000
@@ -27,18 +30,31 @@ MAX_ITEMS = 1_000_000
 #: Most bits an integer an expression makes may have.
 MAX_INT_BITS = 4096
 
+#: Most digits ``round`` may be asked for, either side of the point.
+MAX_DIGITS = 400
+
+
+def _round(number: Any, digits: Any = None) -> Any:
+    """``round``, with its digits bounded (``round(1, -10**9)`` would compute ``10**(10**9)``)."""
+    if digits is None:
+        return round(number)
+    if isinstance(digits, int) and abs(digits) > MAX_DIGITS:
+        raise ExpressionError(f"round to at most {MAX_DIGITS} digits")
+    return round(number, digits)
+
+
 #: Functions an expression may call, by name (also as ``math.<name>`` where math has it).
 FUNCTIONS: dict[str, Callable[..., Any]] = {
     **{name: getattr(math, name) for name in (
         "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh", "sqrt", "exp", "log",
         "log10", "log2", "floor", "ceil", "fabs", "hypot", "degrees", "radians", "fmod", "copysign")},
-    "abs": abs, "min": min, "max": max, "round": round, "int": int, "float": float, "bool": bool, "str": str,
+    "abs": abs, "min": min, "max": max, "round": _round, "int": int, "float": float, "bool": bool, "str": str,
     "len": len, "random": random.random, "uniform": random.uniform, "gauss": random.gauss,
 }
 
 #: Names every expression knows besides the form's variables.
 CONSTANTS: dict[str, Any] = {"pi": math.pi, "e": math.e, "tau": math.tau, "inf": math.inf, "nan": math.nan,
-                             "True": True, "False": False, "None": None}
+                             "True": True, "False": False, "None": None, "true": True, "false": False}
 
 _BINARY: dict[type, Callable[[Any, Any], Any]] = {
     ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul, ast.Div: operator.truediv,
@@ -72,8 +88,32 @@ def evaluate(text: str, variables: Mapping[str, Any] | None = None) -> Any:
         raise
     except RecursionError:
         raise ExpressionError("expression nested too deeply") from None
-    except (ArithmeticError, ValueError, TypeError) as exc:
-        raise ExpressionError(f"{type(exc).__name__}: {exc}") from None
+    except Exception as exc:  # whatever an operator or a function raises is the expression's mistake
+        raise ExpressionError(f"{type(exc).__name__}: {_one_line(str(exc))}") from None
+
+
+def check_syntax(text: str) -> None:
+    """:class:`ExpressionError` when ``text`` is not an expression at all (what a form file can be checked for
+    before anything is sent)."""
+    if len(text) > MAX_TEXT:
+        raise ExpressionError(f"expression longer than {MAX_TEXT} characters")
+    try:
+        ast.parse(text.strip(), mode="eval")
+    except SyntaxError as exc:
+        raise ExpressionError(f"not an expression: {exc.msg}") from None
+    except (ValueError, RecursionError, MemoryError):
+        raise ExpressionError("not an expression") from None
+
+
+def is_number_literal(text: str) -> bool:
+    """True when ``text`` is a plain number (``2``, ``-0.5``): what a slider may replace with another."""
+    try:
+        node = ast.parse(text.strip(), mode="eval").body
+    except (SyntaxError, ValueError, RecursionError, MemoryError):
+        return False
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
+        node = node.operand
+    return isinstance(node, ast.Constant) and type(node.value) in (int, float)
 
 
 class _Evaluator:
@@ -102,7 +142,10 @@ class _Evaluator:
         raise ExpressionError(f"unknown name {node.id!r} (a string needs quotes)")
 
     def _UnaryOp(self, node: ast.UnaryOp) -> Any:
-        return _UNARY[type(node.op)](self.value(node.operand))
+        op = _UNARY.get(type(node.op))
+        if op is None:
+            raise ExpressionError(f"{_describe(node.op)} is not allowed in an expression")
+        return op(self.value(node.operand))
 
     def _BinOp(self, node: ast.BinOp) -> Any:
         op = _BINARY.get(type(node.op))
@@ -114,6 +157,8 @@ class _Evaluator:
                 raise ExpressionError(f"{left} ** {right} is too large")
         if isinstance(node.op, ast.Mult):
             _check_repeat(left, right)
+        if isinstance(node.op, ast.Mod) and isinstance(left, str):
+            raise ExpressionError("% formatting of text is not allowed in an expression")
         return op(left, right)
 
     def _BoolOp(self, node: ast.BoolOp) -> Any:
@@ -176,18 +221,45 @@ class _Evaluator:
 
 
 def _check_repeat(left: Any, right: Any) -> None:
-    """``"ab" * n`` and ``[0] * n`` only while the result stays within :data:`MAX_ITEMS`."""
+    """``"ab" * n`` and ``[0] * n`` only while the result, the lists inside it counted, stays within
+    :data:`MAX_ITEMS` (checked before it is made)."""
     for seq, count in ((left, right), (right, left)):
-        if isinstance(seq, (str, list)) and isinstance(count, int) and len(seq) * max(count, 0) > MAX_ITEMS:
+        if isinstance(seq, (str, list)) and isinstance(count, int) and _size(seq) * max(count, 0) > MAX_ITEMS:
             raise ExpressionError(f"a repeated {type(seq).__name__} longer than {MAX_ITEMS} items")
+
+
+def _size(value: Any, seen: dict[int, int] | None = None) -> int:
+    """Items in ``value`` and in the strings, lists and dicts inside it, each shared one counted where it appears."""
+    if isinstance(value, str):
+        return len(value)
+    if not isinstance(value, (list, dict)):
+        return 1
+    seen = {} if seen is None else seen
+    known = seen.get(id(value))
+    if known is not None:
+        return known
+    seen[id(value)] = len(value)  # a list that holds itself cannot be made here; this only ends the walk
+    items = value.values() if isinstance(value, dict) else value
+    total = len(value)
+    for item in items:
+        total += _size(item, seen) if isinstance(item, (str, list, dict)) else 0
+        if total > MAX_ITEMS:
+            break
+    seen[id(value)] = total
+    return total
 
 
 def _bounded(value: Any) -> Any:
     if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > MAX_INT_BITS:
         raise ExpressionError(f"an integer of more than {MAX_INT_BITS} bits")
-    if isinstance(value, (str, list, dict)) and len(value) > MAX_ITEMS:
-        raise ExpressionError(f"a {type(value).__name__} longer than {MAX_ITEMS} items")
+    if isinstance(value, (str, list, dict)) and _size(value) > MAX_ITEMS:
+        raise ExpressionError(f"a {type(value).__name__} of more than {MAX_ITEMS} items")
     return value
+
+
+def _one_line(text: str) -> str:
+    text = " ".join(text.split())
+    return text if len(text) <= 200 else text[:199] + "…"
 
 
 def _describe(node: ast.AST) -> str:

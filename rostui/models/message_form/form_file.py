@@ -12,8 +12,10 @@
     sliders:
       linear.x: [-2.0, 2.0]
 
-Every problem is one line with the file and line. A file larger than :data:`MAX_FILE_BYTES` or one using YAML
-aliases is refused before it is read further.
+Every problem is one line with the file and line (a field's expression that is not an expression at all
+included). A file larger than :data:`MAX_FILE_BYTES` or one using YAML aliases is refused before it is read
+further. A value written by hand is an expression as written (``x: 5.5``, ``frame_id: map``); a YAML list or
+mapping becomes the expression of the same list or dict.
 """
 
 from __future__ import annotations
@@ -25,12 +27,19 @@ from typing import Any
 
 import yaml
 
+from .expression import ExpressionError, check_syntax
 from .rows import MessageForm
 
 __all__ = ["FormFileError", "FormSpec", "MAX_FILE_BYTES", "read_form", "write_form", "apply_spec", "spec_of"]
 
 #: Largest form file read.
 MAX_FILE_BYTES = 1 << 20
+
+#: Deepest nesting of brackets read: PyYAML's pure-Python parser takes time growing with the square of it.
+MAX_FLOW_DEPTH = 64
+
+#: libyaml's parser where PyYAML has it (it also bounds nesting); PyYAML's own otherwise.
+_LOADER: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 _KEYS = ("publish", "call", "type", "rate", "fields", "sliders")
 
@@ -108,6 +117,8 @@ def read_form(path: Path) -> FormSpec:
     if len(kinds) != 1:
         raise FormFileError(f"{where}:{_line(root)}: a form names either `publish: TOPIC` or `call: SERVICE`")
     kind = kinds[0]
+    if kind == "publish" and "type" not in top:
+        raise FormFileError(f"{where}:{_line(root)}: a publish form needs `type: pkg/Type`")
     spec = FormSpec(kind, _text(top[kind][1], where, kind), _text(top["type"][1], where, "type") if "type" in top
                     else "", path=where)
     if "rate" in top:
@@ -130,6 +141,11 @@ def apply_spec(form: MessageForm, spec: FormSpec) -> None:
     for name, expression in spec.expressions.items():
         row = form.row(name)
         assert row is not None
+        if row.type != "string":  # a string field takes any text
+            try:
+                check_syntax(expression)
+            except ExpressionError as exc:
+                raise FormFileError(f"{spec.path}:{spec.lines.get(name, 1)}: {name}: {exc}") from None
         row.expression = expression
     for name, (low, high) in spec.sliders.items():
         row = form.row(name)
@@ -140,17 +156,43 @@ def apply_spec(form: MessageForm, spec: FormSpec) -> None:
         row.low, row.high = low, high
 
 
+def _flow_depth(text: str) -> tuple[int, int]:
+    """The deepest nesting of ``[`` and ``{`` outside quotes, and the line where it is deepest."""
+    depth = deepest = 0
+    line = deepest_line = 1
+    quote = ""
+    for char in text:
+        if char == "\n":
+            line += 1
+        elif quote:
+            quote = "" if char == quote else quote
+        elif char in "'\"":
+            quote = char
+        elif char in "[{":
+            depth += 1
+            if depth > deepest:
+                deepest, deepest_line = depth, line
+        elif char in "]}":
+            depth = max(depth - 1, 0)
+    return deepest, deepest_line
+
+
 def _compose(text: str, where: str) -> yaml.Node | None:
+    deepest, deepest_line = _flow_depth(text)
+    if deepest > MAX_FLOW_DEPTH:
+        raise FormFileError(f"{where}:{deepest_line}: YAML nested more than {MAX_FLOW_DEPTH} deep: not a form")
     try:
-        for event in yaml.parse(text, Loader=yaml.SafeLoader):
+        for event in yaml.parse(text, Loader=_LOADER):
             if isinstance(event, yaml.AliasEvent):
-                line = f":{event.start_mark.line + 1}" if event.start_mark is not None else ""
-                raise FormFileError(f"{where}{line}: YAML aliases are not allowed in a form")
-        return yaml.compose(text, Loader=yaml.SafeLoader)
+                at = f":{event.start_mark.line + 1}" if event.start_mark is not None else ""
+                raise FormFileError(f"{where}{at}: YAML aliases are not allowed in a form")
+        return yaml.compose(text, Loader=_LOADER)
+    except RecursionError:
+        raise FormFileError(f"{where}: YAML nested too deeply for a form") from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
-        line = f":{mark.line + 1}" if mark is not None else ""
-        raise FormFileError(f"{where}{line}: YAML error: {exc.problem or exc.context}") from None
+        at = f":{mark.line + 1}" if mark is not None else ""
+        raise FormFileError(f"{where}{at}: YAML error: {exc.problem or exc.context}") from None
     except yaml.YAMLError as exc:
         raise FormFileError(f"{where}: YAML error: {exc}") from None
 
@@ -172,8 +214,11 @@ def _mapping(node: yaml.Node, where: str) -> dict[str, tuple[yaml.Node, yaml.Nod
     return out
 
 
-def _value(node: yaml.Node) -> Any:
-    return yaml.SafeLoader("").construct_object(node, deep=True)
+def _value(node: yaml.Node, where: str) -> Any:
+    try:
+        return yaml.SafeLoader("").construct_object(node, deep=True)
+    except (yaml.YAMLError, ValueError, TypeError, OverflowError, RecursionError) as exc:
+        raise FormFileError(f"{where}:{_line(node)}: not a value: {' '.join(str(exc).split())[:200]}") from None
 
 
 def _text(node: yaml.Node, where: str, what: str) -> str:
@@ -183,7 +228,7 @@ def _text(node: yaml.Node, where: str, what: str) -> str:
 
 
 def _rate(node: yaml.Node, where: str) -> float | None:
-    value = _value(node) if isinstance(node, yaml.ScalarNode) else None
+    value = _value(node, where) if isinstance(node, yaml.ScalarNode) else None
     if value is None and isinstance(node, yaml.ScalarNode) and node.value in ("", "null", "~"):
         return None
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 or math.isinf(value):
@@ -193,12 +238,12 @@ def _rate(node: yaml.Node, where: str) -> float | None:
 
 def _expression(node: yaml.Node, where: str) -> str:
     if isinstance(node, yaml.ScalarNode):
-        return node.value if node.style in ("'", '"') or node.tag == "tag:yaml.org,2002:str" else repr(_value(node))
-    return repr(_value(node))
+        return node.value
+    return repr(_value(node, where))
 
 
 def _range(node: yaml.Node, where: str, name: str) -> tuple[float, float]:
-    value = _value(node)
+    value = _value(node, where)
     if (not isinstance(value, list) or len(value) != 2
             or any(isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) for v in value)
             or not value[0] < value[1]):

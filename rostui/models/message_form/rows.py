@@ -2,12 +2,15 @@
 
 Nested messages are opened into their fields (``linear.x``), arrays are one row holding a list
 (``[0.0, 0.0]``, or a list of dicts for an array of messages), and a Header's stamp starts as ``now``, the
-time at which each message is sent. A numeric row is also a slider: it has a range (from the form file, else
-a default that holds its value) and :meth:`FieldRow.nudge` moves it by a hundredth of that range.
+time at which each message is sent. A numeric row whose expression is a plain number is also a slider: it has a
+range (from the form file, else a default that holds its value, within the type's) and :meth:`FieldRow.nudge`
+moves it by a hundredth of that range. A string row takes what its expression gives as text (``str()``, as
+rqt_publisher converts), and an expression that does not compute as the text itself.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any, Iterator
 
@@ -16,7 +19,7 @@ from rostui.core.msg.convert import fill_message, message_to_dict
 from rostui.core.msg.spec import HEADER_TYPE
 from rostui.core.rostime import Duration, Time, TVal
 
-from .expression import ExpressionError, evaluate
+from .expression import ExpressionError, evaluate, is_number_literal
 
 __all__ = ["FormError", "FieldRow", "MessageForm", "INT_TYPES", "FLOAT_TYPES", "SLIDER_STEPS"]
 
@@ -32,6 +35,9 @@ FLOAT_TYPES = ("float32", "float64")
 
 #: Steps from one end of a slider's range to the other.
 SLIDER_STEPS = 100
+
+#: Largest magnitude a slider shows; a value beyond it (or not finite) has no slider.
+SLIDER_LIMIT = 1e300
 
 
 class FormError(Exception):
@@ -60,18 +66,23 @@ class FieldRow:
         return self.type in INT_TYPES
 
     def number(self) -> float | None:
-        """The row's value when its expression is a plain number (what a slider shows), else None."""
+        """The row's value when its expression is a plain, finite number no larger than :data:`SLIDER_LIMIT`
+        (what a slider shows and moves), else None: ``sin(t)`` or ``random()`` is not replaced by a slider."""
+        if not self.numeric or not is_number_literal(self.expression):
+            return None
         try:
             value = evaluate(self.expression)
         except ExpressionError:
             return None
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             return None
+        if not math.isfinite(value) or abs(value) > SLIDER_LIMIT:
+            return None
         return value
 
     def slider_range(self) -> tuple[float, float]:
         """The slider's range: the one set, else ±1 for floats and 0..100 (or ±100) for integers, widened to
-        hold the value."""
+        hold the value and kept within the type's range."""
         if self.low is not None and self.high is not None and self.low < self.high:
             return self.low, self.high
         if self.integer:
@@ -83,18 +94,28 @@ class FieldRow:
         if value is not None and not low <= value <= high:
             reach = _round_up(abs(value))
             low, high = (min(low, -reach) if low < 0 else low), max(high, reach)
+        if self.integer:
+            low, high = max(low, float(INT_TYPES[self.type][0])), min(high, float(INT_TYPES[self.type][1]))
         return low, high
 
-    def nudge(self, steps: int) -> bool:
-        """Move the slider ``steps`` hundredths of its range (clamped to it); False if the row is not a number."""
+    def fraction(self) -> float | None:
+        """Where the value sits in the slider's range, 0 to 1; None without a slider."""
         value = self.number()
-        if not self.numeric or value is None:
+        if value is None:
+            return None
+        low, high = self.slider_range()
+        return min(max((float(value) - low) / (high - low), 0.0), 1.0)
+
+    def nudge(self, steps: int) -> bool:
+        """Move the slider ``steps`` hundredths of its range (clamped to it); False if the row has no slider."""
+        value = self.number()
+        if value is None:
             return False
         low, high = self.slider_range()
         step = (high - low) / SLIDER_STEPS
         if self.integer:
             step = max(1.0, round(step))
-        moved = min(max(value + steps * step, low), high)
+        moved = min(max(float(value) + steps * step, low), high)
         self.expression = str(int(round(moved))) if self.integer else _short(moved)
         return True
 
@@ -120,9 +141,9 @@ class MessageForm:
         """The row of ``path``, or None."""
         return next((row for row in self.rows if row.path == path), None)
 
-    def build(self, *, i: int = 0, t: float = 0.0, now: Time | None = None) -> Message:
-        """The message the rows give for the ``i``-th send, ``t`` seconds after the first, at ``now``;
-        :class:`FormError` naming the first field that cannot be filled."""
+    def build(self, *, i: int = 1, t: float = 0.0, now: Time | None = None) -> Message:
+        """The message the rows give as the ``i``-th sent (1 for the first), ``t`` seconds after the first, at
+        ``now``; :class:`FormError` naming the first field that cannot be filled."""
         stamp = now if now is not None else Time.now()
         variables = {"i": i, "t": t, "now": stamp}
         document: dict[str, Any] = {}
@@ -130,7 +151,7 @@ class MessageForm:
             _place(document, row.path.split("."), _row_value(row, variables))
         try:
             return fill_message(self.cls, document, keys={"now": stamp})
-        except (MessageError, ValueError, TypeError) as exc:
+        except (MessageError, ValueError, TypeError, OverflowError) as exc:
             raise FormError(_one_line(str(exc))) from None
 
 
@@ -166,6 +187,8 @@ def _row_value(row: FieldRow, variables: dict[str, Any]) -> Any:
         if row.type == "string":  # rqt_publisher's rule: a string field takes what does not compute as text
             return row.expression
         raise FormError(f"{row.path}: {exc}") from None
+    if row.type == "string" and not isinstance(value, str):
+        return str(value)
     if isinstance(value, TVal) and row.type in ("time", "duration"):
         kind = Time if row.type == "time" else Duration
         return kind(value.secs, value.nsecs)
@@ -179,7 +202,7 @@ def _place(document: dict[str, Any], parts: list[str], value: Any) -> None:
 
 
 def _round_up(value: float) -> float:
-    """The next 1, 2 or 5 times a power of ten at or above ``value``."""
+    """The next 1, 2 or 5 times a power of ten at or above ``value`` (finite, at most :data:`SLIDER_LIMIT`)."""
     scale = 1.0
     while scale * 10 <= value:
         scale *= 10
@@ -190,7 +213,7 @@ def _round_up(value: float) -> float:
 
 
 def _short(value: float) -> str:
-    text = f"{value:.6g}"
+    text = f"{value:.12g}"
     return text if any(c in text for c in ".en") else text + ".0"
 
 

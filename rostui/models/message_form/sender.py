@@ -8,6 +8,7 @@ subscribers are already connected, so the rate's first message is not lost to a 
 
 from __future__ import annotations
 
+import asyncio
 import time
 from typing import Any
 
@@ -28,7 +29,8 @@ class SendFailed(Exception):
 
 
 class TopicSender:
-    """Publishes a form's messages on a topic from ``/rostui_publish_<pid>_<ms>``; counts them for ``i``."""
+    """Publishes a form's messages on a topic from ``/rostui_publish_<pid>_<ms>``; counts them for ``i``. One send
+    at a time: two quick ctrl+s before the node is up start one node and one publisher."""
 
     def __init__(self, master_uri: str | None) -> None:
         self.master_uri = master_uri
@@ -36,25 +38,30 @@ class TopicSender:
         self.publisher: Publisher | None = None
         self.sent = 0
         self.first_sent: float | None = None
+        self._lock = asyncio.Lock()
 
     def restart_count(self) -> None:
         """``i`` and ``t`` start again from 0 at the next message."""
         self.sent, self.first_sent = 0, None
 
     def message(self, form: MessageForm) -> Message:
-        """The next message of ``form`` (``i`` messages sent before it, ``t`` seconds after the first)."""
+        """The next message of ``form``: ``i`` its number (1 for the first), ``t`` seconds after the first."""
         now = time.monotonic()
         elapsed = 0.0 if self.first_sent is None else now - self.first_sent
         try:
-            return form.build(i=self.sent, t=elapsed, now=Time.now())
+            return form.build(i=self.sent + 1, t=elapsed, now=Time.now())
         except FormError as exc:
             raise SendFailed(str(exc)) from None
 
     async def send(self, topic: str, form: MessageForm) -> Message:
         """Publish the next message of ``form`` on ``topic``; the message sent."""
         msg = self.message(form)
-        publisher = await self._publisher(topic, form.cls)
-        publisher.publish(msg)
+        async with self._lock:
+            publisher = await self._publisher(topic, form.cls)
+        try:
+            publisher.publish(msg)
+        except Exception as exc:  # a value the wire format cannot hold (a float32 of 1e39, a stamp past 2106)
+            raise SendFailed(f"cannot send it: {' '.join(str(exc).split())[:200]}") from None
         if self.first_sent is None:
             self.first_sent = time.monotonic()
         self.sent += 1
@@ -111,9 +118,10 @@ class ServiceCaller(CallingNode):
                              f"{exc}") from None
 
     async def call(self, service: str, srv_class: Any, form: MessageForm) -> Message:
-        """Call ``service`` with the request ``form`` gives (``i`` the calls made before); the response."""
+        """Call ``service`` with the request ``form`` gives (``i`` this call's number, 1 for the first); the
+        response."""
         try:
-            request = form.build(i=self.calls, now=Time.now())
+            request = form.build(i=self.calls + 1, now=Time.now())
         except FormError as exc:
             raise SendFailed(str(exc)) from None
         await self.start()

@@ -110,6 +110,11 @@ class World:
     env: dict[str, str]
     peers: list[Peer]
 
+    @property
+    def sim(self) -> Peer:
+        """The headless turtlesim (what it prints: its spawns and kills)."""
+        return self.peers[0]
+
     def echo(self, topic: str) -> PoseLog:
         """Start printing *topic*'s poses."""
         log = PoseLog(self.env, topic)

@@ -24,6 +24,7 @@ from textual.worker import Worker
 
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.apps.widgets.notice import Notice
@@ -124,7 +125,7 @@ class FormApp(ReleasesOnExit, KeysApp):
                 self.status("type a topic and Enter" if self.kind == "publish" else "type a service and Enter")
         finally:
             self.ready.set()
-        self.set_focus(self.query_one(FieldTable) if self.form is not None else self.name_input)
+        focus_now(self.query_one(FieldTable) if self.form is not None else self.name_input)
 
     @property
     def name_input(self) -> Input:
@@ -263,16 +264,16 @@ class FormApp(ReleasesOnExit, KeysApp):
         name = self.name_input.value.strip()
         if self.kind == "call":
             if name and await self.service_form(name):
-                self.set_focus(self.table)
+                focus_now(self.table)
             return
         if not self.type_input.value.strip():
             known = await self._topic_type(name)
             if known:
                 self.type_input.value = known
                 if self.new_form(known):
-                    self.set_focus(self.table)
+                    focus_now(self.table)
                 return
-        self.set_focus(self.type_input)
+        focus_now(self.type_input)
 
     async def _topic_type(self, topic: str) -> str | None:
         try:
@@ -290,7 +291,7 @@ class FormApp(ReleasesOnExit, KeysApp):
     @on(Input.Submitted, "#type")
     def _type_entered(self) -> None:
         if self.new_form(self.type_input.value.strip()):
-            self.set_focus(self.table)
+            focus_now(self.table)
 
     # -- sending -----------------------------------------------------------------------------------
     def action_send(self) -> None:

@@ -13,6 +13,7 @@ from textual.screen import ModalScreen
 from textual.widgets import DataTable, Input, Static
 
 from rostui.apps.widgets.bar_text import BAR_CELLS, bar_text
+from rostui.apps.widgets.focus import focus_now
 from rostui.models.message_form.rows import FieldRow
 
 __all__ = ["FieldTable", "LineScreen", "slider_cell", "detail_text"]
@@ -142,8 +143,8 @@ class LineScreen(ModalScreen["str | None"]):
 
     def on_mount(self) -> None:
         """The title; the cursor in the field."""
+        focus_now(self.query_one("#line", Input))
         self.query_one("#line-box").border_title = f"{self.title_text} · Enter takes it · Esc cancels"
-        self.query_one("#line", Input).focus()
 
     def on_input_submitted(self, event: Input.Submitted) -> None:
         """Give the line, or say what is wrong with it."""

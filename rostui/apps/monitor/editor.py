@@ -16,6 +16,7 @@ from textual.markup import escape
 from textual.screen import ModalScreen
 from textual.widgets import Input, Label, Static, TextArea
 
+from rostui.apps.widgets.focus import focus_now
 from rostui.core.msg import Message
 from rostui.models.monitor.publish import PublishError, message_template
 
@@ -78,7 +79,7 @@ class PublishEditor(ModalScreen[None]):
         self.query_one("#editor").border_title = "publish"
         if self.initial_type:
             self.load_template()
-        self.query_one("#pub-yaml" if self.initial_topic and self.initial_type else "#pub-topic").focus()
+        focus_now(self.query_one("#pub-yaml" if self.initial_topic and self.initial_type else "#pub-topic"))
 
     @property
     def topic(self) -> str:

@@ -21,6 +21,7 @@ from textual.widgets.selection_list import Selection
 from textual_plotext import PlotextPlot
 
 from rostui.apps.monitor.detail import Line
+from rostui.apps.widgets.focus import focus_now
 from rostui.models.monitor.plot import PlotModel, SeriesView, nice_ticks
 
 __all__ = ["PlotPanel", "FieldChooser", "plot_heading", "EMPTY_HINT"]
@@ -176,7 +177,7 @@ class FieldChooser(ModalScreen[list[str] | None]):
 
     def on_mount(self) -> None:
         """The list has the keyboard."""
-        self.query_one(SelectionList).focus()
+        focus_now(self.query_one(SelectionList))
 
     @property
     def checked(self) -> list[str]:

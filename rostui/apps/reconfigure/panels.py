@@ -14,6 +14,7 @@ from textual.widgets import DataTable, Input, OptionList, Static
 from textual.widgets.option_list import Option
 
 from rostui.apps.widgets.bar_text import bar_text
+from rostui.apps.widgets.focus import focus_now
 from rostui.models.reconfigure import GroupRow, ParamRow
 from rostui.tools.reconfigure.values import ParameterValueError
 
@@ -171,9 +172,9 @@ class EditScreen(ModalScreen[Any]):
             values = [c.value for c in self.row.choices]
             if self.row.value in values:
                 choices.highlighted = values.index(self.row.value)
-            choices.focus()
+            focus_now(choices)
         else:
-            self.query_one("#field", Input).focus()
+            focus_now(self.query_one("#field", Input))
 
     def on_option_list_option_selected(self, event: OptionList.OptionSelected) -> None:
         """A constant chosen: send its value."""

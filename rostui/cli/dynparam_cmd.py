@@ -8,6 +8,7 @@ from typing import Any, Awaitable, Callable, List, NoReturn, Optional, TypeVar
 import typer
 
 from rostui.cli.common import examples
+from rostui.core.one_line import exception_line
 
 CONTEXT = {"help_option_names": ["-h", "--help"]}
 
@@ -166,7 +167,7 @@ def set_from_parameters_command(
         args = parse_argv(list(words or []))
         me = node_global_name("dynparam", args, anonymous=True, lenient=True)  # rospy takes `adjust-camera`
     except (InvalidNameError, ValueError) as exc:
-        _fail(f"ERROR: {' '.join(str(exc).split())}")
+        _fail(f"ERROR: {exception_line(exc, None)}")
     if args.args:
         _fail(f"rostui dynparam set_from_parameters: too many arguments: {' '.join(args.args)} (give NODE, then "
               "_name:=value words)")

@@ -22,10 +22,10 @@ def checked_form(kind: str, path: Optional[Path]) -> Optional[Path]:
             raise FormFileError(f"{path}: a `{spec.kind}` form: open it with `rostui {spec.kind} --form {path}`")
         if kind == "publish":
             from rostui.models.message_form.rows import MessageForm
-            from rostui.models.monitor.publish import PublishError, message_template
+            from rostui.models.monitor.publish import PublishError, publish_class
 
             try:
-                cls, _template = message_template(spec.type_name)
+                cls = publish_class(spec.type_name)
             except PublishError as exc:
                 raise FormFileError(f"{path}: {exc}") from None
             apply_spec(MessageForm.of(cls), spec)

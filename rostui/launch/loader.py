@@ -29,6 +29,7 @@ from lxml import etree
 from rostui.core.names import (
     canonicalize_name, is_legal_name, is_private, join_names, make_global_ns,
 )
+from rostui.core.one_line import exception_line
 from rostui.launch.errors import ArgNotSetError, LaunchError
 from rostui.launch.model import LaunchConfig, LaunchProblem, Machine, NodeSpec, RosparamCommand
 from rostui.launch.substitution import SubstitutionContext, resolve
@@ -507,7 +508,7 @@ class XmlLoader:
             data = yaml.safe_load(text)
         except yaml.YAMLError as exc:
             where = f"file {file_} contains" if file_ else "<rosparam> holds"
-            raise LaunchError(f"{where} invalid YAML: {' '.join(str(exc).split())}") from None
+            raise LaunchError(f"{where} invalid YAML: {exception_line(exc, None)}") from None
         if data is None:
             data = {}
         if not param and not isinstance(data, dict):

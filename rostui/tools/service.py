@@ -12,6 +12,7 @@ import asyncio
 from typing import Any, Callable, Iterable, Sequence
 
 from rostui.core import names
+from rostui.core.one_line import exception_line
 
 __all__ = [
     "ServiceToolError",
@@ -134,8 +135,8 @@ def build_request(srv_class: Any, args: Sequence[str]) -> Any:
     try:
         return message_from_yaml_args(srv_class._request_class, list(args))
     except (MessageError, ValueError, TypeError, KeyError) as exc:
-        text = " ".join(str(exc).split())
-        raise ServiceToolError(f"ERROR: Incompatible arguments to call service: {text}") from None
+        raise ServiceToolError(
+            f"ERROR: Incompatible arguments to call service: {exception_line(exc, None)}") from None
 
 
 def build_request_from_value(srv_class: Any, value: Any) -> Any:
@@ -146,8 +147,8 @@ def build_request_from_value(srv_class: Any, value: Any) -> Any:
     try:
         return fill_message_args(srv_class._request_class(), [value])
     except (MessageError, ValueError, TypeError, KeyError) as exc:
-        text = " ".join(str(exc).split())
-        raise ServiceToolError(f"ERROR: Incompatible arguments to call service: {text}") from None
+        raise ServiceToolError(
+            f"ERROR: Incompatible arguments to call service: {exception_line(exc, None)}") from None
 
 
 def resolve_call_type(call: Call, service: str, wait: bool = False,

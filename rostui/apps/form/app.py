@@ -30,13 +30,14 @@ from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.apps.widgets.notice import Notice
 from rostui.core.masteruri import master_uri_from_env
 from rostui.core.msg import Message
+from rostui.core.one_line import exception_line
 from rostui.models.message_form.expression import ExpressionError, evaluate
 from rostui.models.message_form.form_file import (
     FormFileError, FormSpec, apply_spec, read_form, spec_of, write_form,
 )
 from rostui.models.message_form.rows import MessageForm
 from rostui.models.message_form.sender import SendFailed, ServiceCaller, TopicSender
-from rostui.models.monitor.publish import PublishError, Repeater, check_topic, message_template, parse_rate
+from rostui.models.monitor.publish import PublishError, Repeater, check_topic, parse_rate, publish_class
 
 from .panels import FieldTable, LineScreen, detail_text
 
@@ -175,7 +176,7 @@ class FormApp(ReleasesOnExit, KeysApp):
     def new_form(self, type_name: str) -> bool:
         """A fresh form of the message ``type_name`` (False, and why, for a type not known here)."""
         try:
-            cls, _template = message_template(type_name)
+            cls = publish_class(type_name)
         except PublishError as exc:
             self.status(str(exc), "error")
             return False
@@ -326,7 +327,7 @@ class FormApp(ReleasesOnExit, KeysApp):
         except (SendFailed, PublishError) as exc:
             self.status(str(exc), "error")
         except Exception as exc:  # a value the wire refuses (a float32 of 1e39): said, and the app goes on
-            self.status(f"not sent: {type(exc).__name__}: {' '.join(str(exc).split())[:200]}", "error")
+            self.status(f"not sent: {type(exc).__name__}: {exception_line(exc)}", "error")
 
     def _topic(self) -> str:
         topic = check_topic(self.name_input.value)

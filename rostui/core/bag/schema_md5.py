@@ -13,6 +13,7 @@ from __future__ import annotations
 from functools import lru_cache
 
 from rostui.core.msg import MessageError, definition_md5
+from rostui.core.one_line import exception_line
 
 __all__ = ["UNKNOWN_MD5", "ROS1_SCHEMA_ENCODING", "definition_md5", "schema_md5"]
 
@@ -38,4 +39,4 @@ def schema_md5(type_name: str, encoding: str, data: bytes) -> tuple[str, str]:
     try:
         return definition_md5(type_name, text), ""
     except MessageError as exc:
-        return UNKNOWN_MD5, " ".join(str(exc).split())
+        return UNKNOWN_MD5, exception_line(exc, None)

@@ -23,6 +23,7 @@ from typing import Callable, Mapping
 
 from rostui.core.msg import MessageError, UnknownMessageTypeError, connection_class, rostui_md5
 from rostui.core.msg.spec import shown
+from rostui.core.one_line import exception_line
 
 __all__ = ["HeaderCheck", "RefusalLog", "decodable", "of_type", "publisher_name"]
 
@@ -43,7 +44,7 @@ def decodable(header: Mapping[str, str]) -> str | None:
         connection_class(header.get("type", ""), header.get("md5sum", ""), header.get("message_definition", ""),
                          sender=sender)
     except MessageError as exc:
-        why = " ".join(str(exc).split())
+        why = exception_line(exc, None)
         return why if why.startswith(sender) else f"{sender}: {why}"
     return None
 

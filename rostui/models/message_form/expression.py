@@ -18,6 +18,8 @@ import operator
 import random
 from typing import Any, Callable, Mapping
 
+from rostui.core.one_line import exception_line
+
 __all__ = ["ExpressionError", "FUNCTIONS", "CONSTANTS", "MAX_DIGITS", "MAX_ITEMS", "MAX_INT_BITS", "MAX_TEXT",
            "evaluate", "check_syntax", "is_number_literal"]
 
@@ -89,7 +91,7 @@ def evaluate(text: str, variables: Mapping[str, Any] | None = None) -> Any:
     except RecursionError:
         raise ExpressionError("expression nested too deeply") from None
     except Exception as exc:  # whatever an operator or a function raises is the expression's mistake
-        raise ExpressionError(f"{type(exc).__name__}: {_one_line(str(exc))}") from None
+        raise ExpressionError(f"{type(exc).__name__}: {exception_line(exc)}") from None
 
 
 def check_syntax(text: str) -> None:
@@ -255,11 +257,6 @@ def _bounded(value: Any) -> Any:
     if isinstance(value, (str, list, dict)) and _size(value) > MAX_ITEMS:
         raise ExpressionError(f"a {type(value).__name__} of more than {MAX_ITEMS} items")
     return value
-
-
-def _one_line(text: str) -> str:
-    text = " ".join(text.split())
-    return text if len(text) <= 200 else text[:199] + "…"
 
 
 def _describe(node: ast.AST) -> str:

@@ -26,6 +26,7 @@ from pathlib import Path
 from typing import Any
 
 import yaml
+from rostui.core.one_line import exception_line
 
 from .expression import ExpressionError, check_syntax
 from .rows import MessageForm
@@ -218,7 +219,7 @@ def _value(node: yaml.Node, where: str) -> Any:
     try:
         return yaml.SafeLoader("").construct_object(node, deep=True)
     except (yaml.YAMLError, ValueError, TypeError, OverflowError, RecursionError) as exc:
-        raise FormFileError(f"{where}:{_line(node)}: not a value: {' '.join(str(exc).split())[:200]}") from None
+        raise FormFileError(f"{where}:{_line(node)}: not a value: {exception_line(exc)}") from None
 
 
 def _text(node: yaml.Node, where: str, what: str) -> str:

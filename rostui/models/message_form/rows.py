@@ -17,6 +17,7 @@ from typing import Any, Iterator
 from rostui.core.msg import Message, MessageError
 from rostui.core.msg.convert import fill_message, message_to_dict
 from rostui.core.msg.spec import HEADER_TYPE
+from rostui.core.one_line import exception_line
 from rostui.core.rostime import Duration, Time, TVal
 
 from .expression import ExpressionError, evaluate, is_number_literal
@@ -152,7 +153,7 @@ class MessageForm:
         try:
             return fill_message(self.cls, document, keys={"now": stamp})
         except (MessageError, ValueError, TypeError, OverflowError) as exc:
-            raise FormError(_one_line(str(exc))) from None
+            raise FormError(exception_line(exc, None)) from None
 
 
 def _rows(msg: Message, prefix: str, *, stamped: bool) -> Iterator[FieldRow]:
@@ -215,7 +216,3 @@ def _round_up(value: float) -> float:
 def _short(value: float) -> str:
     text = f"{value:.12g}"
     return text if any(c in text for c in ".en") else text + ".0"
-
-
-def _one_line(text: str) -> str:
-    return " ".join(text.split())

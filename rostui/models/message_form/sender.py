@@ -16,6 +16,7 @@ from rostui.core.master_errors import MasterUnreachableError
 from rostui.core.msg import Message, MessageError, get_service_class
 from rostui.core.node.node import AsyncNode, Publisher
 from rostui.core.node.services import ServiceException, probe_service
+from rostui.core.one_line import exception_line
 from rostui.core.rostime import Time
 from rostui.models.calling_node import CallingNode
 
@@ -61,7 +62,7 @@ class TopicSender:
         try:
             publisher.publish(msg)
         except Exception as exc:  # a value the wire format cannot hold (a float32 of 1e39, a stamp past 2106)
-            raise SendFailed(f"cannot send it: {' '.join(str(exc).split())[:200]}") from None
+            raise SendFailed(f"cannot send it: {exception_line(exc)}") from None
         if self.first_sent is None:
             self.first_sent = time.monotonic()
         self.sent += 1

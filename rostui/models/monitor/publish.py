@@ -13,23 +13,29 @@ import asyncio
 from dataclasses import dataclass
 from typing import Any, Awaitable, Callable
 
-__all__ = ["PublishError", "message_template", "message_from_text", "parse_rate", "check_topic", "Repeater"]
+__all__ = ["PublishError", "publish_class", "message_template", "message_from_text", "parse_rate", "check_topic", "Repeater"]
 
 
 class PublishError(Exception):
     """What is wrong with a publish request, in one line."""
 
 
-def message_template(type_name: str) -> tuple[Any, str]:
-    """``(class, YAML template)`` of ``type_name``; :class:`PublishError` for an unknown type."""
-    from rostui.core.msg.convert import default_yaml_template
+def publish_class(type_name: str) -> Any:
+    """The message class of ``type_name``; :class:`PublishError` for an unknown type."""
     from rostui.tools.topic.common import TopicToolError
     from rostui.tools.topic.pub_args import message_class
 
     try:
-        cls = message_class(type_name.strip())
+        return message_class(type_name.strip())
     except TopicToolError as exc:
         raise PublishError(str(exc)) from None
+
+
+def message_template(type_name: str) -> tuple[Any, str]:
+    """``(class, YAML template)`` of ``type_name``; :class:`PublishError` for an unknown type."""
+    from rostui.core.msg.convert import default_yaml_template
+
+    cls = publish_class(type_name)
     return cls, default_yaml_template(cls)
 
 

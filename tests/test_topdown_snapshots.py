@@ -3,6 +3,8 @@
 The scene (topdown_helpers.scene_app): an 8 m x 5 m room from an occupancy
 grid, a wall scanned 2.05 m ahead, a path to the robot, the robot's odometry
 arrow at 30 degrees and two poses of a pose array, all in frame "laser".
+The markers: one of every visualization_msgs/Marker type in its own colour over the room
+(topdown_helpers.every_marker_type).
 Regenerate with ``pytest tests/test_topdown_snapshots.py --snapshot-update``
 and look at the SVGs (as PNG) before committing them.
 """
@@ -13,7 +15,7 @@ import pytest
 from textual.pilot import Pilot
 from textual_snapshots import snapshot  # noqa: F401  (stores SVGs in snapshots/)
 
-from topdown_helpers import odometry, scene_app
+from topdown_helpers import ViewTestApp, every_marker_type, odometry, room, scene_app
 
 
 @pytest.fixture(autouse=True)
@@ -44,3 +46,16 @@ def test_scene_100x40_zoomed_out_with_a_missing_transform(snap_compare) -> None:
         await pilot.pause(0.2)
 
     assert snap_compare(scene_app(), run_before=run_before, terminal_size=(100, 40))
+
+
+def test_every_marker_type_80x24(snap_compare) -> None:
+    """Arrow, cube, sphere, cylinder / line strip, line list, cube list, sphere list / points (a red and a blue
+    one), text "hi", mesh (a box), triangle: each in its marker's colour, the legend counting 12 markers."""
+    app = ViewTestApp(["/map", "/markers"], frame="map", show_rates=False)
+
+    def feed() -> None:
+        app.view.show_topic_message("/map", room(frame="map"))
+        app.view.show_topic_message("/markers", every_marker_type())
+
+    app.call_after_refresh(feed)
+    assert snap_compare(app, run_before=settle, terminal_size=(80, 24))

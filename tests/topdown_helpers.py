@@ -21,6 +21,10 @@ PoseStamped = get_message_class("geometry_msgs/PoseStamped")
 PoseArray = get_message_class("geometry_msgs/PoseArray")
 Pose = get_message_class("geometry_msgs/Pose")
 OccupancyGrid = get_message_class("nav_msgs/OccupancyGrid")
+Marker = get_message_class("visualization_msgs/Marker")
+MarkerArray = get_message_class("visualization_msgs/MarkerArray")
+Point = get_message_class("geometry_msgs/Point")
+ColorRGBA = get_message_class("std_msgs/ColorRGBA")
 
 #: Where the live talker (tests/peers/topdown_talker.py) puts each topic: a point of its drawing, in "map".
 TALKER_SPOTS: dict[str, tuple[float, float]] = {
@@ -104,6 +108,44 @@ def occupancy() -> Any:
     grid.data = [0, 100, -1, 0,
                  0, 0, 0, 70]
     return grid
+
+
+def marker(kind: int, x: float = 0.0, y: float = 0.0, *, ident: int = 0, ns: str = "n", yaw: float = 0.0,
+           scale: tuple[float, float] = (1.0, 1.0), points: tuple[tuple[float, float], ...] = (),
+           rgb: tuple[float, float, float] = (1.0, 0.0, 0.0), alpha: float = 1.0, frame: str = "map",
+           **fields: Any) -> Any:
+    """A Marker added (action ADD) of ``kind`` at (``x``, ``y``) facing ``yaw``; other fields as given."""
+    m = Marker(ns=ns, id=ident, type=kind, action=Marker.ADD)
+    m.header.frame_id = frame
+    m.pose.position.x, m.pose.position.y = x, y
+    m.pose.orientation.z, m.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+    m.scale.x, m.scale.y, m.scale.z = scale[0], scale[1], 1.0
+    m.color = ColorRGBA(*rgb, alpha)
+    m.points = [Point(px, py, 0.0) for px, py in points]
+    for name, value in fields.items():
+        setattr(m, name, value)
+    return m
+
+
+def every_marker_type(frame: str = "map") -> Any:
+    """A MarkerArray with one marker of each type, laid out as tests/peers/rospy_markers.py lays them out."""
+    red, green, blue, yellow = (1.0, 0.2, 0.2), (0.2, 1.0, 0.2), (0.3, 0.5, 1.0), (1.0, 0.9, 0.1)
+    return MarkerArray(markers=[
+        marker(Marker.ARROW, -3, 2, ident=0, rgb=red, frame=frame),
+        marker(Marker.CUBE, -1, 2, ident=1, rgb=green, scale=(1.0, 0.6), frame=frame),
+        marker(Marker.SPHERE, 1, 2, ident=2, rgb=blue, frame=frame),
+        marker(Marker.CYLINDER, 3, 2, ident=3, rgb=yellow, frame=frame),
+        marker(Marker.LINE_STRIP, -3, 0, ident=4, rgb=red, points=((-0.5, 0), (0.5, 0)), frame=frame),
+        marker(Marker.LINE_LIST, -1, 0, ident=5, rgb=green, frame=frame,
+               points=((-0.5, -0.3), (0.5, -0.3), (-0.5, 0.3), (0.5, 0.3))),
+        marker(Marker.CUBE_LIST, 1, 0, ident=6, rgb=blue, points=((0, 0), (0.3, 0)), frame=frame),
+        marker(Marker.SPHERE_LIST, 3, 0, ident=7, rgb=yellow, points=((0, 0), (0, 0.3)), frame=frame),
+        marker(Marker.POINTS, -3, -2, ident=8, rgb=green, points=((0, 0), (0.3, 0.3)), frame=frame,
+               colors=[ColorRGBA(*red, 1.0), ColorRGBA(*blue, 1.0)]),
+        marker(Marker.TEXT_VIEW_FACING, -1, -2, ident=9, rgb=yellow, text="hi", frame=frame),
+        marker(Marker.MESH_RESOURCE, 1, -2, ident=10, rgb=blue, scale=(0.8, 0.8), frame=frame),
+        marker(Marker.TRIANGLE_LIST, 3, -2, ident=11, rgb=red, points=((0, 0), (0.6, 0), (0, 0.6)), frame=frame),
+    ])
 
 
 class ViewTestApp(App[None]):

@@ -60,6 +60,10 @@ class TopicFeed:
         self._arrived = 0.0
         self.dropped = 0
         """Messages replaced by a newer one before they were taken (never drawn)."""
+        self.keep_every = 0
+        """Above 0: up to this many messages wait to be taken, in order (markers: each adds or deletes some);
+        the oldest is dropped past it."""
+        self._queue: deque[tuple[AnyMsg, float]] = deque()
 
     @property
     def subscribed(self) -> bool:
@@ -86,19 +90,28 @@ class TopicFeed:
                 pass
 
     def _on_message(self, raw: Any) -> None:
-        if self._newest is not None:
-            self.dropped += 1
-        self._newest = raw
         self._arrived = self.clock()
         self.received.add(self._arrived)
+        if self.keep_every > 0:
+            if len(self._queue) >= self.keep_every:
+                self._queue.popleft()
+                self.dropped += 1
+            self._queue.append((raw, self._arrived))
+        else:
+            if self._newest is not None:
+                self.dropped += 1
+            self._newest = raw
         self.on_arrival()
 
     @property
     def waiting(self) -> bool:
         """True when a message came that was not taken yet."""
-        return self._newest is not None
+        return self._newest is not None or bool(self._queue)
 
     def take(self) -> tuple[Any, float] | None:
-        """The newest message not taken yet and its arrival time (wall seconds), or None."""
+        """The newest message not taken yet and its arrival time (wall seconds), or None (with
+        :attr:`keep_every`: the oldest waiting)."""
+        if self._queue:
+            return self._queue.popleft()
         raw, self._newest = self._newest, None
         return (raw, self._arrived) if raw is not None else None

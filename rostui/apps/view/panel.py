@@ -48,6 +48,7 @@ from rostui.core.node import AsyncNode
 from rostui.core.node.header_check import RefusalLog, of_type
 from rostui.models.frame_budget import FrameBudget, SharedCost
 from rostui.models.master_link import MASTER_ERRORS
+from rostui.models.sensors.markers2d import MARKER_TYPES
 
 __all__ = ["ViewPanel", "ViewGrid", "NodeOf", "TypeOf", "decode_for_view"]
 
@@ -58,6 +59,12 @@ TypeOf = Callable[[str], "str | None"]
 
 #: Seconds between checks of each panel's type and subscription.
 CHECK_EVERY = 0.5
+
+#: Types whose every message changes the picture (markers add and delete some): none is skipped for a newer one.
+EVERY_MESSAGE_TYPES = frozenset(MARKER_TYPES)
+
+#: Most such messages waiting for the screen; the oldest is dropped past it.
+KEEP_EVERY = 512
 
 
 def decode_for_view(raw: Any) -> Any:
@@ -127,6 +134,7 @@ class ViewPanel(Vertical):
                 self.say(self.problem, problem=True)
                 return
             self.feed.check = RefusalLog(of_type(msg_type), self._refused)
+            self.feed.keep_every = KEEP_EVERY if msg_type in EVERY_MESSAGE_TYPES else 0
             host = self._shared_host(cls)
             if host is not None:
                 host.add_topic(self.topic)  # type: ignore[attr-defined]
@@ -186,6 +194,9 @@ class ViewPanel(Vertical):
         gets it done on a worker thread, so a heavy frame does not hold the other panels' frames back; the
         next frame is taken once it is drawn.
         """
+        if self.feed.keep_every and self.view is not None:
+            self._deliver_every()
+            return
         taken = self.feed.take()
         if taken is None or self.view is None:
             self._delivery_pending = False
@@ -200,6 +211,15 @@ class ViewPanel(Vertical):
                     self._show(msg, received)
                 return
         self.run_worker(self._deliver_off_loop(job, received), group="panel-deliver", exit_on_error=False)
+
+    def _deliver_every(self) -> None:
+        """Hand the view every waiting message, in the order they came (their CPU charged to this panel)."""
+        self._delivery_pending = False
+        with self.budget.spending():
+            while (taken := self.feed.take()) is not None:
+                msg = self._decode(taken[0])
+                if msg is not None:
+                    self._show(msg, taken[1])
 
     async def _deliver_off_loop(self, job: Callable[[], Any], received: float) -> None:
         """Run ``job`` on a worker thread (its CPU charged to this panel), then draw what it made on the loop."""

@@ -115,8 +115,11 @@ class TopDownView(TopicView, can_focus=True):
         self._strips: list[Strip] = []
         self._rows: list[str] = []
         self._owners: list[list[int]] = []
+        self._layer_rgbs: list[RGB] = []
         self._keys: list[tuple[str, tuple[int, ...]]] = []
         self.frames = 0
+        self.one_message = False
+        """True in the bag inspector: each message is shown alone (see :meth:`for_bag`)."""
         self.show_rates = show_rates
         self.received_rate = Rate()
         self.drawn_rate = Rate()
@@ -126,13 +129,21 @@ class TopDownView(TopicView, can_focus=True):
         """Draw ``topic`` too, in the next colour."""
         self.scene.add(topic)
 
+    @classmethod
+    def for_bag(cls, topic: str, *, classes: str | None = None) -> TopDownView:
+        """The view of one recorded message at a time: a marker message shows its own markers only, not those
+        the messages stepped through before it added."""
+        view = cls(topic, classes=classes)
+        view.one_message = True
+        return view
+
     def show_message(self, msg: Any, received: float = 0.0) -> None:
         """``msg`` is the newest message of this view's first topic."""
         self.show_topic_message(self.topic, msg, received)
 
     def show_topic_message(self, topic: str, msg: Any, received: float = 0.0) -> None:
         """``msg`` is the newest message of ``topic`` (the one before it is dropped)."""
-        self.scene.offer(topic, msg, received)
+        self.scene.offer(topic, msg, received, alone=self.one_message)
         self.received_rate.add(time.time())
 
     # -- what tests and tools read -----------------------------------------------------
@@ -157,7 +168,17 @@ class TopDownView(TopicView, can_focus=True):
         layer = self._owners[row][col]
         if layer < 0:
             return None
-        return "" if layer == 0 else self.scene.topics[layer - 1]
+        topics = self.scene.topics
+        if layer > len(topics):
+            return self.scene.layer_colors[layer - 1 - len(topics)][0]
+        return "" if layer == 0 else topics[layer - 1]
+
+    def cell_color(self, col: int, row: int) -> RGB | None:
+        """The colour canvas cell (``col``, ``row``) was drawn in (None when empty)."""
+        if not (0 <= row < len(self._owners) and 0 <= col < len(self._owners[row])):
+            return None
+        layer = self._owners[row][col]
+        return None if layer < 0 else self._layer_rgbs[layer]
 
     def topic_color(self, topic: str) -> RGB:
         """The colour ``topic`` is drawn in (its palette colour, made readable on the background)."""
@@ -193,12 +214,15 @@ class TopDownView(TopicView, can_focus=True):
             drawing = self.scene.drawing(topic)
             if drawing is not None and drawing.frame:
                 frames.add(drawing.frame.lstrip("/"))
+            store = self.scene.markers(topic)
+            frames.update(shape.frame.lstrip("/") for _, shape, _ in (store.held() if store is not None else ()))
+        frames.discard("")
         if not frames:
             return
         ordered = sorted(frames)
         current = self.scene.fixed_frame
-        self.scene.fixed_frame = ordered[(ordered.index(current) + 1) % len(ordered)] if current in ordered \
-            else ordered[0]
+        self.scene.set_fixed_frame(ordered[(ordered.index(current) + 1) % len(ordered)] if current in ordered
+                                   else ordered[0])
         self.draw_frame()
 
     def action_fit(self) -> None:
@@ -272,6 +296,7 @@ class TopDownView(TopicView, can_focus=True):
             # view): the starting zoom for the new size.  Moved by the user: the same centre and scale.
             at_home = self._view == self._home(self._view.cols, self._view.rows)
             self._view = self._home(cols, rows) if at_home else self._view.resized(cols, rows)
+        self.scene.expire(time.time())
         state = (self.scene.generation, self._tf_changes, self.scene.fixed_frame, self._view, width, height)
         if state == self._drawn and self._strips:
             self._update_status(self._view, width, height)
@@ -303,17 +328,24 @@ class TopDownView(TopicView, can_focus=True):
 
     def _draw(self, view: Viewport, width: int, height: int) -> None:
         base = self.rich_style
-        styles = [base + Style(color=f"rgb{GRID_COLOR}")]
-        styles += [base + Style(color="rgb({},{},{})".format(*self.topic_color(t))) for t in self.scene.topics]
+        canvas = self.scene.render(view) if view.rows > 0 and view.cols > 0 else None
+        shown = shown_in(color_system(self.app.console.color_system if self.is_mounted else None))
+        self._layer_rgbs = [GRID_COLOR] + [self.topic_color(t) for t in self.scene.topics]
+        self._layer_rgbs += [keep_hue(rgb, [self._background()], shown) for _, rgb in self.scene.layer_colors]
+        styles = [base + Style(color="rgb({},{},{})".format(*rgb)) for rgb in self._layer_rgbs]
         texts: list[str] = []
         strips: list[Strip] = []
         legend = self._legend(styles, base)
         texts.append("".join(s.text for s in legend))
         strips.append(Strip(legend).crop_extend(0, width, base))
-        if view.rows > 0 and view.cols > 0:
-            bits, top = self.scene.render(view).compose()
-            self._owners = top.tolist()
+        if canvas is not None:
+            bits, top = canvas.compose()
             chars = GLYPHS[bits]
+            for label in self.scene.labels:
+                end = min(label.col + len(label.text), view.cols)
+                chars[label.row, label.col:end] = list(label.text[:end - label.col])
+                top[label.row, label.col:end] = label.layer
+            self._owners = top.tolist()
             for r in range(view.rows):
                 line = "".join(chars[r])
                 texts.append(line)

@@ -15,21 +15,31 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
+import time
+
 import numpy as np
 
 from rostui.core.msg import foreign_version
 from rostui.models.sensors.canvas2d import BrailleCanvas, Viewport, nice_step
 from rostui.models.sensors.cloud2d import CloudError, cloud_points
 from rostui.models.sensors.grid2d import Grid2D, GridError, grid_of
+from rostui.models.sensors.markers2d import MARKER_TYPES, MarkerStore, Rgb
 from rostui.models.sensors.pose2d import Planar, Points, Pose2D
 from rostui.models.sensors.poses2d import odometry_pose, path_points, pose_array_poses, stamped_pose
 from rostui.models.sensors.scan2d import scan_points
 
-__all__ = ["TOPDOWN_TYPES", "Drawing", "Lookup", "Scene2D", "drawing_of", "same_frame_only", "GRID_SPACING_DOTS"]
+__all__ = ["TOPDOWN_TYPES", "Drawing", "Label", "Lookup", "Scene2D", "drawing_of", "same_frame_only",
+           "GRID_SPACING_DOTS", "MAX_COLOR_LAYERS"]
 
 #: Message types the top-down view draws.
 TOPDOWN_TYPES = ("sensor_msgs/LaserScan", "nav_msgs/Odometry", "nav_msgs/Path", "geometry_msgs/PoseStamped",
-                 "geometry_msgs/PoseArray", "nav_msgs/OccupancyGrid", "sensor_msgs/PointCloud2")
+                 "geometry_msgs/PoseArray", "nav_msgs/OccupancyGrid", "sensor_msgs/PointCloud2") + MARKER_TYPES
+
+#: Most colours markers are drawn in at once (each is a layer); markers of further colours take their topic's.
+MAX_COLOR_LAYERS = 24
+
+#: Marker colours are grouped to this many levels per channel (a layer each).
+COLOR_LEVELS = 8
 
 #: The grid's lines are at least this many dots apart (8 cells across).
 GRID_SPACING_DOTS = 16
@@ -79,11 +89,28 @@ def drawing_of(msg: Any) -> Drawing:
     raise ValueError(f"the top-down view does not draw {kind}")
 
 
+@dataclass(frozen=True)
+class Label:
+    """Text drawn over the canvas from cell (``col``, ``row``) in ``layer``'s colour."""
+
+    col: int
+    row: int
+    text: str
+    layer: int
+
+
+def _grouped(rgb: Rgb) -> Rgb:
+    """``rgb`` moved to the middle of its group (:data:`COLOR_LEVELS` per channel)."""
+    size = 256 // COLOR_LEVELS
+    return tuple(min(255, (c // size) * size + size // 2) for c in rgb)  # type: ignore[return-value]
+
+
 class _Topic:
-    __slots__ = ("name", "msg", "drawing", "drawn_from", "error", "received", "count")
+    __slots__ = ("name", "msg", "drawing", "drawn_from", "error", "received", "count", "markers")
 
     def __init__(self, name: str) -> None:
         self.name = name
+        self.markers: MarkerStore | None = None
         self.msg: Any = None
         self.drawing: Drawing | None = None
         self.drawn_from: Any = None
@@ -104,6 +131,10 @@ class Scene2D:
         self.lookup = lookup
         self._topics: dict[str, _Topic] = {}
         self.generation = 0
+        self.layer_colors: list[tuple[str, Rgb]] = []
+        """After :meth:`render`: the topic and colour of each layer past the topics' own (markers' colours)."""
+        self.labels: list[Label] = []
+        """After :meth:`render`: the text markers, placed on the canvas."""
         for name in topics:
             self.add(name)
 
@@ -116,18 +147,52 @@ class Scene2D:
         """Draw ``topic`` too (a no-op when it is drawn already)."""
         self._topics.setdefault(topic, _Topic(topic))
 
-    def offer(self, topic: str, msg: Any, received: float = 0.0) -> None:
+    def offer(self, topic: str, msg: Any, received: float = 0.0, alone: bool = False) -> None:
         """``msg`` is ``topic``'s newest message (the one before it is dropped, drawn or not); its geometry is
-        made now, so the cost of reading it falls on whoever offers it (a panel, within its own budget)."""
+        made now, so the cost of reading it falls on whoever offers it (a panel, within its own budget).
+
+        A marker message adds to and deletes from the markers the topic holds, unless ``alone`` (a recorded
+        message stepped to): then it shows only its own."""
         self.add(topic)
         entry = self._topics[topic]
         entry.msg, entry.received = msg, received
         entry.count += 1
+        if getattr(msg, "_type", "") in MARKER_TYPES:
+            if entry.markers is None or alone:
+                entry.markers = MarkerStore()
+            entry.markers.offer(msg, received or time.time(), lifetimes=not alone)
+            header = msg.markers[0].header if getattr(msg, "markers", None) else getattr(msg, "header", None)
+        else:
+            header = getattr(msg, "header", None)
         if self.fixed_frame is None:
-            frame = str(getattr(getattr(msg, "header", None), "frame_id", "")).lstrip("/")
+            frame = str(getattr(header, "frame_id", "")).lstrip("/")
             self.fixed_frame = frame or None
         self.generation += 1
-        self.drawing(topic)
+        if entry.markers is None:
+            self.drawing(topic)
+
+    def markers(self, topic: str) -> MarkerStore | None:
+        """The markers ``topic`` holds (None for a topic of another type)."""
+        entry = self._topics.get(topic)
+        return entry.markers if entry is not None else None
+
+    def expire(self, now: float) -> bool:
+        """Drop markers whose lifetime ended by ``now``; True when the picture changed."""
+        changed = False
+        for entry in self._topics.values():
+            if entry.markers is not None and entry.markers.expire(now):
+                changed = True
+        if changed:
+            self.generation += 1
+        return changed
+
+    def set_fixed_frame(self, frame: str | None) -> None:
+        """Draw in ``frame`` from now on (markers that are not frame-locked are placed again)."""
+        self.fixed_frame = frame.lstrip("/") if frame else None
+        for entry in self._topics.values():
+            if entry.markers is not None:
+                entry.markers.forget_placements()
+        self.generation += 1
 
     def received(self, topic: str) -> int:
         """How many messages ``topic`` has offered so far."""
@@ -135,8 +200,11 @@ class Scene2D:
         return entry.count if entry else 0
 
     def drawing(self, topic: str) -> Drawing | None:
-        """``topic``'s newest message as geometry in its own frame (None before one came or when unreadable)."""
+        """``topic``'s newest message as geometry in its own frame (None before one came, when unreadable, and
+        for markers: see :meth:`markers`)."""
         entry = self._topics[topic]
+        if entry.markers is not None:
+            return None
         if entry.msg is not None and entry.drawn_from is not entry.msg:
             entry.drawn_from = entry.msg
             try:
@@ -148,6 +216,8 @@ class Scene2D:
     def note(self, topic: str) -> str:
         """Why ``topic`` is not drawn ("no message yet", "no transform from X to Y", ...), or "" when it is."""
         entry = self._topics[topic]
+        if entry.markers is not None:
+            return self._marker_note(entry.markers)
         drawing = self.drawing(topic)
         if entry.msg is None:
             return "no message yet"
@@ -156,6 +226,33 @@ class Scene2D:
         if self.transform(drawing) is None:
             return f"no transform from {drawing.frame or '(no frame)'} to {self.fixed_frame}"
         return ""
+
+    def _marker_note(self, store: MarkerStore) -> str:
+        parts = [f"{len(store)} marker{'s' if len(store) != 1 else ''}"]
+        unplaced = sorted({shape.frame for key, shape, _ in store.held() if self._frame_where(shape.frame) is None})
+        if unplaced:
+            parts.append(f"no transform from {', '.join(unplaced[:3])} to {self.fixed_frame}")
+        if store.refused:
+            parts.append(f"{store.refused} not drawn: {store.problem}")
+        return "; ".join(parts)
+
+    def _frame_where(self, frame: str) -> Planar | None:
+        if self.fixed_frame is None:
+            return None
+        frame = frame.lstrip("/")
+        where = Pose2D() if frame == self.fixed_frame else self.lookup(self.fixed_frame, frame)
+        return None if where is None else Planar.of(where)
+
+    def _marker_where(self, store: MarkerStore, key: tuple[str, int], frame: str, locked: bool) -> Planar | None:
+        """Where a marker lies: frame-locked ones follow tf at every frame; others stay where they were first put."""
+        if not locked:
+            placed = store.placement(key)
+            if placed is not None:
+                return placed
+        where = self._frame_where(frame)
+        if not locked and where is not None:
+            store.place(key, where)
+        return where
 
     def transform(self, drawing: Drawing) -> Planar | None:
         """How ``drawing``'s frame lies in the fixed frame's plane, or None when there is no transform."""
@@ -168,7 +265,13 @@ class Scene2D:
     def world_points(self) -> Points:
         """Every point, polyline vertex, pose and grid corner in the fixed frame (for fitting the view)."""
         parts = []
-        for topic in self._topics:
+        for topic, entry in self._topics.items():
+            if entry.markers is not None:
+                for key, shape, locked in entry.markers.held():
+                    where = self._marker_where(entry.markers, key, shape.frame, locked)
+                    if where is not None:
+                        parts.append(where.apply(shape.points()))
+                continue
             drawing = self.drawing(topic)
             where = self.transform(drawing) if drawing is not None else None
             if drawing is None or where is None:
@@ -186,10 +289,17 @@ class Scene2D:
         return nice_step(GRID_SPACING_DOTS * view.scale)
 
     def render(self, view: Viewport) -> BrailleCanvas:
-        """Layer 0: the grid; layer i + 1: the i-th topic, in the fixed frame."""
-        canvas = BrailleCanvas(view, 1 + len(self._topics))
+        """Layer 0: the grid; layer i + 1: the i-th topic, in the fixed frame; past those, one layer per colour
+        markers are drawn in (:attr:`layer_colors`); text markers in :attr:`labels`."""
+        colors = self._marker_colors()
+        canvas = BrailleCanvas(view, 1 + len(self._topics) + len(colors))
+        self.layer_colors = list(colors)
+        self.labels = []
         self._draw_grid(canvas, view)
-        for layer, topic in enumerate(self._topics, start=1):
+        for layer, (topic, entry) in enumerate(self._topics.items(), start=1):
+            if entry.markers is not None:
+                self._draw_markers(canvas, view, layer, topic, entry.markers, colors)
+                continue
             drawing = self.drawing(topic)
             where = self.transform(drawing) if drawing is not None else None
             if drawing is None or where is None:
@@ -201,6 +311,48 @@ class Scene2D:
             for pose in drawing.poses:
                 canvas.arrow(layer, where.pose(pose))
         return canvas
+
+    def _marker_colors(self) -> dict[tuple[str, Rgb], int]:
+        """A layer (counted past the topics') for each grouped colour markers use, at most
+        :data:`MAX_COLOR_LAYERS`."""
+        layers: dict[tuple[str, Rgb], int] = {}
+        first = 1 + len(self._topics)
+        for topic, entry in self._topics.items():
+            if entry.markers is None:
+                continue
+            for _, shape, _ in entry.markers.held():
+                for rgb in (*shape.segment_colors, *shape.dot_colors, *((shape.label_color,) if shape.label else ())):
+                    key = (topic, _grouped(rgb))
+                    if key not in layers and len(layers) < MAX_COLOR_LAYERS:
+                        layers[key] = first + len(layers)
+        return layers
+
+    def _draw_markers(self, canvas: BrailleCanvas, view: Viewport, own: int, topic: str, store: MarkerStore,
+                      colors: dict[tuple[str, Rgb], int]) -> None:
+        """Each marker in the layer of its colour (or its topic's), where tf puts its frame."""
+        def layer_of(rgb: Rgb) -> int:
+            return colors.get((topic, _grouped(rgb)), own)
+
+        for key, shape, locked in store.held():
+            where = self._marker_where(store, key, shape.frame, locked)
+            if where is None:
+                continue
+            if len(shape.starts):
+                starts, ends = where.apply(shape.starts), where.apply(shape.ends)
+                layers = np.array([layer_of(c) for c in shape.segment_colors])
+                for layer in np.unique(layers):
+                    mine = layers == layer
+                    canvas.segments(int(layer), starts[mine], ends[mine])
+            if len(shape.dots):
+                dots = where.apply(shape.dots)
+                layers = np.array([layer_of(c) for c in shape.dot_colors])
+                for layer in np.unique(layers):
+                    canvas.points(int(layer), dots[layers == layer])
+            if shape.label:
+                cell = view.cell_of(*where.apply(np.array([shape.label_at]))[0])
+                if cell is not None:
+                    col = max(0, min(cell[0] - len(shape.label) // 2, view.cols - len(shape.label)))
+                    self.labels.append(Label(col, cell[1], shape.label[:view.cols], layer_of(shape.label_color)))
 
     def _draw_grid(self, canvas: BrailleCanvas, view: Viewport) -> None:
         """Dotted lines every :meth:`grid_step` metres, through the fixed frame's origin."""

@@ -1,0 +1,168 @@
+"""The marker model of the top-down view (rostui.models.sensors.markers2d and Scene2D's marker topics): each
+marker type's ground-plane shape, ADD/MODIFY/DELETE/DELETEALL by namespace and id, lifetime, frame_locked, a
+colour per point, alpha 0, and bounds against a flood of markers or hostile text."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pytest
+
+from rostui.core.rostime import Duration
+from rostui.models.sensors.canvas2d import Viewport
+from rostui.models.sensors.markers2d import MarkerStore, marker_shape
+from rostui.models.sensors.pose2d import Pose2D
+from rostui.models.sensors.scene2d import Scene2D
+from topdown_helpers import ColorRGBA, Marker, MarkerArray, marker
+
+def close(a: Any, b: Any) -> bool:
+    return bool(np.allclose(np.asarray(a, dtype=float), np.asarray(b, dtype=float), atol=1e-9))
+
+
+def test_an_arrow_runs_scale_x_along_its_heading_or_between_its_two_points() -> None:
+    shape = marker_shape(marker(Marker.ARROW, 1.0, 2.0, yaw=math.pi / 2, scale=(2.0, 0.1)))
+    assert close(shape.starts[0], [1.0, 2.0]) and close(shape.ends[0], [1.0, 4.0])
+    assert len(shape.starts) == 3  # the shaft and two barbs, from the tip
+    shape = marker_shape(marker(Marker.ARROW, 1.0, 0.0, points=((0, 0), (0, 3))))
+    assert close(shape.starts[0], [1.0, 0.0]) and close(shape.ends[0], [1.0, 3.0])
+
+
+@pytest.mark.parametrize("kind", [Marker.CUBE, Marker.MESH_RESOURCE])
+def test_a_cube_or_mesh_is_the_outline_of_its_scale_turned_by_its_pose(kind: int) -> None:
+    shape = marker_shape(marker(kind, 5.0, 0.0, yaw=math.pi / 2, scale=(2.0, 1.0)))
+    corners = {tuple(np.round(p, 9)) for p in shape.starts}
+    assert corners == {(5.5, -1.0), (5.5, 1.0), (4.5, 1.0), (4.5, -1.0)}
+    assert close(shape.ends, np.roll(shape.starts, -1, axis=0))
+
+
+@pytest.mark.parametrize("kind", [Marker.SPHERE, Marker.CYLINDER])
+def test_a_sphere_or_cylinder_is_an_ellipse_of_its_diameters(kind: int) -> None:
+    shape = marker_shape(marker(kind, 1.0, 1.0, scale=(2.0, 1.0)))
+    rel = shape.starts - [1.0, 1.0]
+    assert close((rel[:, 0] / 1.0) ** 2 + (rel[:, 1] / 0.5) ** 2, np.ones(len(rel)))
+
+
+def test_lines_and_triangles() -> None:
+    strip = marker_shape(marker(Marker.LINE_STRIP, 1.0, 0.0, points=((0, 0), (1, 0), (1, 1))))
+    assert close(strip.starts, [[1, 0], [2, 0]]) and close(strip.ends, [[2, 0], [2, 1]])
+    pairs = marker_shape(marker(Marker.LINE_LIST, points=((0, 0), (1, 0), (0, 1), (1, 1), (9, 9))))
+    assert close(pairs.starts, [[0, 0], [0, 1]]) and close(pairs.ends, [[1, 0], [1, 1]])  # an odd point is left
+    tri = marker_shape(marker(Marker.TRIANGLE_LIST, points=((0, 0), (1, 0), (0, 1))))
+    assert close(tri.starts, [[0, 0], [1, 0], [0, 1]]) and close(tri.ends, [[1, 0], [0, 1], [0, 0]])
+
+
+@pytest.mark.parametrize("kind", [Marker.POINTS, Marker.CUBE_LIST, Marker.SPHERE_LIST])
+def test_point_lists_are_a_dot_each_with_a_colour_per_point_when_given(kind: int) -> None:
+    m = marker(kind, 1.0, 1.0, points=((0, 0), (1, 0)))
+    assert close(marker_shape(m).dots, [[1, 1], [2, 1]])
+    assert marker_shape(m).dot_colors == [(255, 0, 0), (255, 0, 0)]
+    m.colors = [ColorRGBA(0, 0, 1, 1), ColorRGBA(0, 1, 0, 1)]
+    assert marker_shape(m).dot_colors == [(0, 0, 255), (0, 255, 0)]
+
+
+def test_text_is_one_line_of_single_cells_at_its_position() -> None:
+    shape = marker_shape(marker(Marker.TEXT_VIEW_FACING, 2.0, 3.0, text="goal\n\x1b[31mA\u0301 \u6771" + "x" * 100))
+    assert shape.label_at == (2.0, 3.0)
+    assert "\n" not in shape.label and "\x1b" not in shape.label and "\u0301" not in shape.label
+    assert shape.label.startswith("goal [31mA ?") and len(shape.label) == 60 and shape.label.endswith("…")
+
+
+def test_an_unknown_type_is_refused_in_one_line() -> None:
+    store = MarkerStore()
+    store.offer(marker(42), 0.0)
+    assert len(store) == 0 and store.refused == 1 and store.problem == "marker type 42 is not one rviz draws"
+
+
+def test_add_modify_delete_and_deleteall_by_namespace_and_id() -> None:
+    store = MarkerStore()
+    store.offer(MarkerArray(markers=[marker(Marker.CUBE, ident=1), marker(Marker.CUBE, ident=2),
+                                     marker(Marker.CUBE, ident=1, ns="other")]), 0.0)
+    assert sorted(key for key, _, _ in store.held()) == [("n", 1), ("n", 2), ("other", 1)]
+    store.offer(marker(Marker.SPHERE, 7.0, ident=1), 0.0)  # ADD of a held key replaces it
+    assert len(store) == 3 and close(dict((k, s) for k, s, _ in store.held())[("n", 1)].starts[:, 0].max(), 7.5)
+    gone = marker(Marker.CUBE, ident=2)
+    gone.action = Marker.DELETE
+    store.offer(gone, 0.0)
+    assert sorted(key for key, _, _ in store.held()) == [("n", 1), ("other", 1)]
+    everything = Marker(action=Marker.DELETEALL)
+    store.offer(MarkerArray(markers=[everything, marker(Marker.CUBE, ident=9)]), 0.0)  # in order: cleared, then 9
+    assert [key for key, _, _ in store.held()] == [("n", 9)]
+    odd = marker(Marker.CUBE, ident=3)
+    odd.action = 7
+    store.offer(odd, 0.0)
+    assert store.refused == 1 and "action 7" in store.problem
+
+
+def test_lifetime_counts_from_arrival_and_zero_is_forever() -> None:
+    store = MarkerStore()
+    store.offer(MarkerArray(markers=[marker(Marker.CUBE, ident=1, lifetime=Duration(1, 500_000_000)),
+                                     marker(Marker.CUBE, ident=2)]), 10.0)
+    assert store.next_expiry() == 11.5
+    assert not store.expire(11.4) and len(store) == 2
+    assert store.expire(11.5) and [key for key, _, _ in store.held()] == [("n", 2)] and store.expired == 1
+    assert store.next_expiry() is None and not store.expire(1e9)
+
+
+def test_alpha_zero_is_not_drawn_and_removes_what_it_replaces() -> None:
+    store = MarkerStore()
+    store.offer(marker(Marker.CUBE), 0.0)
+    store.offer(marker(Marker.CUBE, alpha=0.0), 0.0)
+    assert len(store) == 0 and store.refused == 0
+
+
+def test_a_flood_of_markers_is_bounded_and_said() -> None:
+    store = MarkerStore(most=100)
+    store.offer(MarkerArray(markers=[marker(Marker.CUBE, ident=i) for i in range(150)]), 0.0)
+    assert len(store) == 100 and store.refused == 50 and store.problem == "more than 100 markers"
+    scene = Scene2D(["/m"])
+    scene.offer("/m", MarkerArray(markers=[marker(Marker.CUBE, ident=1, frame="")]), 0.0)
+    assert scene.note("/m") == "0 markers; 1 not drawn: marker n/1 has no frame_id"
+
+
+def test_a_point_list_of_a_million_points_is_strided() -> None:
+    shape = marker_shape(marker(Marker.POINTS, points=tuple((i * 1e-3, 0.0) for i in range(300_000))), most=1000)
+    assert len(shape.dots) <= 1000
+
+
+def moving_lookup(state: dict[str, Pose2D]) -> Any:
+    def lookup(target: str, source: str) -> Pose2D | None:
+        return state.get(source) if target == "map" else None
+    return lookup
+
+
+def test_frame_locked_markers_follow_tf_and_others_stay_where_they_were_put() -> None:
+    state = {"base": Pose2D(1.0, 0.0, 0.0)}
+    scene = Scene2D(["/m"], "map", moving_lookup(state))
+    scene.offer("/m", MarkerArray(markers=[marker(Marker.TEXT_VIEW_FACING, frame="base", ident=1, text="A"),
+                                           marker(Marker.TEXT_VIEW_FACING, frame="base", ident=2, text="B",
+                                                  frame_locked=True)]), 0.0)
+    view = Viewport(40, 10, 0.0, 0.0, 0.1)
+
+    def label_cols() -> dict[str, int]:
+        scene.render(view)
+        return {label.text: label.col for label in scene.labels}
+
+    first = label_cols()
+    assert first["A"] == first["B"]
+    state["base"] = Pose2D(2.0, 0.0, 0.0)  # the robot drove 1 m: 5 cells at 0.1 m a dot, 2 dots a cell
+    after = label_cols()
+    assert after["A"] == first["A"] and after["B"] == first["B"] + 5
+    scene.set_fixed_frame("map")  # a new fixed frame places every marker again
+    assert label_cols()["A"] == after["B"]
+
+
+def test_markers_without_a_transform_are_named_in_the_note() -> None:
+    scene = Scene2D(["/m"], "map", moving_lookup({}))
+    scene.offer("/m", marker(Marker.CUBE, frame="camera"), 0.0)
+    assert scene.note("/m") == "1 marker; no transform from camera to map"
+
+
+def test_colours_are_layers_of_their_own_bounded() -> None:
+    scene = Scene2D(["/scan", "/m"], "map")
+    scene.offer("/m", MarkerArray(markers=[marker(Marker.CUBE, ident=i, rgb=(i / 40, 1 - i / 40, 0.5))
+                                           for i in range(40)]), 0.0)
+    canvas = scene.render(Viewport(40, 10, 0.0, 0.0, 0.1))
+    assert 1 < len(scene.layer_colors) <= 24 and len(canvas.bits) == 3 + len(scene.layer_colors)
+    assert {topic for topic, _ in scene.layer_colors} == {"/m"}

@@ -20,6 +20,7 @@ from textual.widgets import Static
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.view.panel import NodeOf, TypeOf, ViewGrid
 from rostui.models.sensors.source import ViewSource
+from rostui.models.sensors.tools2d import ToolTopics
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
@@ -43,13 +44,16 @@ class ViewApp(ReleasesOnExit, KeysApp):
     BINDINGS: ClassVar[list[BindingType]] = [Binding("q", "quit", "quit")]
 
     def __init__(self, topics: Sequence[str], *, master_uri: str | None = None, period: float = 1.0,
-                 frame: str | None = None) -> None:
+                 frame: str | None = None, tool_topics: ToolTopics | None = None) -> None:
         super().__init__()
         self.master_uri = master_uri_from_env(master_uri)
         self.source = ViewSource(self.master_uri, period=period, on_state=self._on_state)
         self.topics = list(dict.fromkeys(topics))
+        options: dict[str, object] = {"frame": frame} if frame else {}
+        if tool_topics is not None:
+            options["tool_topics"] = tool_topics
         self.grid = ViewGrid(self.topics, lambda: self.source.node, self.source.type_of, id="views",
-                             view_options={"frame": frame} if frame else None)
+                             view_options=options or None)
 
     def compose(self) -> ComposeResult:
         """The master line, the panels, the keys."""
@@ -107,13 +111,14 @@ class ViewScreen(Screen[None]):
         await self.grid.stop()
 
 
-def run_app(topics: Sequence[str], *, period: float = 1.0, frame: str | None = None) -> int:
+def run_app(topics: Sequence[str], *, period: float = 1.0, frame: str | None = None,
+            tool_topics: ToolTopics | None = None) -> int:
     """Run :class:`ViewApp` in this terminal; returns the exit status (1 without a TTY)."""
     if terminal_missing("rostui view", "use `rostui topic echo` without one"):
         return 1
     from rostui.apps.view.image_view import detect_graphics
 
     detect_graphics()  # the terminal is asked what it draws before Textual owns stdin
-    app = ViewApp(topics, period=period, frame=frame)
+    app = ViewApp(topics, period=period, frame=frame, tool_topics=tool_topics)
     app.run()
     return app.return_code or 0

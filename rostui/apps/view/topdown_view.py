@@ -20,6 +20,7 @@ fixed frame through every frame tf and the messages name.
 
 from __future__ import annotations
 
+import math
 import time
 from typing import Any, ClassVar
 
@@ -36,7 +37,10 @@ from rostui.apps.widgets.terminal_colors import color_system, shown_in, style_rg
 from rostui.models.contrast import RGB, keep_hue
 from rostui.models.sensors.canvas2d import BRAILLE_BASE, Viewport
 from rostui.models.sensors.scene2d import Lookup, Scene2D, same_frame_only
+from rostui.models.sensors.pose2d import Pose2D
 from rostui.models.sensors.tf_lookup import buffer_lookup
+from rostui.models.sensors.tools2d import (Tool, ToolSender, ToolTopics, goal_message, initial_pose_message,
+                                           twist_message)
 from rostui.tools.tf.buffer import TfBuffer
 from rostui.models.tf.source import TfSource
 
@@ -58,6 +62,15 @@ GLYPHS = np.array([" "] + [chr(BRAILLE_BASE + bits) for bits in range(1, 256)])
 #: Each + or - zooms by this factor.
 ZOOM_STEP = 1.5
 
+#: Seconds the status line says what was sent.
+SENT_SHOWN = 5.0
+
+#: Each a or d turns the cursor by this much (radians).
+TURN_STEP = math.radians(15)
+
+#: Arrow keys in teleop: (forward, turn) in units of the teleop speeds.
+DRIVE = {"up": (1.0, 0.0), "down": (-1.0, 0.0), "left": (0.0, 1.0), "right": (0.0, -1.0)}
+
 
 class TopDownView(TopicView, can_focus=True):
     """A top-down picture of ``topics`` in ``frame`` (None: the first message's frame).
@@ -73,7 +86,7 @@ class TopDownView(TopicView, can_focus=True):
     #: Every top-down topic of a `rostui view` joins the first one's view (see :meth:`add_topic`).
     SHARED: ClassVar[bool] = True
     #: Keyword options `rostui view` passes through (``--frame``).
-    OPTIONS: ClassVar[tuple[str, ...]] = ("frame",)
+    OPTIONS: ClassVar[tuple[str, ...]] = ("frame", "tool_topics")
 
     DEFAULT_CSS = """
     TopDownView {
@@ -93,13 +106,22 @@ class TopDownView(TopicView, can_focus=True):
         Binding("0", "origin", "frame origin"),
         Binding("c", "fit", "fit all"),
         Binding("f", "next_frame", "fixed frame"),
+        Binding("g", "tool('goal')", "2D nav goal"),
+        Binding("p", "tool('pose')", "2D pose estimate"),
+        Binding("t", "tool('teleop')", "teleop"),
+        Binding("a", "turn(1)", "turn left", show=False),
+        Binding("d", "turn(-1)", "turn right", show=False),
+        Binding("space", "stop", "stop", show=False),
+        Binding("enter", "confirm", "send", show=False),
+        Binding("escape", "cancel", "leave the mode", show=False),
     ]
 
     FRAME_RATE = 20.0
 
     def __init__(self, topic: str | None = None, *, topics: tuple[str, ...] | list[str] = (),
                  frame: str | None = None, lookup: Lookup | None = None, master_uri: str | None = None,
-                 show_rates: bool = True, id: str | None = None, classes: str | None = None) -> None:
+                 show_rates: bool = True, tool_topics: ToolTopics | None = None, id: str | None = None,
+                 classes: str | None = None) -> None:
         names = ([topic] if topic else []) + [t for t in topics if t != topic]
         super().__init__(names[0] if names else "", id=id, classes=classes)
         self.tf_buffer: TfBuffer | None = None
@@ -111,13 +133,22 @@ class TopDownView(TopicView, can_focus=True):
             lookup = buffer_lookup(self.tf_buffer)
         self.scene = Scene2D(names, frame, lookup)
         self._view: Viewport | None = None
-        self._drawn: tuple[int, int, str | None, Viewport | None, int, int] = (-1, -1, None, None, 0, 0)
+        self._drawn: tuple[int, int, str | None, Viewport | None, int, int, int] = (-1, -1, None, None, 0, 0, 0)
         self._strips: list[Strip] = []
         self._rows: list[str] = []
         self._owners: list[list[int]] = []
         self._layer_rgbs: list[RGB] = []
         self._keys: list[tuple[str, tuple[int, ...]]] = []
         self.frames = 0
+        self.tool: Tool | None = None
+        """The cursor's mode (None: the arrows pan)."""
+        self.tool_topics = tool_topics or ToolTopics()
+        self.sender: ToolSender | None = None
+        self.last_sent = ""
+        """What the last send did, in one line (shown on the status line)."""
+        self._tool_changes = 0
+        self._sent_at = 0.0
+        self._press: tuple[float, float] | None = None
         self.one_message = False
         """True in the bag inspector: each message is shown alone (see :meth:`for_bag`)."""
         self.show_rates = show_rates
@@ -195,7 +226,16 @@ class TopDownView(TopicView, can_focus=True):
             self.draw_frame()
 
     def action_pan(self, right: int, up: int) -> None:
-        """Move the view an eighth of the canvas."""
+        """Move the view an eighth of the canvas; with a goal or pose cursor, move the cursor a cell; in teleop,
+        drive."""
+        if self.tool is Tool.TELEOP:
+            self._drive(*DRIVE[{(0, 1): "up", (0, -1): "down", (-1, 0): "left", (1, 0): "right"}[(right, up)]])
+            return
+        if self.tool is not None and self._view is not None and self.scene.cursor is not None:
+            cursor = self.scene.cursor
+            self._set_cursor(Pose2D(cursor.x + right * 2 * self._view.scale, cursor.y + up * 4 * self._view.scale,
+                                    cursor.yaw))
+            return
         if self._view is not None:
             step_x, step_y = max(1, self._view.cols // 8), max(1, self._view.rows // 8)
             self._view = self._view.panned(right * step_x, up * step_y)
@@ -224,6 +264,152 @@ class TopDownView(TopicView, can_focus=True):
         self.scene.set_fixed_frame(ordered[(ordered.index(current) + 1) % len(ordered)] if current in ordered
                                    else ordered[0])
         self.draw_frame()
+
+    # -- the tools: goal, pose estimate, teleop -------------------------------------------
+    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        """The mode's keys (Enter, Escape, a, d, space) only work in a mode; elsewhere they pass on."""
+        if action in ("confirm", "cancel", "turn", "stop"):
+            return self.tool is not None
+        if action == "tool":
+            return not self.one_message  # a recorded message in bag view: nothing to send from
+        return True
+
+    def action_tool(self, name: str) -> None:
+        """g, p, t: place a goal or a pose estimate with the cursor, or drive; the same key again leaves."""
+        tool = {"goal": Tool.GOAL, "pose": Tool.POSE, "teleop": Tool.TELEOP}[name]
+        if self.tool is tool:
+            self.action_cancel()
+            return
+        if self.tool is Tool.TELEOP:
+            self._drive(0.0, 0.0)
+        self.tool = tool
+        self.run_worker(self._advertise(tool), group="topdown-send", exit_on_error=False)
+        if tool is Tool.TELEOP:
+            self.scene.cursor = None
+        elif self.scene.cursor is None and self._view is not None:
+            self.scene.cursor = Pose2D(*self._view.cell_centre(self._view.cols // 2, self._view.rows // 2), 0.0)
+        self._tool_changed()
+
+    def action_turn(self, direction: int) -> None:
+        """a, d: turn the cursor's heading 15 degrees left or right (in teleop: turn the robot)."""
+        if self.tool is Tool.TELEOP:
+            self._drive(0.0, float(direction))
+        elif self.scene.cursor is not None:
+            c = self.scene.cursor
+            yaw = math.atan2(math.sin(c.yaw + direction * TURN_STEP), math.cos(c.yaw + direction * TURN_STEP))
+            self._set_cursor(Pose2D(c.x, c.y, yaw))
+
+    def action_stop(self) -> None:
+        """space in teleop: stop the robot."""
+        if self.tool is Tool.TELEOP:
+            self._drive(0.0, 0.0)
+
+    def action_confirm(self) -> None:
+        """Enter: send the goal or the pose estimate at the cursor, in the fixed frame."""
+        cursor, frame = self.scene.cursor, self.scene.fixed_frame
+        if self.tool not in (Tool.GOAL, Tool.POSE) or cursor is None:
+            return
+        if not frame:
+            self._say_sent("no fixed frame yet: nothing sent")
+            return
+        from rostui.core.rostime import Time
+
+        make = goal_message if self.tool is Tool.GOAL else initial_pose_message
+        tool = self.tool
+        msg = make(frame, cursor, Time.now())
+        what = (f"{tool.value} x {cursor.x:.2f} y {cursor.y:.2f} θ {math.degrees(cursor.yaw):.0f}° "
+                f"({frame})")
+        self.run_worker(self._send(tool, msg, what), group="topdown-send", exit_on_error=False)
+        self.tool = None
+        self.scene.cursor = None
+        self._tool_changed()
+
+    def action_cancel(self) -> None:
+        """Escape: leave the mode without sending (teleop sends a stop first)."""
+        if self.tool is Tool.TELEOP:
+            self._drive(0.0, 0.0)
+        self.tool = None
+        self.scene.cursor = None
+        self._tool_changed()
+
+    def on_mouse_down(self, event: Any) -> None:
+        """With a goal or pose cursor: a click puts it there (a drag then gives its heading)."""
+        place = self._world_at(event.x, event.y)
+        if self.tool in (Tool.GOAL, Tool.POSE) and place is not None:
+            self._set_cursor(Pose2D(place[0], place[1], self.scene.cursor.yaw if self.scene.cursor else 0.0))
+            self._press = place
+
+    def on_mouse_up(self, event: Any) -> None:
+        """The end of a drag: the cursor faces from where the button went down to here."""
+        start, self._press = self._press, None
+        place = self._world_at(event.x, event.y)
+        if self.tool in (Tool.GOAL, Tool.POSE) and start is not None and place is not None and place != start:
+            self._set_cursor(Pose2D(start[0], start[1], math.atan2(place[1] - start[1], place[0] - start[0])))
+
+    def _world_at(self, x: int, y: int) -> tuple[float, float] | None:
+        view = self._view
+        row = y - self.canvas_top
+        if view is None or not (0 <= x < view.cols and 0 <= row < view.rows):
+            return None
+        return view.cell_centre(x, row)
+
+    def _set_cursor(self, cursor: Pose2D) -> None:
+        self.scene.cursor = cursor
+        self._tool_changed()
+
+    def _tool_changed(self) -> None:
+        self._tool_changes += 1
+        self.draw_frame()
+
+    def _say_sent(self, text: str) -> None:
+        self.last_sent, self._sent_at = text, time.monotonic()
+        self._tool_changed()
+
+    def _drive(self, forward: float, turn: float) -> None:
+        self.run_worker(self._send(Tool.TELEOP, twist_message(forward, turn),
+                                   f"linear {forward * 0.5:+.1f} m/s angular {turn * 1.0:+.1f} rad/s"),
+                        group="topdown-send", exit_on_error=False)
+
+    def _listeners(self, tool: Tool) -> str:
+        count = self.sender.connections(tool) if self.sender is not None else 0
+        return f"{count} subscriber{'' if count == 1 else 's'}"
+
+    def _tool_sender(self) -> ToolSender | None:
+        node = self._node()
+        if node is None:
+            self._say_sent("not sent: no node here (the tools send from `rostui view`)")
+            return None
+        if self.sender is None or self.sender.node is not node:
+            self.sender = ToolSender(node, self.tool_topics)
+        return self.sender
+
+    async def _advertise(self, tool: Tool) -> None:
+        sender = self._tool_sender()
+        try:
+            if sender is not None:
+                await sender.advertise(tool)
+        except Exception as exc:  # the master or the node went away: said on the status line
+            self._say_sent(f"cannot advertise {self.tool_topics.of(tool)}: {exc}")
+
+    async def _send(self, tool: Tool, msg: Any, what: str) -> None:
+        sender = self._tool_sender()
+        if sender is None:
+            return
+        try:
+            topic = await sender.send(tool, msg)
+        except Exception as exc:  # the master or the node went away: said on the status line
+            self._say_sent(f"not sent: {exc}")
+            return
+        self._say_sent(f"sent {what} on {topic}")
+
+    def _node(self) -> Any:
+        """The node of the `rostui view` panel holding this view (None elsewhere)."""
+        from rostui.apps.view.panel import ViewPanel
+
+        for node in self.ancestors:
+            if isinstance(node, ViewPanel):
+                return node.feed.node
+        return None
 
     def action_fit(self) -> None:
         """Centre and zoom so that everything drawn shows."""
@@ -258,10 +444,13 @@ class TopDownView(TopicView, can_focus=True):
         self._tf_changes += 1
 
     async def on_unmount(self) -> None:
-        """Stop listening to tf."""
+        """Stop listening to tf; unadvertise what the tools advertised."""
         source, self.tf_source = self.tf_source, None
         if source is not None:
             await source.stop()
+        sender, self.sender = self.sender, None
+        if sender is not None:
+            await sender.close()
 
     def on_resize(self) -> None:
         """Keep centre and scale over the new size, and redraw at once."""
@@ -297,11 +486,12 @@ class TopDownView(TopicView, can_focus=True):
             at_home = self._view == self._home(self._view.cols, self._view.rows)
             self._view = self._home(cols, rows) if at_home else self._view.resized(cols, rows)
         self.scene.expire(time.time())
-        state = (self.scene.generation, self._tf_changes, self.scene.fixed_frame, self._view, width, height)
+        state = (self.scene.generation, self._tf_changes, self.scene.fixed_frame, self._view, width, height,
+                 self._tool_changes)
         if state == self._drawn and self._strips:
             self._update_status(self._view, width, height)
             return False
-        resized = (width, height) != self._drawn[4:]
+        resized = (width, height) != self._drawn[4:6]
         self._drawn = state
         self.drawn_rate.add(time.time())
         old = self._keys
@@ -383,6 +573,17 @@ class TopDownView(TopicView, can_focus=True):
         return segments
 
     def _status(self, view: Viewport) -> str:
+        if self.tool is Tool.TELEOP:
+            return (f"TELEOP → {self.tool_topics.cmd_vel} ({self._listeners(Tool.TELEOP)})  ↑↓ drive ←→ turn  "
+                    f"space stop  Esc leaves  {self.last_sent}")
+        if self.tool is not None and self.scene.cursor is not None:
+            c = self.scene.cursor
+            topic = self.tool_topics.of(self.tool)
+            return (f"{'GOAL' if self.tool is Tool.GOAL else 'POSE'} → {topic} ({self._listeners(self.tool)})  "
+                    f"x {c.x:.2f} y {c.y:.2f} θ {math.degrees(c.yaw):.0f}°  arrows/click move  a d turn  "
+                    f"Enter sends  Esc cancels")
+        if self.last_sent and time.monotonic() - self._sent_at < SENT_SHOWN:
+            return self.last_sent
         step = self.scene.grid_step(view)
         cells = max(2, round(step / (2 * view.scale)))
         metres = f"{step:g} m" if step >= 1 else f"{step * 100:g} cm"

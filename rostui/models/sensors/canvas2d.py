@@ -70,6 +70,12 @@ class Viewport:
         xs, ys = np.meshgrid(cols, rows)
         return np.column_stack((xs.ravel(), ys.ravel()))
 
+    def cell_centre(self, col: int, row: int) -> tuple[float, float]:
+        """The world point at the centre of cell (``col``, ``row``)."""
+        x = (2 * col + 1 - self.dots_wide / 2) * self.scale + self.cx
+        y = (self.dots_high / 2 - 4 * row - 2) * self.scale + self.cy
+        return float(x), float(y)
+
     def zoomed(self, factor: float) -> "Viewport":
         """The same centre, ``factor`` times closer (2: things look twice as big)."""
         return replace(self, scale=self.scale / factor)

@@ -41,6 +41,13 @@ MAX_COLOR_LAYERS = 24
 #: Marker colours are grouped to this many levels per channel (a layer each).
 COLOR_LEVELS = 8
 
+#: The name :attr:`Scene2D.layer_colors` gives the cursor's layer, and its colour.
+CURSOR = "(cursor)"
+CURSOR_COLOR: Rgb = (255, 255, 255)
+
+#: The cursor's arrow, in dots.
+CURSOR_LENGTH = 12.0
+
 #: The grid's lines are at least this many dots apart (8 cells across).
 GRID_SPACING_DOTS = 16
 
@@ -135,6 +142,8 @@ class Scene2D:
         """After :meth:`render`: the topic and colour of each layer past the topics' own (markers' colours)."""
         self.labels: list[Label] = []
         """After :meth:`render`: the text markers, placed on the canvas."""
+        self.cursor: Pose2D | None = None
+        """A pose in the fixed frame drawn over everything (the view's goal and pose-estimate cursor)."""
         for name in topics:
             self.add(name)
 
@@ -292,9 +301,12 @@ class Scene2D:
         """Layer 0: the grid; layer i + 1: the i-th topic, in the fixed frame; past those, one layer per colour
         markers are drawn in (:attr:`layer_colors`); text markers in :attr:`labels`."""
         colors = self._marker_colors()
-        canvas = BrailleCanvas(view, 1 + len(self._topics) + len(colors))
+        canvas = BrailleCanvas(view, 1 + len(self._topics) + len(colors) + (self.cursor is not None))
         self.layer_colors = list(colors)
         self.labels = []
+        if self.cursor is not None:
+            self.layer_colors.append((CURSOR, CURSOR_COLOR))
+            self._draw_cursor(canvas, view, len(canvas.bits) - 1, self.cursor)
         self._draw_grid(canvas, view)
         for layer, (topic, entry) in enumerate(self._topics.items(), start=1):
             if entry.markers is not None:
@@ -311,6 +323,14 @@ class Scene2D:
             for pose in drawing.poses:
                 canvas.arrow(layer, where.pose(pose))
         return canvas
+
+    @staticmethod
+    def _draw_cursor(canvas: BrailleCanvas, view: Viewport, layer: int, cursor: Pose2D) -> None:
+        """An arrow from the cursor's place along its heading, and a small cross on the place."""
+        canvas.arrow(layer, cursor, CURSOR_LENGTH)
+        centre = view.to_dots(np.array([[cursor.x, cursor.y]]))[0]
+        offsets = np.array([[-2.0, 0.0], [2.0, 0.0], [0.0, -2.0], [0.0, 2.0]])
+        canvas.segments(layer, centre + offsets[[0, 2]], centre + offsets[[1, 3]], in_dots=True)
 
     def _marker_colors(self) -> dict[tuple[str, Rgb], int]:
         """A layer (counted past the topics') for each grouped colour markers use, at most

@@ -12,14 +12,16 @@ the master.
 
 from __future__ import annotations
 
+import math
 import sys
 import xmlrpc.client
 
-from conftest import SYSTEM_PYTHON, until
+from conftest import REPO, SYSTEM_PYTHON, until
 from interop_helpers import PEERS, Spawn, spawn  # noqa: F401  (fixture)
-from rostui.apps.view.app import ViewApp
+from rostui.apps.view.app import ViewApp, app_of
 from rostui.apps.view.panel import ViewPanel
 from rostui.apps.view.topdown_view import TopDownView
+from rostui.models.sensors.view_file import spec_from_rviz
 from topdown_helpers import TALKER_SPOTS, sync
 
 TOPICS = list(TALKER_SPOTS)
@@ -71,3 +73,30 @@ async def test_rostui_client_publishers_on_real_roscore(ros_env: dict[str, str],
     talker = spawn([sys.executable, str(PEERS / "topdown_talker.py"), "rostui"], label="rostui topdown talker")
     talker.wait_for("ready")
     await check_drawn(ros_env)
+
+
+@sync
+async def test_turtlebot3_navigation_rviz_opens_with_its_displays(ros_env: dict[str, str], rostui_core: object,
+                                                                spawn: Spawn, rospy_available: None) -> None:
+    """turtlebot3_navigation.rviz (tests/rviz_corpus): its /scan, /map and footprint Polygon displays, published
+    by Debian's rospy, drawn in place in its fixed frame, in one top-down view; its other displays wait."""
+    talker = spawn([SYSTEM_PYTHON, str(PEERS / "topdown_talker.py"), "rospy"], label="rospy topdown talker")
+    talker.wait_for("ready")
+    spec, _ = spec_from_rviz(REPO / "tests" / "rviz_corpus" / "turtlebot3-turtlebot3_navigation.rviz")
+    app = app_of(spec, period=0.3)
+    drawn = ("/scan", "/map", "/move_base/local_costmap/footprint")
+    async with app.run_test(size=(120, 40)) as pilot:
+        await until(lambda: len(app.query(TopDownView)) == 1, "the top-down view mounted")
+        view = app.query_one(TopDownView)
+
+        def owner(topic: str) -> str | None:
+            vp = view.viewport
+            cell = vp.cell_of(*TALKER_SPOTS[topic]) if vp is not None else None
+            return view.cell_topic(*cell) if cell is not None else None
+
+        await until(lambda: all(owner(t) == t for t in drawn),
+                    lambda: f"the rviz file's displays drawn: {[(t, owner(t)) for t in drawn]} {view.row_text(0)!r}")
+        assert view.scene.fixed_frame == "map" and view.tool_topics.goal == "/move_base_simple/goal"
+        assert math.isclose(view.span, 12.79)  # rviz's window width over its TopDownOrtho scale
+        await pilot.press("q")
+    assert app.return_code == 0

@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 import shlex
 import sys
+from pathlib import Path
 from typing import Iterator
 
 import pytest
@@ -61,3 +62,30 @@ def test_goal_and_teleop_with_keys_in_tmux(pane: Pane, ros_env: dict[str, str], 
                     == [(0.0, 0.0)], "the stop on Escape")
     pane.keys("q")
     pane.wait_until(lambda: f"{EXIT_MARK}0" in pane.screen(), "the shell to report exit status 0 after q")
+
+
+def test_a_view_saved_on_quit_opens_again_as_it_was(pane: Pane, ros_env: dict[str, str], rostui_core: object,
+                                                    spawn: Spawn, rospy_available: None, tmp_path: Path) -> None:
+    """`--save FILE`: zoomed in and panned, then q: the file says where; `rostui view FILE` opens that picture."""
+    talker = spawn([SYSTEM_PYTHON, str(PEERS / "topdown_talker.py"), "rospy"], label="rospy topdown talker")
+    talker.wait_for("ready")
+    saved = tmp_path / "nav.yaml"
+    values = {key: ros_env[key] for key in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")}
+    command = (f"env -u COLUMNS -u LINES {' '.join(f'{k}={shlex.quote(v)}' for k, v in values.items())} "
+               f"{shlex.quote(sys.executable)} -m rostui view")
+    pane.type(f"{command} /map /scan --frame map --save {shlex.quote(str(saved))}; echo {EXIT_MARK}$?")
+    pane.wait_until(lambda: pane.shows("■ /map", "■ /scan", "frame map   centre 0.00, 0.00"), "the view")
+    pane.keys("+", "Left")
+    pane.wait_until(lambda: "frame map   centre -" in pane.screen(), "the view zoomed and panned")
+    status = next(line for line in pane.screen().splitlines() if "frame map   centre" in line)
+    picture = status.split("   ")[0] + "   " + "   ".join(status.split("   ")[1:3])  # scale bar, frame, centre
+    pane.keys("q")
+    pane.wait_until(lambda: f"{EXIT_MARK}0" in pane.screen(), "exit status 0 after q")
+    assert f"rostui view: saved the view to {saved}" in pane.screen().replace("\n", "")
+    text = saved.read_text()
+    assert "topics: [/map, /scan]" in text and "frame: map" in text and "span:" in text
+    pane.clear()
+    pane.type(f"{command} {shlex.quote(str(saved))}; echo {EXIT_MARK}$?")
+    pane.wait_until(lambda: pane.shows("■ /map", "■ /scan", picture), f"the saved picture again: {picture!r}")
+    pane.keys("q")
+    pane.wait_until(lambda: f"{EXIT_MARK}0" in pane.screen(), "exit status 0 after q")

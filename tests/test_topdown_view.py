@@ -190,3 +190,41 @@ async def test_f_steps_the_fixed_frame_through_the_frames_named() -> None:
         assert "frame odom" in view.row_text(23) and {c for c, _ in scan_cells(view)} == {vp_col(view, 2.05)}
         await pilot.press("f")
         assert "frame laser" in view.row_text(23)
+
+
+@sync
+async def test_the_footprint_is_drawn_at_the_robot_and_o_follows_it() -> None:
+    """A 0.6 m square footprint on base_link, which tf puts at (2, 1) in map: its right edge (x = 2.3) is drawn
+    there; o centres the view on the robot and keeps it there as tf moves it; panning by hand stops following."""
+    from textual.app import App, ComposeResult
+
+    from rostui.models.sensors.footprint import footprint_outline
+
+    robot = {"base_link": Pose2D(2.0, 1.0, 0.0)}
+
+    class FootprintApp(App[None]):
+        def compose(self) -> ComposeResult:
+            yield TopDownView(topics=["/map"], frame="map", lookup=lambda target, source: robot.get(source),
+                              footprint=footprint_outline("[[0.3, 0.3], [0.3, -0.3], [-0.3, -0.3], [-0.3, 0.3]]"),
+                              show_rates=False)
+
+    app = FootprintApp()
+    async with app.run_test(size=(80, 24)) as pilot:
+        view = app.query_one(TopDownView)
+        view.focus()
+        await pilot.pause(0.1)
+        vp = view.viewport
+        assert vp is not None
+        cell = vp.cell_of(2.3, 1.0)
+        assert cell is not None and view.cell_topic(*cell) == "(footprint)"
+        assert view.row_text(0).startswith("■ /map (no message yet)  ■ (footprint)")
+        await pilot.press("o")
+        await pilot.pause(0.1)
+        assert (view.viewport.cx, view.viewport.cy) == (2.0, 1.0)  # type: ignore[union-attr]
+        assert "following base_link" in view.row_text(23)
+        robot["base_link"] = Pose2D(-1.0, 0.5, 0.0)
+        view._tf_changed()
+        await pilot.pause(0.15)
+        assert (view.viewport.cx, view.viewport.cy) == (-1.0, 0.5)  # type: ignore[union-attr]
+        await pilot.press("right")
+        assert not view.follow and "centre" in view.row_text(23)

@@ -30,6 +30,7 @@ ColorRGBA = get_message_class("std_msgs/ColorRGBA")
 TALKER_SPOTS: dict[str, tuple[float, float]] = {
     "/scan": (2.05, 0.55), "/odom": (-1.75, 1.05), "/pose": (-2.35, -1.05), "/poses": (0.55, 2.05),
     "/path": (-2.05, -2.05), "/map": (3.55, -2.3), "/cloud": (0.53, 0.05), "/scan_laser": (1.3, 1.05),
+    "/move_base/local_costmap/footprint": (-2.7, 0.0),
 }
 
 

@@ -13,6 +13,8 @@ Prints "ready" once every topic is advertised.  What is where (metres, frame "ma
           x y z after a 4-byte rgb field, 4 bytes of padding), plus one NaN point
   /scan_laser  LaserScan in frame "laser", beams -30..+30 degrees, a wall 1.05 m ahead
   /tf_static   map -> laser: (1, 0, 0), yaw 90 degrees (latched), so that wall lies along y = 1.05 in "map"
+  /move_base/local_costmap/footprint  PolygonStamped: a 0.6 m square centred on (-3, 0) (the name turtlebot3's
+          navigation.rviz gives its Polygon display)
 """
 
 import importlib
@@ -84,8 +86,11 @@ def main(flavour: str) -> int:
     mount.transform.rotation.z, mount.transform.rotation.w = math.sin(math.pi / 4), math.cos(math.pi / 4)
     static = ros.Publisher("/tf_static", TFMessage, queue_size=1, latch=True)
     static.publish(TFMessage(transforms=[mount]))
+    PolygonStamped, Point32 = message("geometry_msgs/PolygonStamped"), message("geometry_msgs/Point32")
+    footprint = PolygonStamped()
+    footprint.polygon.points = [Point32(x, y, 0.0) for x, y in ((-2.7, 0.3), (-2.7, -0.3), (-3.3, -0.3), (-3.3, 0.3))]
     messages = {"/scan": scan, "/odom": odom, "/pose": pose, "/poses": poses, "/path": path, "/map": grid,
-                "/cloud": cloud}
+                "/cloud": cloud, "/move_base/local_costmap/footprint": footprint}
     publishers = {}
     for topic, msg in messages.items():
         msg.header.frame_id = "map"

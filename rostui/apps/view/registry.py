@@ -69,8 +69,8 @@ VIEWS: tuple[tuple[tuple[str, ...], str], ...] = (
     (("sensor_msgs/Image", "sensor_msgs/CompressedImage"), "rostui.apps.view.image_view:ImageView"),
     (("tf2_msgs/TFMessage",), "rostui.apps.view.tf_tree_view:TfTreeView"),
     (("sensor_msgs/LaserScan", "nav_msgs/Odometry", "nav_msgs/Path", "geometry_msgs/PoseStamped",
-      "geometry_msgs/PoseArray", "nav_msgs/OccupancyGrid", "sensor_msgs/PointCloud2", "visualization_msgs/Marker",
-      "visualization_msgs/MarkerArray"),
+      "geometry_msgs/PoseArray", "nav_msgs/OccupancyGrid", "sensor_msgs/PointCloud2", "geometry_msgs/PolygonStamped",
+      "visualization_msgs/Marker", "visualization_msgs/MarkerArray"),
      "rostui.apps.view.topdown_view:TopDownView"),
 )
 

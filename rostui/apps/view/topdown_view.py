@@ -36,7 +36,8 @@ from rostui.apps.view.registry import TopicView
 from rostui.apps.widgets.terminal_colors import color_system, shown_in, style_rgb
 from rostui.models.contrast import RGB, keep_hue
 from rostui.models.sensors.canvas2d import BRAILLE_BASE, Viewport
-from rostui.models.sensors.scene2d import Lookup, Scene2D, same_frame_only
+from rostui.models.sensors.pose2d import Points
+from rostui.models.sensors.scene2d import Drawing, Lookup, Scene2D, same_frame_only
 from rostui.models.sensors.pose2d import Pose2D
 from rostui.models.sensors.tf_lookup import buffer_lookup
 from rostui.models.sensors.tools2d import (Tool, ToolSender, ToolTopics, goal_message, initial_pose_message,
@@ -62,6 +63,9 @@ GLYPHS = np.array([" "] + [chr(BRAILLE_BASE + bits) for bits in range(1, 256)])
 #: Each + or - zooms by this factor.
 ZOOM_STEP = 1.5
 
+#: The layer of the robot's footprint (given with --footprint), named as the legend shows it.
+FOOTPRINT = "(footprint)"
+
 #: Seconds the status line says what was sent.
 SENT_SHOWN = 5.0
 
@@ -86,7 +90,8 @@ class TopDownView(TopicView, can_focus=True):
     #: Every top-down topic of a `rostui view` joins the first one's view (see :meth:`add_topic`).
     SHARED: ClassVar[bool] = True
     #: Keyword options `rostui view` passes through (``--frame``).
-    OPTIONS: ClassVar[tuple[str, ...]] = ("frame", "tool_topics")
+    OPTIONS: ClassVar[tuple[str, ...]] = ("frame", "tool_topics", "footprint", "robot_frame", "follow", "span",
+                                          "centre")
 
     DEFAULT_CSS = """
     TopDownView {
@@ -109,6 +114,7 @@ class TopDownView(TopicView, can_focus=True):
         Binding("g", "tool('goal')", "2D nav goal"),
         Binding("p", "tool('pose')", "2D pose estimate"),
         Binding("t", "tool('teleop')", "teleop"),
+        Binding("o", "follow", "follow the robot"),
         Binding("a", "turn(1)", "turn left", show=False),
         Binding("d", "turn(-1)", "turn right", show=False),
         Binding("space", "stop", "stop", show=False),
@@ -120,8 +126,9 @@ class TopDownView(TopicView, can_focus=True):
 
     def __init__(self, topic: str | None = None, *, topics: tuple[str, ...] | list[str] = (),
                  frame: str | None = None, lookup: Lookup | None = None, master_uri: str | None = None,
-                 show_rates: bool = True, tool_topics: ToolTopics | None = None, id: str | None = None,
-                 classes: str | None = None) -> None:
+                 show_rates: bool = True, tool_topics: ToolTopics | None = None, footprint: Points | None = None,
+                 robot_frame: str = "base_link", follow: bool = False, span: float | None = None,
+                 centre: tuple[float, float] | None = None, id: str | None = None, classes: str | None = None) -> None:
         names = ([topic] if topic else []) + [t for t in topics if t != topic]
         super().__init__(names[0] if names else "", id=id, classes=classes)
         self.tf_buffer: TfBuffer | None = None
@@ -132,6 +139,15 @@ class TopDownView(TopicView, can_focus=True):
             self.tf_buffer = TfBuffer()
             lookup = buffer_lookup(self.tf_buffer)
         self.scene = Scene2D(names, frame, lookup)
+        self.robot_frame = robot_frame.lstrip("/") or "base_link"
+        """The robot's frame: where its footprint is drawn and what follow mode (``o``) keeps centred."""
+        if footprint is not None:
+            self.scene.set_drawing(FOOTPRINT, Drawing(self.robot_frame, polyline=footprint))
+        self.follow = follow
+        self.span = span if span is not None and span > 0 else DEFAULT_SPAN
+        """Metres across the canvas at the starting zoom (``0`` comes back to it)."""
+        self.centre = centre or (0.0, 0.0)
+        """Where the view starts centred (``0`` comes back to it)."""
         self._view: Viewport | None = None
         self._drawn: tuple[int, int, str | None, Viewport | None, int, int, int] = (-1, -1, None, None, 0, 0, 0)
         self._strips: list[Strip] = []
@@ -237,6 +253,7 @@ class TopDownView(TopicView, can_focus=True):
                                     cursor.yaw))
             return
         if self._view is not None:
+            self.follow = False  # panning by hand ends following the robot
             step_x, step_y = max(1, self._view.cols // 8), max(1, self._view.rows // 8)
             self._view = self._view.panned(right * step_x, up * step_y)
             self.draw_frame()
@@ -466,7 +483,24 @@ class TopDownView(TopicView, can_focus=True):
 
     # -- drawing -------------------------------------------------------------------------
     def _home(self, cols: int, rows: int) -> Viewport:
-        return Viewport(cols, rows, 0.0, 0.0, DEFAULT_SPAN / max(1, 2 * cols))
+        return Viewport(cols, rows, self.centre[0], self.centre[1], self.span / max(1, 2 * cols))
+
+    def action_follow(self) -> None:
+        """o: keep the robot's frame in the middle of the view (again: stop)."""
+        self.follow = not self.follow
+        self._tool_changed()
+
+    def _followed(self, view: Viewport) -> Viewport:
+        """``view`` centred on the robot's frame when following it (unchanged when tf has no transform yet)."""
+        if not self.follow or self.scene.fixed_frame is None:
+            return view
+        where = self.scene.transform(Drawing(self.robot_frame))
+        if where is None:
+            return view
+        x, y = (float(v) for v in where.offset)
+        if (x, y) == (view.cx, view.cy):
+            return view
+        return Viewport(view.cols, view.rows, x, y, view.scale)
 
     def _background(self) -> RGB:
         rgb = style_rgb(self.rich_style.bgcolor, foreground=False) if self.is_mounted else None
@@ -486,6 +520,7 @@ class TopDownView(TopicView, can_focus=True):
             at_home = self._view == self._home(self._view.cols, self._view.rows)
             self._view = self._home(cols, rows) if at_home else self._view.resized(cols, rows)
         self.scene.expire(time.time())
+        self._view = self._followed(self._view)
         state = (self.scene.generation, self._tf_changes, self.scene.fixed_frame, self._view, width, height,
                  self._tool_changes)
         if state == self._drawn and self._strips:
@@ -588,7 +623,8 @@ class TopDownView(TopicView, can_focus=True):
         cells = max(2, round(step / (2 * view.scale)))
         metres = f"{step:g} m" if step >= 1 else f"{step * 100:g} cm"
         frame = self.scene.fixed_frame or "(waiting for a message)"
-        text = f"├{'─' * (cells - 2)}┤ {metres}   frame {frame}   centre {view.cx:.2f}, {view.cy:.2f}"
+        where = f"following {self.robot_frame}" if self.follow else f"centre {view.cx:.2f}, {view.cy:.2f}"
+        text = f"├{'─' * (cells - 2)}┤ {metres}   frame {frame}   {where}"
         if self.show_rates:
             now = time.time()
             text += f"   {self.received_rate.per_second(now):.1f} msg/s ({self.drawn_rate.per_second(now):.1f} drawn)"

@@ -26,21 +26,14 @@ from pathlib import Path
 from typing import Any
 
 import yaml
+
 from rostui.core.one_line import exception_line
+from rostui.tools.yaml_file import MAX_FILE_BYTES, YamlFileError, read_yaml_node
 
 from .expression import ExpressionError, check_syntax
 from .rows import MessageForm
 
 __all__ = ["FormFileError", "FormSpec", "MAX_FILE_BYTES", "read_form", "write_form", "apply_spec", "spec_of"]
-
-#: Largest form file read.
-MAX_FILE_BYTES = 1 << 20
-
-#: Deepest nesting of brackets read: PyYAML's pure-Python parser takes time growing with the square of it.
-MAX_FLOW_DEPTH = 64
-
-#: libyaml's parser where PyYAML has it (it also bounds nesting); PyYAML's own otherwise.
-_LOADER: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 _KEYS = ("publish", "call", "type", "rate", "fields", "sliders")
 
@@ -97,17 +90,9 @@ def read_form(path: Path) -> FormSpec:
     """The spec in the file at ``path``; :class:`FormFileError` (``FILE:LINE: what``) for anything wrong in it."""
     where = str(path)
     try:
-        with open(path, "rb") as stream:
-            data = stream.read(MAX_FILE_BYTES + 1)
-    except OSError as exc:
-        raise FormFileError(f"{where}: {exc.strerror or exc}") from None
-    if len(data) > MAX_FILE_BYTES:
-        raise FormFileError(f"{where}: larger than {MAX_FILE_BYTES} bytes: not a form")
-    try:
-        text = data.decode("utf-8")
-        root = _compose(text, where)
-    except UnicodeDecodeError as exc:
-        raise FormFileError(f"{where}: not UTF-8 text (byte {exc.start})") from None
+        root = read_yaml_node(path, "a form")
+    except YamlFileError as exc:
+        raise FormFileError(str(exc)) from None
     if not isinstance(root, yaml.MappingNode):
         raise FormFileError(f"{where}:{_line(root)}: a form is a mapping of {', '.join(_KEYS)}")
     top = _mapping(root, where)
@@ -155,47 +140,6 @@ def apply_spec(form: MessageForm, spec: FormSpec) -> None:
             raise FormFileError(f"{spec.path}:{spec.lines.get(name, 1)}: {name} is a {row.type}, not a number: "
                                 "it has no slider")
         row.low, row.high = low, high
-
-
-def _flow_depth(text: str) -> tuple[int, int]:
-    """The deepest nesting of ``[`` and ``{`` outside quotes, and the line where it is deepest."""
-    depth = deepest = 0
-    line = deepest_line = 1
-    quote = ""
-    for char in text:
-        if char == "\n":
-            line += 1
-        elif quote:
-            quote = "" if char == quote else quote
-        elif char in "'\"":
-            quote = char
-        elif char in "[{":
-            depth += 1
-            if depth > deepest:
-                deepest, deepest_line = depth, line
-        elif char in "]}":
-            depth = max(depth - 1, 0)
-    return deepest, deepest_line
-
-
-def _compose(text: str, where: str) -> yaml.Node | None:
-    deepest, deepest_line = _flow_depth(text)
-    if deepest > MAX_FLOW_DEPTH:
-        raise FormFileError(f"{where}:{deepest_line}: YAML nested more than {MAX_FLOW_DEPTH} deep: not a form")
-    try:
-        for event in yaml.parse(text, Loader=_LOADER):
-            if isinstance(event, yaml.AliasEvent):
-                at = f":{event.start_mark.line + 1}" if event.start_mark is not None else ""
-                raise FormFileError(f"{where}{at}: YAML aliases are not allowed in a form")
-        return yaml.compose(text, Loader=_LOADER)
-    except RecursionError:
-        raise FormFileError(f"{where}: YAML nested too deeply for a form") from None
-    except yaml.MarkedYAMLError as exc:
-        mark = exc.problem_mark or exc.context_mark
-        at = f":{mark.line + 1}" if mark is not None else ""
-        raise FormFileError(f"{where}{at}: YAML error: {exc.problem or exc.context}") from None
-    except yaml.YAMLError as exc:
-        raise FormFileError(f"{where}: YAML error: {exc}") from None
 
 
 def _line(node: yaml.Node | None) -> int:

@@ -22,6 +22,7 @@ import numpy as np
 from rostui.core.msg import foreign_version
 from rostui.models.sensors.canvas2d import BrailleCanvas, Viewport, nice_step
 from rostui.models.sensors.cloud2d import CloudError, cloud_points
+from rostui.models.sensors.footprint import polygon_points
 from rostui.models.sensors.grid2d import Grid2D, GridError, grid_of
 from rostui.models.sensors.markers2d import MARKER_TYPES, MarkerStore, Rgb
 from rostui.models.sensors.pose2d import Planar, Points, Pose2D
@@ -33,7 +34,8 @@ __all__ = ["TOPDOWN_TYPES", "Drawing", "Label", "Lookup", "Scene2D", "drawing_of
 
 #: Message types the top-down view draws.
 TOPDOWN_TYPES = ("sensor_msgs/LaserScan", "nav_msgs/Odometry", "nav_msgs/Path", "geometry_msgs/PoseStamped",
-                 "geometry_msgs/PoseArray", "nav_msgs/OccupancyGrid", "sensor_msgs/PointCloud2") + MARKER_TYPES
+                 "geometry_msgs/PoseArray", "nav_msgs/OccupancyGrid", "sensor_msgs/PointCloud2",
+                 "geometry_msgs/PolygonStamped") + MARKER_TYPES
 
 #: Most colours markers are drawn in at once (each is a layer); markers of further colours take their topic's.
 MAX_COLOR_LAYERS = 24
@@ -93,6 +95,8 @@ def drawing_of(msg: Any) -> Drawing:
         return Drawing(frame, polyline=path_points(msg))
     if kind == "nav_msgs/OccupancyGrid":
         return Drawing(frame, grid=grid_of(msg))
+    if kind == "geometry_msgs/PolygonStamped":
+        return Drawing(frame, polyline=polygon_points(msg))
     raise ValueError(f"the top-down view does not draw {kind}")
 
 
@@ -179,6 +183,14 @@ class Scene2D:
         self.generation += 1
         if entry.markers is None:
             self.drawing(topic)
+
+    def set_drawing(self, name: str, drawing: Drawing) -> None:
+        """Draw ``drawing`` as the layer ``name`` (not a topic: the robot's footprint), in its frame through tf."""
+        self.add(name)
+        entry = self._topics[name]
+        entry.msg = entry.drawn_from = drawing
+        entry.drawing, entry.error = drawing, ""
+        self.generation += 1
 
     def markers(self, topic: str) -> MarkerStore | None:
         """The markers ``topic`` holds (None for a topic of another type)."""

@@ -108,3 +108,50 @@ def test_bag_inspector_shows_the_image_under_the_cursor(tmp_path: Path) -> None:
             await app.action_quit()
 
     asyncio.run(main())
+
+
+def marker_bag(path: Path) -> Path:
+    """Two MarkerArrays on /markers: every marker type, then a DELETEALL and one cube at (2, 2)."""
+    from topdown_helpers import Marker, MarkerArray, every_marker_type, marker
+
+    writer = open_writer(str(path))
+    writer.add_connection(Connection(0, "/markers", "visualization_msgs/MarkerArray", MarkerArray._md5sum,
+                                     MarkerArray._full_text, "/rostui_test"))
+    writer.write(0, T0, every_marker_type().serialize())
+    cleared = MarkerArray(markers=[Marker(action=Marker.DELETEALL), marker(Marker.CUBE, 2.0, 2.0, ident=99)])
+    writer.write(0, T0 + 100_000_000, cleared.serialize())
+    writer.close()
+    return path
+
+
+def test_bag_inspector_shows_the_markers_of_the_message_under_the_cursor(tmp_path: Path) -> None:
+    """Each recorded MarkerArray shows its own markers (the second's DELETEALL clears the first's, and stepping
+    back shows the first's again), drawn where they belong; the tool keys are bag view's own there."""
+    from rostui.apps.view.topdown_view import TopDownView
+
+    path = marker_bag(tmp_path / "markers.bag")
+
+    async def main() -> None:
+        app = BagViewApp([str(path)], publish=False)
+        async with app.run_test(size=(100, 40)) as pilot:
+            await inspector_open(app, pilot)
+            await until(lambda: isinstance(app.inspector_view.view, TopDownView)
+                        and (store := app.inspector_view.view.scene.markers("/markers")) is not None
+                        and len(store) == 12, "the first message's twelve markers in the inspector")
+            view = app.inspector_view.view
+            assert isinstance(view, TopDownView) and view.one_message
+            await pilot.pause(0.2)
+            vp = view.viewport
+            assert vp is not None
+            arrow = vp.cell_of(-2.5, 2.0)
+            assert arrow is not None and view.cell_topic(*arrow) == "/markers"
+            await pilot.press("end")  # the second message: DELETEALL, then one cube
+            await until(lambda: [key for key, _, _ in view.scene.markers("/markers").held()] == [("n", 99)],
+                        "only the second message's cube")
+            await pilot.pause(0.2)
+            assert view.cell_topic(*arrow) != "/markers"
+            await pilot.press("home")
+            await until(lambda: len(view.scene.markers("/markers")) == 12, "the first message's markers again")
+            await app.action_quit()
+
+    asyncio.run(main())

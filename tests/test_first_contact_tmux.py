@@ -136,7 +136,7 @@ def test_no_silent_empty_results_from_odd_bags(tmp_path: Path, ros_env: dict[str
 def test_bag_play_status_fits_an_80_column_terminal_and_short_bags_get_readable_ticks(
         tmp_path: Path, rostui_core: Any, ros_env: dict[str, str]) -> None:
     """6: at 80 columns `bag play`'s status line (rosbag's is about 90) is rewritten in place instead of wrapping
-    and scrolling the terminal; bag view's ruler over a 50 ms bag reads in milliseconds, not `0.0s 0.0s`."""
+    and scrolling the terminal, and the terminal is left blocking as the shell had it; bag view's ruler over a 50 ms bag reads in milliseconds, not `0.0s 0.0s`."""
     from bag_view_helpers import write_counts
 
     long_bag = write_counts(tmp_path / "counts.bag", 400)  # 4 s
@@ -147,6 +147,9 @@ def test_bag_play_status_fits_an_80_column_terminal_and_short_bags_get_readable_
         rows = [line for line in pane.screen().splitlines() if "Bag Time:" in line]
         assert len(rows) == 1, pane.screen()
         pane.wait_until(lambda: exit_status(pane.screen()) == 0, "bag play to finish")
+        pane.type("echo SHELL_READ_AGAIN")  # the shell reads its next line from the terminal bag play used
+        pane.wait_until(lambda: pane.screen().count("SHELL_READ_AGAIN") == 2, "the shell's next command")
+        assert "NDELAY" not in pane.screen(), pane.screen()  # stdin left non-blocking: "turning off NDELAY mode"
     short_bag = write_counts(tmp_path / "short.mcap", 6)  # 50 ms
     with shell_pane("ticks", 100, 24) as pane:
         pane.type(rostui_line(ros_env, EXIT_MARK, "bag", "view", str(short_bag)))
@@ -362,3 +365,19 @@ def test_launch_prints_roslaunchs_summary_and_starts_the_nodes_beside_a_bad_one(
         assert "process[robot-player-1]: started" in screen
         pane.keys("C-c")
         pane.wait_until(lambda: exit_status(pane.screen()) is not None, "the launch to end on Ctrl-C")
+
+
+def test_bag_view_says_it_publishes_nothing_on_a_line_of_its_own_at_80_columns(
+        tmp_path: Path, ros_env: dict[str, str]) -> None:
+    """1, as the tutorial walk at 80x24 saw it: the header's "not publishing: t publishes the selected topic, a
+    every topic" wrapped after "t", away from what t does; too long for the header's line, it takes its own."""
+    from bag_view_helpers import write_counts
+
+    bag = write_counts(tmp_path / "square.bag", 40)
+    with shell_pane("view80", 80, 24) as pane:
+        pane.type(rostui_line(ros_env, EXIT_MARK, "bag", "view", str(bag)))
+        pane.wait_until(lambda: "PAUSED" in pane.screen(), "bag view")
+        lines = [line.strip() for line in pane.screen().splitlines()]
+        assert "not publishing: t publishes the selected topic, a every topic" in lines, pane.screen()
+        pane.keys("q")
+        pane.wait_until(lambda: exit_status(pane.screen()) == 0, "bag view to quit")

@@ -310,7 +310,7 @@ class BagViewApp(ReleasesOnExit, KeysApp):
                                        loop=transport.loop, bag_ns=bag_ns, start_ns=index.start_ns,
                                        end_ns=index.end_ns, published=self.published if self.node else -1,
                                        problem=self.source.problem if self.source is not None else ""))
-        header = header_text(self.names, index, self.link, self.rosbag_duration)
+        header = header_text(self.names, index, self.link, self.rosbag_duration, self.header.size.width)
         if header.plain != self._header_shown:
             self._header_shown = header.plain
             self.header.update(header)

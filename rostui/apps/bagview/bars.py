@@ -24,10 +24,12 @@ def wall_text(t_ns: int) -> str:
     return time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(secs)) + f".{ns // 1_000_000:03d}"
 
 
-def header_text(names: list[str], index: BagIndex | None, link: str = "", rosbag_duration: str | None = None) -> Text:
+def header_text(names: list[str], index: BagIndex | None, link: str = "", rosbag_duration: str | None = None,
+                width: int = 0) -> Text:
     """``square.bag · 12.3 KB · 1234 msgs · 2 topics · 9.000 s │ LINK`` and a warning for files cut short; the
     span is the messages'; ``rosbag_duration``, when given, is what bag info says instead (chunks out of time
-    order), and the header says so."""
+    order), and the header says so.  When the line would pass ``width`` columns, LINK starts a line of its own
+    (a wrap inside it split "t" from what t does)."""
     text = Text()
     text.append(" · ".join(names), style="bold")
     if index is None:
@@ -38,7 +40,7 @@ def header_text(names: list[str], index: BagIndex | None, link: str = "", rosbag
     if rosbag_duration is not None:
         text.append(f" (bag info: {rosbag_duration}, first and last chunk)")
     if link:
-        text.append(f" │ {link}")
+        text.append(f"\n{link}" if width and text.cell_len + 3 + len(link) > width else f" │ {link}")
     for notice in index.notices:
         text.append(f"  ⚠ {notice}", style="bold yellow")
     return text

@@ -196,6 +196,25 @@ def test_search_jumps_to_an_element_off_screen(book: list[Program]) -> None:
     run_graph(GraphApp(book_setup(), period=0.5), scenario, size=(50, 12))
 
 
+def test_arrows_scroll_a_wide_graph_several_cells_a_press(book: list[Program]) -> None:
+    """In a 50x8 terminal the book's graph is larger than the screen: → moves 8 columns, ↓ 3 lines (one cell a
+    press took a tutorial reader 45 presses to reach the recorder's box), ← and ↑ come back."""
+    async def scenario(pilot: Pilot, app: GraphApp) -> None:
+        graph = app.graph_view
+        graph.focus()
+        await until(lambda: graph.max_scroll_x > 16 and graph.max_scroll_y >= 3,
+                    lambda: f"a graph larger than the screen: {graph.max_scroll_x} {graph.max_scroll_y} "
+                            f"{graph.scrollable_content_region}")
+        await pilot.press("right", "right")
+        assert graph.scroll_offset.x == 16
+        await pilot.press("down")
+        assert graph.scroll_offset.y == 3
+        await pilot.press("up", "left")
+        assert (graph.scroll_offset.x, graph.scroll_offset.y) == (8, 0)
+
+    run_graph(GraphApp(book_setup(), period=0.5), scenario, size=(50, 8))
+
+
 def test_focus_mode_shows_neighbours_n_hops_out(book: list[Program]) -> None:
     """f on /teleop_turtle: it and its topic; + reaches turtlesim, + its topics; - back; f shows all again."""
     async def scenario(pilot: Pilot, app: GraphApp) -> None:

@@ -49,9 +49,9 @@ from rostui.tools.node import NodeInfo
 
 __all__ = ["GraphApp", "run_app", "KEYS"]
 
-#: Key help shown under the graph.
-KEYS = key_line("v view  d debug  s sinks  l leaves  g group  i/x filter  b book  / search  f focus ±  "
-                "Tab next  Enter info  r rate")
+#: Key help shown under the graph: the book's keys first (b, v, d), where an 80-column line still shows them.
+KEYS = key_line("b book  v view  d debug  / search  Tab next  Enter info  s sinks  l leaves  g group  "
+                "i/x filter  f focus ±  r rate")
 #: On the status line while the drawing does not fit the screen.
 SCROLL_HINT = "arrows scroll"
 #: Layouts kept for views seen lately (switching back redraws them exactly, at once).

@@ -13,6 +13,7 @@ from typing import Mapping
 from rich.segment import Segment
 from rich.style import Style
 from textual import events
+from textual.actions import SkipAction
 from textual.geometry import Region, Size
 from textual.message import Message
 from textual.scroll_view import ScrollView
@@ -26,6 +27,10 @@ from rostui.models.graph.view import Kind, kind_of
 __all__ = ["GraphView"]
 
 _MARKERS = {Mark.NEW: "+", Mark.GONE: "×"}
+
+#: Columns and lines an arrow key scrolls the graph.
+SCROLL_COLUMNS = 8
+SCROLL_LINES = 3
 
 
 class GraphView(ScrollView, can_focus=True):
@@ -46,6 +51,31 @@ class GraphView(ScrollView, can_focus=True):
         def __init__(self, vertex: str | None) -> None:
             self.vertex = vertex
             super().__init__()
+
+    # -- keys: arrows scroll a few cells at a time (one column a press took 45 presses across the book's graph)
+    def action_scroll_left(self) -> None:
+        """← scrolls :data:`SCROLL_COLUMNS` columns left."""
+        if not self.allow_horizontal_scroll:
+            raise SkipAction()
+        self.scroll_relative(x=-SCROLL_COLUMNS, animate=False)
+
+    def action_scroll_right(self) -> None:
+        """→ scrolls :data:`SCROLL_COLUMNS` columns right."""
+        if not self.allow_horizontal_scroll:
+            raise SkipAction()
+        self.scroll_relative(x=SCROLL_COLUMNS, animate=False)
+
+    def action_scroll_up(self) -> None:
+        """↑ scrolls :data:`SCROLL_LINES` lines up."""
+        if not self.allow_vertical_scroll:
+            raise SkipAction()
+        self.scroll_relative(y=-SCROLL_LINES, animate=False)
+
+    def action_scroll_down(self) -> None:
+        """↓ scrolls :data:`SCROLL_LINES` lines down."""
+        if not self.allow_vertical_scroll:
+            raise SkipAction()
+        self.scroll_relative(y=SCROLL_LINES, animate=False)
 
     def __init__(self, *, id: str | None = None) -> None:
         super().__init__(id=id)

@@ -184,6 +184,8 @@ def test_bag_record_writes_rosbags_format_and_says_so(tmp_path: Path, rostui_cor
                                 "the status line to count /chatter's messages")
                 pane.keys("C-c")
                 pane.wait_until(lambda: exit_status(pane.screen()) == 0, "bag record to end on Ctrl-C")
+                status = [line for line in pane.screen().splitlines() if " msgs, " in line]
+                assert status and status[-1].rstrip().endswith("^C"), pane.screen()  # the echo fits the line
                 said = "rosbag v2.0 .bag" if not flags else "MCAP, not readable by rosbag"
                 assert re.search(rf"Recorded \d+ messages to \d{{4}}(-\d\d){{5}}\.(bag|mcap) \({said}", pane.screen())
     finally:

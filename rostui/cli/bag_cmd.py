@@ -23,8 +23,9 @@ def _ros_log(text: str) -> None:
 
 
 def _status_writer(stream: TextIO) -> Callable[[str], None]:
-    """A status-line printer: rewritten in place on a terminal, cut to its width (a line that wraps makes the
-    terminal scroll at every update), one line a second otherwise."""
+    """A status-line printer: rewritten in place on a terminal, cut short of its width (a line that wraps makes
+    the terminal scroll at every update; the last columns are left for the terminal's echo of ^C), one line a
+    second otherwise."""
     import os
 
     tty = stream.isatty()
@@ -33,7 +34,7 @@ def _status_writer(stream: TextIO) -> Callable[[str], None]:
     def show(line: str) -> None:
         if tty:
             try:
-                width = os.get_terminal_size(stream.fileno()).columns - 1
+                width = max(1, os.get_terminal_size(stream.fileno()).columns - 1 - len("^C"))
             except OSError:
                 width = len(line)
             stream.write("\r" + line.rstrip()[:width].ljust(width))

@@ -5,6 +5,7 @@ colour per point, alpha 0, and bounds against a flood of markers or hostile text
 from __future__ import annotations
 
 import math
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -166,3 +167,64 @@ def test_colours_are_layers_of_their_own_bounded() -> None:
     canvas = scene.render(Viewport(40, 10, 0.0, 0.0, 0.1))
     assert 1 < len(scene.layer_colors) <= 24 and len(canvas.bits) == 3 + len(scene.layer_colors)
     assert {topic for topic, _ in scene.layer_colors} == {"/m"}
+
+
+MESHES = Path(__file__).parent / "mesh_corpus"
+
+
+@pytest.mark.parametrize("name", ["turtlebot3-lds.stl", "turtlebot3-r200.dae"])
+def test_a_mesh_marker_is_the_outline_of_its_real_mesh_as_trimesh_reads_it(name: str) -> None:
+    """Real robot meshes (tests/mesh_corpus/SOURCES.md): the outline spans the mesh's x and y extent times the
+    marker's scale, as trimesh (and pycollada's unit, which rviz applies to COLLADA files) measures it."""
+    import collada
+    import trimesh
+
+    path = MESHES / name
+    bounds = trimesh.load(str(path), force="mesh").bounds
+    unit = collada.Collada(str(path)).assetInfo.unitmeter if name.endswith(".dae") else 1.0
+    scale = (0.001, 0.002) if name.endswith(".stl") else (1.0, 1.0)
+    m = marker(Marker.MESH_RESOURCE, 1.0, 2.0, scale=scale, mesh_resource=f"file://{path}")
+    shape = marker_shape(m)
+    assert not shape.note
+    xs, ys = shape.starts[:, 0] - 1.0, shape.starts[:, 1] - 2.0
+    assert math.isclose(xs.min(), bounds[0][0] * unit * scale[0], abs_tol=1e-9)
+    assert math.isclose(xs.max(), bounds[1][0] * unit * scale[0], abs_tol=1e-9)
+    assert math.isclose(ys.min(), bounds[0][1] * unit * scale[1], abs_tol=1e-9)
+    assert math.isclose(ys.max(), bounds[1][1] * unit * scale[1], abs_tol=1e-9)
+
+
+def test_a_mesh_of_a_package_is_found_as_rospack_finds_it(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    package = tmp_path / "robot_description"
+    (package / "meshes").mkdir(parents=True)
+    (package / "package.xml").write_text("<package><name>robot_description</name></package>")
+    (package / "meshes" / "lds.stl").write_bytes((MESHES / "turtlebot3-lds.stl").read_bytes())
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(tmp_path))
+    shape = marker_shape(marker(Marker.MESH_RESOURCE, scale=(0.001, 0.001),
+                                mesh_resource="package://robot_description/meshes/lds.stl"))
+    assert not shape.note and math.isclose(shape.starts[:, 0].max(), 0.06084831619262695, rel_tol=1e-6)
+
+
+@pytest.mark.parametrize(("resource", "said"), [
+    ("package://no_such_package/meshes/base.dae", "package 'no_such_package' of package://no_such_package"),
+    ("http://example.com/base.stl", "is not a package:// or file:// resource"),
+    ("file:///no/such/base.stl", "No such file or directory"),
+])
+def test_a_mesh_that_cannot_be_read_is_a_box_of_its_scale_and_the_legend_says_why(resource: str, said: str) -> None:
+    scene = Scene2D(["/m"], "map")
+    scene.offer("/m", marker(Marker.MESH_RESOURCE, scale=(2.0, 1.0), mesh_resource=resource), 0.0)
+    store = scene.markers("/m")
+    assert store is not None
+    [(_, shape, _)] = store.held()
+    assert {tuple(np.round(p, 9)) for p in shape.starts} == {(-1.0, -0.5), (1.0, -0.5), (1.0, 0.5), (-1.0, 0.5)}
+    assert said in scene.note("/m") and "a mesh drawn as a box of its scale" in scene.note("/m")
+
+
+def test_a_hostile_mesh_is_refused_in_one_line(tmp_path: Path) -> None:
+    bomb = tmp_path / "bomb.dae"
+    bomb.write_text('<?xml version="1.0"?><!DOCTYPE c [<!ENTITY a "aaaaaaaaaa"><!ENTITY b "&a;&a;&a;&a;&a;&a;">]>'
+                    '<COLLADA><library_geometries>&b;</library_geometries></COLLADA>')
+    shape = marker_shape(marker(Marker.MESH_RESOURCE, mesh_resource=f"file://{bomb}"))
+    assert "no vertex positions" in shape.note or "not XML" in shape.note
+    text = tmp_path / "text.stl"
+    text.write_text("solid x\nfacet normal 0 0 1\nouter loop\nvertex 1 nan 0\nvertex a b c\nendloop\n")
+    assert "not a number" in marker_shape(marker(Marker.MESH_RESOURCE, mesh_resource=f"file://{text}")).note

@@ -10,8 +10,9 @@ label in its own frame, each type projected onto the ground plane:
 - ARROW: a shaft from its pose along x, ``scale.x`` long (or from its first
   point to its second) with a two-stroke head;
 - CUBE, SPHERE, CYLINDER: the outline of their footprint (``scale.x`` by
-  ``scale.y``); MESH_RESOURCE: the outline of a box of its scale, as the mesh
-  file is not read;
+  ``scale.y``); MESH_RESOURCE: the outline of its mesh's extent (STL or COLLADA,
+  read once; a box of its scale when the file cannot be read, and the legend
+  says why);
 - LINE_STRIP, LINE_LIST, TRIANGLE_LIST: their lines (triangles as outlines);
 - POINTS, CUBE_LIST, SPHERE_LIST: a dot each;
 - TEXT_VIEW_FACING: its text, at its position.
@@ -29,6 +30,7 @@ from typing import Any, Iterable
 
 import numpy as np
 
+from rostui.models.sensors.mesh_bounds import MeshError, mesh_extent
 from rostui.models.sensors.pose2d import MAX_POINTS, Points, every, pose_of
 
 __all__ = ["MARKER_TYPES", "MAX_MARKERS", "MarkerShape", "MarkerStore", "Rgb", "marker_shape"]
@@ -86,6 +88,8 @@ class MarkerShape:
     label: str = ""
     label_at: tuple[float, float] = (0.0, 0.0)
     label_color: Rgb = (255, 255, 255)
+    note: str = ""
+    """What is not as rviz draws it (a mesh whose file was not read), for the legend."""
 
     @property
     def size(self) -> int:
@@ -153,8 +157,16 @@ def marker_shape(marker: Any, most: int = MAX_POINTS) -> MarkerShape:
         barbs = [tip + barb * np.array([math.cos(heading + a), math.sin(heading + a)])
                  for a in (math.radians(150), math.radians(-150))]
         shape.starts, shape.ends = np.array([tail, tip, tip]), np.array([tip, *barbs])
-    elif kind in (CUBE, MESH):
+    elif kind == CUBE:
         shape.starts, shape.ends = _outline(pose.apply(_box(sx, sy)))
+    elif kind == MESH:
+        try:
+            x0, y0, x1, y1 = mesh_extent(str(marker.mesh_resource))
+            corners = np.array([[x0 * sx, y0 * sy], [x1 * sx, y0 * sy], [x1 * sx, y1 * sy], [x0 * sx, y1 * sy]])
+        except MeshError as exc:
+            corners = _box(sx, sy)
+            shape.note = f"a mesh drawn as a box of its scale: {exc}"
+        shape.starts, shape.ends = _outline(pose.apply(corners))
     elif kind in (SPHERE, CYLINDER):
         shape.starts, shape.ends = _outline(pose.apply(_ellipse(sx / 2, sy / 2)))
     elif kind in (LINE_STRIP, LINE_LIST, TRIANGLES):

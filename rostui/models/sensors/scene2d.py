@@ -255,6 +255,9 @@ class Scene2D:
             parts.append(f"no transform from {', '.join(unplaced[:3])} to {self.fixed_frame}")
         if store.refused:
             parts.append(f"{store.refused} not drawn: {store.problem}")
+        notes = sorted({shape.note for _, shape, _ in store.held() if shape.note})
+        if notes:
+            parts.append(notes[0] if len(notes) == 1 else f"{notes[0]} (and {len(notes) - 1} more)")
         return "; ".join(parts)
 
     def _frame_where(self, frame: str) -> Planar | None:

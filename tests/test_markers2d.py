@@ -56,11 +56,14 @@ def test_lines_and_triangles() -> None:
 
 @pytest.mark.parametrize("kind", [Marker.POINTS, Marker.CUBE_LIST, Marker.SPHERE_LIST])
 def test_point_lists_are_a_dot_each_with_a_colour_per_point_when_given(kind: int) -> None:
-    m = marker(kind, 1.0, 1.0, points=((0, 0), (1, 0)))
-    assert close(marker_shape(m).dots, [[1, 1], [2, 1]])
-    assert marker_shape(m).dot_colors == [(255, 0, 0), (255, 0, 0)]
-    m.colors = [ColorRGBA(0, 0, 1, 1), ColorRGBA(0, 1, 0, 1)]
-    assert marker_shape(m).dot_colors == [(0, 0, 255), (0, 255, 0)]
+    m = marker(kind, 1.0, 1.0, points=((0, 0), (1, 0), (2, 0)))
+    assert close(marker_shape(m).dots, [[1, 1], [2, 1], [3, 1]])
+    shape = marker_shape(m)
+    assert [shape.palette[i] for i in shape.dot_colors] == [(240, 16, 16)] * 3  # colours grouped, 8 levels
+    m.colors = [ColorRGBA(0, 0, 1, 1), ColorRGBA(0, 1, 0, 1), ColorRGBA(1, 1, 1, 0)]  # the third hidden (alpha 0)
+    shape = marker_shape(m)
+    assert [shape.palette[i] for i in shape.dot_colors] == [(16, 16, 240), (16, 240, 16)]
+    assert close(shape.dots, [[1, 1], [2, 1]])
 
 
 def test_text_is_one_line_of_single_cells_at_its_position() -> None:
@@ -228,3 +231,88 @@ def test_a_hostile_mesh_is_refused_in_one_line(tmp_path: Path) -> None:
     text = tmp_path / "text.stl"
     text.write_text("solid x\nfacet normal 0 0 1\nouter loop\nvertex 1 nan 0\nvertex a b c\nendloop\n")
     assert "not a number" in marker_shape(marker(Marker.MESH_RESOURCE, mesh_resource=f"file://{text}")).note
+
+
+def test_a_mesh_path_to_a_device_or_a_fifo_is_refused_without_reading_it(tmp_path: Path) -> None:
+    import os
+
+    fifo = tmp_path / "mesh.stl"
+    os.mkfifo(fifo)
+    for resource, said in ((f"file://{fifo}", "not a regular file"), ("file:///dev/zero", "is not read"),
+                           ("file:///dev/null.stl", "No such file")):
+        assert said in marker_shape(marker(Marker.MESH_RESOURCE, mesh_resource=resource)).note
+
+
+def test_nan_markers_neither_crash_the_picture_nor_the_fit() -> None:
+    """A text marker at NaN, a points marker with a NaN point, an arrow of infinite length: drawn where they can
+    be, the rest left out; fitting the view ignores them."""
+    scene = Scene2D(["/m"], "map")
+    nan = float("nan")
+    scene.offer("/m", MarkerArray(markers=[  # offered as the store offers: NaN and inf are no warnings
+        marker(Marker.TEXT_VIEW_FACING, nan, 1.0, ident=1, text="lost"),
+        marker(Marker.POINTS, ident=2, points=((0.0, 0.0), (nan, 1.0), (1.0, 1.0))),
+        marker(Marker.ARROW, ident=3, scale=(float("inf"), 1.0)),
+    ]), 0.0)
+    view = Viewport(40, 10, 0.0, 0.0, 0.1)
+    with np.errstate(all="raise"):  # nothing left to warn of in drawing or fitting
+        scene.render(view)
+        assert scene.labels == []
+        fitted = view.fitting(scene.world_points())
+    assert all(math.isfinite(v) for v in (fitted.cx, fitted.cy, fitted.scale))
+
+
+def test_large_line_lists_and_triangle_lists_keep_whole_pairs_and_triangles() -> None:
+    """Past the point budget, a LINE_LIST keeps whole pairs (every k-th pair) and a TRIANGLE_LIST whole
+    triangles: no segment joins the end of one pair to the start of another."""
+    pairs = tuple(p for i in range(3000) for p in ((float(i), 0.0), (float(i), 1.0)))
+    shape = marker_shape(marker(Marker.LINE_LIST, points=pairs), most=1000)
+    assert 0 < len(shape.starts) <= 500
+    assert close(shape.starts[:, 0], shape.ends[:, 0]) and close(shape.starts[:, 1], 0) and close(shape.ends[:, 1], 1)
+    triangles = tuple(p for i in range(3000) for p in ((float(i), 0.0), (i + 0.5, 0.0), (float(i), 0.5)))
+    shape = marker_shape(marker(Marker.TRIANGLE_LIST, points=triangles), most=999)
+    assert 0 < len(shape.starts) <= 999 and len(shape.starts) % 3 == 0
+    assert (np.floor(shape.starts[:, 0]) == np.floor(shape.ends[:, 0])).all()
+
+
+def test_the_points_and_lines_of_all_markers_are_bounded_together() -> None:
+    store = MarkerStore(most_elements=2500)
+    strip = tuple((float(i), 0.0) for i in range(1001))
+    store.offer(MarkerArray(markers=[marker(Marker.LINE_STRIP, ident=i, points=strip) for i in range(3)]), 0.0)
+    assert len(store) == 2 and store.elements == 2000 and store.refused == 1
+    assert store.problem == "more than 2500 points and lines in all markers"
+    store.offer(marker(Marker.LINE_STRIP, ident=0, points=strip[:11]), 0.0)  # a replacement frees its old share
+    store.offer(marker(Marker.LINE_STRIP, ident=2, points=strip), 0.0)
+    assert len(store) == 3 and store.elements == 2010
+
+
+def test_marker_messages_wait_in_order_within_a_count_and_a_byte_bound() -> None:
+    """The feed of a marker topic keeps every message in order for the screen, up to its count and 64 MB; the
+    oldest are dropped past that and counted, and the legend says so (what they added or deleted is missing)."""
+    from types import SimpleNamespace
+
+    from rostui.apps.view import feed as feed_module
+    from rostui.apps.view.feed import TopicFeed
+
+    feed = TopicFeed("/m", lambda: None, clock=lambda: 1.0)
+    feed.keep_every = 3
+    for i in range(5):
+        feed._on_message(SimpleNamespace(_buff=bytes(10), i=i))
+    assert [feed.take()[0].i for _ in range(3)] == [2, 3, 4] and feed.take() is None and feed.dropped == 2  # type: ignore[index]
+    feed.keep_every = 1000
+    big = feed_module.KEEP_BYTES // 3 + 1
+    for i in range(4):
+        feed._on_message(SimpleNamespace(_buff=bytes(big), i=i))
+    assert feed._queue_bytes <= feed_module.KEEP_BYTES and len(feed._queue) == 2 and feed.dropped == 4
+    scene = Scene2D(["/m"], "map")
+    scene.offer("/m", marker(Marker.CUBE), 0.0)
+    store = scene.markers("/m")
+    assert store is not None
+    store.dropped = 4
+    assert scene.note("/m") == "1 marker; 4 messages dropped: the screen fell behind"
+
+
+def test_the_fixed_frame_comes_from_the_first_marker_that_names_one() -> None:
+    """A MarkerArray that starts with a DELETEALL (no frame, a common pattern) takes its frame from the next."""
+    scene = Scene2D(["/m"])
+    scene.offer("/m", MarkerArray(markers=[Marker(action=Marker.DELETEALL), marker(Marker.CUBE, frame="odom")]), 0.0)
+    assert scene.fixed_frame == "odom" and scene.note("/m") == "1 marker"

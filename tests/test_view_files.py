@@ -32,7 +32,11 @@ def test_a_view_file_round_trips(tmp_path: Path) -> None:
     ("topics: [/map]\nzoom: 3\n", ":2: unknown key 'zoom'"),
     ("topics: []\n", ":1: topics: a list of 1 to 64 topic names"),
     ("topics: [/map, 'bad topic']\n", ":1: topics: "),
-    ("topics: [/map]\nspan: -2\n", ":2: span: -2 is not a positive number of metres"),
+    ("topics: [/map]\nspan: -2\n", ":2: span: -2 metres is not between 0.001 and 1e+07"),
+    ("topics: [/map]\nspan: 1.0e-320\n", ":2: span: "),
+    ("topics: [/map]\nspan: " + "9" * 400 + "\n", ":2: span: '999"),
+    ("topics: [/map]\nspan: !!float abc\n", ":2: not a value: "),
+    ("topics: [/map]\nframe: !foo x\n", ":2: not a value: "),
     ("topics: [/map]\ncentre: [1]\n", ":2: centre: [x, y] in metres"),
     ("topics: [/map]\nfollow: 'yes'\n", ":2: follow: true or false"),
     ("frame: map\n", ":1: a view file needs `topics: [TOPIC, ...]`"),
@@ -111,6 +115,8 @@ def test_a_radius_is_a_circle() -> None:
 @pytest.mark.parametrize(("value", "said"), [
     ("[[0, 0], [1, 0]]", "at least three"), ("[[0, 0], [1, 0], [1]]", "point 3"), ("[[0, 0], [1, 0], [1, x]]", "'x' is not a number"),
     ("[[0, 0], [1, 0], [nan, 1]]", "not a number"), (-1, "not positive"), ("{oops", "not a list"),
+    ("[[0, 0], [1, 0], [1, 1.0e+999]]", "not a finite number"), ([[0, 0], [1, 0], [10 ** 400, 1]], "not a finite"),
+    ("[" * 100 + "]" * 100, "at least three"), ("x" * 70000, "longer than 65536"),
 ])
 def test_a_bad_footprint_is_one_line(value: object, said: str) -> None:
     with pytest.raises(FootprintError, match=said):

@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 import functools
 import math
+import pathlib
 from typing import Any, Awaitable, Callable, Sequence
 
 import numpy as np
@@ -128,8 +129,13 @@ def marker(kind: int, x: float = 0.0, y: float = 0.0, *, ident: int = 0, ns: str
     return m
 
 
+#: Real robot meshes (tests/mesh_corpus/SOURCES.md).
+MESHES = pathlib.Path(__file__).parent / "mesh_corpus"
+
+
 def every_marker_type(frame: str = "map") -> Any:
-    """A MarkerArray with one marker of each type, laid out as tests/peers/rospy_markers.py lays them out."""
+    """A MarkerArray with one marker of each type, laid out as tests/peers/rospy_markers.py lays them out (the
+    mesh: turtlebot3's R200 camera, 0.13 m x 0.02 m, eight times its size)."""
     red, green, blue, yellow = (1.0, 0.2, 0.2), (0.2, 1.0, 0.2), (0.3, 0.5, 1.0), (1.0, 0.9, 0.1)
     return MarkerArray(markers=[
         marker(Marker.ARROW, -3, 2, ident=0, rgb=red, frame=frame),
@@ -144,7 +150,8 @@ def every_marker_type(frame: str = "map") -> Any:
         marker(Marker.POINTS, -3, -2, ident=8, rgb=green, points=((0, 0), (0.3, 0.3)), frame=frame,
                colors=[ColorRGBA(*red, 1.0), ColorRGBA(*blue, 1.0)]),
         marker(Marker.TEXT_VIEW_FACING, -1, -2, ident=9, rgb=yellow, text="hi", frame=frame),
-        marker(Marker.MESH_RESOURCE, 1, -2, ident=10, rgb=blue, scale=(0.8, 0.8), frame=frame),
+        marker(Marker.MESH_RESOURCE, 1, -2, ident=10, rgb=blue, scale=(8.0, 8.0), frame=frame,
+               mesh_resource=f"file://{MESHES / 'turtlebot3-r200.dae'}"),
         marker(Marker.TRIANGLE_LIST, 3, -2, ident=11, rgb=red, points=((0, 0), (0.6, 0), (0, 0.6)), frame=frame),
     ])
 

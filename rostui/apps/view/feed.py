@@ -37,6 +37,10 @@ class Rate:
         return (len(self._times) - 1) / span if span < self.window else len(self._times) / self.window
 
 
+#: Most bytes of messages waiting for the screen with :attr:`TopicFeed.keep_every`.
+KEEP_BYTES = 64 << 20
+
+
 class TopicFeed:
     """``topic`` subscribed raw (AnyMsg) on a node; :meth:`take` hands over the newest message once.
 
@@ -61,9 +65,10 @@ class TopicFeed:
         self.dropped = 0
         """Messages replaced by a newer one before they were taken (never drawn)."""
         self.keep_every = 0
-        """Above 0: up to this many messages wait to be taken, in order (markers: each adds or deletes some);
-        the oldest is dropped past it."""
+        """Above 0: up to this many messages (and :data:`KEEP_BYTES`) wait to be taken, in order (markers: each
+        adds or deletes some); the oldest is dropped past it, and counted in :attr:`dropped`."""
         self._queue: deque[tuple[AnyMsg, float]] = deque()
+        self._queue_bytes = 0
 
     @property
     def subscribed(self) -> bool:
@@ -93,10 +98,13 @@ class TopicFeed:
         self._arrived = self.clock()
         self.received.add(self._arrived)
         if self.keep_every > 0:
-            if len(self._queue) >= self.keep_every:
-                self._queue.popleft()
+            size = len(getattr(raw, "_buff", b""))
+            while self._queue and (len(self._queue) >= self.keep_every or self._queue_bytes + size > KEEP_BYTES):
+                old, _ = self._queue.popleft()
+                self._queue_bytes -= len(getattr(old, "_buff", b""))
                 self.dropped += 1
             self._queue.append((raw, self._arrived))
+            self._queue_bytes += size
         else:
             if self._newest is not None:
                 self.dropped += 1
@@ -112,6 +120,8 @@ class TopicFeed:
         """The newest message not taken yet and its arrival time (wall seconds), or None (with
         :attr:`keep_every`: the oldest waiting)."""
         if self._queue:
-            return self._queue.popleft()
+            taken = self._queue.popleft()
+            self._queue_bytes -= len(getattr(taken[0], "_buff", b""))
+            return taken
         raw, self._newest = self._newest, None
         return (raw, self._arrived) if raw is not None else None

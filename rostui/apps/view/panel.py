@@ -37,7 +37,7 @@ import time
 from typing import Any, Callable, Mapping, Sequence
 
 from textual.app import ComposeResult
-from textual.containers import Container, Vertical
+from textual.containers import Container, Horizontal, Vertical
 from textual.markup import escape
 from textual.widgets import Static
 
@@ -220,6 +220,8 @@ class ViewPanel(Vertical):
                 msg = self._decode(taken[0])
                 if msg is not None:
                     self._show(msg, taken[1])
+        if self.feed.dropped and self.view is not None:
+            self.view.dropped(self.topic, self.feed.dropped)
 
     async def _deliver_off_loop(self, job: Callable[[], Any], received: float) -> None:
         """Run ``job`` on a worker thread (its CPU charged to this panel), then draw what it made on the loop."""
@@ -263,10 +265,16 @@ class ViewPanel(Vertical):
 
 
 class ViewGrid(Container):
-    """A panel per topic side by side; subscribes through ``node_of()``, learns types through ``type_of(topic)``."""
+    """A panel per topic side by side; subscribes through ``node_of()``, learns types through ``type_of(topic)``.
+
+    Topics nobody publishes yet (an rviz file names many) do not take a column each: while more than one waits,
+    or one waits beside a drawn view, their panels are hidden and one line above the panels names them.
+    """
 
     DEFAULT_CSS = """
-    ViewGrid { layout: horizontal; height: 1fr; }
+    ViewGrid { layout: vertical; height: 1fr; }
+    ViewGrid > #waiting { height: auto; max-height: 2; color: $text-muted; }
+    ViewGrid > #panels { layout: horizontal; height: 1fr; }
     """
 
     def __init__(self, topics: Sequence[str], node_of: NodeOf, type_of: TypeOf, *, id: str | None = None,
@@ -281,8 +289,27 @@ class ViewGrid(Container):
         self._checking = False
 
     def compose(self) -> ComposeResult:
-        """One panel per topic."""
-        yield from self.panels
+        """The line of topics waiting to be published, and one panel per topic."""
+        waiting = Static(id="waiting")
+        waiting.display = False
+        yield waiting
+        with Horizontal(id="panels"):
+            yield from self.panels
+
+    def _show_waiting(self) -> None:
+        """Hide the panels still waiting for their topic's type when they would crowd the screen; name them."""
+        waiting = [panel for panel in self.panels if panel.view is None and not panel.problem]
+        drawn = [panel for panel in self.panels if panel not in waiting and not panel.joined]
+        collapse = len(waiting) > 1 or (waiting and drawn)
+        for panel in waiting:
+            panel.display = not collapse
+        for panel in drawn:
+            panel.display = True
+        line = self.query_one("#waiting", Static)
+        line.display = bool(collapse)
+        if collapse:
+            line.update(escape(f"waiting for {len(waiting)} topic{'s' if len(waiting) != 1 else ''} to be "
+                               f"published: {', '.join(panel.topic for panel in waiting)}"))
 
     def on_mount(self) -> None:
         """Check types and subscriptions now and every :data:`CHECK_EVERY` seconds."""
@@ -301,9 +328,15 @@ class ViewGrid(Container):
                     await panel.check(node, self.type_of(panel.topic))
                 except MASTER_ERRORS:  # the master went while subscribing: the next check tries again
                     await panel.stop()
+            if self.is_mounted:
+                self._show_waiting()
         finally:
             self._checking = False
 
     async def stop(self) -> None:
-        """Unsubscribe every panel."""
+        """Leave the views' tools (a teleop stops its robot first), then unsubscribe every panel."""
+        for view in {id(panel.view): panel.view for panel in self.panels if panel.view is not None}.values():
+            stop_tools = getattr(view, "stop_tools", None)
+            if stop_tools is not None:
+                await stop_tools()
         await asyncio.gather(*(panel.stop() for panel in self.panels), return_exceptions=True)

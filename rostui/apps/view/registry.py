@@ -51,6 +51,10 @@ class TopicView(Widget):
         """
         raise NotImplementedError(f"{type(self).__name__} must define show_message")
 
+    def dropped(self, topic: str, count: int) -> None:
+        """``count`` messages of ``topic`` that every one counts (markers) were dropped before they were shown,
+        the screen being too slow; views that keep such topics say so (the base ignores it)."""
+
     def off_loop(self, msg: Any, received: float) -> Callable[[], Any] | None:
         """Work on ``msg`` that needs no screen, for a live panel to run on a worker thread (called on the loop;
         None: nothing to do off the loop, :meth:`show_message` is called instead).

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Any, ClassVar
+from typing import Any, Callable, ClassVar
 
 import numpy as np
 from rich.segment import Segment
@@ -38,6 +38,7 @@ from rostui.models.contrast import RGB, keep_hue
 from rostui.models.sensors.canvas2d import BRAILLE_BASE, Viewport
 from rostui.models.sensors.pose2d import Points
 from rostui.models.sensors.scene2d import Drawing, Lookup, Scene2D, same_frame_only
+from rostui.core.rostime import Time
 from rostui.models.sensors.pose2d import Pose2D
 from rostui.models.sensors.tf_lookup import buffer_lookup
 from rostui.models.sensors.tools2d import (Tool, ToolSender, ToolTopics, goal_message, initial_pose_message,
@@ -184,6 +185,14 @@ class TopDownView(TopicView, can_focus=True):
         view.one_message = True
         return view
 
+    def dropped(self, topic: str, count: int) -> None:
+        """Marker messages of ``topic`` dropped before they were shown: the legend says how many."""
+        store = self.scene.markers(topic)
+        if store is not None and store.dropped != count:
+            store.dropped = count
+            store.generation += 1
+            self.scene.generation += 1
+
     def show_message(self, msg: Any, received: float = 0.0) -> None:
         """``msg`` is the newest message of this view's first topic."""
         self.show_topic_message(self.topic, msg, received)
@@ -329,14 +338,12 @@ class TopDownView(TopicView, can_focus=True):
         if not frame:
             self._say_sent("no fixed frame yet: nothing sent")
             return
-        from rostui.core.rostime import Time
-
         make = goal_message if self.tool is Tool.GOAL else initial_pose_message
         tool = self.tool
-        msg = make(frame, cursor, Time.now())
         what = (f"{tool.value} x {cursor.x:.2f} y {cursor.y:.2f} θ {math.degrees(cursor.yaw):.0f}° "
                 f"({frame})")
-        self.run_worker(self._send(tool, msg, what), group="topdown-send", exit_on_error=False)
+        self.run_worker(self._send(tool, lambda now: make(frame, cursor, now), what), group="topdown-send",
+                        exit_on_error=False)
         self.tool = None
         self.scene.cursor = None
         self._tool_changed()
@@ -383,18 +390,20 @@ class TopDownView(TopicView, can_focus=True):
         self._tool_changed()
 
     def _drive(self, forward: float, turn: float) -> None:
-        self.run_worker(self._send(Tool.TELEOP, twist_message(forward, turn),
-                                   f"linear {forward * 0.5:+.1f} m/s angular {turn * 1.0:+.1f} rad/s"),
+        twist = twist_message(forward, turn)
+        self.run_worker(self._send(Tool.TELEOP, lambda now: twist,
+                                   f"{twist.linear.x:+.1f} m/s {twist.angular.z:+.1f} rad/s"),
                         group="topdown-send", exit_on_error=False)
 
     def _listeners(self, tool: Tool) -> str:
         count = self.sender.connections(tool) if self.sender is not None else 0
-        return f"{count} subscriber{'' if count == 1 else 's'}"
+        return f"{count} sub{'' if count == 1 else 's'}"
 
     def _tool_sender(self) -> ToolSender | None:
         node = self._node()
         if node is None:
-            self._say_sent("not sent: no node here (the tools send from `rostui view`)")
+            self._say_sent("not sent: no master answers" if self._in_panel()
+                           else "not sent: no node here (the tools send from `rostui view`)")
             return None
         if self.sender is None or self.sender.node is not node:
             self.sender = ToolSender(node, self.tool_topics)
@@ -408,16 +417,21 @@ class TopDownView(TopicView, can_focus=True):
         except Exception as exc:  # the master or the node went away: said on the status line
             self._say_sent(f"cannot advertise {self.tool_topics.of(tool)}: {exc}")
 
-    async def _send(self, tool: Tool, msg: Any, what: str) -> None:
+    async def _send(self, tool: Tool, make: Callable[[Time], Any], what: str) -> None:
+        """Publish what ``make(now)`` makes (``now`` in ROS time) on ``tool``'s topic, and say so, with how many
+        subscribers had it."""
         sender = self._tool_sender()
         if sender is None:
             return
         try:
-            topic = await sender.send(tool, msg)
+            await sender.advertise(tool)
+            topic = await sender.send(tool, make(sender.now()))
         except Exception as exc:  # the master or the node went away: said on the status line
             self._say_sent(f"not sent: {exc}")
             return
-        self._say_sent(f"sent {what} on {topic}")
+        count = sender.connections(tool)
+        heard = "nobody subscribes: nobody got it" if count == 0 else f"{count} sub{'' if count == 1 else 's'}"
+        self._say_sent(f"sent {what} on {topic} ({heard})")
 
     def _node(self) -> Any:
         """The node of the `rostui view` panel holding this view (None elsewhere)."""
@@ -465,9 +479,19 @@ class TopDownView(TopicView, can_focus=True):
         source, self.tf_source = self.tf_source, None
         if source is not None:
             await source.stop()
+        await self.stop_tools()
+
+    async def stop_tools(self) -> None:
+        """Leave the tools: in teleop, stop the robot first (as teleop keyboards do on exit); unadvertise."""
         sender, self.sender = self.sender, None
         if sender is not None:
+            if self.tool is Tool.TELEOP:
+                try:  # written to each subscriber's socket now; closing the connection flushes it
+                    await sender.send(Tool.TELEOP, twist_message(0.0, 0.0))
+                except Exception:  # the node or the master went first: nothing more to say to the robot
+                    pass
             await sender.close()
+        self.tool = None
 
     def on_resize(self) -> None:
         """Keep centre and scale over the new size, and redraw at once."""
@@ -609,14 +633,14 @@ class TopDownView(TopicView, can_focus=True):
 
     def _status(self, view: Viewport) -> str:
         if self.tool is Tool.TELEOP:
-            return (f"TELEOP → {self.tool_topics.cmd_vel} ({self._listeners(Tool.TELEOP)})  ↑↓ drive ←→ turn  "
-                    f"space stop  Esc leaves  {self.last_sent}")
+            sent = self.last_sent.split(" on ")[0] if self.last_sent.startswith("sent ") else "↑↓←→ drive"
+            return (f"TELEOP → {self.tool_topics.cmd_vel} ({self._listeners(Tool.TELEOP)})  {sent}  space stop  "
+                    "Esc leave")
         if self.tool is not None and self.scene.cursor is not None:
             c = self.scene.cursor
             topic = self.tool_topics.of(self.tool)
-            return (f"{'GOAL' if self.tool is Tool.GOAL else 'POSE'} → {topic} ({self._listeners(self.tool)})  "
-                    f"x {c.x:.2f} y {c.y:.2f} θ {math.degrees(c.yaw):.0f}°  arrows/click move  a d turn  "
-                    f"Enter sends  Esc cancels")
+            return (f"{'GOAL' if self.tool is Tool.GOAL else 'POSE'} {c.x:.2f},{c.y:.2f} {math.degrees(c.yaw):.0f}° "
+                    f"→ {topic} ({self._listeners(self.tool)})  Enter send  Esc cancel  arrows click a d move")
         if self.last_sent and time.monotonic() - self._sent_at < SENT_SHOWN:
             return self.last_sent
         step = self.scene.grid_step(view)

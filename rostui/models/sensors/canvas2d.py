@@ -90,6 +90,7 @@ class Viewport:
 
     def fitting(self, points: Points, margin: float = 0.1) -> "Viewport":
         """Centred on ``points``' bounding box, scaled so all of it shows with ``margin`` to spare."""
+        points = points[np.isfinite(points).all(axis=1)] if len(points) else points
         if len(points) == 0 or self.cols <= 0 or self.rows <= 0:
             return self
         lo, hi = points.min(axis=0), points.max(axis=0)
@@ -99,8 +100,11 @@ class Viewport:
         return replace(self, cx=float(centre[0]), cy=float(centre[1]), scale=float(scale))
 
     def cell_of(self, x: float, y: float) -> tuple[int, int] | None:
-        """The (column, row) of the cell showing world point ``(x, y)``; None when it is off the canvas."""
+        """The (column, row) of the cell showing world point ``(x, y)``; None when it is off the canvas (or not a
+        finite point)."""
         col, row = self.to_dots(np.array([[x, y]]))[0]
+        if not (math.isfinite(col) and math.isfinite(row)):
+            return None
         c, r = math.floor(col), math.floor(row)
         if 0 <= c < self.dots_wide and 0 <= r < self.dots_high:
             return c // 2, r // 4

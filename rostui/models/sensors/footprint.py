@@ -20,6 +20,9 @@ __all__ = ["FootprintError", "footprint_outline", "polygon_points", "closed"]
 #: Vertices of a round robot's outline.
 CIRCLE_VERTICES = 32
 
+#: Longest footprint string read (a footprint is a few dozen points).
+MAX_TEXT = 1 << 16
+
 
 class FootprintError(ValueError):
     """A footprint costmap_2d would refuse, in one line."""
@@ -27,18 +30,24 @@ class FootprintError(ValueError):
 
 def _number(value: Any, where: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise FootprintError(f"{where}: {value!r} is not a number")
-    if not math.isfinite(value):
-        raise FootprintError(f"{where}: {value!r} is not a finite number")
-    return float(value)
+        raise FootprintError(f"{where}: {str(value)[:40]!r} is not a number")
+    try:
+        number = float(value)
+    except OverflowError:
+        number = math.inf
+    if not math.isfinite(number):
+        raise FootprintError(f"{where}: {str(value)[:40]!r} is not a finite number")
+    return number
 
 
 def _parse_text(text: str) -> Any:
     import yaml
 
+    if len(text) > MAX_TEXT:
+        raise FootprintError(f"a footprint string of {len(text)} characters is longer than {MAX_TEXT}")
     try:
         return yaml.safe_load(text)
-    except yaml.YAMLError:
+    except (yaml.YAMLError, ValueError, RecursionError):
         raise FootprintError(f"the footprint string {text[:80]!r} is not a list of [x, y] points") from None
 
 

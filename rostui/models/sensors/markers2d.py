@@ -29,9 +29,13 @@ from dataclasses import dataclass, field
 from typing import Any, Iterable
 
 import numpy as np
+import numpy.typing as npt
 
 from rostui.models.sensors.mesh_bounds import MeshError, mesh_extent
 from rostui.models.sensors.pose2d import MAX_POINTS, Points, every, pose_of
+
+IntArray = npt.NDArray[np.int64]
+BoolArray = npt.NDArray[np.bool_]
 
 __all__ = ["MARKER_TYPES", "MAX_MARKERS", "MarkerShape", "MarkerStore", "Rgb", "marker_shape"]
 
@@ -41,7 +45,13 @@ MARKER_TYPES = ("visualization_msgs/Marker", "visualization_msgs/MarkerArray")
 #: Most markers one topic holds; adds beyond it are counted and not kept.
 MAX_MARKERS = 20_000
 
+#: Most segments and dots all the markers of one topic hold (a marker that would pass it is refused).
+MAX_ELEMENTS = 1 << 19
+
 ARROW, CUBE, SPHERE, CYLINDER, LINE_STRIP, LINE_LIST, CUBE_LIST, SPHERE_LIST, POINTS, TEXT, MESH, TRIANGLES = range(12)
+
+#: The types rviz colours point by point when ``colors`` has one per point.
+PER_POINT_COLORS = frozenset({LINE_STRIP, LINE_LIST, CUBE_LIST, SPHERE_LIST, POINTS, TRIANGLES})
 ADD, DEPRECATED_MODIFY, DELETE, DELETEALL = 0, 1, 2, 3
 
 #: Vertices of a sphere's or cylinder's outline.
@@ -77,14 +87,18 @@ def _visible(color: Any) -> bool:
 
 @dataclass
 class MarkerShape:
-    """One marker in its own ``frame``: line segments and dots, each with a colour, and an optional label."""
+    """One marker in its own ``frame``: line segments and dots, each element with a colour (an index into
+    ``palette``, colours grouped to :data:`COLOR_LEVELS` a channel), and an optional label."""
 
     frame: str
     starts: Points = field(default_factory=lambda: np.zeros((0, 2)))
     ends: Points = field(default_factory=lambda: np.zeros((0, 2)))
-    segment_colors: list[Rgb] = field(default_factory=list)
     dots: Points = field(default_factory=lambda: np.zeros((0, 2)))
-    dot_colors: list[Rgb] = field(default_factory=list)
+    palette: list[Rgb] = field(default_factory=list)
+    segment_colors: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    """For each segment, its colour's index in ``palette``."""
+    dot_colors: IntArray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    """For each dot, its colour's index in ``palette``."""
     label: str = ""
     label_at: tuple[float, float] = (0.0, 0.0)
     label_color: Rgb = (255, 255, 255)
@@ -97,28 +111,57 @@ class MarkerShape:
         return len(self.starts) + len(self.dots)
 
     def points(self) -> Points:
-        """Every vertex, dot and the label's place (for fitting a view around it)."""
+        """Every finite vertex, dot and the label's place (for fitting a view around it)."""
         parts = [self.starts, self.ends, self.dots]
         if self.label:
             parts.append(np.array([self.label_at]))
-        return np.concatenate(parts).reshape(-1, 2)
+        every_point = np.concatenate(parts).reshape(-1, 2)
+        return every_point[np.isfinite(every_point).all(axis=1)]
 
 
-def _points(items: Any, most: int) -> Points:
-    """``geometry_msgs/Point[]`` (or a numpy view) as N x 2, strided to at most ``most``."""
-    n = len(items)
-    step = every(n, most)
-    out = np.array([[float(p.x), float(p.y)] for p in items[::step]], dtype=np.float64)
-    return out.reshape(-1, 2)
+#: Marker colours are grouped to this many levels a channel (each group is drawn as one colour).
+COLOR_LEVELS = 8
 
 
-def _colors(marker: Any, count: int, step: int = 1) -> list[Rgb]:
-    """The colour of each of ``count`` points: its own from ``colors`` when there is one per point, else the
-    marker's."""
+def grouped(rgb: Rgb) -> Rgb:
+    """``rgb`` moved to the middle of its group (:data:`COLOR_LEVELS` a channel)."""
+    size = 256 // COLOR_LEVELS
+    return tuple(min(255, (c // size) * size + size // 2) for c in rgb)  # type: ignore[return-value]
+
+
+def _vertices(items: Any, indices: IntArray) -> Points:
+    """The x and y of ``items[i]`` (geometry_msgs/Point) for each index."""
+    return np.array([[float(items[i].x), float(items[i].y)] for i in indices], dtype=np.float64).reshape(-1, 2)
+
+
+def _chosen(count: int, group: int, most: int) -> IntArray:
+    """Indices of the vertices kept of ``count``, whole groups of ``group`` (a line's pair, a triangle's three)
+    at a time, at most ``most`` vertices."""
+    groups = count // group
+    step = every(groups, max(1, most // group))
+    firsts = np.arange(0, groups, step, dtype=np.int64) * group
+    return (firsts[:, None] + np.arange(group, dtype=np.int64)).reshape(-1)
+
+
+def _colored(marker: Any, indices: IntArray) -> tuple[list[Rgb], IntArray, BoolArray]:
+    """The palette, each chosen vertex's colour index in it, and which vertices show: their own colours when the
+    marker has one per point (an alpha of 0 hides a point, as in rviz), else the marker's."""
     colors = marker.colors
-    if len(colors) and len(colors) >= count * step - (step - 1):
-        return [_rgb(c) for c in list(colors)[::step][:count]]
-    return [_rgb(marker.color)] * count
+    if len(colors) and len(colors) == len(marker.points):
+        rgba = np.array([(float(colors[i].r), float(colors[i].g), float(colors[i].b), float(colors[i].a))
+                         for i in indices], dtype=np.float64).reshape(-1, 4)
+    else:
+        c = marker.color
+        rgba = np.tile(np.array([float(c.r), float(c.g), float(c.b), float(c.a)]), (len(indices), 1))
+    shown = ~(rgba[:, 3] <= 0.0)  # NaN alpha counts as shown
+    levels = np.nan_to_num(np.clip(rgba[:, :3], 0.0, 1.0), nan=0.0)
+    size = 256 // COLOR_LEVELS
+    codes = np.minimum(np.round(levels * 255).astype(np.int64) // size, COLOR_LEVELS - 1)
+    packed = (codes[:, 0] * COLOR_LEVELS + codes[:, 1]) * COLOR_LEVELS + codes[:, 2]
+    unique, index = np.unique(packed, return_inverse=True)
+    palette = [grouped((int(u // COLOR_LEVELS ** 2) * size, int(u // COLOR_LEVELS % COLOR_LEVELS) * size,
+                        int(u % COLOR_LEVELS) * size)) for u in unique]
+    return palette, index.astype(np.int64).reshape(-1), shown
 
 
 def _outline(vertices: Points) -> tuple[Points, Points]:
@@ -147,8 +190,7 @@ def marker_shape(marker: Any, most: int = MAX_POINTS) -> MarkerShape:
     sx, sy = float(marker.scale.x), float(marker.scale.y)
     if kind == ARROW:
         if len(marker.points) >= 2:
-            tail, tip = _points(marker.points[:2], 2)
-            tail, tip = pose.apply(np.array([tail, tip]))
+            tail, tip = pose.apply(_vertices(marker.points, np.array([0, 1])))
         else:
             tail = np.array([pose.x, pose.y])
             tip = tail + sx * np.array([math.cos(pose.yaw), math.sin(pose.yaw)])
@@ -170,32 +212,38 @@ def marker_shape(marker: Any, most: int = MAX_POINTS) -> MarkerShape:
     elif kind in (SPHERE, CYLINDER):
         shape.starts, shape.ends = _outline(pose.apply(_ellipse(sx / 2, sy / 2)))
     elif kind in (LINE_STRIP, LINE_LIST, TRIANGLES):
-        points = pose.apply(_points(marker.points, most))
-        colors = _colors(marker, len(points), every(len(marker.points), most))
+        group = {LINE_STRIP: 1, LINE_LIST: 2, TRIANGLES: 3}[kind]
+        indices = _chosen(len(marker.points), group, most)
+        points = pose.apply(_vertices(marker.points, indices))
+        palette, colors, shown = _colored(marker, indices)
+        shape.palette = palette
         if kind == LINE_STRIP:
-            shape.starts, shape.ends, shape.segment_colors = points[:-1], points[1:], colors[:-1]
+            keep = shown[:-1] & shown[1:]
+            shape.starts, shape.ends, shape.segment_colors = points[:-1][keep], points[1:][keep], colors[:-1][keep]
         elif kind == LINE_LIST:
-            pairs = len(points) // 2
-            shape.starts, shape.ends = points[0:2 * pairs:2], points[1:2 * pairs:2]
-            shape.segment_colors = colors[0:2 * pairs:2]
+            keep = shown[0::2] & shown[1::2]
+            shape.starts, shape.ends = points[0::2][keep], points[1::2][keep]
+            shape.segment_colors = colors[0::2][keep]
         else:
-            count = len(points) // 3
-            corners = points[:3 * count].reshape(count, 3, 2)
-            shape.starts = corners.reshape(-1, 2)
-            shape.ends = np.roll(corners, -1, axis=1).reshape(-1, 2)
-            shape.segment_colors = [c for c in colors[0:3 * count:3] for _ in range(3)]
+            corners = points.reshape(-1, 3, 2)
+            keep = np.repeat(shown.reshape(-1, 3).all(axis=1), 3)
+            shape.starts = corners.reshape(-1, 2)[keep]
+            shape.ends = np.roll(corners, -1, axis=1).reshape(-1, 2)[keep]
+            shape.segment_colors = np.repeat(colors[0::3], 3)[keep]
     elif kind in (POINTS, CUBE_LIST, SPHERE_LIST):
-        shape.dots = pose.apply(_points(marker.points, most))
-        shape.dot_colors = _colors(marker, len(shape.dots), every(len(marker.points), most))
+        indices = _chosen(len(marker.points), 1, most)
+        palette, colors, shown = _colored(marker, indices)
+        shape.palette, shape.dots, shape.dot_colors = palette, pose.apply(_vertices(marker.points, indices))[shown], \
+            colors[shown]
     elif kind == TEXT:
         text = _printable(str(marker.text))
         shape.label = text if len(text) <= MAX_LABEL else text[:MAX_LABEL - 1] + "…"
         shape.label_at = (pose.x, pose.y)
-        shape.label_color = color
+        shape.label_color = grouped(color)
     else:
         raise ValueError(f"marker type {kind} is not one rviz draws")
-    if len(shape.starts) and not shape.segment_colors:
-        shape.segment_colors = [color] * len(shape.starts)
+    if len(shape.starts) and not shape.palette:
+        shape.palette, shape.segment_colors = [grouped(color)], np.zeros(len(shape.starts), dtype=np.int64)
     return shape
 
 
@@ -211,16 +259,23 @@ class _Held:
 class MarkerStore:
     """The markers of one topic, by (namespace, id), as rviz's Marker display keeps them."""
 
-    def __init__(self, most: int = MAX_MARKERS) -> None:
+    def __init__(self, most: int = MAX_MARKERS, most_elements: int = MAX_ELEMENTS) -> None:
         self.most = most
+        self.most_elements = most_elements
         self._held: dict[tuple[str, int], _Held] = {}
+        self.elements = 0
+        """Segments and dots of every marker held (at most ``most_elements``)."""
         self.refused = 0
-        """Markers not kept: over :data:`MAX_MARKERS`, of an unknown type or action, or with no frame."""
+        """Markers not kept: past :data:`MAX_MARKERS` or :data:`MAX_ELEMENTS`, of an unknown type or action, or with
+        no frame."""
         self.problem = ""
         """What the last refused marker was refused for (one line)."""
         self.generation = 0
         self.expired = 0
         """Markers that ended because their lifetime passed."""
+        self.dropped = 0
+        """Marker messages dropped before they reached the store (the screen fell behind): what they added or
+        deleted is missing."""
 
     def __len__(self) -> int:
         return len(self._held)
@@ -233,6 +288,11 @@ class MarkerStore:
             self._apply(marker, now if lifetimes else None)
         self.generation += 1
 
+    def _drop(self, key: tuple[str, int]) -> None:
+        held = self._held.pop(key, None)
+        if held is not None:
+            self.elements -= held.shape.size
+
     def _refuse(self, why: str) -> None:
         self.refused += 1
         self.problem = why
@@ -242,26 +302,34 @@ class MarkerStore:
         key = (str(marker.ns), int(marker.id))
         if action == DELETEALL:
             self._held.clear()
+            self.elements = 0
         elif action == DELETE:
-            self._held.pop(key, None)
+            self._drop(key)
         elif action in (ADD, DEPRECATED_MODIFY):
             if not str(marker.header.frame_id):
                 self._refuse(f"marker {key[0]}/{key[1]} has no frame_id")
                 return
-            if not _visible(marker.color) and not len(marker.colors):
-                self._held.pop(key, None)
+            per_point = int(marker.type) in PER_POINT_COLORS and 0 < len(marker.colors) == len(marker.points)
+            if not _visible(marker.color) and not per_point:
+                self._drop(key)
                 return
             if key not in self._held and len(self._held) >= self.most:
                 self._refuse(f"more than {self.most} markers")
                 return
             try:
-                shape = marker_shape(marker)
-            except (ValueError, AttributeError, TypeError) as exc:
+                with np.errstate(all="ignore"):  # NaN and inf in a marker are left out when drawn, not warned of
+                    shape = marker_shape(marker)
+            except (ValueError, AttributeError, TypeError, OverflowError) as exc:
                 self._refuse(str(exc))
+                return
+            before = self._held[key].shape.size if key in self._held else 0
+            if self.elements - before + shape.size > self.most_elements:
+                self._refuse(f"more than {self.most_elements} points and lines in all markers")
                 return
             lifetime = float(marker.lifetime.secs) + float(marker.lifetime.nsecs) * 1e-9
             expires = now + lifetime if lifetime > 0 and now is not None else None
             self._held[key] = _Held(shape, expires, bool(marker.frame_locked))
+            self.elements += shape.size - before
         else:
             self._refuse(f"marker action {action} is not one rviz knows")
 
@@ -269,7 +337,7 @@ class MarkerStore:
         """Drop the markers whose lifetime has passed at ``now``; True when any went."""
         gone = [key for key, held in self._held.items() if held.expires is not None and held.expires <= now]
         for key in gone:
-            del self._held[key]
+            self._drop(key)
         self.expired += len(gone)
         if gone:
             self.generation += 1

@@ -10,7 +10,9 @@ its scale, and the legend says why).
 
 from __future__ import annotations
 
+import os
 import re
+import stat
 import struct
 from functools import lru_cache
 from pathlib import Path
@@ -50,23 +52,38 @@ def mesh_extent(url: str) -> tuple[float, float, float, float]:
     return _extent_of(str(resolve_resource(url)))
 
 
-@lru_cache(maxsize=CACHE_SIZE)
 def _extent_of(path: str) -> tuple[float, float, float, float]:
-    file = Path(path)
+    """The extent of the mesh file at ``path``; a file that failed once fails again without being read."""
+    extent = _extent_or_error(path)
+    if isinstance(extent, MeshError):
+        raise extent
+    return extent
+
+
+@lru_cache(maxsize=CACHE_SIZE)
+def _extent_or_error(path: str) -> tuple[float, float, float, float] | MeshError:
     try:
-        size = file.stat().st_size
-        if size > MAX_MESH_BYTES:
-            raise MeshError(f"{path}: larger than {MAX_MESH_BYTES >> 20} MB")
-        data = file.read_bytes()
+        return _read_extent(path)
+    except MeshError as exc:
+        return exc
+
+
+def _read_extent(path: str) -> tuple[float, float, float, float]:
+    file = Path(path)
+    suffix = file.suffix.lower()
+    if suffix not in (".stl", ".dae"):
+        raise MeshError(f"{path}: a {suffix or 'suffix-less'} mesh is not read (STL and COLLADA are)")
+    try:
+        fd = os.open(file, os.O_RDONLY | os.O_NONBLOCK)  # a FIFO would block an open() until a writer came
+        with open(fd, "rb") as stream:
+            if not stat.S_ISREG(os.fstat(fd).st_mode):
+                raise MeshError(f"{path}: not a regular file")
+            data = stream.read(MAX_MESH_BYTES + 1)
     except OSError as exc:
         raise MeshError(f"{path}: {exc.strerror or exc}") from None
-    suffix = file.suffix.lower()
-    if suffix == ".stl":
-        vertices = _stl_vertices(data, path)
-    elif suffix == ".dae":
-        vertices = _dae_vertices(data, path)
-    else:
-        raise MeshError(f"{path}: a {suffix or 'suffix-less'} mesh is not read (STL and COLLADA are)")
+    if len(data) > MAX_MESH_BYTES:
+        raise MeshError(f"{path}: larger than {MAX_MESH_BYTES >> 20} MB")
+    vertices = _stl_vertices(data, path) if suffix == ".stl" else _dae_vertices(data, path)
     finite = vertices[np.isfinite(vertices).all(axis=1)]
     if not len(finite):
         raise MeshError(f"{path}: no vertices")

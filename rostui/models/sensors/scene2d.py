@@ -40,8 +40,6 @@ TOPDOWN_TYPES = ("sensor_msgs/LaserScan", "nav_msgs/Odometry", "nav_msgs/Path", 
 #: Most colours markers are drawn in at once (each is a layer); markers of further colours take their topic's.
 MAX_COLOR_LAYERS = 24
 
-#: Marker colours are grouped to this many levels per channel (a layer each).
-COLOR_LEVELS = 8
 
 #: The name :attr:`Scene2D.layer_colors` gives the cursor's layer, and its colour.
 CURSOR = "(cursor)"
@@ -110,12 +108,6 @@ class Label:
     layer: int
 
 
-def _grouped(rgb: Rgb) -> Rgb:
-    """``rgb`` moved to the middle of its group (:data:`COLOR_LEVELS` per channel)."""
-    size = 256 // COLOR_LEVELS
-    return tuple(min(255, (c // size) * size + size // 2) for c in rgb)  # type: ignore[return-value]
-
-
 class _Topic:
     __slots__ = ("name", "msg", "drawing", "drawn_from", "error", "received", "count", "markers")
 
@@ -174,7 +166,8 @@ class Scene2D:
             if entry.markers is None or alone:
                 entry.markers = MarkerStore()
             entry.markers.offer(msg, received or time.time(), lifetimes=not alone)
-            header = msg.markers[0].header if getattr(msg, "markers", None) else getattr(msg, "header", None)
+            header = next((m.header for m in (msg.markers if hasattr(msg, "markers") else (msg,))
+                           if str(m.header.frame_id)), None)
         else:
             header = getattr(msg, "header", None)
         if self.fixed_frame is None:
@@ -250,11 +243,14 @@ class Scene2D:
 
     def _marker_note(self, store: MarkerStore) -> str:
         parts = [f"{len(store)} marker{'s' if len(store) != 1 else ''}"]
-        unplaced = sorted({shape.frame for key, shape, _ in store.held() if self._frame_where(shape.frame) is None})
+        frames = {shape.frame for _, shape, _ in store.held()}
+        unplaced = sorted(frame for frame in frames if self._frame_where(frame) is None)
         if unplaced:
             parts.append(f"no transform from {', '.join(unplaced[:3])} to {self.fixed_frame}")
         if store.refused:
             parts.append(f"{store.refused} not drawn: {store.problem}")
+        if store.dropped:
+            parts.append(f"{store.dropped} messages dropped: the screen fell behind")
         notes = sorted({shape.note for _, shape, _ in store.held() if shape.note})
         if notes:
             parts.append(notes[0] if len(notes) == 1 else f"{notes[0]} (and {len(notes) - 1} more)")
@@ -306,7 +302,8 @@ class Scene2D:
                 h, w = drawing.grid.values.shape
                 corners = np.array([[0, 0], [w, 0], [0, h], [w, h]], dtype=np.float64) * drawing.grid.resolution
                 parts.append(where.compose(drawing.grid.origin).apply(corners))
-        return np.concatenate(parts) if parts else np.zeros((0, 2))
+        every_point = np.concatenate(parts) if parts else np.zeros((0, 2))
+        return every_point[np.isfinite(every_point).all(axis=1)]
 
     def grid_step(self, view: Viewport) -> float:
         """Metres between two grid lines at ``view``'s scale."""
@@ -325,7 +322,8 @@ class Scene2D:
         self._draw_grid(canvas, view)
         for layer, (topic, entry) in enumerate(self._topics.items(), start=1):
             if entry.markers is not None:
-                self._draw_markers(canvas, view, layer, topic, entry.markers, colors)
+                with np.errstate(all="ignore"):  # a marker's NaN or inf points are clipped away, not warned of
+                    self._draw_markers(canvas, view, layer, topic, entry.markers, colors)
                 continue
             drawing = self.drawing(topic)
             where = self.transform(drawing) if drawing is not None else None
@@ -356,8 +354,8 @@ class Scene2D:
             if entry.markers is None:
                 continue
             for _, shape, _ in entry.markers.held():
-                for rgb in (*shape.segment_colors, *shape.dot_colors, *((shape.label_color,) if shape.label else ())):
-                    key = (topic, _grouped(rgb))
+                for rgb in (*shape.palette, *((shape.label_color,) if shape.label else ())):
+                    key = (topic, rgb)
                     if key not in layers and len(layers) < MAX_COLOR_LAYERS:
                         layers[key] = first + len(layers)
         return layers
@@ -366,23 +364,25 @@ class Scene2D:
                       colors: dict[tuple[str, Rgb], int]) -> None:
         """Each marker in the layer of its colour (or its topic's), where tf puts its frame."""
         def layer_of(rgb: Rgb) -> int:
-            return colors.get((topic, _grouped(rgb)), own)
+            return colors.get((topic, rgb), own)
 
         for key, shape, locked in store.held():
             where = self._marker_where(store, key, shape.frame, locked)
             if where is None:
                 continue
+            layers = np.array([layer_of(rgb) for rgb in shape.palette], dtype=np.int64)
             if len(shape.starts):
                 starts, ends = where.apply(shape.starts), where.apply(shape.ends)
-                layers = np.array([layer_of(c) for c in shape.segment_colors])
-                for layer in np.unique(layers):
-                    mine = layers == layer
+                segment_layers = layers[shape.segment_colors]
+                for layer in np.unique(segment_layers):
+                    mine = segment_layers == layer
                     canvas.segments(int(layer), starts[mine], ends[mine])
             if len(shape.dots):
                 dots = where.apply(shape.dots)
-                layers = np.array([layer_of(c) for c in shape.dot_colors])
-                for layer in np.unique(layers):
-                    canvas.points(int(layer), dots[layers == layer])
+                keep = np.isfinite(dots).all(axis=1)
+                dot_layers = layers[shape.dot_colors]
+                for layer in np.unique(dot_layers[keep]):
+                    canvas.points(int(layer), dots[keep & (dot_layers == layer)])
             if shape.label:
                 cell = view.cell_of(*where.apply(np.array([shape.label_at]))[0])
                 if cell is not None:

@@ -13,12 +13,15 @@ Nothing here talks to a master: :class:`ToolSender` is given the node.
 
 from __future__ import annotations
 
+import asyncio
 import math
 from dataclasses import dataclass
 from enum import Enum
 from typing import Any
 
 from rostui.core.msg import get_message_class
+from rostui.core.node.clock import CLOCK_TOPIC as CLOCK
+from rostui.core.node.clock import USE_SIM_TIME_PARAM as USE_SIM_TIME
 from rostui.core.rostime import Time
 from rostui.models.sensors.pose2d import Pose2D
 
@@ -100,23 +103,50 @@ def twist_message(forward: float, turn: float) -> Any:
 
 
 class ToolSender:
-    """The publishers of the tools on ``node`` (an AsyncNode), each advertised when first used, never before."""
+    """The publishers of the tools on ``node`` (an AsyncNode), each advertised when first used, never before;
+    stamps in ROS time, as rviz stamps: ``/clock`` when the master's ``/use_sim_time`` is true."""
 
     def __init__(self, node: Any, topics: ToolTopics) -> None:
         self.node = node
         self.topics = topics
         self._publishers: dict[Tool, Any] = {}
+        self._lock = asyncio.Lock()
+        self._sim_time: Time | None = None
+        self._clock: Any = None
 
     async def advertise(self, tool: Tool) -> Any:
         """``tool``'s publisher, advertised now if it was not (the view advertises as a mode opens, so the
         robot's subscriber is connected by the time a key sends; nothing is latched, as in rviz: a goal is not
-        sent again to a node that starts later)."""
-        publisher = self._publishers.get(tool)
-        if publisher is None:
-            cls = get_message_class(TOOL_TYPES[tool])
-            publisher = await self.node.advertise(self.topics.of(tool), cls)
-            self._publishers[tool] = publisher
-        return publisher
+        sent again to a node that starts later).  One at a time: a key pressed while a mode opens waits."""
+        async with self._lock:
+            publisher = self._publishers.get(tool)
+            if publisher is None:
+                await self._follow_sim_time()
+                cls = get_message_class(TOOL_TYPES[tool])
+                publisher = await self.node.advertise(self.topics.of(tool), cls)
+                self._publishers[tool] = publisher
+            return publisher
+
+    async def _follow_sim_time(self) -> None:
+        """Under ``/use_sim_time``, keep the newest ``/clock`` for :meth:`now` (asked of the master once)."""
+        if self._clock is not None:
+            return
+        self._clock = False
+        try:
+            sim = await self.node.master_call("getParam", USE_SIM_TIME)
+        except Exception:  # unset (the master refuses getParam of an unset name): the wall clock
+            sim = False
+        if sim is True:
+            self._sim_time = Time(0, 0)
+
+            def tick(msg: Any) -> None:
+                self._sim_time = Time(msg.clock.secs, msg.clock.nsecs)
+
+            self._clock = await self.node.subscribe(CLOCK, get_message_class("rosgraph_msgs/Clock"), tick)
+
+    def now(self) -> Time:
+        """ROS time: the newest ``/clock`` under simulated time (zero before one came), else the wall clock."""
+        return Time(self._sim_time.secs, self._sim_time.nsecs) if self._sim_time is not None else Time.now()
 
     async def send(self, tool: Tool, msg: Any) -> str:
         """Publish ``msg`` on ``tool``'s topic; the topic's name."""
@@ -129,8 +159,11 @@ class ToolSender:
         return publisher.get_num_connections() if publisher is not None else 0
 
     async def close(self) -> None:
-        """Unadvertise every publisher."""
+        """Unadvertise every publisher (and leave ``/clock``)."""
         publishers, self._publishers = list(self._publishers.values()), {}
+        if self._clock:
+            publishers.append(self._clock)
+        self._clock = None
         for publisher in publishers:
             try:
                 await publisher.unregister()

@@ -29,6 +29,7 @@ from typing import Any
 import yaml
 
 from rostui.core import names
+from rostui.core.one_line import exception_line
 from rostui.tools.yaml_file import YamlFileError, node_line, node_value, read_yaml_node
 
 __all__ = ["ViewFileError", "ViewSpec", "read_view_file", "write_view_file", "spec_from_rviz", "RVIZ_TOPIC_FIELDS"]
@@ -49,6 +50,9 @@ MAX_TOPICS = 64
 
 #: rviz's window width when its file does not say (pixels), to turn its scale into metres across.
 RVIZ_DEFAULT_WIDTH = 1200
+
+#: The narrowest and widest views a file may ask for (metres across).
+MIN_SPAN, MAX_SPAN = 1e-3, 1e7
 
 
 class ViewFileError(ValueError):
@@ -102,9 +106,21 @@ def _topic(value: Any, where: str, line: int, key: str) -> str:
 
 
 def _number(value: Any, where: str, line: int, key: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ViewFileError(f"{where}:{line}: {key}: {value!r} is not a number")
-    return float(value)
+    try:
+        number = float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else math.nan
+    except OverflowError:
+        number = math.nan
+    if not math.isfinite(number):
+        raise ViewFileError(f"{where}:{line}: {key}: {str(value)[:40]!r} is not a number")
+    return number
+
+
+def _value(node: yaml.Node, where: str) -> Any:
+    """``node`` as Python values; one line for a value YAML cannot make (``!!float abc``, a list as a key)."""
+    try:
+        return node_value(node)
+    except (yaml.YAMLError, ValueError, TypeError, OverflowError) as exc:
+        raise ViewFileError(f"{where}:{node_line(node)}: not a value: {exception_line(exc)}") from None
 
 
 def read_view_file(path: Path) -> ViewSpec:
@@ -121,7 +137,7 @@ def read_view_file(path: Path) -> ViewSpec:
         key, line = key_node.value, node_line(key_node)
         if key not in _KEYS:
             raise ViewFileError(f"{where}:{line}: unknown key {key!r} (a view file has {', '.join(_KEYS)})")
-        value = node_value(value_node)
+        value = _value(value_node, where)
         line = node_line(value_node)
         if key == "topics":
             if not isinstance(value, list) or not value or len(value) > MAX_TOPICS:
@@ -135,8 +151,9 @@ def read_view_file(path: Path) -> ViewSpec:
             setattr(spec, key, value.strip().lstrip("/"))
         elif key == "span":
             spec.span = _number(value, where, line, key)
-            if spec.span <= 0:
-                raise ViewFileError(f"{where}:{line}: span: {value!r} is not a positive number of metres")
+            if not MIN_SPAN <= spec.span <= MAX_SPAN:
+                raise ViewFileError(f"{where}:{line}: span: {value!r} metres is not between {MIN_SPAN:g} and "
+                                    f"{MAX_SPAN:g}")
         elif key == "centre":
             if not isinstance(value, list) or len(value) != 2:
                 raise ViewFileError(f"{where}:{line}: centre: [x, y] in metres")
@@ -182,7 +199,7 @@ def spec_from_rviz(path: Path) -> tuple[ViewSpec, list[str]]:
         root = read_yaml_node(path, "an rviz file")
     except YamlFileError as exc:
         raise ViewFileError(str(exc)) from None
-    document = _mapping(node_value(root)) if root is not None else {}
+    document = _mapping(_value(root, where)) if root is not None else {}
     manager = _mapping(document.get("Visualization Manager"))
     if not manager:
         raise ViewFileError(f"{where}:1: not an rviz configuration (no `Visualization Manager`)")
@@ -227,8 +244,10 @@ def spec_from_rviz(path: Path) -> tuple[ViewSpec, list[str]]:
                 spec.span = distance
             focal = _mapping(current.get("Focal Point"))
             spec.centre = (float(focal.get("X", 0.0)), float(focal.get("Y", 0.0)))
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         spec.span, spec.centre = None, None
+    if spec.span is not None and not MIN_SPAN <= spec.span <= MAX_SPAN:
+        spec.span = None
     if spec.centre is not None and not all(math.isfinite(v) for v in spec.centre):
         spec.centre = None
     if not spec.topics:

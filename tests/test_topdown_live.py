@@ -33,6 +33,13 @@ def subscriptions(env: dict[str, str]) -> set[str]:
     return {topic for topic, nodes in subs if any(n.startswith("/rostui_view") for n in nodes)}
 
 
+def spot_owner(view: TopDownView, topic: str) -> str | None:
+    """The topic drawn in the cell where the talker puts ``topic`` (topdown_helpers.TALKER_SPOTS)."""
+    vp = view.viewport
+    cell = vp.cell_of(*TALKER_SPOTS[topic]) if vp is not None else None
+    return view.cell_topic(*cell) if cell is not None else None
+
+
 async def check_drawn(env: dict[str, str]) -> None:
     app = ViewApp(TOPICS, period=0.3, frame="map")
     async with app.run_test(size=(100, 30)) as pilot:
@@ -40,9 +47,7 @@ async def check_drawn(env: dict[str, str]) -> None:
         view = app.query_one(TopDownView)
 
         def owner(topic: str) -> str | None:
-            vp = view.viewport
-            cell = vp.cell_of(*TALKER_SPOTS[topic]) if vp is not None else None
-            return view.cell_topic(*cell) if cell is not None else None
+            return spot_owner(view, topic)
 
         await until(lambda: all(owner(t) == t for t in TOPICS),
                     lambda: f"every topic drawn in place: {[(t, owner(t)) for t in TOPICS]} {view.row_text(0)!r} "
@@ -90,9 +95,7 @@ async def test_turtlebot3_navigation_rviz_opens_with_its_displays(ros_env: dict[
         view = app.query_one(TopDownView)
 
         def owner(topic: str) -> str | None:
-            vp = view.viewport
-            cell = vp.cell_of(*TALKER_SPOTS[topic]) if vp is not None else None
-            return view.cell_topic(*cell) if cell is not None else None
+            return spot_owner(view, topic)
 
         await until(lambda: all(owner(t) == t for t in drawn),
                     lambda: f"the rviz file's displays drawn: {[(t, owner(t)) for t in drawn]} {view.row_text(0)!r}")

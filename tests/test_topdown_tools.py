@@ -36,6 +36,16 @@ def publishers(env: dict[str, str], topic: str) -> list[str]:
     return next((nodes for name, nodes in pubs if name == topic), [])
 
 
+def map_and_listener(spawn: Spawn, *topics: str) -> Peer:
+    """Debian's rospy publishing a map in "map" (tests/peers/topdown_talker.py), and a rospy listener of
+    ``topics`` (``/topic=pkg/Type``), both ready."""
+    talker = spawn([SYSTEM_PYTHON, str(PEERS / "topdown_talker.py"), "rospy"], label="rospy topdown talker")
+    listener = spawn(rospy_peer("rospy_typed_listener.py", *topics), label="listener")
+    talker.wait_for("ready")
+    listener.wait_for("subscribed")
+    return listener
+
+
 def status(view: TopDownView) -> str:
     """The view's last row: the scale bar, or the mode's line."""
     return view.row_text(view.size.height - 1)
@@ -48,11 +58,7 @@ def yaw(q: Any) -> float:
 @sync
 async def test_goal_pose_estimate_and_teleop_reach_rospy_as_rviz_sends_them(
         ros_env: dict[str, str], rostui_core: object, spawn: Spawn, rospy_available: None) -> None:
-    talker = spawn([SYSTEM_PYTHON, str(PEERS / "topdown_talker.py"), "rospy"], label="rospy topdown talker")
-    listener = spawn(rospy_peer("rospy_typed_listener.py", f"/move_base_simple/goal={GOAL}", f"/initialpose={POSE}",
-                                f"/cmd_vel={TWIST}"), label="listener")
-    talker.wait_for("ready")
-    listener.wait_for("subscribed")
+    listener = map_and_listener(spawn, f"/move_base_simple/goal={GOAL}", f"/initialpose={POSE}", f"/cmd_vel={TWIST}")
     app = ViewApp(["/map"], period=0.3, frame="map")
     async with app.run_test(size=(100, 30)) as pilot:
         await until(lambda: len(app.query(TopDownView)) == 1, "the top-down view mounted")
@@ -146,10 +152,7 @@ async def test_under_sim_time_a_goal_is_stamped_with_the_clock(
     xmlrpc.client.ServerProxy(ros_env["ROS_MASTER_URI"]).setParam("/tools_test", "/use_sim_time", True)
     spawn([sys.executable, "-m", "rostui", "topic", "pub", "-r", "20", "/clock", "rosgraph_msgs/Clock",
                    "clock: {secs: 1234, nsecs: 500000000}"], label="clock")
-    talker = spawn([SYSTEM_PYTHON, str(PEERS / "topdown_talker.py"), "rospy"], label="rospy topdown talker")
-    listener = spawn(rospy_peer("rospy_typed_listener.py", f"/move_base_simple/goal={GOAL}"), label="listener")
-    talker.wait_for("ready")
-    listener.wait_for("subscribed")
+    listener = map_and_listener(spawn, f"/move_base_simple/goal={GOAL}")
     app = ViewApp(["/map"], period=0.3, frame="map")
     async with app.run_test(size=(100, 30)) as pilot:
         await until(lambda: len(app.query(TopDownView)) == 1, "the top-down view mounted")

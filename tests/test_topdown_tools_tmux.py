@@ -13,8 +13,8 @@ from typing import Iterator
 import pytest
 
 from conftest import SYSTEM_PYTHON
-from interop_helpers import PEERS, Spawn, rospy_peer, spawn  # noqa: F401  (fixture)
-from test_topdown_tools import GOAL, TWIST, received, yaw
+from interop_helpers import PEERS, Spawn, spawn  # noqa: F401  (fixture)
+from test_topdown_tools import GOAL, TWIST, map_and_listener, received, yaw
 from tmux_helpers import Pane, shell_pane
 
 EXIT_MARK = "TOOLS_EXIT="
@@ -29,10 +29,7 @@ def pane() -> Iterator[Pane]:
 
 def test_goal_and_teleop_with_keys_in_tmux(pane: Pane, ros_env: dict[str, str], rostui_core: object, spawn: Spawn,
                                            rospy_available: None) -> None:
-    talker = spawn([SYSTEM_PYTHON, str(PEERS / "topdown_talker.py"), "rospy"], label="rospy topdown talker")
-    listener = spawn(rospy_peer("rospy_typed_listener.py", f"/goal={GOAL}", f"/cmd_vel={TWIST}"), label="listener")
-    talker.wait_for("ready")
-    listener.wait_for("subscribed")
+    listener = map_and_listener(spawn, f"/goal={GOAL}", f"/cmd_vel={TWIST}")
     values = {key: ros_env[key] for key in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")}
     assignments = " ".join(f"{k}={shlex.quote(v)}" for k, v in values.items())
     pane.type(f"env -u COLUMNS -u LINES {assignments} {shlex.quote(sys.executable)} -m rostui view /map "

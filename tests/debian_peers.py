@@ -74,6 +74,7 @@ MODULES: dict[str, str] = {
     "sensor_msgs": "python3-sensor-msgs",
     "nav_msgs": "python3-nav-msgs",
     "tf2_msgs": "python3-tf2-msgs",
+    "visualization_msgs": "python3-visualization-msgs",
     "rosgraph_msgs": "python3-rosgraph-msgs",
     "roscpp": "python3-roscpp-msg",
     "numpy": "python3-numpy",

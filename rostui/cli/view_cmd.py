@@ -1,4 +1,4 @@
-"""`rostui view [TOPIC|FILE.yaml]...`: sensor topics drawn in the terminal (images, scans, maps, markers, ...).
+"""`rostui view [TOPIC|VIEW_FILE]...`: sensor topics drawn in the terminal (images, scans, maps, markers, ...).
 
 Each topic gets a panel with the view its message type has in
 rostui/apps/view/registry.py.  Textual is imported only when the app opens.
@@ -21,28 +21,29 @@ VIEW_FILE_SUFFIXES = (".yaml", ".yml")
 
 
 def view_command(
-    topics: List[str] = typer.Argument(None, metavar="TOPIC|FILE.yaml...",
+    topics: List[str] = typer.Argument(None, metavar="TOPIC|VIEW_FILE...",
                                        help="Topics to show, each in its own panel (top-down ones share one), or a "
                                             "view file written by --save."),
     period: float = typer.Option(1.0, "--period", metavar="SECONDS", help="Seconds between master polls."),
     frame: str = typer.Option("", "--frame", metavar="FRAME",
                               help="Fixed frame of the top-down view (default: the first message's frame)."),
     goal_topic: str = typer.Option("", "--goal-topic", metavar="TOPIC",
-                                   help="Where g (2D nav goal) sends its PoseStamped [/move_base_simple/goal]."),
+                                   help="Where g (2D nav goal) sends its PoseStamped (default: /move_base_simple/goal)."),
     pose_topic: str = typer.Option("", "--pose-topic", metavar="TOPIC",
                                    help="Where p (2D pose estimate) sends its PoseWithCovarianceStamped "
-                                        "[/initialpose]."),
+                                        "(default: /initialpose)."),
     cmd_vel_topic: str = typer.Option("", "--cmd-vel-topic", metavar="TOPIC",
-                                      help="Where t (teleop) sends its Twist [/cmd_vel]."),
-    footprint: str = typer.Option("", "--footprint", metavar="PARAM|[[x,y],...]|RADIUS",
+                                      help="Where t (teleop) sends its Twist (default: /cmd_vel)."),
+    footprint: str = typer.Option("", "--footprint", metavar="FOOTPRINT",
                                   help="The robot's footprint, drawn at its frame: a parameter holding it (as "
-                                       "costmap_2d reads it), the points themselves, or a radius."),
+                                       "costmap_2d reads it), the points themselves (a list of x, y pairs), or a "
+                                       "radius."),
     robot_frame: str = typer.Option("", "--robot-frame", metavar="FRAME",
-                                    help="The robot's frame, for its footprint and o (follow) [base_link]."),
+                                    help="The robot's frame, for its footprint and o (follow) (default: base_link)."),
     follow: bool = typer.Option(False, "--follow", help="Keep the robot's frame in the middle of the view."),
-    from_rviz: Optional[Path] = typer.Option(None, "--from-rviz", metavar="FILE.rviz",
+    from_rviz: Optional[Path] = typer.Option(None, "--from-rviz", metavar="RVIZ_FILE",
                                              help="Take the displays, fixed frame, tools and view of an rviz file."),
-    save: Optional[Path] = typer.Option(None, "--save", metavar="FILE.yaml",
+    save: Optional[Path] = typer.Option(None, "--save", metavar="VIEW_FILE",
                                         help="Write the view (topics, frame, zoom, centre, tools) to FILE on quit."),
 ) -> None:
     """Show sensor topics in the terminal: images, and scans, maps, paths, poses, clouds and markers from above.
@@ -56,6 +57,7 @@ def view_command(
     arrows, as rviz's tools and a teleop do. Nothing is sent until then.
 
     Example: rostui view /camera/image_raw
+
     Example: rostui view --frame map /map /scan /move_base/NavfnROS/plan --save nav.yaml
     """
     from rostui.cli.common import fail

@@ -103,6 +103,7 @@ def test_window_rate() -> None:
     assert window_rate([0.0, 0.5, 0.5, 0.5, 1.0]) == pytest.approx(4.0)
     assert window_rate([5.0]) is None and window_rate([]) is None
     assert window_rate([5.0, 5.0, 5.0]) == 0.0
+    assert window_rate([5.0, 5.0001, 5.00015]) is None  # too short a span to tell a rate from a held-up reader
 
 
 def test_stale_after_missed_periods() -> None:

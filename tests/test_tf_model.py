@@ -275,3 +275,14 @@ def test_an_edges_first_receipts_in_a_burst_do_not_lift_its_rate() -> None:
     edge = Edge("odom", "map", False, "/b")
     edge.receipts.extend([100.0, 100.0001, 100.0002] + [100.0002 + 0.05 * i for i in range(1, 6)])
     assert edge.rate() == pytest.approx(20.0)
+
+
+def test_an_edge_seen_only_in_one_burst_has_no_rate_yet() -> None:
+    """A listener held up by a busy machine takes three 20 Hz transforms in one read: no rate (once 13 kHz, in CI)."""
+    from rostui.tools.tf.buffer import Edge
+
+    edge = Edge("odom", "map", False, "/b")
+    edge.receipts.extend([100.0, 100.00005, 100.00015])
+    assert edge.rate() is None
+    edge.receipts.extend([100.00015 + 0.05 * i for i in range(1, 6)])
+    assert edge.rate() == pytest.approx(20.0)

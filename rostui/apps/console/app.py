@@ -85,13 +85,14 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
     TITLE = "rostui console"
     KEY_NOTES = (("click a level", "show or hide that level"),)
 
+    TYPE_AHEAD_ACTIONS = frozenset({"open_prompt"})
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("q", "quit", "quit"),
         *(Binding(key, f"toggle_level({int(level)})", f"{level.name} on/off", show=False) for level, key in LEVEL_KEYS.items()),
-        Binding("slash", "open_prompt('search')", "search"),
+        Binding("slash", "open_prompt('search')", "search", priority=True),
         Binding("r", "toggle_regex", "regex"),
         Binding("escape", "clear_search", "clear search", show=False),
-        Binding("h", "open_prompt('highlight')", "highlight"),
+        Binding("h", "open_prompt('highlight')", "highlight", priority=True),
         Binding("H", "clear_highlights", "clear highlights", show=False),
         Binding("n", "include_node", "only this node"),
         Binding("x", "exclude_node", "hide this node"),
@@ -99,7 +100,7 @@ class ConsoleApp(ReleasesOnExit, KeysApp):
         Binding("p,space", "toggle_pause", "pause"),
         Binding("c", "clear", "clear"),
         Binding("enter", "toggle_detail", "detail"),
-        Binding("s", "open_prompt('save')", "save"),
+        Binding("s", "open_prompt('save')", "save", priority=True),
         Binding("F,f", "follow", "follow"),
     ]
 

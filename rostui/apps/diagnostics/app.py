@@ -22,6 +22,7 @@ from textual.widgets import Input, Static
 from rostui.apps.diagnostics.table import StatusTree
 from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.apps.widgets.notice import Notice
@@ -51,10 +52,11 @@ class DiagnosticsApp(ReleasesOnExit, KeysApp):
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "rostui diagnostics"
 
+    TYPE_AHEAD_ACTIONS = frozenset({"filter"})
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("q", "quit", "quit"),
         Binding("l", "level", "show only statuses at least one level worse (all, warn, error, stale)"),
-        Binding("slash", "filter", "filter statuses by name (a regular expression)"),
+        Binding("slash", "filter", "filter statuses by name (a regular expression)", priority=True),
         Binding("t", "topic", "switch between the aggregator's tree and the flat /diagnostics"),
         Binding("escape", "clear_filter", "close the filter and show every name again", show=False),
     ]
@@ -196,7 +198,7 @@ class DiagnosticsApp(ReleasesOnExit, KeysApp):
         field = self.query_one("#filter", Input)
         field.display = True
         field.value = self.only.text
-        field.focus()
+        focus_now(field)
 
     def action_clear_filter(self) -> None:
         """Esc: close the filter and show every name."""

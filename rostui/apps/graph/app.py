@@ -73,6 +73,7 @@ class GraphApp(ReleasesOnExit, KeysApp):
     TITLE = "rostui graph"
     KEY_NOTES = (("click", "select a node or topic"),)
 
+    TYPE_AHEAD_ACTIONS = frozenset({"prompt"})
     BINDINGS = [
         Binding("q", "quit", "quit"),
         Binding("v", "next_view", "next view"),
@@ -84,9 +85,9 @@ class GraphApp(ReleasesOnExit, KeysApp):
         Binding("l", "toggle_option('hide_leaf_topics')", "hide leaf topics"),
         Binding("g", "toggle_option('group_namespaces')", "group namespaces"),
         Binding("b", "book", "book's setup"),
-        Binding("i", "prompt('include')", "include regex"),
-        Binding("x", "prompt('exclude')", "exclude regex"),
-        Binding("slash", "prompt('search')", "search"),
+        Binding("i", "prompt('include')", "include regex", priority=True),
+        Binding("x", "prompt('exclude')", "exclude regex", priority=True),
+        Binding("slash", "prompt('search')", "search", priority=True),
         Binding("f", "focus_mode", "focus on the selection"),
         Binding("plus,equals_sign", "hops(1)", "more hops", show=False),
         Binding("minus", "hops(-1)", "fewer hops", show=False),

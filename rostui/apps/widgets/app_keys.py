@@ -9,6 +9,14 @@ widget has the focus, except that ``?`` still types a ``?`` into a text field.
 While a modal screen is up, the app's other priority keys (graph's Escape
 and Tab, turtlesim's Tab) stay out of its way.
 
+A key that opens a line editor (``/`` to search) is a priority binding named in
+:attr:`KeysApp.TYPE_AHEAD_ACTIONS`: Textual hands a key to the widget focused when
+the key is read, and a plain binding moves the focus only once the key has come
+back up from that widget, so what was typed right after ``/`` in the same burst
+(type-ahead over SSH, a paste, tmux's send-keys) went to the table behind and ran
+its keys.  Such an action never acts while a text field has the keyboard: there
+the key is typed.
+
 Quitting, Textual removes the screens' widgets first and then lets the app
 handle what is still queued for it: a table's row highlight, a timer's tick.
 An app handler then finds its widgets gone (NoMatches); so once shutdown has
@@ -26,6 +34,7 @@ from textual.dom import DOMNode
 from textual.message import Message
 from textual.notifications import SeverityLevel
 from textual.screen import ModalScreen, Screen
+from textual.widgets import Input
 
 from rostui.apps.widgets.help import HelpScreen
 from rostui.apps.widgets.keys import KeySection, key_sections
@@ -55,6 +64,9 @@ class KeysApp(App[int]):
     ]
 
     KEY_NOTES: ClassVar[tuple[tuple[str, str], ...]] = ()
+
+    TYPE_AHEAD_ACTIONS: ClassVar[frozenset[str]] = frozenset()
+    """Actions that open a line editor, bound with ``priority=True``; refused while a text field has the keyboard."""
 
     _listing_keys = False
 
@@ -97,6 +109,8 @@ class KeysApp(App[int]):
         """Over a modal screen only the shared keys act here; the modal screen has the rest."""
         stack = self.screen_stack
         if not self._listing_keys and stack and isinstance(stack[-1], ModalScreen) and action not in SHARED_ACTIONS:
+            return False
+        if action in self.TYPE_AHEAD_ACTIONS and not self._listing_keys and isinstance(self.focused, Input):
             return False
         return True
 

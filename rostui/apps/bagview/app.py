@@ -36,6 +36,7 @@ from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
+from rostui.apps.widgets.line_input import LineInput
 from rostui.core.bag.clock import DEFAULT_HZ, BagClock
 from rostui.core.bag.index import BagIndex, IndexSource, load_index
 from rostui.core.bag.model import BagError, Connection
@@ -81,7 +82,7 @@ def parse_goto(text: str, start_ns: int, end_ns: int) -> int:
     return start_ns + int(seconds * 1e9)
 
 
-class GotoPrompt(Input):
+class GotoPrompt(LineInput):
     """Where to go: a percentage, seconds from the start or a bag time; Escape closes it."""
 
     BINDINGS: ClassVar[list[BindingType]] = [Binding("escape", "close", "close", show=False)]

@@ -29,6 +29,7 @@ from rostui.apps.terminal import terminal_missing
 from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
+from rostui.apps.widgets.line_input import LineInput
 from rostui.core.log.levels import Level
 from rostui.core.log.rosout_read import RosoutEntry, RosoutLog, entries_text
 from rostui.core.network import master_uri_from_env
@@ -53,7 +54,7 @@ SEARCH_DELAY = 0.06
 BAR_STATE = ("spec", "regex_error", "highlights", "notice", "source_state")
 
 
-class Prompt(Input):
+class Prompt(LineInput):
     """The one-line input for search text, highlight rules and the save path; Escape cancels it."""
 
     BINDINGS: ClassVar[list[BindingType]] = [Binding("escape", "cancel", "cancel", show=False)]

@@ -25,6 +25,7 @@ from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
+from rostui.apps.widgets.line_input import LineInput
 from rostui.apps.widgets.notice import Notice
 from rostui.core.masteruri import master_uri_from_env
 from rostui.models.diagnostics.detail import detail_lines, summary_text
@@ -90,7 +91,7 @@ class DiagnosticsApp(ReleasesOnExit, KeysApp):
         yield Notice(id="filtered")
         yield StatusTree(id="statuses")
         yield Static(id="detail", markup=False)
-        yield Input(placeholder="filter names (a regular expression); Enter keeps it, Esc clears it", id="filter")
+        yield LineInput(placeholder="filter names (a regular expression); Enter keeps it, Esc clears it", id="filter")
         yield Notice(id="master")
         yield Static(KEYS, id="keys")
 

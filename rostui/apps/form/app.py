@@ -27,6 +27,7 @@ from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
+from rostui.apps.widgets.line_input import LineInput
 from rostui.apps.widgets.notice import Notice
 from rostui.core.masteruri import master_uri_from_env
 from rostui.core.msg import Message
@@ -90,12 +91,13 @@ class FormApp(ReleasesOnExit, KeysApp):
         name, type_name, rate = self.initial
         with Horizontal(id="target"):
             yield Label("topic" if self.kind == "publish" else "service", classes="field-label")
-            yield Input(name, placeholder="/topic" if self.kind == "publish" else "/service", id="name", compact=True)
+            yield LineInput(name, placeholder="/topic" if self.kind == "publish" else "/service", id="name",
+                            compact=True)
             if self.kind == "publish":
                 yield Label("type", classes="field-label")
-                yield Input(type_name, placeholder="pkg/Type", id="type", compact=True)
+                yield LineInput(type_name, placeholder="pkg/Type", id="type", compact=True)
                 yield Label("rate Hz", classes="field-label")
-                yield Input("" if rate is None else f"{rate:g}", placeholder="once", id="rate", compact=True)
+                yield LineInput("" if rate is None else f"{rate:g}", placeholder="once", id="rate", compact=True)
         with Vertical(id="fields-panel", classes="panel"):
             yield FieldTable(id="fields")
             yield Static("", id="detail", markup=False)

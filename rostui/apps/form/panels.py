@@ -14,6 +14,7 @@ from textual.widgets import DataTable, Input, Static
 
 from rostui.apps.widgets.bar_text import BAR_CELLS, bar_text
 from rostui.apps.widgets.focus import focus_now
+from rostui.apps.widgets.line_input import LineInput
 from rostui.models.message_form.rows import FieldRow
 
 __all__ = ["FieldTable", "LineScreen", "slider_cell", "detail_text"]
@@ -138,7 +139,7 @@ class LineScreen(ModalScreen["str | None"]):
         """What the line is for, the field, and a line for errors."""
         with Vertical(id="line-box"):
             yield Static(Text(self.about), id="line-about")
-            yield Input(value=self.value, id="line")
+            yield LineInput(value=self.value, id="line")
             yield Static("", id="line-error")
 
     def on_mount(self) -> None:

@@ -33,6 +33,7 @@ from rostui.apps.widgets.bar_text import join_parts
 from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
+from rostui.apps.widgets.line_input import LineInput
 from rostui.core.network import master_uri_from_env
 from rostui.models.graph.hidden import explain_empty
 from rostui.models.graph.labels import EdgeLabels, LabelStyle, edge_labels
@@ -140,7 +141,7 @@ class GraphApp(ReleasesOnExit, KeysApp):
             yield GraphView(id="graph")
             with VerticalScroll(id="details-pane"):
                 yield Static(id="details")
-        yield Input(id="prompt")
+        yield LineInput(id="prompt")
         yield Static(KEYS, id="keys")
 
     def on_mount(self) -> None:

@@ -34,6 +34,7 @@ from rostui.apps.widgets.app_keys import KeysApp
 from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
+from rostui.apps.widgets.line_input import LineInput
 from rostui.core.msg import Message
 from rostui.core.network import master_uri_from_env
 from rostui.models.master_link import MasterState, SourceState
@@ -60,7 +61,7 @@ REFRESH = 0.25
 SAMPLE = 1.0
 
 
-class FilterInput(Input):
+class FilterInput(LineInput):
     """The filter line (always on screen, so opening it repaints one line); Escape clears it."""
 
     BINDINGS: ClassVar[list[BindingType]] = [Binding("escape", "cancel", "clear filter", show=False)]

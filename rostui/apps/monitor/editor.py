@@ -17,6 +17,7 @@ from textual.screen import ModalScreen
 from textual.widgets import Input, Label, Static, TextArea
 
 from rostui.apps.widgets.focus import focus_now
+from rostui.apps.widgets.line_input import LineInput
 from rostui.core.msg import Message
 from rostui.models.monitor.publish import PublishError, message_template
 
@@ -63,14 +64,14 @@ class PublishEditor(ModalScreen[None]):
         with Vertical(id="editor"):
             with Horizontal(classes="field-row"):
                 yield Label("topic", classes="field-label")
-                yield Input(self.initial_topic, placeholder="/topic", id="pub-topic")
+                yield LineInput(self.initial_topic, placeholder="/topic", id="pub-topic")
             with Horizontal(classes="field-row"):
                 yield Label("type", classes="field-label")
-                yield Input(self.initial_type, placeholder="pkg/Type", id="pub-type")
+                yield LineInput(self.initial_type, placeholder="pkg/Type", id="pub-type")
             yield TextArea("", id="pub-yaml", show_line_numbers=True, tab_behavior="indent")
             with Horizontal(classes="field-row"):
                 yield Label("rate Hz", classes="field-label")
-                yield Input("", placeholder="empty: once (latched)", id="pub-rate")
+                yield LineInput("", placeholder="empty: once (latched)", id="pub-rate")
             yield Static(id="pub-status")
             yield Static(EDITOR_KEYS, id="pub-keys")
 

@@ -15,6 +15,7 @@ from textual.widgets.option_list import Option
 
 from rostui.apps.widgets.bar_text import bar_text
 from rostui.apps.widgets.focus import focus_now
+from rostui.apps.widgets.line_input import LineInput
 from rostui.models.reconfigure import GroupRow, ParamRow
 from rostui.tools.reconfigure.values import ParameterValueError
 
@@ -161,7 +162,7 @@ class EditScreen(ModalScreen[Any]):
                                   id=str(index)) for index, c in enumerate(self.row.choices)]
                 yield OptionList(*options, id="choices")
             else:
-                yield Input(value="" if self.row.value is None else self.row.value_text(), id="field")
+                yield LineInput(value="" if self.row.value is None else self.row.value_text(), id="field")
             yield Static("", id="edit-error")
 
     def on_mount(self) -> None:

@@ -17,15 +17,17 @@ Sources and licences: tests/python_compat/real/SOURCES.md.
 
 from __future__ import annotations
 
+import json
 import re
 import shutil
 import subprocess
 from collections import Counter
+from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 
-from conftest import REPO, SYSTEM_PYTHON, rostui_cmd
+from conftest import REPO, SYSTEM_PYTHON, new_ros_env, rostui_cmd, running_core, shared_build
 from reconfigure_helpers import (
     DEBIAN_DYNPARAM, DEBIAN_GENERATOR_DIR, DR, NODE, REAL, clean_env, forget_parameters,
     need_debian_dynamic_reconfigure, start_server,
@@ -146,22 +148,55 @@ DEBIAN_LOAD_FAILS = "error processing request: 'list' object has no attribute 'i
 decode_config walks the generated description's list of groups as if it were a dict."""
 
 
+@dataclass(frozen=True)
 class Session:
     """What a dynparam session against testserver.py gave: its transcript with the file it dumped, what the
     server printed meanwhile, and what loading the dump back then said and left (a get after it)."""
 
-    def __init__(self, server_side: str, dynparam_side: str, env: dict[str, str], work: Path) -> None:
+    transcript: str
+    server_said: str
+    loaded: str
+
+    @classmethod
+    def run(cls, server_side: str, dynparam_side: str, env: dict[str, str], work: Path) -> Session:
+        """Start the server on *server_side*, drive it with dynparam of *dynparam_side*, in the folder *work*."""
         work.mkdir()
         server = start_server(server_side, env, work / "server.log")
         try:
-            self.transcript = "".join(dynparam(dynparam_side, env, work, *args) for args in SESSION)
-            self.transcript += (work / "dump.yaml").read_text()
-            self.server_said = "".join(line for line in PREFIX.sub("[\\1] ", server.output()).splitlines(True)
-                                       if PROBE_NOISE not in line)
-            self.loaded = dynparam(dynparam_side, env, work, *LOAD) + dynparam(dynparam_side, env, work, "get", NODE)
+            transcript = "".join(dynparam(dynparam_side, env, work, *args) for args in SESSION)
+            transcript += (work / "dump.yaml").read_text()
+            server_said = "".join(line for line in PREFIX.sub("[\\1] ", server.output()).splitlines(True)
+                                  if PROBE_NOISE not in line)
+            loaded = dynparam(dynparam_side, env, work, *LOAD) + dynparam(dynparam_side, env, work, "get", NODE)
         finally:
             server.interrupt()
             forget_parameters(env, NODE)
+        return cls(transcript, server_said, loaded)
+
+
+@dataclass(frozen=True)
+class DebianBaseline:
+    """Debian on both sides, on Debian's roscore: the dynparam session and testclient.py's lines."""
+
+    session: Session
+    client: Counter[str]
+
+
+@pytest.fixture(scope="session")
+def debian(tmp_path_factory: pytest.TempPathFactory) -> DebianBaseline:
+    """What every pairing is compared with, made once per test run and shared by the workers: each of the six
+    session tests and three client tests once ran Debian's side again (ten dynparam processes a session)."""
+    need_debian_dynamic_reconfigure()
+
+    def build(folder: Path) -> None:
+        env = clean_env(new_ros_env(folder))
+        with running_core("roscore", env):
+            session = Session.run("real", "real", env, folder / "session")
+            client = client_lines("real", "real", env, folder / "client")
+        (folder / "baseline.json").write_text(json.dumps({"session": session.__dict__, "client": client}))
+
+    made = json.loads((shared_build(tmp_path_factory, "dynparam-debian", build) / "baseline.json").read_text())
+    return DebianBaseline(Session(**made["session"]), Counter(made["client"]))
 
 
 UNKNOWN_NAME_EXIT = (f"$ dynparam set {NODE} no_such_parameter 1 -> exit 0",
@@ -170,17 +205,18 @@ UNKNOWN_NAME_EXIT = (f"$ dynparam set {NODE} no_such_parameter 1 -> exit 0",
 exits non-zero."""
 
 
-def check_session(server_side: str, dynparam_side: str, env: dict[str, str], work: Path) -> None:
-    """The session with rostui on one side or both gives what it gives with Debian on both; loading a dump
-    fails against Debian's server and works against rostui's."""
-    expected = Session("real", "real", env, work / "debian")
-    session = Session(server_side, dynparam_side, env, work / "mixed")
+def check_session(server_side: str, dynparam_side: str, env: dict[str, str], work: Path,
+                  expected: Session) -> None:
+    """The session with rostui on one side or both gives what it gives with Debian on both (*expected*); loading
+    a dump fails against Debian's server and works against rostui's."""
+    session = Session.run(server_side, dynparam_side, env, work / "mixed")
     assert "'int_enum_': 2" in session.transcript and "'str_': 'hiAAA'" in session.transcript, session.transcript
     assert "error updating parameters: don't know parameter: no_such_parameter" in session.transcript
+    transcript = expected.transcript
     if dynparam_side == "rostui":
         assert UNKNOWN_NAME_EXIT[1] in session.transcript, session.transcript
-        expected.transcript = expected.transcript.replace(*UNKNOWN_NAME_EXIT)
-    assert session.transcript == expected.transcript
+        transcript = transcript.replace(*UNKNOWN_NAME_EXIT)
+    assert session.transcript == transcript
     assert session.server_said == expected.server_said
     assert DEBIAN_LOAD_FAILS in expected.loaded, expected.loaded
     if server_side == "real":
@@ -192,22 +228,19 @@ def check_session(server_side: str, dynparam_side: str, env: dict[str, str], wor
 
 @pytest.mark.parametrize("server_side,dynparam_side", [("shim", "real"), ("real", "shim"), ("shim", "shim")])
 def test_dynparam_session_matches_debians(server_side: str, dynparam_side: str, rostui_core: object,
-                                          ros_env: dict[str, str], tmp_path: Path) -> None:
-    need_debian_dynamic_reconfigure()
-    check_session(server_side, dynparam_side, clean_env(ros_env), tmp_path)
+                                          ros_env: dict[str, str], tmp_path: Path, debian: DebianBaseline) -> None:
+    check_session(server_side, dynparam_side, clean_env(ros_env), tmp_path, debian.session)
 
 
 @pytest.mark.parametrize("server_side", ["real", "shim"])
 def test_rostui_dynparam_session_matches_debians(server_side: str, rostui_core: object, ros_env: dict[str, str],
-                                                 tmp_path: Path) -> None:
-    need_debian_dynamic_reconfigure()
-    check_session(server_side, "rostui", clean_env(ros_env), tmp_path)
+                                                 tmp_path: Path, debian: DebianBaseline) -> None:
+    check_session(server_side, "rostui", clean_env(ros_env), tmp_path, debian.session)
 
 
 def test_debians_dynparam_changes_a_rostui_server_on_roscore(real_roscore: object, ros_env: dict[str, str],
-                                                             tmp_path: Path) -> None:
-    need_debian_dynamic_reconfigure()
-    check_session("shim", "real", clean_env(ros_env), tmp_path)
+                                                             tmp_path: Path, debian: DebianBaseline) -> None:
+    check_session("shim", "real", clean_env(ros_env), tmp_path, debian.session)
 
 
 def client_lines(client_side: str, server_side: str, env: dict[str, str], work: Path) -> Counter[str]:
@@ -227,14 +260,12 @@ def client_lines(client_side: str, server_side: str, env: dict[str, str], work: 
 
 @pytest.mark.parametrize("client_side,server_side", [("shim", "real"), ("real", "shim"), ("shim", "shim")])
 def test_testclient_prints_what_it_prints_under_debian(client_side: str, server_side: str, rostui_core: object,
-                                                       ros_env: dict[str, str], tmp_path: Path) -> None:
-    need_debian_dynamic_reconfigure()
-    env = clean_env(ros_env)
-    expected = client_lines("real", "real", env, tmp_path / "debian")
-    said = client_lines(client_side, server_side, env, tmp_path / "mixed")
+                                                       ros_env: dict[str, str], tmp_path: Path,
+                                                       debian: DebianBaseline) -> None:
+    said = client_lines(client_side, server_side, clean_env(ros_env), tmp_path / "mixed")
     assert said["Medium is a constant that is set to 1: 1"] == 1
     assert said["New callback is done..."] == 1
-    assert said == expected
+    assert said == debian.client
 
 
 def test_four_servers_of_one_node_list_and_read_alike(rostui_core: object, ros_env: dict[str, str],
@@ -286,9 +317,8 @@ def test_hostile_descriptions_cost_nothing(ros_env: dict[str, str], tmp_path: Pa
 
 
 def test_debians_server_on_roscore_is_changed_by_rostui_dynparam(real_roscore: object, ros_env: dict[str, str],
-                                                                 tmp_path: Path) -> None:
-    need_debian_dynamic_reconfigure()
-    check_session("real", "rostui", clean_env(ros_env), tmp_path)
+                                                                 tmp_path: Path, debian: DebianBaseline) -> None:
+    check_session("real", "rostui", clean_env(ros_env), tmp_path, debian.session)
 
 
 def test_rostui_dynparam_says_what_is_wrong_in_one_line(rostui_core: object, ros_env: dict[str, str],

@@ -4,6 +4,8 @@ Scripts call `rostui topic list` or `rostui param get NAME` in loops; loading
 Typer costs more than the query itself.  Exactly these plain forms (no
 options) run here, through the same ``rostui.tools`` functions the Typer
 commands use; anything else, including ``--help``, goes to the full CLI.
+`rostui core [-p PORT]` and `rostui python SCRIPT ...` (:mod:`rostui.cli.python_fast`)
+start here too: launches and test suites start them by the hundred.
 """
 
 from __future__ import annotations
@@ -62,6 +64,19 @@ FAST: dict[tuple[str, str], tuple[int, Callable[[Sequence[str]], int]]] = {
 }
 
 
+def _core(argv: Sequence[str]) -> int | None:
+    """``core`` or ``core -p PORT``: the master started by every launch and every test, without Typer."""
+    if len(argv) == 1:
+        port = 11311
+    elif len(argv) == 3 and argv[1] in ("-p", "--port") and argv[2].isdigit():
+        port = int(argv[2])
+    else:
+        return None
+    from rostui.cli.core_run import run_core
+
+    return run_core(port)
+
+
 def main() -> None:
     """Console-script entry point."""
     argv = sys.argv[1:]
@@ -70,6 +85,16 @@ def main() -> None:
 
         print(f"rostui {__version__}")
         raise SystemExit(0)
+    if argv[:1] == ["core"]:
+        code = _core(argv)
+        if code is not None:
+            raise SystemExit(code)
+    if argv[:1] == ["python"]:
+        from rostui.cli.python_fast import run_plain
+
+        code = run_plain(argv[1:])
+        if code is not None:
+            raise SystemExit(code)
     entry = FAST.get((argv[0], argv[1])) if len(argv) >= 2 else None
     rest = argv[2:]
     if entry is not None and len(rest) == entry[0] and not any(a.startswith("-") for a in rest):

@@ -61,17 +61,9 @@ def python_command(
 
 def run_script(how: "Plan", who: str) -> None:
     """Print *how*'s notice, then replace this process with its command; *who* names the command in errors."""
-    import sys
+    from rostui.cli.python_fast import exec_plan
 
-    from rostui.tools.run import exec_argv
-
-    if how.notice:
-        print(how.notice, file=sys.stderr)
-    try:
-        exec_argv(how.argv, how.env)
-    except OSError as exc:
-        print(f"{who}: cannot run {how.argv[0]}: {exc.strerror or exc}", file=sys.stderr)
-        raise typer.Exit(126)
+    raise typer.Exit(exec_plan(how, who))
 
 
 def shell_env_command(

@@ -65,7 +65,7 @@ with rosbag.Bag(sys.argv[1]) as bag:
 def _rosbag_api() -> None:
     probe = subprocess.run([SYSTEM_PYTHON, "-c", "import rosbag, rospy, std_msgs, geometry_msgs, sensor_msgs"],
                            capture_output=True)
-    need_peer(probe.returncode == 0, "rosbag Python API (Debian python3-rosbag) and the message packages")
+    need_peer(probe.returncode == 0, "rosbag Python API with the message packages (Debian python3-rosbag)")
 
 
 def make_bag(path: Path, rounds: int = 6, order: str = "per-topic") -> Path:

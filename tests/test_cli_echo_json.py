@@ -105,7 +105,7 @@ with rosbag.Bag(sys.argv[1], "w") as bag:
 def bag(tmp_path_factory: pytest.TempPathFactory) -> Path:
     probe = subprocess.run([SYSTEM_PYTHON, "-c", "import rosbag, rospy, geometry_msgs, sensor_msgs"],
                            capture_output=True)
-    need_peer(probe.returncode == 0, "rosbag Python API (Debian python3-rosbag) and the message packages")
+    need_peer(probe.returncode == 0, "rosbag Python API with the message packages (Debian python3-rosbag)")
     path = tmp_path_factory.mktemp("json") / "shapes.bag"
     made = subprocess.run([SYSTEM_PYTHON, "-c", MAKE, str(path)], capture_output=True, text=True, timeout=120)
     assert made.returncode == 0, made.stderr

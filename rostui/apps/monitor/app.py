@@ -96,6 +96,7 @@ class MonitorApp(ReleasesOnExit, KeysApp):
     CSS_PATH = Path(__file__).with_name("app.tcss")
     TITLE = "rostui monitor"
 
+    TYPE_AHEAD_ACTIONS = frozenset({"open_filter"})
     BINDINGS: ClassVar[list[BindingType]] = [
         Binding("q", "quit", "quit"),
         Binding("slash", "open_filter", "filter", priority=True),
@@ -322,15 +323,14 @@ class MonitorApp(ReleasesOnExit, KeysApp):
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         """The plot's keys act on the main screen only (in the field chooser, letters are not the app's).
 
-        "/" is a priority binding so that the keys typed after it in the same burst (type-ahead over SSH)
-        already go to the filter; it is the app's only on the main screen, and never while the filter
-        has the keyboard ("/" is part of topic names; Textual does not leave "slash" to a focused Input).
+        "/" is a type-ahead key (:attr:`KeysApp.TYPE_AHEAD_ACTIONS`): it is the app's only on the main screen,
+        and never while the filter has the keyboard ("/" is part of topic names).
 
         Over a topic's view (Enter on an image) only help, quit and the palette are the app's.
         """
         if action in PLOT_ACTIONS and len(self.screen_stack) > 1:
             return False
-        if action == "open_filter" and (len(self.screen_stack) > 1 or isinstance(self.focused, Input)):
+        if action == "open_filter" and len(self.screen_stack) > 1 or self.typing_in_a_field(action):
             return False
         if action not in ("help", "quit", "command_palette") and isinstance(self.screen, ViewScreen):
             return False

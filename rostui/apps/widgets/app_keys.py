@@ -110,9 +110,12 @@ class KeysApp(App[int]):
         stack = self.screen_stack
         if not self._listing_keys and stack and isinstance(stack[-1], ModalScreen) and action not in SHARED_ACTIONS:
             return False
-        if action in self.TYPE_AHEAD_ACTIONS and not self._listing_keys and isinstance(self.focused, Input):
-            return False
-        return True
+        return not self.typing_in_a_field(action)
+
+    def typing_in_a_field(self, action: str) -> bool:
+        """Whether ``action`` opens a line editor (:attr:`TYPE_AHEAD_ACTIONS`) while a text field has the keyboard:
+        then its key is typed there instead."""
+        return action in self.TYPE_AHEAD_ACTIONS and not self._listing_keys and isinstance(self.focused, Input)
 
 
 def comes_after_the_widgets(message: Message) -> bool:

@@ -10,7 +10,9 @@ into ``--dir``, deleted at the end):
   200 Hz), /tf (tf2_msgs/TFMessage, 100 Hz) and /odom (nav_msgs/Odometry,
   50 Hz);
 - ``small.bag``: ``--small-count`` messages of Imu/TFMessage/Odometry size
-  (no image), for the per-message index;
+  (no image), for the per-message index; ``mid.bag`` (``--mid-count``) and
+  ``tiny.bag`` (``--tiny-count``, the baseline) of the same mix: the view's
+  peak memory above tiny.bag's, per message (issue 35: at most 16 bytes);
 - ``old.bag``: ``--old-size`` MB of the robot mix, for the implementation
   before the lazy index (commit ``--old-commit``, checked out in a worktree
   of its own), which read every payload into memory.
@@ -19,7 +21,9 @@ into ``--dir``, deleted at the end):
     and capture-pane is polled until the header shows the bag's message count
     and the timeline every topic with its count: the time to first screen is
     from starting tmux to that. The view's VmHWM (peak resident set, from
-    /proc/PID/status) is read then and again 2 s later. Each file is opened
+    /proc/PID/status) is read then and again 2 s later; then ``5`` seeks to
+    50% (timed until the status line says 50%), ``s`` steps three times, and
+    VmHWM is read once more. Each file is opened
     warm (in the page cache) and cold (its pages dropped first with
     posix_fadvise DONTNEED, only that file's). rqt_bag is not packaged in
     Debian; what it stands on, the rosbag Python API, is measured instead on
@@ -37,9 +41,9 @@ into ``--dir``, deleted at the end):
     highest rate each player holds is compared.
 ``--load N`` runs N busy-looping processes during the whole benchmark.
 
-    .venv/bin/python bench/bench_bag_view.py [--size 2] [--small-count 5000000] [--old-size 400]
-        [--rates 10,20,30,40,50,100] [--small-rates 1000] [--load N] [--only view|play] [--dir /tmp]
-        [--keep DIR] [--json out.json]
+    .venv/bin/python bench/bench_bag_view.py [--size 2] [--small-count 5000000] [--mid-count 1000000]
+        [--tiny-count 10000] [--old-size 400] [--rates 10,20,30,40,50,100] [--small-rates 1000] [--load N]
+        [--only view|play] [--dir /tmp] [--keep DIR] [--json out.json]
 """
 
 from __future__ import annotations
@@ -325,6 +329,20 @@ def open_view(path: Path, counts: dict[str, int], env: dict[str, str], source: P
         at_screen = vm_hwm_mb(pid)
         time.sleep(2.0)
         settled = vm_hwm_mb(pid)
+        seek_s = None
+        if shown is not None:  # 5 seeks to 50% (the chunks there are read), then three steps
+            asked = time.perf_counter()
+            tmux.run("send-keys", "-t", "bench", "5")
+            while time.perf_counter() - asked < 30:
+                if " 50%" in tmux.screen():
+                    seek_s = time.perf_counter() - asked
+                    break
+                time.sleep(0.02)
+            for _ in range(3):
+                tmux.run("send-keys", "-t", "bench", "s")
+                time.sleep(0.2)
+            time.sleep(1.0)
+        after_seek = vm_hwm_mb(pid)
         screen = tmux.screen()
         tmux.run("send-keys", "-t", "bench", "q")
         deadline = time.monotonic() + 15
@@ -332,7 +350,8 @@ def open_view(path: Path, counts: dict[str, int], env: dict[str, str], source: P
             time.sleep(0.05)
     finally:
         tmux.close()
-    out = {"first_screen_s": shown, "hwm_at_screen_mb": max(at_screen, peak), "hwm_after_2s_mb": settled}
+    out = {"first_screen_s": shown, "hwm_at_screen_mb": max(at_screen, peak), "hwm_after_2s_mb": settled,
+           "seek_s": seek_s, "hwm_after_seek_mb": after_seek}
     if shown is None:
         out["screen"] = screen
     return out
@@ -408,12 +427,24 @@ def bench_view(files: dict[str, Path], old: Path | None, old_tree: Path | None, 
             r["cache"] = cache
             rows.append(r)
             shown = "NEVER" if r["first_screen_s"] is None else f"{r['first_screen_s']:.2f} s"
+            seek = "never" if r["seek_s"] is None else f"{r['seek_s']:.2f} s"
             print(f"  {name:22} {size / MB:7.0f} MB {sum(counts.values()):9d} msgs {cache}: first screen {shown}, "
                   f"VmHWM {r['hwm_at_screen_mb']:.0f} MB then {r['hwm_after_2s_mb']:.0f} MB 2 s later; "
-                  f"load {load_average()}", flush=True)
+                  f"seek to 50% {seek}, after it and 3 steps {r['hwm_after_seek_mb']:.0f} MB; load {load_average()}",
+                  flush=True)
             if r["first_screen_s"] is None:
                 print(r["screen"], flush=True)
         out[name] = {"size_mb": size / MB, "messages": sum(counts.values()), "runs": rows}
+    tiny = out.get("tiny.bag")
+    if tiny is not None:  # issue 35: memory above a small bag's, per message
+        base = max(r["hwm_after_seek_mb"] for r in tiny["runs"])
+        for name in ("mid.bag", "small.bag"):
+            if name in out:
+                peak = max(r["hwm_after_seek_mb"] for r in out[name]["runs"])
+                extra = (peak - base) * MB / max(out[name]["messages"] - tiny["messages"], 1)
+                out[name]["bytes_a_message_above_tiny"] = extra
+                print(f"  {name}: VmHWM {peak:.0f} MB, tiny.bag's {base:.0f} MB: {extra:.1f} bytes a message above "
+                      "a small bag's", flush=True)
     for name, path in [*files.items(), *([("old.bag", old)] if old is not None else [])]:
         if not name.endswith(".bag"):
             continue
@@ -542,9 +573,13 @@ def old_worktree(commit: str, where: Path) -> Path | None:
 def main() -> int:
     """Generate the files, run the benchmarks, delete the files."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--size", type=float, default=2.0, help="GB of robot.bag and of robot.mcap.")
+    parser.add_argument("--size", type=float, default=2.0, help="GB of robot.bag and of robot.mcap; 0 leaves them out.")
     parser.add_argument("--small-count", type=int, default=5_000_000,
                         help="Messages of small.bag (Imu, TFMessage, Odometry); 0 leaves it out.")
+    parser.add_argument("--mid-count", type=int, default=1_000_000,
+                        help="Messages of mid.bag (as small.bag); 0 leaves it out.")
+    parser.add_argument("--tiny-count", type=int, default=10_000,
+                        help="Messages of tiny.bag (as small.bag), the baseline of bytes a message; 0 leaves it out.")
     parser.add_argument("--old-size", type=float, default=400, help="MB of old.bag; 0 leaves it out.")
     parser.add_argument("--old-commit", default="da0f12e", help="The bag view before the lazy index.")
     parser.add_argument("--old-tree", default=str(REPO.parent / f"{REPO.name}-old"),
@@ -575,7 +610,11 @@ def main() -> int:
         tpl = _templates()
         robot, small = robot_streams(tpl), robot_streams(tpl, image=False)
         plan = [("robot.bag", robot, int(args.size * GB), 0, "none"),
-                ("robot.mcap", robot, int(args.size * GB), 0, "lz4")]
+                ("robot.mcap", robot, int(args.size * GB), 0, "lz4")] if args.size else []
+        if args.tiny_count:
+            plan.append(("tiny.bag", small, 0, args.tiny_count, "none"))
+        if args.mid_count:
+            plan.append(("mid.bag", small, 0, args.mid_count, "none"))
         if args.small_count:
             plan.append(("small.bag", small, 0, args.small_count, "none"))
         if args.old_size:
@@ -610,7 +649,7 @@ def main() -> int:
                 rates = [float(r) for r in args.rates.split(",")]
                 print(f"(b) play to one roscpp subscriber at -r {args.rates}; load average {load_average()}",
                       flush=True)
-                wanted = {n: (*files[n], rates) for n in ("robot.bag", "robot.mcap")}
+                wanted = {n: (*files[n], rates) for n in ("robot.bag", "robot.mcap") if n in files}
                 if args.small_rates and "small.bag" in files:
                     wanted["small.bag"] = (*files["small.bag"], [float(r) for r in args.small_rates.split(",")])
                 results["play"] = bench_play(wanted, env)

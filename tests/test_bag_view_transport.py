@@ -14,7 +14,7 @@ from typing import Awaitable, Callable
 import pytest
 
 from rostui.core.bag.files import merged_messages, open_reader, open_writer
-from rostui.core.bag.index import BagIndex, IndexSource, load_index, message_yaml
+from rostui.core.bag.index import BagIndex, IndexSource, MessageRef, load_index, message_yaml
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.transport import StreamSource, Transport
 
@@ -22,8 +22,8 @@ from bag_view_helpers import STEP_NS, T0, Int32, write_counts
 from conftest import until
 
 
-def _conn_and_data(index: BagIndex, position: int) -> tuple[Connection, bytes]:
-    conn, _t, data = index.item(position)
+def _conn_and_data(index: BagIndex, ref: MessageRef) -> tuple[Connection, bytes]:
+    conn, _t, data = index.item(ref)
     return conn, data
 
 

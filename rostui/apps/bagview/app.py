@@ -38,7 +38,7 @@ from rostui.apps.widgets.focus import focus_now
 from rostui.apps.widgets.lifecycle import ReleasesOnExit, quit_on_signals
 from rostui.apps.widgets.line_input import LineInput
 from rostui.core.bag.clock import DEFAULT_HZ, BagClock
-from rostui.core.bag.index import BagIndex, IndexSource, load_index
+from rostui.core.bag.index import BagIndex, IndexSource, MessageRef, load_index
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.transport import TICK_PERIOD, Transport
 from rostui.core.node import AnyMsg
@@ -162,7 +162,7 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         """What ``bag info`` (rosbag's rules) gives as the duration, when it is not the messages' span."""
         self._header_shown = ""
         self._run_task: asyncio.Task[int] | None = None
-        self._inspected: tuple[str | None, int | None] = (None, None)
+        self._inspected: tuple[str | None, MessageRef | None] = (None, None)
         self.header = Static(header_text(self.names, None), id="header")
         self.timeline = TimelineView(id="timeline")
         self.inspector = VerticalScroll(id="inspector")
@@ -321,24 +321,31 @@ class BagViewApp(ReleasesOnExit, KeysApp):
     def _inspect(self, bag_ns: int) -> None:
         assert self.index is not None
         topic = self.timeline.selected_topic
-        position = self.index.message_at(topic, bag_ns) if topic is not None else None
-        if (topic, position) == self._inspected:
+        try:
+            ref = self.index.message_at(topic, bag_ns) if topic is not None else None
+        except BagError as exc:  # the entries of a chunk that cannot be read
+            self.inspector_title.update(_escape(f"{topic}: {exc}"))
             return
-        self._inspected = (topic, position)
-        if topic is None or position is None:
+        if (topic, ref) == self._inspected:
+            return
+        self._inspected = (topic, ref)
+        if topic is None or ref is None:
             self.inspector_title.update("no message")
             self.inspector_text.update("")
             self.inspector_view.clear()
             return
         try:
-            conn, t, data = self.index.item(position)
+            conn, t, data = self.index.item(ref)
         except BagError as exc:  # a damaged chunk, or a record the index misplaces
             self.inspector_title.update(_escape(topic))
             self.inspector_text.update(f"[b]{_escape(str(exc))}[/b]")
             self.inspector_view.clear()
             return
         track = self.index.tracks[topic]
-        number = self.index.number_in_track(topic, position)
+        try:
+            number = str(self.index.number_in_track(topic, ref))
+        except BagError:
+            number = "?"
         self.inspector_title.update(_escape(f"{topic}  {conn.type}  #{number} of {track.count}  bag {t / 1e9:.6f}  "
                                             f"{wall_text(t)}  {len(data)} B"))
         try:
@@ -389,7 +396,11 @@ class BagViewApp(ReleasesOnExit, KeysApp):
         topic = self.timeline.selected_topic
         if self.transport is None or self.index is None or topic is None:
             return
-        target = self.index.neighbour_time(topic, self.transport.bag_ns(), direction)
+        try:
+            target = self.index.neighbour_time(topic, self.transport.bag_ns(), direction)
+        except BagError as exc:  # the entries of a chunk that cannot be read
+            self.notify(str(exc), title="message", severity="error")
+            return
         if target is not None:
             self.transport.seek(target)
             self.refresh_view()

@@ -6,7 +6,10 @@ channel. A :class:`FileIndex` gathers those into four columns (time, connection,
 chunk, offset), stably sorted by time, so messages with equal times keep their
 order in the file. Payloads stay on disk: :class:`ChunkCache` decompresses the
 chunks a reader asks for and keeps the most recent ones up to a byte budget.
-Memory is 24 bytes a message plus the cache, whatever the file's size.
+A FileIndex costs 24 bytes a message plus the cache, whatever the file's size;
+what needs less reads the same index a chunk at a time instead
+(:meth:`ChunkedFile.chunk_infos` for each chunk's times and counts,
+:meth:`ChunkedFile.chunk_entries` for one chunk's entries).
 """
 
 from __future__ import annotations
@@ -16,10 +19,13 @@ import zlib
 from collections import OrderedDict
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from rostui.core.bag.inflate import inflate
 from rostui.core.bag.model import MalformedRecord
+
+if TYPE_CHECKING:
+    from rostui.core.bag.chunkinfo import ChunkInfos
 
 NO_CHUNK = 0xFFFFFFFF
 """The chunk number of a message stored outside any chunk; its offset is then a position in the file."""
@@ -136,13 +142,16 @@ class ChunkedFile:
     """What both readers share for reading through an index: the chunk table, the chunk cache, and the
     file's own index read once.
 
-    A reader sets ``path`` and ``file`` and provides ``_read_index`` (the file's own index, or None); its
-    ``file_index`` and ``scan_index`` fill ``chunk_table``. A chunk that cannot be read raises the same
+    A reader sets ``path``, ``file`` and ``truncated`` and provides ``_index_parts`` (the entries of the file's
+    own index, chunk by chunk, or None when it has none), ``_scan_parts`` (the same found by reading every
+    chunk), and ``_chunk_index_parts``/``_scanned_chunk_part`` (one chunk's entries, each way); they fill
+    ``chunk_table``. A chunk that cannot be read raises the same
     :class:`~rostui.core.bag.model.MalformedRecord` each time it is asked for, without being read again.
     """
 
     path: str
     file: Any
+    truncated: str
 
     def __init__(self) -> None:
         self.chunk_table: list[ChunkPlace] = []
@@ -150,6 +159,9 @@ class ChunkedFile:
         self.cache = ChunkCache(self._load_chunk)
         self._index: FileIndex | None = None
         self._index_read = False
+        self._infos: ChunkInfos | None = None
+        self._infos_read = False
+        self._entries_scanned = False
         self._broken: dict[int, MalformedRecord] = {}
 
     def file_index(self) -> FileIndex | None:
@@ -157,10 +169,89 @@ class ChunkedFile:
         format indexes messages); None when the file has no usable index (never closed, or cut short)."""
         if not self._index_read:
             self._index_read = True
-            self._index = self._read_index()
+            parts = self._own_index_parts()
+            if parts is not None:
+                try:
+                    self._index = FileIndex.build(list(parts))
+                except (MalformedRecord, EOFError) as exc:
+                    self._index_unreadable(exc)
+                else:
+                    self._entries_scanned = False
         return self._index
 
-    def _read_index(self) -> FileIndex | None:
+    def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex:
+        """Where every readable message lies, by reading every chunk once (payloads are not kept); a file cut
+        short is read up to its last complete record. ``progress(bytes_read)`` after each chunk."""
+        index = FileIndex.build(list(self._fresh_scan(progress)), from_file_index=False)
+        self._entries_scanned = True
+        return index
+
+    def chunk_infos(self) -> ChunkInfos | None:
+        """Each chunk's times and counts per connection from the file's own index (read once, each chunk's
+        entries dropped once counted); None when the file has no usable index."""
+        from rostui.core.bag.chunkinfo import ChunkInfos
+
+        if not self._infos_read:
+            self._infos_read = True
+            parts = self._own_index_parts()
+            if parts is not None:
+                try:
+                    self._infos = ChunkInfos.gather(parts)
+                except (MalformedRecord, EOFError) as exc:
+                    self._index_unreadable(exc)
+                else:
+                    self._entries_scanned = False
+        return self._infos
+
+    def scan_chunk_infos(self, progress: Callable[[int], None] | None = None) -> ChunkInfos:
+        """Each readable chunk's times and counts, by reading every chunk once (a file without an index);
+        ``progress(bytes_read)`` after each chunk."""
+        from rostui.core.bag.chunkinfo import ChunkInfos
+
+        infos = ChunkInfos.gather(self._fresh_scan(progress), from_file_index=False)
+        self._entries_scanned = True
+        return infos
+
+    def chunk_entries(self, number: int) -> ChunkEntries:
+        """Chunk ``number``'s entries sorted by time, then offset: from the file's index records of that chunk,
+        or by reading the chunk when the file was scanned (after :meth:`chunk_infos` or
+        :meth:`scan_chunk_infos`); MalformedRecord when they cannot be read."""
+        from rostui.core.bag.chunkinfo import sorted_entries
+
+        if not 0 <= number < len(self.chunk_table):
+            raise MalformedRecord(self.path, 0, f"no chunk {number} in the file")
+        try:
+            parts = [self._scanned_chunk_part(number)] if self._entries_scanned else self._chunk_index_parts(number)
+        except EOFError:
+            raise MalformedRecord(self.path, self.chunk_table[number].record_at,
+                                  "the chunk's index runs past the end of the file") from None
+        return sorted_entries(parts, number)
+
+    def _fresh_scan(self, progress: Callable[[int], None] | None) -> Iterator[ChunkEntries]:
+        self.chunk_table = []
+        self._broken = {}
+        self.cache.clear()
+        return self._scan_parts(progress)
+
+    def _index_unreadable(self, exc: MalformedRecord | EOFError) -> None:
+        where = exc.where if isinstance(exc, MalformedRecord) else "it ends early"
+        self.truncated = self.truncated or f"its index cannot be read ({where})"
+
+    def _own_index_parts(self) -> Iterator[ChunkEntries] | None:
+        """The entries of the file's own index, chunk by chunk in file order (several parts may share a chunk),
+        filling ``chunk_table`` as they go; None when the file has none."""
+        raise NotImplementedError
+
+    def _scan_parts(self, progress: Callable[[int], None] | None) -> Iterator[ChunkEntries]:
+        """The entries found by reading every chunk (messages outside chunks last, as chunk NO_CHUNK)."""
+        raise NotImplementedError
+
+    def _chunk_index_parts(self, number: int) -> list[ChunkEntries]:
+        """Chunk ``number``'s entries from the file's own index."""
+        raise NotImplementedError
+
+    def _scanned_chunk_part(self, number: int) -> ChunkEntries:
+        """Chunk ``number``'s entries found by reading the chunk."""
         raise NotImplementedError
 
     def read_chunk(self, place: ChunkPlace) -> bytes:

@@ -22,7 +22,7 @@ from mcap.data_stream import ReadDataStream, RecordBuilder
 from mcap.opcode import Opcode
 from mcap.records import Channel, ChunkIndex, DataEnd, Footer, Header, MessageIndex, Schema, Statistics, SummaryOffset
 
-from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace, FileIndex
+from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace
 from rostui.core.bag.iov import Parts
 from rostui.core.bag.model import BagError, BagSummary, Connection, MalformedRecord
 from rostui.core.bag.sink import open_append
@@ -583,7 +583,7 @@ class McapBagReader(ChunkedFile):
         """What makes the error line of the record ``pos`` bytes into the chunk at ``chunk_at``."""
         return lambda what: MalformedRecord(self.path, chunk_at, f"{what}, {pos} bytes into the chunk")
 
-    def _read_index(self) -> FileIndex | None:
+    def _own_index_parts(self) -> Iterator[ChunkEntries] | None:
         # the summary's chunk indexes and the message indexes after each chunk (a chunk without message
         # indexes is read instead); None without a summary, or with messages outside chunks
         summary = self._summary
@@ -592,46 +592,56 @@ class McapBagReader(ChunkedFile):
         stats = summary.statistics
         if not summary.chunk_indexes and (stats is None or stats.message_count):
             return None
-        try:
-            return self._read_file_index(summary)
-        except MalformedRecord as exc:
-            self.truncated = self.truncated or f"its index cannot be read ({exc.where})"
-            return None
+        return self._file_index_parts(summary)
 
-    def _read_file_index(self, summary: Any) -> FileIndex:
-        import numpy as np
-
+    def _file_index_parts(self, summary: Any) -> Iterator[ChunkEntries]:
         for cid, channel in summary.channels.items():
             self.connections[cid] = self._connection(channel, summary.schemas.get(channel.schema_id))
         self.chunk_table = []
-        parts: list[ChunkEntries] = []
+        self._index_spans: list[tuple[int, int] | None] = []
         for number, index in enumerate(sorted(summary.chunk_indexes, key=lambda i: i.chunk_start_offset)):
             self.chunk_table.append(self._chunk_at(index.chunk_start_offset))
             if not index.message_index_offsets:
-                parts.append(self._chunk_part(number))
+                self._index_spans.append(None)
+                yield self._chunk_part(number)
                 continue
             start = index.chunk_start_offset + index.chunk_length
             if not 0 <= start <= self.size or index.message_index_length > self.size - start:
                 raise MalformedRecord(self.path, index.chunk_start_offset, "the index places the chunk's message "
                                                                            "indexes past the end of the file")
-            block = self._read(start, index.message_index_length)
-            for _at, opcode, body in _walk(block, self.path, start):
-                if opcode != Opcode.MESSAGE_INDEX:
-                    continue
-                error = self._error(start)
-                if len(body) < 6:
-                    raise error(f"a message index record of {len(body)} bytes")
-                channel_id = struct.unpack_from("<H", body)[0]
-                (records_length,) = _U32.unpack_from(body, 2)
-                if records_length % 16 or records_length > len(body) - 6:
-                    raise error(f"a message index record's {records_length} bytes of entries do not fit it")
-                if channel_id not in self.connections:
-                    raise error(f"a message index of channel {channel_id}, which no channel record declares")
-                entries = np.frombuffer(body, dtype=_INDEX_ENTRY, count=records_length // 16, offset=6)
-                parts.append(ChunkEntries(entries["time"].astype(np.int64),
-                                          np.full(len(entries), channel_id, dtype=np.uint32),
-                                          entries["offset"], number))
-        return FileIndex.build(parts)
+            self._index_spans.append((start, index.message_index_length))
+            yield from self._message_indexes(number, start, index.message_index_length)
+
+    def _message_indexes(self, number: int, start: int, length: int) -> list[ChunkEntries]:
+        """The entries of the message index records in the ``length`` bytes at ``start`` (chunk ``number``'s)."""
+        import numpy as np
+
+        parts: list[ChunkEntries] = []
+        block = self._read(start, length)
+        for _at, opcode, body in _walk(block, self.path, start):
+            if opcode != Opcode.MESSAGE_INDEX:
+                continue
+            error = self._error(start)
+            if len(body) < 6:
+                raise error(f"a message index record of {len(body)} bytes")
+            channel_id = struct.unpack_from("<H", body)[0]
+            (records_length,) = _U32.unpack_from(body, 2)
+            if records_length % 16 or records_length > len(body) - 6:
+                raise error(f"a message index record's {records_length} bytes of entries do not fit it")
+            if channel_id not in self.connections:
+                raise error(f"a message index of channel {channel_id}, which no channel record declares")
+            entries = np.frombuffer(body, dtype=_INDEX_ENTRY, count=records_length // 16, offset=6)
+            parts.append(ChunkEntries(entries["time"].astype(np.int64),
+                                      np.full(len(entries), channel_id, dtype=np.uint32),
+                                      entries["offset"], number))
+        return parts
+
+    def _chunk_index_parts(self, number: int) -> list[ChunkEntries]:
+        span = self._index_spans[number]
+        return [self._chunk_part(number)] if span is None else self._message_indexes(number, *span)
+
+    def _scanned_chunk_part(self, number: int) -> ChunkEntries:
+        return self._chunk_part(number)
 
     def _chunk_part(self, number: int) -> ChunkEntries:
         """The entries of chunk ``number`` found by reading its records (schemas and channels taken in)."""
@@ -649,13 +659,7 @@ class McapBagReader(ChunkedFile):
                 self._take_definition(opcode, body, schemas, error)
         return ChunkEntries(times, conn_ids, offsets, number)
 
-    def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex:
-        """Where every readable message lies, by reading every chunk once (payloads are not kept); a
-        file cut short is read up to its last complete record. ``progress(bytes_read)`` after each chunk."""
-        self.chunk_table = []
-        self._broken = {}
-        self.cache.clear()
-        parts: list[ChunkEntries] = []
+    def _scan_parts(self, progress: Callable[[int], None] | None) -> Iterator[ChunkEntries]:
         loose: tuple[list[int], list[int], list[int]] = ([], [], [])
         schemas = self._scanned_schemas
         try:
@@ -663,10 +667,11 @@ class McapBagReader(ChunkedFile):
                 if opcode == OP_CHUNK:
                     self.chunk_table.append(self._chunk_at(pos, length))
                     try:
-                        parts.append(self._chunk_part(len(self.chunk_table) - 1))
+                        part = self._chunk_part(len(self.chunk_table) - 1)
                     except MalformedRecord:
                         self.chunk_table.pop()
                         raise
+                    yield part
                     if progress is not None:
                         progress(pos + 9 + length)
                 elif opcode == OP_MESSAGE:
@@ -680,8 +685,7 @@ class McapBagReader(ChunkedFile):
         except MalformedRecord as exc:
             self._stop(exc)
         if loose[0]:
-            parts.append(ChunkEntries(*loose, NO_CHUNK))
-        return FileIndex.build(parts, from_file_index=False)
+            yield ChunkEntries(*loose, NO_CHUNK)
 
     def payload(self, chunk: int, offset: int) -> bytes:
         """The serialised message whose record starts at ``offset`` of chunk ``chunk``'s records (or of
@@ -750,17 +754,15 @@ class McapBagReader(ChunkedFile):
         return out
 
     def _count_indexed(self, out: BagSummary) -> None:
-        """Counts and times from the message indexes (a summary without statistics)."""
-        import numpy as np
-
-        index = self.file_index()
-        if index is None:
+        """Counts and times from the message indexes (a summary without statistics), chunk by chunk."""
+        infos = self.chunk_infos()
+        if infos is None:
             self._count_messages(out)
             return
-        ids, counts = np.unique(index.conn_ids, return_counts=True)
-        out.counts = {int(i): int(n) for i, n in zip(ids, counts)}
-        if len(index):
-            out.start_ns, out.end_ns = int(index.times[0]), int(index.times[-1])
+        for conn_id, n in zip(infos.pair_conns.tolist(), infos.pair_counts.tolist()):
+            out.counts[conn_id] = out.counts.get(conn_id, 0) + n
+        if len(infos):
+            out.start_ns, out.end_ns = int(infos.starts.min()), int(infos.ends.max())
 
     def _count_messages(self, out: BagSummary) -> None:
         """Counts and times from reading every record."""

@@ -17,7 +17,7 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import Any, BinaryIO
 
-from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace, FileIndex
+from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace
 from rostui.core.bag.inflate import inflate
 from rostui.core.bag.iov import Parts
 from rostui.core.bag.model import BagError, BagSummary, Connection, MalformedRecord
@@ -553,17 +553,10 @@ class BagReader(ChunkedFile):
                 conn, t = self._message(record)
                 yield conn.id, t, record.inside
 
-    def _read_index(self) -> FileIndex | None:
-        if not self.closed_properly:
-            return None
-        try:
-            return self._read_file_index()
-        except (MalformedRecord, EOFError) as exc:
-            where = exc.where if isinstance(exc, MalformedRecord) else "it ends early"
-            self.truncated = self.truncated or f"its index cannot be read ({where})"
-            return None
+    def _own_index_parts(self) -> Iterator[ChunkEntries] | None:
+        return self._file_index_parts() if self.closed_properly else None
 
-    def _read_file_index(self) -> FileIndex:
+    def _file_index_parts(self) -> Iterator[ChunkEntries]:
         self.file.seek(self.index_pos)
         chunk_positions: list[int] = []
         while self.file.tell() < self.size:
@@ -576,7 +569,7 @@ class BagReader(ChunkedFile):
             raise MalformedRecord(self.path, self.index_pos, f"the index lists {len(chunk_positions)} of the "
                                                              f"{self.chunk_count} chunks the file header counts")
         self.chunk_table = []
-        parts: list[ChunkEntries] = []
+        self._index_spans: list[tuple[int, int]] = []
         for number, pos in enumerate(sorted(chunk_positions)):
             if not self.data_start <= pos < self.index_pos:
                 raise MalformedRecord(self.path, self.index_pos, f"the index places a chunk at byte {pos}, "
@@ -586,14 +579,28 @@ class BagReader(ChunkedFile):
             if record.op != OP_CHUNK:
                 raise record.place.error("the index places a chunk here")
             self.chunk_table.append(self._chunk_place(record))
-            while self.file.tell() < self.index_pos:
-                at = self.file.tell()
-                record = self._read_record(skip_chunk_data=True)
-                if record.op != OP_INDEX_DATA:
-                    self.file.seek(at)
-                    break
-                parts.append(self._index_entries(record, number))
-        return FileIndex.build(parts)
+            first = self.file.tell()
+            parts = list(self._index_data(number))
+            self._index_spans.append((first, self.file.tell()))
+            yield from parts
+
+    def _index_data(self, number: int, end: int | None = None) -> Iterator[ChunkEntries]:
+        """The index data records from the file's position on (up to ``end``, else up to the first other record
+        or the index), as entries of chunk ``number``."""
+        while self.file.tell() < (self.index_pos if end is None else end):
+            at = self.file.tell()
+            record = self._read_record(skip_chunk_data=True)
+            if record.op != OP_INDEX_DATA:
+                if end is not None:
+                    raise record.place.error("the index places a chunk's index data here")
+                self.file.seek(at)
+                break
+            yield self._index_entries(record, number)
+
+    def _chunk_index_parts(self, number: int) -> list[ChunkEntries]:
+        first, end = self._index_spans[number]
+        self.file.seek(first)
+        return list(self._index_data(number, end))
 
     def _index_entries(self, record: _Record, number: int) -> ChunkEntries:
         """The entries of an index data record of chunk ``number``."""
@@ -613,15 +620,7 @@ class BagReader(ChunkedFile):
         times = entries["sec"].astype(np.int64) * 1_000_000_000 + entries["nsec"]
         return ChunkEntries(times, np.full(count, conn_id, dtype=np.uint32), entries["offset"], number)
 
-    def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex:
-        """Where every readable message lies, by reading every chunk once (payloads are not kept).
-
-        ``progress(bytes_read)`` is called after each chunk.
-        """
-        self.chunk_table = []
-        self._broken = {}
-        self.cache.clear()
-        parts: list[ChunkEntries] = []
+    def _scan_parts(self, progress: Callable[[int], None] | None) -> Iterator[ChunkEntries]:
         loose: list[tuple[int, int, int]] = []
         for record in self._records(with_chunk_data=True):
             try:
@@ -629,9 +628,10 @@ class BagReader(ChunkedFile):
                     self._connection(record)
                 elif record.op == OP_CHUNK:
                     entries = list(self._chunk_entries(self._plain(record), record.at))
-                    parts.append(ChunkEntries([t for _, t, _ in entries], [c for c, _, _ in entries],
-                                              [o for _, _, o in entries], len(self.chunk_table)))
+                    part = ChunkEntries([t for _, t, _ in entries], [c for c, _, _ in entries],
+                                        [o for _, _, o in entries], len(self.chunk_table))
                     self.chunk_table.append(self._chunk_place(record))
+                    yield part
                     if progress is not None:
                         progress(self.file.tell())
                 elif record.op == OP_MSG_DATA:
@@ -641,9 +641,13 @@ class BagReader(ChunkedFile):
                 self._stop(exc)
                 break
         if loose:
-            parts.append(ChunkEntries([t for t, _, _ in loose], [c for _, c, _ in loose],
-                                      [o for _, _, o in loose], NO_CHUNK))
-        return FileIndex.build(parts, from_file_index=False)
+            yield ChunkEntries([t for t, _, _ in loose], [c for _, c, _ in loose], [o for _, _, o in loose], NO_CHUNK)
+
+    def _scanned_chunk_part(self, number: int) -> ChunkEntries:
+        place = self.chunk_table[number]
+        entries = list(self._chunk_entries(self.cache.get(number), place.record_at))
+        return ChunkEntries([t for _, t, _ in entries], [c for c, _, _ in entries], [o for _, _, o in entries],
+                            number)
 
     def payload(self, chunk: int, offset: int) -> bytes:
         """The serialised message whose record starts at ``offset`` of chunk ``chunk`` (or of the file,

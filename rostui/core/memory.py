@@ -10,9 +10,10 @@ freed buffers in the heap for reuse.  Only glibc is touched, once per process;
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
 import os
 import sys
+
+from rostui.core.libc import libc_function
 
 M_TRIM_THRESHOLD = -1
 M_MMAP_THRESHOLD = -3
@@ -29,10 +30,8 @@ def tune_allocator() -> bool:
         return True
     if not sys.platform.startswith("linux") or os.environ.get("ROSTUI_NO_MALLOC_TUNING") == "1":
         return False
-    try:
-        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
-        mallopt = libc.mallopt
-    except (OSError, AttributeError):
+    mallopt = libc_function("mallopt")
+    if mallopt is None:
         return False
     mallopt.argtypes = [ctypes.c_int, ctypes.c_int]
     mallopt.restype = ctypes.c_int

@@ -13,13 +13,14 @@ they went (a launch's nodes lead groups of their own).
 from __future__ import annotations
 
 import asyncio
-import ctypes
 import os
 import signal
 import sys
 from typing import Callable, Mapping, Optional, Sequence
 
 import psutil
+
+from rostui.core.libc import libc_function
 
 #: Seconds an app has after SIGTERM before SIGKILL.
 TERM_GRACE = 1.5
@@ -30,13 +31,8 @@ _PR_SET_PDEATHSIG = 1
 
 def _parent_death_hangup() -> Optional[Callable[[], None]]:
     """A function for the child, between fork and exec: SIGHUP when the server dies (Linux); None elsewhere."""
-    if not sys.platform.startswith("linux"):
-        return None
-    try:
-        # the symbols already loaded into this process (libc's among them): ctypes.util.find_library would run
-        # ldconfig in a child process for every tab opened
-        prctl = ctypes.CDLL(None, use_errno=True).prctl
-    except (OSError, AttributeError):
+    prctl = libc_function("prctl")
+    if prctl is None:
         return None
     server = os.getpid()
 

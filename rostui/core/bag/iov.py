@@ -8,10 +8,11 @@ big payloads are kept by reference and handed to ``writev`` as they are, so a
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
 import os
 import sys
 from typing import Any
+
+from rostui.core.libc import libc_function
 
 GATHER_LIMIT = 16 * 1024
 """Pieces shorter than this are copied into the shared buffer; longer ones are written from where they are."""
@@ -76,12 +77,8 @@ RESERVE_STEP = 32 * 1024 * 1024
 
 
 def _load_fallocate() -> Any:
-    if not sys.platform.startswith("linux"):
-        return None
-    try:
-        libc = ctypes.CDLL(ctypes.util.find_library("c"), use_errno=True)
-        fallocate = libc.fallocate
-    except (OSError, AttributeError):
+    fallocate = libc_function("fallocate")
+    if fallocate is None:
         return None
     fallocate.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.c_int64, ctypes.c_int64]
     fallocate.restype = ctypes.c_int

@@ -12,8 +12,9 @@ Pausing freezes it, resuming re-anchors it where it stopped (so the wait left
 before the next message is kept), a rate change re-anchors it at its current
 value, a seek re-anchors it at the target. A message is published when the bag
 clock reaches its time: the loop sleeps on asyncio until the last few
-milliseconds, then sleeps briefly without the loop and spins the last fraction
-of a millisecond (asyncio timers are millisecond-grained).
+milliseconds (asyncio timers are millisecond-grained), then sleeps without the
+loop and spins only the microseconds its wake-up is early
+(:class:`~rostui.core.bag.precise_sleep.PreciseSleeper`).
 """
 
 from __future__ import annotations
@@ -24,12 +25,12 @@ from collections.abc import Callable, Iterator
 from typing import Protocol
 
 from rostui.core.bag.model import Connection
+from rostui.core.bag.precise_sleep import PreciseSleeper, lower_timer_slack
 
 #: ``(connection, time_ns, raw bytes)``: one recorded message.
 MessageItem = tuple[Connection, int, bytes]
 
 SPIN_BEFORE = 0.003  # the last moments before a message are slept without the loop (its timers are ms-grained)
-SPIN_LAST = 0.0002
 TICK_PERIOD = 0.1
 SKIP_BATCH = 1000  # messages skipped (disabled topics) between two turns of the loop
 
@@ -138,6 +139,7 @@ class Transport:
         self._started = False
         self._positioned = False  # run() starts at play_from unless seek() came first
         self._pass_published = 0
+        self._sleeper = PreciseSleeper(clock)
 
     # -- the bag clock -------------------------------------------------------------------
     @property
@@ -302,11 +304,9 @@ class Transport:
                 await self._sleep(min(remaining - SPIN_BEFORE, self.tick_period))
                 self._tick(horizon=t_ns)
                 continue
-            # a short blocking sleep: precise to tens of microseconds, and it yields the CPU
-            # (spinning would make the scheduler preempt us for whole time slices on a busy machine)
-            time.sleep(max(0.0, remaining - SPIN_LAST))
-            while self.clock() < target:  # the last ~0.2 ms: a sleep's wake-up is about that late
-                pass
+            # a blocking sleep that yields the CPU and spins only the few microseconds its wake-up is
+            # early (a spin of its own would make the scheduler preempt us on a busy machine)
+            self._sleeper.sleep_until(target)
             return target
 
     def _emit(self, item: MessageItem, target: float | None) -> None:
@@ -346,18 +346,21 @@ class Transport:
     async def run(self) -> int:
         """Play to the end (for ever with ``loop`` or ``hold_at_end``) or until :meth:`stop`; returns messages published."""
         self._started = True
+        lower_timer_slack()
         if not self._positioned:
             self.source.seek(self.play_from)
             self._positioned = True
         while not self.stopped:
             await asyncio.sleep(0)  # the loop's turn: sends, connections, signals, keys
             item = self._pass_head()
+            wanted = item is None or self._wanted(item[0])
             skipped = 0
-            while item is not None and not self._wanted(item[0]) and skipped < SKIP_BATCH:
+            while not wanted and skipped < SKIP_BATCH:
                 self.source.advance()
                 skipped += 1
                 item = self._pass_head()
-            if item is not None and not self._wanted(item[0]):
+                wanted = item is None or self._wanted(item[0])
+            if not wanted:
                 continue  # a long run of skipped messages: give the loop its turn first
             if item is None:
                 if not await self._at_pass_end():

@@ -417,6 +417,21 @@ class Publication:
             self._flush_scheduled = True
         self.node.loop.call_soon_threadsafe(self._flush)
 
+    def publish_serialized(self, payload: bytes) -> None:
+        """Send a message already in wire form (a bag's bytes) to every subscriber, as :meth:`publish` would.
+
+        On the engine thread, with no same-process subscriber and no latching, the bytes go out with no message
+        object made for them (a bag player's path, once per message); otherwise this is :meth:`publish`.
+        """
+        if self.local or self.latch or get_ident() != self.node.loop_thread_id:
+            self.publish(AnyMsg(payload))
+            return
+        data = LEN.pack(len(payload)) + payload
+        with self.lock:
+            for link in self.links:
+                link.send(data)
+            self.messages_published += 1
+
     def _flush(self) -> None:
         """Engine side of publishes from user threads that could not go direct."""
         with self.lock:

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from rostui.core.bag.clock import DEFAULT_HZ, BagClock
-from rostui.core.bag.files import Reader, merged_messages, open_reader, unordered_notice
+from rostui.core.bag.files import Reader, merged_messages, open_reader, time_ordered, unordered_notice
 from rostui.core.bag.model import BagError, BagSummary, Connection
 from rostui.core.bag.transport import MessageItem, StreamSource, Transport
 
@@ -130,6 +130,8 @@ class Player:
                                    on_tick=self._on_tick, tick_period=tick)
 
     def _stream(self) -> Iterator[MessageItem]:
+        if len(self.readers) == 1:  # nothing to merge: one generator fewer between the file and the socket
+            return time_ordered(self.readers[0])
         return ((conn, t, data) for conn, t, data, _i in merged_messages(self.readers))
 
     @property
@@ -158,8 +160,9 @@ class Player:
     def _publish(self, conn: Connection, t: int, data: bytes) -> None:
         if self.clock is not None:
             self.clock.publish(t)
-        self.publishers[(conn.topic, conn.md5sum)].publish(_raw(data))
-        self._show()
+        self.publishers[(conn.topic, conn.md5sum)].impl.publish_serialized(data)
+        if self.status is not None:
+            self._show()
 
     def _on_tick(self, bag_ns: int) -> None:
         if self.clock is not None:  # paused too: rosbag play keeps publishing the time it stands at
@@ -212,12 +215,6 @@ class Player:
         self.stats.lateness = self.transport.lateness
         self._show(force=True)
         return self.stats
-
-
-def _raw(data: bytes) -> Any:
-    from rostui.core.node import AnyMsg
-
-    return AnyMsg(data)
 
 
 class PlayControls(Protocol):

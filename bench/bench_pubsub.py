@@ -214,9 +214,10 @@ METRICS = ("small_msgs_s", "large_MB_s", "p50_us", "p99_us", "ping_cpu_us")
 
 
 def measure(run: Run, lib: str, args: argparse.Namespace) -> dict[str, float]:
-    """One round for one library: both throughputs, then latency."""
-    small = run.throughput(lib, SMALL, args.window)
-    large = run.throughput(lib, LARGE, args.window)
+    """One round for one library: both throughputs (unless ``--only latency``), then latency."""
+    nothing = {"msgs_s": float("nan"), "MB_s": float("nan")}
+    small = run.throughput(lib, SMALL, args.window) if args.only is None else nothing
+    large = run.throughput(lib, LARGE, args.window) if args.only is None else nothing
     lat = run.latency(lib, args.round_trips)
     return {"small_msgs_s": small["msgs_s"], "large_MB_s": large["MB_s"],
             "p50_us": lat["p50_us"], "p99_us": lat["p99_us"], "ping_cpu_us": lat.get("cpu_us", float("nan"))}
@@ -244,7 +245,8 @@ def report(rounds: dict[str, list[dict[str, float]]], master: str, args: argpars
           f" one master ({master}), 127.0.0.1")
     print(f"median of {args.rounds} interleaved rounds; throughput window {args.window:g} s;"
           f" {args.round_trips} round trips per round after warm-up;"
-          f" {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}")
+          f" {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}"
+          + (f"; {args.load} busy-looping processes beside it" if args.load else ""))
     w = 19
     print(f"{'library':<14}" + "".join(f"{title:>{w}}" for _, title, _ in cols))
     for lib, row in results.items():
@@ -283,6 +285,9 @@ def main() -> int:
     parser.add_argument("--master", choices=("rostui", "rosmaster"), default="rostui",
                         help="which master all peers use (default: rostui core)")
     parser.add_argument("--json", help="also write every round's results to this file")
+    parser.add_argument("--load", type=int, default=0,
+                        help="start this many busy-looping processes for the whole run (a loaded machine)")
+    parser.add_argument("--only", choices=("latency",), help="measure the round trips only")
     args = parser.parse_args()
     libs = [x for x in args.libs.split(",") if x]
     unknown = set(libs) - set(LIBS)
@@ -294,6 +299,7 @@ def main() -> int:
     rounds: dict[str, list[dict[str, float]]] = {lib: [] for lib in libs}
     floors: list[float] = []
     started = time.monotonic()
+    busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(args.load)]
     try:
         run.start_master()
         for i in range(args.rounds):
@@ -309,6 +315,9 @@ def main() -> int:
     except KeyboardInterrupt:
         return 130
     finally:
+        for proc in busy:
+            proc.kill()
+            proc.wait()
         run.close()
     master = "rostui core" if args.master == "rostui" else "rosmaster"
     report(rounds, master, args, floors)

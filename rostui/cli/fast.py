@@ -95,6 +95,10 @@ def main() -> None:
         code = run_plain(argv[1:])
         if code is not None:
             raise SystemExit(code)
+    else:  # a user's script keeps numpy as its user set it up
+        from rostui.cli.blas_threads import single_threaded_blas
+
+        single_threaded_blas()
     entry = FAST.get((argv[0], argv[1])) if len(argv) >= 2 else None
     rest = argv[2:]
     if entry is not None and len(rest) == entry[0] and not any(a.startswith("-") for a in rest):

@@ -10,6 +10,7 @@ them in; a file without an index plays in file order, and a line on stderr says 
 from __future__ import annotations
 
 import asyncio
+import os
 import signal
 import sys
 import time
@@ -23,6 +24,11 @@ from rostui.core.bag.model import BagError, BagSummary, Connection
 from rostui.core.bag.transport import MessageItem, StreamSource, Transport
 
 STATUS_PERIOD = 0.1
+PLAY_CACHE_BYTES = int(os.environ.get("ROSTUI_BAG_PLAY_CACHE_BYTES", str(16 * 1024 * 1024)))
+"""Bytes of decompressed chunks the player keeps, shared by its files: it reads in time order, so a chunk
+left behind is read again only where chunks overlap in time (about 20 chunks of rosbag's 768 KB may
+interleave before one is read twice). Each reader's own 64 MB filled with chunks never read again: 60 MB
+more resident memory and 16 000 page faults in a 160 MB bag's play."""
 
 
 @dataclass
@@ -250,6 +256,7 @@ def open_bags(paths: Sequence[str], warn: Callable[[str], None]) -> tuple[list[R
         for path in paths:
             reader = open_reader(path)
             readers.append(reader)
+            reader.cache.max_bytes = min(reader.cache.max_bytes, PLAY_CACHE_BYTES // len(paths))
             summary = reader.summary()
             summaries.append(summary)
             if not summary.message_count:

@@ -3,8 +3,9 @@
 Loading Typer and the full CLI costs more CPU than the script's own start (0.18 s of the 0.28 s a
 ``rostui python`` took before its script ran). The plain form runs here: optionally ``--rostui`` or
 ``--real-ros``, then a script path (or Python's own ``-c CODE`` / ``-m MODULE``, as the full CLI takes
-them), then the script's arguments untouched. Anything else (``--which``, ``--help``, both modes asked for,
-no script) goes to the full CLI, which says what it said before.
+them), then the script's arguments untouched. A script file runs in this very interpreter
+(:mod:`rostui.compat.inplace`); ``-c`` and ``-m`` replace it with a new one. Anything else (``--which``,
+``--help``, both modes asked for, no script) goes to the full CLI, which says what it said before.
 """
 
 from __future__ import annotations
@@ -49,4 +50,9 @@ def run_plain(args: Sequence[str]) -> int | None:
     from rostui.compat.launcher import plan
 
     mode = Mode(modes[0] if modes else "auto")
-    return exec_plan(plan(mode, args[at], list(args[at + 1:]), os.environ), "rostui python")
+    how = plan(mode, args[at], list(args[at + 1:]), os.environ)
+    from rostui.compat.inplace import can_run_here, run_here
+
+    if can_run_here(how):  # a script file: run in this interpreter rather than start a second one
+        return run_here(how)
+    return exec_plan(how, "rostui python")

@@ -18,7 +18,11 @@ from pathlib import Path
 from . import PYLIB
 from .choice import ENV_MODE, ENV_NOTICE_SHOWN, Choice, Mode, choose
 
-__all__ = ["start", "run_hidden_sitecustomize"]
+__all__ = ["start", "run_hidden_sitecustomize", "hidden_ran"]
+
+hidden_ran = False
+"""True when the ``sitecustomize`` ours hides already ran in this interpreter (a script run in the
+interpreter of `rostui python` itself, :mod:`rostui.compat.inplace`): it is not run twice."""
 
 
 def _is_pylib(entry: str) -> bool:
@@ -50,7 +54,9 @@ def start() -> Choice:
 
 
 def run_hidden_sitecustomize() -> None:
-    """Import the next ``sitecustomize`` on ``sys.path`` after ours, under its own name."""
+    """Import the next ``sitecustomize`` on ``sys.path`` after ours, under its own name (unless :data:`hidden_ran`)."""
+    if hidden_ran:
+        return
     search = [p for p in sys.path if not _is_pylib(p)]
     spec = PathFinder.find_spec("sitecustomize", search)
     if spec is None or spec.loader is None or spec.origin is None:

@@ -14,14 +14,13 @@ the user chose rostui's modules over a real ROS (then it sits first).
 from __future__ import annotations
 
 import importlib
-import importlib.abc
 import importlib.machinery
 import os
 import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from types import ModuleType
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from rostui.compat import PKGPY, PYLIB
 from rostui.core import packages
@@ -191,7 +190,22 @@ def _module_getattr(module: ModuleType, package: str, kind: str, only: str | Non
     return __getattr__
 
 
-class _Loader(importlib.abc.Loader):
+if TYPE_CHECKING:
+    from importlib.abc import Loader as _LoaderBase
+else:
+    _LoaderBase = object
+
+
+class _BareLoader(_LoaderBase):
+    """The loader protocol's default module creation (importlib.abc.Loader's, whose import loads
+    importlib.resources, tempfile and shutil: a megabyte of a small node's memory)."""
+
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType | None:
+        """None: the import system makes the module."""
+        return None
+
+
+class _Loader(_BareLoader):
     """Fills the module a :class:`MessageModuleFinder` spec names."""
 
     def __init__(self, package: str, kind: str | None, only: str | None, own: Path | None = None) -> None:
@@ -218,7 +232,7 @@ class _Loader(importlib.abc.Loader):
         module.__dir__ = lambda: sorted(set(public) | set(module.__dict__))  # type: ignore[method-assign]
 
 
-class _CfgLoader(importlib.abc.Loader):
+class _CfgLoader(_BareLoader):
     """Fills ``<pkg>.cfg`` (a package listing its ``.cfg`` modules) or ``<pkg>.cfg.<Name>Config`` (from the file)."""
 
     def __init__(self, package: str, module: str | None) -> None:
@@ -251,7 +265,7 @@ def _cfg_spec(fullname: str, package: str, module: str | None) -> importlib.mach
     return importlib.machinery.ModuleSpec(fullname, _CfgLoader(package, module), is_package=module is None)
 
 
-class MessageModuleFinder(importlib.abc.MetaPathFinder):
+class MessageModuleFinder:
     """Finds ``<pkg>``, ``<pkg>.msg``, ``<pkg>.srv`` and ``<pkg>.<kind>._<Name>`` for rostui's packages."""
 
     def find_spec(self, fullname: str, path: Sequence[str] | None,

@@ -29,8 +29,6 @@ import time
 from dataclasses import dataclass, field
 from typing import Any, Mapping, Sequence
 
-import yaml
-
 __all__ = [
     "SEP",
     "PRIV",
@@ -388,6 +386,8 @@ def parse_argv(argv: Sequence[str]) -> NodeArgs:
                 raise InvalidNameError(src, reason, "parameter name")
             if not dst:
                 continue
+            import yaml  # here: a node given no _param:=value never loads it
+
             try:
                 out.params[param] = yaml.safe_load(dst)
             except yaml.YAMLError as exc:

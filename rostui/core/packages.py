@@ -79,56 +79,71 @@ def package_roots() -> list[Path]:
     return roots
 
 
+def _entries(d: str) -> tuple[set[str], list[str]]:
+    """The names of the files and of the directories in *d* (symbolic links followed); OSError if unreadable."""
+    files: set[str] = set()
+    dirs: list[str] = []
+    with os.scandir(d) as it:
+        for entry in it:
+            try:
+                if entry.is_dir():
+                    dirs.append(entry.name)
+                elif entry.is_file():
+                    files.add(entry.name)
+            except OSError:
+                continue
+    return files, dirs
+
+
 def _scan_root(root: Path, found: dict[str, list[Path]]) -> None:
     """Add every package below *root* to *found*: each name's directories in precedence order."""
-    if not root.is_dir():
-        return
-    stack = [root]
-    seen: set[Path] = set()
+    # os.scandir and plain strings: this runs over every package at a node's start, and pathlib costs more than
+    # the system calls
+    stack = [str(root)]
+    seen: set[tuple[int, int]] = set()
     while stack:
         d = stack.pop()
         try:
-            real = d.resolve()
+            st = os.stat(d)
+            files, subdirs = _entries(d)
         except OSError:
             continue
-        if real in seen:
+        if (st.st_dev, st.st_ino) in seen:
             continue
-        seen.add(real)
-        if (d / "package.xml").is_file() or (d / "manifest.xml").is_file():  # catkin's, or rosbuild's (rospack)
-            dirs = found.setdefault(_package_name(d), [])
-            if d not in dirs:
-                dirs.append(d)
+        seen.add((st.st_dev, st.st_ino))
+        if "package.xml" in files or "manifest.xml" in files:  # catkin's, or rosbuild's (rospack)
+            path = Path(d)
+            dirs = found.setdefault(_package_name(path), [])
+            if path not in dirs:
+                dirs.append(path)
             continue
-        if (d / "CATKIN_IGNORE").exists() or (d / "rospack_nosubdirs").exists():
+        if "CATKIN_IGNORE" in files or "rospack_nosubdirs" in files \
+                or "CATKIN_IGNORE" in subdirs or "rospack_nosubdirs" in subdirs:
             continue
-        try:
-            children = sorted(
-                (c for c in d.iterdir() if c.is_dir() and c.name not in _SKIP_DIRS and not c.name.startswith(".")),
-                reverse=True,
-            )
-        except OSError:
-            continue
-        stack.extend(children)
+        children = sorted((c for c in subdirs if c not in _SKIP_DIRS and not c.startswith(".")), reverse=True)
+        stack.extend(os.path.join(d, c) for c in children)
 
 
 def _scan_share(share: Path, found: dict[str, list[Path]]) -> None:
     """Add the packages directly below *share* (``<share>/<pkg>/package.xml``) to *found*, after the others."""
     try:
-        children = sorted(c for c in share.iterdir() if not c.name.startswith("."))
+        children = sorted(c for c in os.listdir(share) if not c.startswith("."))
     except OSError:
         return
-    for d in children:
-        if (d / "package.xml").is_file() or _holds_definitions(d):
-            dirs = found.setdefault(_package_name(d), [])
-            if d not in dirs:
-                dirs.append(d)
+    for name in children:
+        d = os.path.join(share, name)
+        if os.path.isfile(os.path.join(d, "package.xml")) or _holds_definitions(d):
+            path = Path(d)
+            dirs = found.setdefault(_package_name(path), [])
+            if path not in dirs:
+                dirs.append(path)
 
 
-def _holds_definitions(d: Path) -> bool:
+def _holds_definitions(d: str | Path) -> bool:
     """True for a directory with ``msg/*.msg`` or ``srv/*.srv`` files (Debian's ros-nav-msgs has no package.xml)."""
     for kind in ("msg", "srv"):
         try:
-            if any(f.suffix == "." + kind for f in (d / kind).iterdir()):
+            if any(f.endswith("." + kind) and f != "." + kind for f in os.listdir(os.path.join(d, kind))):
                 return True
         except OSError:
             continue
@@ -138,7 +153,8 @@ def _holds_definitions(d: Path) -> bool:
 def _package_name(pkg_dir: Path) -> str:
     """The ``<name>`` in package.xml, or the directory name (a rosbuild package's name, or an unreadable file)."""
     try:
-        text = (pkg_dir / "package.xml").read_text(encoding="utf-8", errors="replace")
+        with open(os.path.join(pkg_dir, "package.xml"), encoding="utf-8", errors="replace") as file:
+            text = file.read()
     except OSError:
         return pkg_dir.name
     start = text.find("<name>")

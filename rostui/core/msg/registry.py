@@ -8,7 +8,6 @@ classes for a connection header's or a bag's ``message_definition`` come from
 
 from __future__ import annotations
 
-import hashlib
 import threading
 from pathlib import Path
 from typing import Any
@@ -19,6 +18,11 @@ from .codegen import build_message_class
 from .errors import MessageSpecError, UnknownMessageTypeError
 from .message import Message, Service
 from .spec import HEADER_TYPE, MsgSpec, SrvSpec, is_valid_type_name, parse_msg_text, parse_srv_text, shown
+
+try:
+    from _md5 import md5  # type: ignore[import-not-found]  # CPython's own: hashlib's loads OpenSSL (3 MB)
+except ImportError:  # a Python built without it
+    from hashlib import md5
 
 __all__ = [
     "DEFINITION_SEPARATOR",
@@ -203,17 +207,17 @@ class TypeStore:
         """The md5sum of message type *type_name*, as genmsg computes it."""
         cached = self._md5.get(type_name)
         if cached is None:
-            cached = hashlib.md5(self.md5_text(type_name).encode()).hexdigest()
+            cached = md5(self.md5_text(type_name).encode()).hexdigest()
             self._md5[type_name] = cached
         return cached
 
     def srv_md5sum(self, type_name: str) -> str:
         """The md5sum of service type *type_name* (request text + response text)."""
         spec = self.get_srv_spec(type_name)
-        h = hashlib.md5()
+        h = md5()
         h.update(self.md5_text(spec.request.type_name).encode())
         h.update(self.md5_text(spec.response.type_name).encode())
-        return h.hexdigest()
+        return str(h.hexdigest())
 
     def all_depends(self, type_name: str) -> list[str]:
         """Nested message types of *type_name*, depth first, each once."""

@@ -1,4 +1,4 @@
-"""The engine thread: an asyncio loop (uvloop when installed) behind the sync API.
+"""The engine thread: an asyncio loop (uvloop when installed and wanted) behind the sync API.
 
 User scripts call blocking functions on their own thread; the engine runs the
 node's I/O and subscriber callbacks on its loop thread.  A blocking call made
@@ -10,14 +10,26 @@ from __future__ import annotations
 
 import asyncio
 import concurrent.futures
+import os
 import threading
 from typing import Any, Awaitable, Callable, Coroutine, TypeVar
 
 T = TypeVar("T")
 
 
+ENV_LOOP = "ROSTUI_EVENT_LOOP"
+"""The environment variable that picks the engine's loop: ``uvloop`` or ``asyncio``; unset, :data:`prefer_uvloop`."""
+
+prefer_uvloop = True
+"""Whether an engine runs uvloop (when installed) unless :data:`ENV_LOOP` says otherwise. uvloop loads OpenSSL
+at import (5 MB): rospy scripts under ``rostui python`` turn it off to stay light."""
+
+
 def new_event_loop() -> asyncio.AbstractEventLoop:
-    """A new event loop, uvloop's when available."""
+    """A new event loop: uvloop's when installed and wanted (:data:`ENV_LOOP`, :data:`prefer_uvloop`)."""
+    wanted = os.environ.get(ENV_LOOP, "").strip().lower()
+    if wanted == "asyncio" or (wanted != "uvloop" and not prefer_uvloop):
+        return asyncio.new_event_loop()
     try:
         import uvloop
     except ImportError:

@@ -46,6 +46,7 @@ from rostui.core.node.services import ServiceException, make_response, probe_ser
 from rostui.core.node.topics import TopicType
 from rostui.core.rostime import Duration, Time
 from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, call_sync, ros_result
+from rostui.core.xmlrpc.quick import quick_call
 
 
 class _State:
@@ -136,7 +137,7 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
 def _start_sim_time(engine: Engine, node: _node.AsyncNode) -> None:
     """Follow ``/clock`` when the master's ``/use_sim_time`` is true (zero until the first message)."""
     try:
-        code, _, value = call_sync(node.master_uri, "getParam", node.name, USE_SIM_TIME_PARAM)
+        code, _, value = quick_call(node.master_uri, "getParam", node.name, USE_SIM_TIME_PARAM)
     except XmlRpcConnectionError as exc:
         raise ROSException(unreachable_text(node.master_uri, str(exc))) from exc
     if code != 1 or not value:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import http.client
 import socket
 import zlib
 from typing import Any
@@ -45,6 +44,8 @@ def call_sync(uri: str, method: str, *args: Any, timeout: float = 10.0) -> Any:
 
     Raises the same exceptions as :meth:`XmlRpcClient.call`.
     """
+    import http.client  # here: it imports email and ssl, which a node that only uses quick_call never needs
+
     host, port, path = split_uri(uri)
     body = encode_call(method, args)
     conn = http.client.HTTPConnection(connect_host(host), port, timeout=timeout)

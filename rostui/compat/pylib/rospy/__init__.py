@@ -13,6 +13,14 @@ import os
 import warnings
 from typing import Any, Callable, Mapping, Sequence
 
+from rostui.compat.deferred import import_lean
+
+import_lean()  # before the engine's modules: a node that opens no TLS connection never loads OpenSSL
+
+from rostui.core.node import engine as _engine
+
+_engine.prefer_uvloop = False  # uvloop loads OpenSSL; ROSTUI_EVENT_LOOP=uvloop still picks it
+
 from rostui.core.msg import Message
 from rostui.core.node import sync as _sync
 from rostui.core.node.anymsg import AnyMsg

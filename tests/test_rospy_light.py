@@ -1,0 +1,130 @@
+"""A rospy node under `rostui python` imports only what it uses (issue 35).
+
+The ROS wiki's talker, run unmodified but for a last line that prints which heavy modules it
+has imported once its first message has been published and heard, has none of them: no numpy,
+no OpenSSL, no YAML, no http.client, no uvloop. What it does not import stays usable: numpy
+messages import numpy when asked, and TLS, http.client and xmlrpc.client's ServerProxy work
+in the same script.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from conftest import rostui_cmd
+
+HEAVY = ("numpy", "ssl", "_ssl", "_hashlib", "yaml", "http.client", "email.parser", "uvloop", "importlib.resources",
+         "tempfile", "textual", "typer", "rich")
+"""Modules a talker needs none of (OpenSSL alone is 5 MB of its memory)."""
+
+TALKER = '''#!/usr/bin/env python
+import rospy
+from std_msgs.msg import String
+
+def talker():
+    pub = rospy.Publisher('chatter', String, queue_size=10)
+    rospy.init_node('talker', anonymous=True)
+    rate = rospy.Rate(10) # 10hz
+    while not rospy.is_shutdown():
+        hello_str = "hello world %s" % rospy.get_time()
+        rospy.loginfo(hello_str)
+        pub.publish(hello_str)
+        if heard:
+            break
+        rate.sleep()
+
+heard = []
+rospy.Subscriber('chatter', String, heard.append)
+talker()
+import json, sys
+print(json.dumps({"heard": heard[0].data.startswith("hello world"),
+                  "heavy": sorted(m for m in HEAVY if m in sys.modules)}))
+'''
+
+
+def _run(tmp_path: Path, name: str, code: str, env: dict[str, str]) -> subprocess.CompletedProcess[str]:
+    script = tmp_path / name
+    script.write_text(code)
+    return subprocess.run(rostui_cmd("python", str(script)), env=env, cwd=tmp_path, capture_output=True, text=True,
+                          timeout=120)
+
+
+def test_talker_imports_nothing_heavy(rostui_core: subprocess.Popen, ros_env: dict[str, str],
+                                      tmp_path: Path) -> None:
+    """The wiki's talker, heard by its own subscriber, has loaded none of HEAVY."""
+    code = TALKER.replace("heard = []", f"HEAVY = {HEAVY!r}\nheard = []")
+    out = _run(tmp_path, "talker.py", code, ros_env)
+    assert out.returncode == 0, out.stderr
+    said = json.loads(out.stdout.splitlines()[-1])
+    assert said == {"heard": True, "heavy": []}, out.stdout + out.stderr
+
+
+def test_numpy_msg_imports_numpy_when_asked(rostui_core: subprocess.Popen, ros_env: dict[str, str],
+                                             tmp_path: Path) -> None:
+    """rospy.numpy_msg still gives numpy arrays: numpy comes in with it, not before."""
+    pytest.importorskip("numpy")
+    code = '''import io, sys
+import rospy
+from std_msgs.msg import Float32MultiArray
+print("numpy" in sys.modules)
+from rospy.numpy_msg import numpy_msg
+print("numpy" in sys.modules)
+import numpy
+Floats = numpy_msg(Float32MultiArray)
+buf = io.BytesIO()
+Floats(data=numpy.array([1.5, 2.5], dtype=numpy.float32)).serialize(buf)
+back = Floats().deserialize(buf.getvalue())
+print(type(back.data).__name__, back.data.tolist())
+'''
+    out = _run(tmp_path, "floats.py", code, ros_env)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.splitlines()[-3:] == ["False", "True", "ndarray [1.5, 2.5]"], out.stdout + out.stderr
+
+
+def test_tls_and_http_client_still_work(rostui_core: subprocess.Popen, ros_env: dict[str, str],
+                                        tmp_path: Path) -> None:
+    """After `import rospy`, asyncio still speaks TLS (a handshake with a plain-text server fails as an SSL
+    error), and xmlrpc.client's ServerProxy asks the master over http.client."""
+    code = '''import asyncio, os, socket, threading
+import rospy
+import xmlrpc.client
+
+master = xmlrpc.client.ServerProxy(os.environ["ROS_MASTER_URI"])
+print("pid", master.getPid("/probe")[0])
+
+server = socket.create_server(("127.0.0.1", 0))
+def answer():
+    conn, _ = server.accept()
+    conn.recv(4096)
+    conn.sendall(b"HTTP/1.0 400 Bad Request\\r\\n\\r\\n")
+    conn.close()
+threading.Thread(target=answer, daemon=True).start()
+
+async def main():
+    import ssl
+    try:
+        await asyncio.open_connection("127.0.0.1", server.getsockname()[1], ssl=ssl.create_default_context(),
+                                      server_hostname="localhost")
+    except ssl.SSLError:
+        print("ssl error")
+asyncio.run(main())
+'''
+    out = _run(tmp_path, "tls.py", code, ros_env)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.splitlines()[-2:] == ["pid 1", "ssl error"], out.stdout + out.stderr
+
+
+def test_script_error_shows_the_scripts_frames(tmp_path: Path) -> None:
+    """An uncaught exception prints as `python SCRIPT` prints it: from the script's frame, exit status 1."""
+    out = _run(tmp_path, "fails.py", "import sys\n\ndef f():\n    raise ValueError('bad ' + sys.argv[0])\n\nf()\n",
+               dict(os.environ))
+    assert out.returncode == 1
+    lines = out.stderr.splitlines()
+    assert lines[0] == "Traceback (most recent call last):", out.stderr
+    assert lines[1].startswith(f'  File "{tmp_path / "fails.py"}", line 6, in <module>'), out.stderr
+    assert lines[-1] == f"ValueError: bad {tmp_path / 'fails.py'}", out.stderr

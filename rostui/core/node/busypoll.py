@@ -30,6 +30,8 @@ import time
 from typing import Callable
 
 DEFAULT_WINDOW_US = 250
+FIRST_LOOK = 0.1
+"""Seconds of watching the machine before the first decision (later ones take a whole period)."""
 ENV_WINDOW = "ROSTUI_BUSY_POLL_US"
 
 
@@ -63,14 +65,14 @@ class IdleGauge:
         self._own_cpu = own_cpu
         self._clock = clock
         self._last_sample: tuple[float, float, float] | None = None
-        self._spare = False  # until a whole period has been seen: a loaded machine must not get a first spin
+        self._spare = False  # until the machine has been watched a while: a loaded one must not get a first spin
         now = clock()
-        self._next = now + period
+        self._next = now + min(period, FIRST_LOOK)
         self._resample(now)
 
     def spare(self) -> bool:
-        """True when at least one CPU was left idle by others over the last period (False before one has
-        passed since the gauge was made; True where ``/proc/stat`` cannot be read)."""
+        """True when at least one CPU was left idle by others over the last period (False for the first
+        :data:`FIRST_LOOK` seconds of the gauge; True where ``/proc/stat`` cannot be read)."""
         now = self._clock()
         if now >= self._next:
             self._next = now + self._period

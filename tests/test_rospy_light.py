@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import json
 import os
+import signal
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -128,3 +130,27 @@ def test_script_error_shows_the_scripts_frames(tmp_path: Path) -> None:
     assert lines[0] == "Traceback (most recent call last):", out.stderr
     assert lines[1].startswith(f'  File "{tmp_path / "fails.py"}", line 6, in <module>'), out.stderr
     assert lines[-1] == f"ValueError: bad {tmp_path / 'fails.py'}", out.stderr
+
+
+def test_script_that_does_not_compile_prints_as_python(tmp_path: Path) -> None:
+    """A syntax error is printed as `python SCRIPT` prints it (no traceback), exit status 1."""
+    script = tmp_path / "broken.py"
+    script.write_text("x = (\nprint(1)\n")
+    ours = subprocess.run(rostui_cmd("python", str(script)), capture_output=True, text=True, timeout=60)
+    plain = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=60)
+    assert (ours.returncode, ours.stderr) == (plain.returncode, plain.stderr) == (1, plain.stderr)
+    assert plain.stderr.rstrip().endswith("SyntaxError: '(' was never closed")
+
+
+def test_ctrl_c_ends_the_script_as_python_does(tmp_path: Path) -> None:
+    """SIGINT: KeyboardInterrupt from the script's own line, and the process ends by SIGINT, as under python."""
+    script = tmp_path / "waits.py"
+    script.write_text("import time\nprint('waiting', flush=True)\ntime.sleep(60)\n")
+    proc = subprocess.Popen(rostui_cmd("python", str(script)), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    assert proc.stdout is not None and proc.stdout.readline() == "waiting\n"
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == -signal.SIGINT
+    lines = err.splitlines()
+    assert lines[1].startswith(f'  File "{script}", line ') and lines[-1] == "KeyboardInterrupt", err

@@ -27,11 +27,31 @@ __all__ = ["can_run_here", "run_here"]
 
 
 def can_run_here(how: Plan) -> bool:
-    """Whether *how* runs a script file with this Python and no interpreter options we would lose."""
+    """Whether *how* runs a Python source file with this Python and no interpreter options we would lose."""
     flags = sys.flags
     return (len(how.argv) >= 2 and how.argv[0] == sys.executable and not how.argv[1].startswith("-")
             and not (flags.isolated or flags.ignore_environment or flags.no_site)
-            and os.path.isfile(how.argv[1]))
+            and os.path.isfile(how.argv[1]) and _is_source(how.argv[1]))
+
+
+def _is_source(path: str) -> bool:
+    """Whether *path* is source code: not compiled code nor a zip application, which Python also runs."""
+    try:
+        with open(path, "rb") as file:
+            head = file.read(4)
+    except OSError:
+        return False
+    from importlib.util import MAGIC_NUMBER
+
+    if path.endswith(".pyc") or head == MAGIC_NUMBER:
+        return False
+    import zipimport
+
+    try:
+        zipimport.zipimporter(path)
+    except zipimport.ZipImportError:
+        return True
+    return False
 
 
 def _trimming_hook(code: types.CodeType) -> None:
@@ -75,7 +95,12 @@ def run_here(how: Plan) -> int:
 
     _run_sitecustomize()
     with open(path, "rb") as source:
-        code = compile(source.read(), path, "exec", dont_inherit=True)
+        text = source.read()
+    try:
+        code = compile(text, path, "exec", dont_inherit=True)
+    except (SyntaxError, ValueError) as exc:  # printed as Python prints a script it cannot compile: no traceback
+        sys.excepthook(type(exc), exc.with_traceback(None), None)
+        return 1
     from importlib.machinery import SourceFileLoader
 
     main = types.ModuleType("__main__")

@@ -23,7 +23,8 @@ into ``--dir``, deleted at the end):
     from starting tmux to that. The view's VmHWM (peak resident set, from
     /proc/PID/status) is read then and again 2 s later; then ``5`` seeks to
     50% (timed until the status line says 50%), ``s`` steps three times, and
-    VmHWM is read once more. Each file is opened
+    VmHWM is read once more, and again after 5 s of play at x16 (bytes a
+    message above tiny.bag's are counted from that last one). Each file is opened
     warm (in the page cache) and cold (its pages dropped first with
     posix_fadvise DONTNEED, only that file's). rqt_bag is not packaged in
     Debian; what it stands on, the rosbag Python API, is measured instead on
@@ -343,6 +344,10 @@ def open_view(path: Path, counts: dict[str, int], env: dict[str, str], source: P
                 time.sleep(0.2)
             time.sleep(1.0)
         after_seek = vm_hwm_mb(pid)
+        if shown is not None:  # then play at x16 for 5 s (every chunk on the way is read)
+            tmux.run("send-keys", "-t", "bench", "space", "+", "+", "+", "+")
+            time.sleep(5.0)
+        after_play = vm_hwm_mb(pid)
         screen = tmux.screen()
         tmux.run("send-keys", "-t", "bench", "q")
         deadline = time.monotonic() + 15
@@ -351,7 +356,7 @@ def open_view(path: Path, counts: dict[str, int], env: dict[str, str], source: P
     finally:
         tmux.close()
     out = {"first_screen_s": shown, "hwm_at_screen_mb": max(at_screen, peak), "hwm_after_2s_mb": settled,
-           "seek_s": seek_s, "hwm_after_seek_mb": after_seek}
+           "seek_s": seek_s, "hwm_after_seek_mb": after_seek, "hwm_after_play_mb": after_play}
     if shown is None:
         out["screen"] = screen
     return out
@@ -430,17 +435,18 @@ def bench_view(files: dict[str, Path], old: Path | None, old_tree: Path | None, 
             seek = "never" if r["seek_s"] is None else f"{r['seek_s']:.2f} s"
             print(f"  {name:22} {size / MB:7.0f} MB {sum(counts.values()):9d} msgs {cache}: first screen {shown}, "
                   f"VmHWM {r['hwm_at_screen_mb']:.0f} MB then {r['hwm_after_2s_mb']:.0f} MB 2 s later; "
-                  f"seek to 50% {seek}, after it and 3 steps {r['hwm_after_seek_mb']:.0f} MB; load {load_average()}",
+                  f"seek to 50% {seek}, after it and 3 steps {r['hwm_after_seek_mb']:.0f} MB, after 5 s of play at "
+                  f"x16 {r['hwm_after_play_mb']:.0f} MB; load {load_average()}",
                   flush=True)
             if r["first_screen_s"] is None:
                 print(r["screen"], flush=True)
         out[name] = {"size_mb": size / MB, "messages": sum(counts.values()), "runs": rows}
     tiny = out.get("tiny.bag")
     if tiny is not None:  # issue 35: memory above a small bag's, per message
-        base = max(r["hwm_after_seek_mb"] for r in tiny["runs"])
+        base = max(r["hwm_after_play_mb"] for r in tiny["runs"])
         for name in ("mid.bag", "small.bag"):
             if name in out:
-                peak = max(r["hwm_after_seek_mb"] for r in out[name]["runs"])
+                peak = max(r["hwm_after_play_mb"] for r in out[name]["runs"])
                 extra = (peak - base) * MB / max(out[name]["messages"] - tiny["messages"], 1)
                 out[name]["bytes_a_message_above_tiny"] = extra
                 print(f"  {name}: VmHWM {peak:.0f} MB, tiny.bag's {base:.0f} MB: {extra:.1f} bytes a message above "

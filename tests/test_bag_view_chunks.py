@@ -16,7 +16,7 @@ import pytest
 
 from rostui.core.bag import index as index_module
 from rostui.core.bag.files import merged_messages, open_reader, open_writer
-from rostui.core.bag.index import BagIndex, IndexSource, load_index
+from rostui.core.bag.index import VIEW_CACHE_BYTES, BagIndex, IndexSource, load_index
 from rostui.core.bag.model import Connection
 
 from bag_view_helpers import Int32
@@ -91,6 +91,7 @@ def test_overlapping_chunks_and_files_play_in_exact_time_order_within_a_small_bu
         plain = [(t, topic, value) for t, _f, topic, value in expected]
         assert heard(index) == plain
         assert index.table.held_entries <= 120 and index.table.held_chunks <= 4
+        assert all(reader.cache.max_bytes <= VIEW_CACHE_BYTES // 2 for reader in index.readers)
         rng = random.Random(3)
         for t in [T0 - 1, T0, T0 + 299 * MS, T0 + 300 * MS] + [T0 + rng.randrange(300) * MS for _ in range(5)]:
             assert heard(index, t) == [m for m in plain if m[0] >= t]

@@ -27,7 +27,7 @@ from typing import Any, NamedTuple
 from rostui.core.bag.fileindex import ChunkEntries
 from rostui.core.bag.model import BagError
 
-ENTRY_BUDGET = int(os.environ.get("ROSTUI_BAG_INDEX_ENTRIES", str(1 << 18)))
+ENTRY_BUDGET = int(os.environ.get("ROSTUI_BAG_INDEX_ENTRIES", str(1 << 16)))
 """How many chunk entries (about 20 bytes each) bag view keeps read; the chunk in use is always kept."""
 
 

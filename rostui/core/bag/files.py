@@ -8,7 +8,7 @@ from collections.abc import Callable, Iterable, Iterator
 from typing import Any, Protocol
 
 from rostui.core.bag.chunkinfo import ChunkInfos
-from rostui.core.bag.fileindex import ChunkEntries, FileIndex
+from rostui.core.bag.fileindex import ChunkCache, ChunkEntries, FileIndex
 from rostui.core.bag.mcapfile import COMPRESSIONS as MCAP_COMPRESSIONS
 from rostui.core.bag.mcapfile import MAGIC as MCAP_MAGIC
 from rostui.core.bag.mcapfile import McapBagReader, McapBagWriter
@@ -28,6 +28,7 @@ class Reader(Protocol):
     path: str
     truncated: str
     connections: dict[int, Connection]
+    cache: ChunkCache
 
     def messages(self) -> Iterator[tuple[Connection, int, bytes]]: ...
     def summary(self) -> BagSummary: ...

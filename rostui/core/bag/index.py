@@ -26,7 +26,13 @@ from rostui.core.bag.files import Reader, open_reader
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.transport import MessageItem
 
-__all__ = ["BagIndex", "EXACT_CHUNKS", "IndexSource", "MessageRef", "TopicTrack", "load_index", "message_yaml"]
+__all__ = ["BagIndex", "EXACT_CHUNKS", "VIEW_CACHE_BYTES", "IndexSource", "MessageRef", "TopicTrack", "load_index", "message_yaml"]
+
+VIEW_CACHE_BYTES = int(os.environ.get("ROSTUI_BAG_VIEW_CACHE_BYTES", str(4 * 1024 * 1024)))
+"""Bytes of decompressed chunks bag view keeps, shared by its files (at most each reader's own budget; the
+chunk read last is always kept): it reads in time order, so chunks left behind are seldom read again. A bag
+whose chunks overlap more than that holds (one written topic by topic, with many topics) reads a chunk again
+more often: slower to play, never out of order."""
 
 EXACT_CHUNKS = 32
 """Density over a window that at most this many of a topic's chunks reach is counted from their entries;
@@ -301,6 +307,8 @@ def load_index(paths: Sequence[str], progress: Callable[[str], None] | None = No
     try:
         for path in paths:
             readers.append(open_reader(path))
+        for reader in readers:
+            reader.cache.max_bytes = min(reader.cache.max_bytes, VIEW_CACHE_BYTES // len(readers))
         index = BagIndex(list(paths), readers)
         per_file = []
         for reader in readers:

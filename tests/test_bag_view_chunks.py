@@ -190,3 +190,31 @@ def test_a_file_without_an_index_reads_its_chunks_again_on_demand(tmp_path: Path
         assert index.table is not None and index.table.held_entries <= 50
     finally:
         index.close()
+
+
+def test_messages_outside_chunks_are_held_whole_and_merged_in_time_order(tmp_path: Path) -> None:
+    """An MCAP file of messages outside any chunk (the mcap library without chunking) has no chunk to read
+    them again from: they are kept, and still come in time order with the right counts."""
+    from mcap.writer import Writer
+
+    path = tmp_path / "loose.mcap"
+    rng = random.Random(7)
+    times = [T0 + rng.randrange(50) * MS for _ in range(200)]
+    with open(path, "wb") as f:
+        writer = Writer(f, use_chunking=False)
+        writer.start(profile="ros1", library="test")
+        schema = writer.register_schema("std_msgs/Int32", "ros1msg", Int32._full_text.encode())
+        channels = [writer.register_channel(topic, "ros1", schema, {"md5sum": Int32._md5sum}) for topic in ("/a", "/b")]
+        for i, t in enumerate(times):
+            writer.add_message(channels[i % 2], t, Int32(data=i).serialize(), t)
+        writer.finish()
+    index = load_index([str(path)], budget=10)
+    try:
+        assert len(index) == 200 and index.tracks["/a"].count == 100
+        want = sorted((t, i) for i, t in enumerate(times))  # equal times keep the file's order
+        assert [(t, value) for t, _topic, value in heard(index)] == want
+        assert index.table is not None and index.table.held_entries == 0  # held apart, whole, as said
+        ref = index.message_at("/b", T0 + 25 * MS)
+        assert ref is not None and index.item(ref)[1] <= T0 + 25 * MS
+    finally:
+        index.close()

@@ -26,7 +26,8 @@ from rostui.core.bag.files import Reader, open_reader
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.transport import MessageItem
 
-__all__ = ["BagIndex", "EXACT_CHUNKS", "VIEW_CACHE_BYTES", "IndexSource", "MessageRef", "TopicTrack", "load_index", "message_yaml"]
+__all__ = ["BagIndex", "EXACT_CHUNKS", "IndexSource", "MessageRef", "TopicTrack", "VIEW_CACHE_BYTES", "load_index",
+           "message_yaml"]
 
 VIEW_CACHE_BYTES = int(os.environ.get("ROSTUI_BAG_VIEW_CACHE_BYTES", str(4 * 1024 * 1024)))
 """Bytes of decompressed chunks bag view keeps, shared by its files (at most each reader's own budget; the

@@ -96,6 +96,8 @@ def test_tls_and_http_client_still_work(rostui_core: subprocess.Popen, ros_env: 
 import rospy
 import xmlrpc.client
 
+from http import client as http_client
+print("real http.client", http_client.__file__.endswith("client.py"))
 master = xmlrpc.client.ServerProxy(os.environ["ROS_MASTER_URI"])
 print("pid", master.getPid("/probe")[0])
 
@@ -118,7 +120,7 @@ asyncio.run(main())
 '''
     out = _run(tmp_path, "tls.py", code, ros_env)
     assert out.returncode == 0, out.stderr
-    assert out.stdout.splitlines()[-2:] == ["pid 1", "ssl error"], out.stdout + out.stderr
+    assert out.stdout.splitlines()[-3:] == ["real http.client True", "pid 1", "ssl error"], out.stdout + out.stderr
 
 
 def test_script_error_shows_the_scripts_frames(tmp_path: Path) -> None:

@@ -6,8 +6,9 @@ peak memory); xmlrpc.client imports ``http.client`` (and with it ``email`` and
 :func:`import_lean` imports both with a stand-in in those places: it answers
 ``ssl is not None`` as the real module would, and the first attribute read
 through it (an ``SSLContext`` check, a TLS handshake, a ServerProxy call)
-imports the real module and puts it in the stand-in's place. A script's own
-``import ssl`` or ``import http.client`` is untouched.
+imports the real module and puts it in the stand-in's place. Only asyncio's
+and xmlrpc.client's own globals see a stand-in: a script's ``import ssl`` or
+``from http import client`` gets the real module.
 """
 
 from __future__ import annotations
@@ -75,17 +76,17 @@ def _import_xmlrpc_client() -> None:
     import http
 
     def put_back(real: types.ModuleType) -> None:
-        http.client = real
+        setattr(client, "http", http)  # the package, its client now imported
 
     stand_in = _Deferred("http.client", put_back)
     sys.modules["http.client"] = stand_in
     try:
-        import xmlrpc.client  # noqa: F401
+        import xmlrpc.client as client
     finally:
         if sys.modules.get("http.client") is stand_in:
             del sys.modules["http.client"]
-    if "http.client" not in sys.modules:
-        http.client = stand_in  # xmlrpc.client reaches it through the package
+    # xmlrpc.client reaches http.client as its global http's attribute: only its own global sees the stand-in
+    setattr(client, "http", types.SimpleNamespace(client=stand_in))
 
 
 def import_lean() -> None:

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """A rospy talker under `rostui python` against the same talker on Debian's rospy: start-up and peak RSS.
 
-The talker is the ROS wiki's (``rospy.init_node('talker', anonymous=True)``, a
-``chatter`` publisher with ``queue_size=10``, 10 Hz, ``"hello world %s" %
-rospy.get_time()``), written to a temporary folder and run unmodified as
+The talker is rospy_tutorials' (``tests/python_compat/real/ros_tutorials/talker.py``:
+``rospy.init_node('talker', anonymous=True)``, a ``chatter`` publisher with
+``queue_size=10``, 10 Hz, ``"hello world %s" % rospy.get_time()``), copied to a
+temporary folder and run unmodified as
 ``/usr/bin/python3 talker.py`` (Debian's rospy) and as ``rostui python
 talker.py`` (rostui's shim), one at a time, against one ``rostui core`` on a
 free port with a private ROS_HOME. A subscriber in this process (rostui's
@@ -53,26 +54,8 @@ ROSTUI = str(Path(sys.executable).with_name("rostui"))
 TARGETS = {"startup_s": 0.4, "first_publish_s": 0.4, "peak_rss_kb": 0.5}
 """rostui / rospy ratios issue 35 asks for (lower is better)."""
 
-TALKER = '''#!/usr/bin/env python
-import rospy
-from std_msgs.msg import String
-
-def talker():
-    pub = rospy.Publisher('chatter', String, queue_size=10)
-    rospy.init_node('talker', anonymous=True)
-    rate = rospy.Rate(10) # 10hz
-    while not rospy.is_shutdown():
-        hello_str = "hello world %s" % rospy.get_time()
-        rospy.loginfo(hello_str)
-        pub.publish(hello_str)
-        rate.sleep()
-
-if __name__ == '__main__':
-    try:
-        talker()
-    except rospy.ROSInterruptException:
-        pass
-'''
+TALKER = Path(__file__).resolve().parent.parent / "tests" / "python_compat" / "real" / "ros_tutorials" / "talker.py"
+"""rospy_tutorials' talker, as ROS shipped it (tests/python_compat/real/SOURCES.md: BSD, ros/ros_tutorials)."""
 
 
 def load_average() -> str:
@@ -254,7 +237,7 @@ def main() -> None:
 
     tmp = Path(tempfile.mkdtemp(prefix="rostui-bench-node-"))
     (tmp / "ros_home").mkdir()
-    (tmp / "talker.py").write_text(TALKER)
+    (tmp / "talker.py").write_text(TALKER.read_text())
     port = free_port()
     env = ros_env(port, str(tmp / "ros_home"), PYTHONUNBUFFERED="1")
     for key in ("PYTHONPATH", "VIRTUAL_ENV", "PYTHONHOME", "ROSTUI_PYTHON"):

@@ -29,6 +29,7 @@ from textual.widgets import DataTable, RichLog, Static
 
 from rostui.apps.launchmon.rows import COLUMNS, NodeRow, measure, node_row
 from rostui.apps.widgets.app_keys import KeysApp
+from rostui.apps.widgets.fitted_table import FittedTable
 from rostui.apps.widgets.keys import key_line
 from rostui.apps.widgets.lifecycle import quit_on_signals
 from rostui.launch.errors import LaunchError
@@ -156,7 +157,7 @@ class LaunchMonitorApp(KeysApp):
         """Status line, problem line, node table, log title, log pane, key help."""
         yield Static(id="status")
         yield Static(id="banner")
-        table: DataTable[Text] = DataTable(id="nodes", cursor_type="row", zebra_stripes=False)
+        table: DataTable[Text] = FittedTable(id="nodes", cursor_type="row", zebra_stripes=False)
         for key, heading, width in COLUMNS:
             table.add_column(heading, key=key, width=width)
         yield table

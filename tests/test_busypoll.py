@@ -147,33 +147,3 @@ def test_busy_machine_stops_dense_traffic_from_spinning(tmp_path) -> None:
         assert not poll.spinning
     asyncio.run(main())
 
-
-def test_only_the_loops_own_spinning_counts_as_spare(tmp_path) -> None:
-    """A loop that spun 0.3 s of the last second on a machine otherwise 0.3 s idle sees 0.6 CPU spare (not one):
-    the rest of the process's work is not spare, so a loaded machine stops the spin; idle 0.5 s plus 0.6 s
-    spun is more than one CPU."""
-    async def main() -> None:
-        stat = tmp_path / "stat"
-        clock, cpu = FakeClock(), FakeClock()
-        poll = BusyPoll(asyncio.get_running_loop(), 250e-6, clock, spin_clock=cpu)
-        write_stat(stat, 1000)
-        gauge = IdleGauge(period=0.5, path=str(stat), own_cpu=poll.spin_seconds, clock=clock)
-        poll.use_gauge(gauge)
-        clock.now += 1.0
-        write_stat(stat, 1000 + 200)
-        assert gauge.spare()  # 2 CPUs idle
-        cpu.now = 100.0
-        poll.traffic()
-        clock.now += 50e-6
-        poll.traffic()
-        assert poll.spinning
-        cpu.now += 0.3  # spinning (the process's other work would not move this clock)
-        assert abs(poll.spin_seconds() - 0.3) < 1e-9
-        clock.now += 1.0
-        write_stat(stat, 1200 + 30)
-        assert not gauge.spare()
-        cpu.now += 0.6
-        clock.now += 1.0
-        write_stat(stat, 1230 + 50)
-        assert gauge.spare()
-    asyncio.run(main())

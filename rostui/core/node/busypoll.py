@@ -11,14 +11,13 @@ pose) never triggers it, so it costs nothing there.
 
 The price is CPU: while it spins, the loop's thread uses a whole core.  So it
 only spins while :class:`IdleGauge` sees at least one CPU that the rest of the
-machine leaves idle, counting the time this loop spent spinning as idle (its
-own spin must not stop it) but not the rest of the process's work: when every
-core is busy, a spinning loop only takes turns from the other processes and
-gets preempted while it spins, so a reply waits for its turn either way; there
-it answered later and used more CPU than a loop that sleeps (round trip p50
-125 against 110 µs, 114 against 81 µs of CPU per round trip, with a busy loop
-on each of two cores; counting all of the process's work as spare had kept it
-spinning there).
+machine leaves idle (counting this process's own use as available): on a
+loaded machine wake-ups are fast anyway and the core belongs to others.  It
+decides nothing before it has watched the machine for :data:`FIRST_LOOK`
+seconds: a gauge that said yes until its first half-second period ended let a
+short exchange spin through its whole life on a loaded machine (round trip
+p50 125 against 110 µs sleeping, 114 against 81 µs of CPU per round trip,
+with a busy loop on each of two cores).
 ``ROSTUI_BUSY_POLL_US`` sets the window in microseconds (``0`` turns it off).
 """
 
@@ -50,15 +49,15 @@ def window_from_env(default_us: int = DEFAULT_WINDOW_US) -> float:
 class IdleGauge:
     """Whether the machine has a CPU to spare, from ``/proc/stat``, sampled at most every ``period`` seconds.
 
-    Spare CPUs = idle CPU time of the whole machine plus ``own_cpu`` (the CPU
-    time the caller itself would give back, its spinning), per second of wall
-    time.  Where ``/proc/stat`` cannot be read the gauge always says yes.
+    Spare CPUs = idle CPU time of the whole machine plus this process's own CPU
+    time, per second of wall time.  Where ``/proc/stat`` cannot be read the
+    gauge always says yes.
     """
 
     __slots__ = ("_path", "_period", "_own_cpu", "_clock", "_next", "_last_sample", "_spare")
 
     def __init__(self, period: float = 0.5, path: str = "/proc/stat",
-                 own_cpu: Callable[[], float] = lambda: 0.0,
+                 own_cpu: Callable[[], float] = time.process_time,
                  clock: Callable[[], float] = time.perf_counter) -> None:
         self._path = path
         self._period = period
@@ -115,12 +114,10 @@ _CLOCK_TICKS = _clock_ticks()
 class BusyPoll:
     """Keeps one event loop polling for ``window`` seconds after dense traffic."""
 
-    __slots__ = ("_loop", "_window", "_last", "_until", "_spinning", "_clock", "_gauge", "_spin_clock",
-                 "_spin_started", "spun")
+    __slots__ = ("_loop", "_window", "_last", "_until", "_spinning", "_clock", "_gauge")
 
     def __init__(self, loop: asyncio.AbstractEventLoop, window: float,
-                 clock: Callable[[], float] = time.perf_counter, gauge: IdleGauge | None = None,
-                 spin_clock: Callable[[], float] = time.thread_time) -> None:
+                 clock: Callable[[], float] = time.perf_counter, gauge: IdleGauge | None = None) -> None:
         self._loop = loop
         self._gauge = gauge
         self._window = window
@@ -128,20 +125,6 @@ class BusyPoll:
         self._until = 0.0
         self._spinning = False
         self._clock = clock
-        self._spin_clock = spin_clock
-        self._spin_started = 0.0
-        self.spun = 0.0
-        """CPU seconds the loop's thread has spent spinning (what it did meanwhile included), for the gauge."""
-
-    def use_gauge(self, gauge: IdleGauge) -> None:
-        """Spin only while ``gauge`` sees a spare CPU."""
-        self._gauge = gauge
-
-    def spin_seconds(self) -> float:
-        """:attr:`spun`, up to now when spinning."""
-        if self._spinning:
-            return self.spun + self._spin_clock() - self._spin_started
-        return self.spun
 
     @property
     def spinning(self) -> bool:
@@ -158,7 +141,6 @@ class BusyPoll:
         self._until = now + self._window
         if not self._spinning:
             self._spinning = True
-            self._spin_started = self._spin_clock()
             self._loop.call_soon(self._spin)
 
     def _spin(self) -> None:
@@ -167,14 +149,9 @@ class BusyPoll:
             self._loop.call_soon(self._spin)
         else:
             self._spinning = False
-            self.spun += self._spin_clock() - self._spin_started
 
 
 def busy_poll_for(loop: asyncio.AbstractEventLoop, window: float | None = None) -> BusyPoll | None:
     """A :class:`BusyPoll` for ``loop`` with the environment's window, or None when it is off."""
     seconds = window_from_env() if window is None else window
-    if seconds <= 0:
-        return None
-    poll = BusyPoll(loop, seconds)
-    poll.use_gauge(IdleGauge(own_cpu=poll.spin_seconds))
-    return poll
+    return BusyPoll(loop, seconds, gauge=IdleGauge()) if seconds > 0 else None

@@ -74,7 +74,7 @@ except KeyboardInterrupt:
     pass
 """
 
-BUSY = "while True: pass"
+BUSY = "import signal\nsignal.signal(signal.SIGINT, signal.SIG_DFL)\nwhile True: pass"
 
 
 def write_bag(path: Path, compression: str) -> None:

@@ -5,7 +5,6 @@ from __future__ import annotations
 import errno
 import os
 import random
-import time
 from pathlib import Path
 
 import pytest
@@ -259,9 +258,10 @@ def test_real_rosbag_reads_and_plays_a_padded_bag(tmp_path: Path, monkeypatch: p
     watcher = Watcher("padded_watcher")
     try:
         got = watcher.record("/big", "std_msgs/String")
-        time.sleep(1.0)  # the subscription reaches the master before play looks it up
-        play = subprocess.run(["rosbag", "play", str(path)], capture_output=True, text=True, env=ros_env,
-                              timeout=120)
+        # rosbag play publishes 0.2 s after advertising, connected or not: under load the watcher was not yet
+        # connected (CI at 0e072ec); rosbag's own option waits for it, as the other rosbag play tests do
+        play = subprocess.run(["rosbag", "play", "--wait-for-subscribers", str(path)], capture_output=True, text=True,
+                              env=ros_env, timeout=120)
         assert play.returncode == 0, play.stderr
         got.wait_for_count(len(sent), "rosbag play's messages")
         assert [m.data.encode() for m in got.messages] == [d[4:] for d in sent]

@@ -53,7 +53,9 @@ def test_a_goal_to_its_result_and_one_cancelled(fibonacci: dict[str, str]) -> No
             assert editor.has_focus
             editor.load_text("order: 3\n")
             await pilot.press("ctrl+s")
-            await until(lambda: app.notice("goal").text == "goal SUCCEEDED", "the result", timeout=DEADLINE)
+            # the status topic can say SUCCEEDED before the result topic delivers the result: wait for the goal's end
+            await until(lambda: not app.running and app.notice("goal").text == "goal SUCCEEDED", "the result",
+                        timeout=DEADLINE)
             text = log_text(app)
             assert "status: ACTIVE" in text and "feedback:\n  sequence: [0, 1, 1, 2]" in text, text
             assert text.endswith("result:\n  sequence: [0, 1, 1, 2]"), text
@@ -63,7 +65,8 @@ def test_a_goal_to_its_result_and_one_cancelled(fibonacci: dict[str, str]) -> No
             await pilot.press("ctrl+s")
             assert app.notice("goal").text == "a goal is running: ctrl+x cancels it first"
             await pilot.press("ctrl+x")
-            await until(lambda: app.notice("goal").text == "goal PREEMPTED", "the goal cancelled", timeout=DEADLINE)
+            await until(lambda: not app.running and app.notice("goal").text == "goal PREEMPTED", "the goal cancelled",
+                        timeout=DEADLINE)
             await pilot.press("ctrl+x")
             assert app.notice("goal").text == "no goal is running"
             await pilot.press("ctrl+q")

@@ -40,10 +40,12 @@ def start() -> Choice:
         print(choice.describe(), file=sys.stderr)
         os.environ[ENV_NOTICE_SHOWN] = "1"
     if choice.use_rostui:
+        from rostui.core.msg import codecache
         from rostui.core.rostime import TVal
 
         from .finder import install
 
+        codecache.use_directory(codecache.default_directory())  # a node's start skips compiling its classes
         TVal.repr_prefix = "genpy"  # times print as genpy's do, whether or not the script imports genpy
         install(first=choice.real_ros is not None)
         os.environ[ENV_MODE] = Mode.ROSTUI.value

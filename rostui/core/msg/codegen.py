@@ -32,6 +32,7 @@ import struct
 from typing import Any, Callable
 
 from ..rostime import Duration, Time
+from .codecache import compile_source
 from .errors import DeserializationError, MessageSpecError, SerializationError
 from .message import Message, hybridmethod
 from .spec import BUILTIN_TYPES, Field, MsgSpec, is_valid_name, is_valid_type_name, shown
@@ -598,7 +599,7 @@ def build_message_class(
 
     source = "\n".join(lines) + "\n"
     try:
-        code = compile(source, f"<rostui msg {spec.type_name}>", "exec")
+        code = compile_source(source, f"<rostui msg {spec.type_name}>")
     except (SyntaxError, ValueError, RecursionError, MemoryError) as exc:  # check_spec should make this unreachable
         raise MessageSpecError(f"{spec.type_name}: cannot generate its class ({exc})", spec.source) from None
     exec(code, ns)

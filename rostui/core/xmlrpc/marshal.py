@@ -59,25 +59,29 @@ def encode_call(method: str, params: tuple[Any, ...]) -> bytes:
 # plain string or integer, no entities, no carriage returns.  Anything else
 # (or anything this strict pattern does not match) goes to the full parser,
 # so the fast path never accepts a document the standard parser would refuse.
-_FAST_CALL = re.compile(
+# Compiled on the first call decoded (0.8 ms): a node that serves no call before its first publish skips it.
+_FAST_CALL_PATTERN = (
     rb"(?:<\?xml version=['\"]1\.0['\"](?:[ \t\r\n]+encoding=['\"](?:utf-8|UTF-8)['\"])?[ \t\r\n]*\?>)?[ \t\r\n]*"
     rb"<methodCall>[ \t\r\n]*<methodName>([A-Za-z0-9_.]+)</methodName>[ \t\r\n]*"
     rb"(?:<params>((?:[ \t\r\n]*<param>[ \t\r\n]*<value>(?:<string>[^<&\]\x00-\x08\x0b-\x1f]*</string>|[^<&\]\x00-\x08\x0b-\x1f]*|"
     rb"<(?:int|i4|i8)>-?[0-9]{1,18}</(?:int|i4|i8)>)</value>[ \t\r\n]*</param>)*)[ \t\r\n]*</params>[ \t\r\n]*)?"
     rb"</methodCall>[ \t\r\n]*"
 )
-_FAST_PARAM = re.compile(
-    rb"<value>(?:<string>([^<]*)</string>|<(int|i4|i8)>([^<]*)</(?:int|i4|i8)>|([^<]*))</value>"
-)
+_FAST_PARAM_PATTERN = rb"<value>(?:<string>([^<]*)</string>|<(int|i4|i8)>([^<]*)</(?:int|i4|i8)>|([^<]*))</value>"
+_fast: tuple[re.Pattern[bytes], re.Pattern[bytes]] | None = None
 
 
 def _decode_fast(body: bytes) -> tuple[tuple[Any, ...], str] | None:
-    m = _FAST_CALL.fullmatch(body)
+    global _fast
+    if _fast is None:
+        _fast = re.compile(_FAST_CALL_PATTERN), re.compile(_FAST_PARAM_PATTERN)
+    fast_call, fast_param = _fast
+    m = fast_call.fullmatch(body)
     if m is None:
         return None
     params: list[Any] = []
     if m.group(2):
-        for s, kind, num, bare in _FAST_PARAM.findall(m.group(2)):
+        for s, kind, num, bare in fast_param.findall(m.group(2)):
             if kind:
                 params.append(int(num))
             else:

@@ -13,7 +13,9 @@ recorded together): :class:`MergeCursor` merges the entries of the chunks
 whose spans reach the cursor, bringing each later chunk in just before the
 merge could pass its first time, so messages come in exact time order; equal
 times keep the order of the files given, then of chunks in a file, then of
-records in a chunk.
+records in a chunk. A table made ``by_connection`` (rosbag's Python API, which merges one index per
+connection) breaks ties by connection id first. :func:`merged_batches` gives the same order a block of
+messages at a time, for readers that go through a whole bag (the rosbag API's ``read_messages``).
 """
 
 from __future__ import annotations
@@ -21,14 +23,20 @@ from __future__ import annotations
 import heapq
 import os
 from collections import OrderedDict
-from collections.abc import Callable
-from typing import Any, NamedTuple
+from collections.abc import Callable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, NamedTuple
 
-from rostui.core.bag.fileindex import ChunkEntries
+from rostui.core.bag.fileindex import NO_CHUNK, ChunkEntries
 from rostui.core.bag.model import BagError
+
+if TYPE_CHECKING:
+    from rostui.core.bag.chunkinfo import ChunkInfos
 
 ENTRY_BUDGET = int(os.environ.get("ROSTUI_BAG_INDEX_ENTRIES", str(1 << 16)))
 """How many chunk entries (about 20 bytes each) bag view keeps read; the chunk in use is always kept."""
+
+BATCH = 8192
+"""How many messages :func:`merged_batches` gives at a time (more when that many share one time)."""
 
 
 class MessageRef(NamedTuple):
@@ -46,11 +54,18 @@ class MessageRef(NamedTuple):
 
 class ChunkTable:
     """Every chunk of the files, one row each, sorted by (first time, file, chunk number); ``load(file, chunk)``
-    reads a chunk's sorted entries, and :meth:`entries` keeps them within ``budget`` entries."""
+    reads a chunk's sorted entries, and :meth:`entries` keeps them within ``budget`` entries.
+
+    ``by_connection``: equal times order by connection id before file, chunk and offset (rosbag's Python API
+    merges one index per connection); a chunk's entries are then sorted that way as they are read.
+    """
 
     def __init__(self, starts: Any, ends: Any, files: Any, numbers: Any, counts: Any,
                  load: Callable[[int, int], ChunkEntries], budget: int = ENTRY_BUDGET,
-                 pinned: dict[int, ChunkEntries] | None = None) -> None:
+                 pinned: dict[int, ChunkEntries] | None = None, by_connection: bool = False) -> None:
+        self.by_connection = by_connection
+        if by_connection:
+            pinned = {row: connection_ordered(entries) for row, entries in (pinned or {}).items()}
         self.starts = starts
         self.ends = ends
         self.files = files
@@ -87,6 +102,8 @@ class ChunkTable:
             self._held.move_to_end(row)
             return held
         entries = self._load(int(self.files[row]), int(self.numbers[row]))
+        if self.by_connection:
+            entries = connection_ordered(entries)
         self.loads += 1
         self._held[row] = entries
         self._held_entries += len(entries.times)
@@ -94,6 +111,15 @@ class ChunkTable:
             _, dropped = self._held.popitem(last=False)
             self._held_entries -= len(dropped.times)
         return entries
+
+    def count_before(self, t_ns: int) -> int:
+        """How many messages come before time ``t_ns`` (reads the entries of the chunks that span it)."""
+        import numpy as np
+
+        before = int(self.counts[self.ends < t_ns].sum())
+        for row in np.flatnonzero((self.starts < t_ns) & (self.ends >= t_ns)).tolist():
+            before += int(np.searchsorted(self.entries(row).times, t_ns, side="left"))
+        return before
 
     def ref(self, row: int, i: int, entries: ChunkEntries) -> MessageRef:
         """The reference of entry ``i`` of row ``row``."""
@@ -114,7 +140,7 @@ class MergeCursor:
         self.table = table
         self.problem = ""
         """The one-line error of the last chunk whose entries could not be read ('' while none)."""
-        self._heap: list[tuple[int, int, int, int, int, int]] = []
+        self._heap: list[tuple[int, int, int, int, int, int, int]] = []
         self._next_row = int(np.searchsorted(table.starts, t_ns, side="right"))
         reaching = np.flatnonzero(table.ends[:self._next_row] >= t_ns)
         for row in reaching.tolist():
@@ -132,7 +158,8 @@ class MergeCursor:
     def _push(self, row: int, i: int, entries: ChunkEntries) -> None:
         if i < len(entries.times):
             table = self.table
-            heapq.heappush(self._heap, (int(entries.times[i]), int(table.files[row]), int(table.numbers[row]),
+            rank = int(entries.conn_ids[i]) if table.by_connection else 0
+            heapq.heappush(self._heap, (int(entries.times[i]), rank, int(table.files[row]), int(table.numbers[row]),
                                         int(entries.offsets[i]), row, i))
 
     def _fill(self) -> None:
@@ -151,7 +178,7 @@ class MergeCursor:
             self._fill()
             if not self._heap:
                 return None
-            t, file, chunk, offset, row, i = self._heap[0]
+            t, _rank, file, chunk, offset, row, i = self._heap[0]
             entries = self._entries(row)
             if entries is not None:
                 return MessageRef(t, file, chunk, offset, int(entries.conn_ids[i]))
@@ -161,7 +188,131 @@ class MergeCursor:
         """Move past the next message."""
         self._fill()
         if self._heap:
-            _t, _file, _chunk, _offset, row, i = heapq.heappop(self._heap)
+            _t, _rank, _file, _chunk, _offset, row, i = heapq.heappop(self._heap)
             entries = self._entries(row)
             if entries is not None:
                 self._push(row, i + 1, entries)
+
+
+def connection_ordered(entries: ChunkEntries) -> ChunkEntries:
+    """A chunk's entries (sorted by time, then offset) with equal times ordered by connection id, then offset."""
+    import numpy as np
+
+    times = entries.times
+    if len(times) < 2 or not bool(np.any(times[1:] == times[:-1])):
+        return entries
+    order = np.lexsort((entries.offsets, entries.conn_ids, times))
+    return ChunkEntries(times[order], entries.conn_ids[order], entries.offsets[order], entries.chunk)
+
+
+def table_of(per_file: Sequence[ChunkInfos], load: Callable[[int, int], ChunkEntries], budget: int | None = None,
+             by_connection: bool = False) -> ChunkTable:
+    """The :class:`ChunkTable` of files whose chunks ``per_file`` describes (in the files' order, which breaks
+    ties); ``load(file, chunk)`` reads a chunk's entries, ``budget`` bounds those held (None:
+    :data:`ENTRY_BUDGET`). Messages outside chunks are kept whole (pinned)."""
+    import numpy as np
+
+    if budget is None:
+        budget = ENTRY_BUDGET
+    if not per_file:
+        empty = np.zeros(0, dtype=np.int64)
+        return ChunkTable(empty, empty, np.zeros(0, dtype=np.uint16), np.zeros(0, dtype=np.uint32), empty, load,
+                          budget, by_connection=by_connection)
+    starts = np.concatenate([f.starts for f in per_file])
+    ends = np.concatenate([f.ends for f in per_file])
+    files = np.concatenate([np.full(len(f), i, dtype=np.uint16) for i, f in enumerate(per_file)])
+    numbers = np.concatenate([f.numbers for f in per_file])
+    order = np.lexsort((numbers, files, starts))
+    row_of = np.empty(len(order), dtype=np.int64)
+    row_of[order] = np.arange(len(order))
+    first_row = np.cumsum([0] + [len(f) for f in per_file])
+    counts = np.zeros(len(order), dtype=np.int64)
+    pinned: dict[int, ChunkEntries] = {}
+    for i, infos in enumerate(per_file):
+        np.add.at(counts, row_of[first_row[i] + infos.pair_rows], infos.pair_counts)
+        if infos.loose is not None:
+            pinned[int(row_of[first_row[i] + int(np.flatnonzero(infos.numbers == NO_CHUNK)[0])])] = infos.loose
+    return ChunkTable(starts[order], ends[order], files[order], numbers[order], counts, load, budget, pinned,
+                      by_connection)
+
+
+class MergedBatch(NamedTuple):
+    """Consecutive messages in merge order, as parallel arrays: time, file, chunk number, offset, connection id."""
+
+    times: Any
+    files: Any
+    chunks: Any
+    offsets: Any
+    conn_ids: Any
+
+
+def merged_batches(table: ChunkTable, start_ns: int | None = None, end_ns: int | None = None,
+                   batch: int = BATCH) -> Iterator[MergedBatch]:
+    """The messages of ``table`` with ``start_ns <= time <= end_ns`` (None: unbounded), in the order
+    :class:`MergeCursor` gives them, about ``batch`` at a time.
+
+    Only the chunks that reach ``start_ns`` are read to start with (the others are found from the table's
+    first and last times); then each chunk's entries are read when the merge reaches its first time. While
+    one chunk is open, a batch is a slice of its entries; chunks that overlap in time are merged a batch at a
+    time, at most ``batch`` entries from them together (plus all those of one time), so the entries held are
+    the table's budget and one batch. A chunk whose entries cannot be read raises its BagError.
+    """
+    import numpy as np
+
+    n = len(table)
+    starts, ends = table.starts, table.ends
+    ties = ["times", "conn_ids", "files", "chunks", "offsets"] if table.by_connection else \
+        ["times", "files", "chunks", "offsets"]
+    active: dict[int, int] = {}  # row -> position of its next entry
+    next_row = 0
+    if start_ns is not None:
+        next_row = int(np.searchsorted(starts, start_ns, side="right"))
+        for row in np.flatnonzero(ends[:next_row] >= start_ns).tolist():
+            times = table.entries(row).times
+            at = int(np.searchsorted(times, start_ns, side="left"))
+            if at < len(times):
+                active[row] = at
+    while True:
+        low = min((int(table.entries(row).times[at]) for row, at in active.items()), default=None)
+        while next_row < n and (low is None or int(starts[next_row]) <= low):
+            row = next_row
+            next_row += 1
+            times = table.entries(row).times
+            if len(times):
+                active[row] = 0
+                low = int(times[0]) if low is None else min(low, int(times[0]))
+        if low is None or (end_ns is not None and low > end_ns):
+            return
+        cut = int(starts[next_row]) if next_row < n else None  # entries before the next chunk's first time
+        if end_ns is not None:
+            cut = end_ns + 1 if cut is None else min(cut, end_ns + 1)
+        share = max(batch // len(active), 1)
+        for row, at in active.items():
+            times = table.entries(row).times
+            if at + share < len(times):
+                limit = int(times[at + share])
+                cut = limit if cut is None else min(cut, limit)
+        if cut is not None and cut <= low:
+            cut = low + 1  # every message of the earliest time at once (ties order across chunks)
+        parts: list[MergedBatch] = []
+        for row in list(active):
+            at = active[row]
+            entries = table.entries(row)
+            times = entries.times
+            end = len(times) if cut is None else at + int(np.searchsorted(times[at:], cut, side="left"))
+            if end == at:
+                continue
+            if end == len(times):
+                del active[row]
+            else:
+                active[row] = end
+            k = end - at
+            parts.append(MergedBatch(times[at:end], np.full(k, table.files[row], dtype=np.uint16),
+                                     np.full(k, table.numbers[row], dtype=np.uint32), entries.offsets[at:end],
+                                     entries.conn_ids[at:end]))
+        if len(parts) == 1:
+            yield parts[0]
+        elif parts:
+            joined = MergedBatch(*(np.concatenate(column) for column in zip(*parts)))
+            order = np.lexsort(tuple(getattr(joined, name) for name in reversed(ties)))
+            yield MergedBatch(*(column[order] for column in joined))

@@ -132,7 +132,11 @@ def time_ordered(reader: Reader) -> Iterator[tuple[Connection, int, bytes]]:
 
 def merged_messages(readers: Iterable[Reader]) -> Iterator[tuple[Connection, int, bytes, int]]:
     """Messages of several files in time order: ``(connection, time_ns, data, file_index)``."""
-    streams = [((t, i, conn, data) for conn, t, data in time_ordered(r)) for i, r in enumerate(readers)]
+
+    def tagged(reader: Reader, i: int) -> Iterator[tuple[int, int, Connection, bytes]]:
+        return ((t, i, conn, data) for conn, t, data in time_ordered(reader))
+
+    streams = [tagged(r, i) for i, r in enumerate(readers)]  # (each stream its own i, not the loop's last)
     for t, i, conn, data in heapq.merge(*streams, key=lambda item: (item[0], item[1])):
         yield conn, t, data, i
 

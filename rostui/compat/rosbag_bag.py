@@ -1,8 +1,12 @@
 """rosbag's ``Bag`` for `rostui python`, over rostui's bag readers and writers (:mod:`rostui.core.bag`).
 
-Reading gives messages in time order through the file's index
-(:class:`rostui.core.bag.fileindex.FileIndex`, built by scanning an unindexed
-file when ``allow_unindexed`` is given); writing goes through rostui's
+Reading gives messages in time order through the file's index, a chunk at a
+time: what the index says of each chunk (first and last time, counts:
+:mod:`rostui.core.bag.chunkinfo`, found by reading the chunks of an unindexed
+file when ``allow_unindexed`` is given) and an exact merge of the chunks'
+entries, read again as the merge reaches them (:mod:`rostui.core.bag.chunkmerge`),
+so the memory a read holds follows the number of chunks, not of messages.
+Writing goes through rostui's
 writers, so a bag written here is the rosbag v2.0 file rostui's recorder
 writes, or an MCAP file when its name ends in ``.mcap``.
 Appending to a ``.bag`` continues the file in place
@@ -21,7 +25,8 @@ from collections.abc import Callable, Iterable, Iterator
 from typing import Any, NamedTuple
 
 from rostui.core.bag.bag_append import NotIndexed, read_chunk_infos, resume_bag
-from rostui.core.bag.files import Reader, Writer, open_reader, open_writer, time_ordered
+from rostui.core.bag.chunkmerge import ChunkTable, merged_batches, table_of
+from rostui.core.bag.files import Reader, Writer, open_reader, open_writer
 from rostui.core.bag.mcapfile import MAGIC as MCAP_MAGIC
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.rosbag2_0 import BagWriter
@@ -180,6 +185,7 @@ class Bag:
         self._stale = False  # the writer wrote since self._reader was opened on its file
         self._topic_ids: dict[str, int] = {}
         self._classes: dict[tuple[str, str, str], type[Message]] = {}
+        self._table: tuple[Reader, ChunkTable] | None = None  # the chunks of the reader last read through
         self._open = False
         try:
             self._target: BagTarget = open_target(f, mode)
@@ -224,7 +230,7 @@ class Bag:
             reader = open_reader(path)
         except BagError as exc:
             raise ROSBagFormatException(str(exc)) from None
-        if reader.file_index() is None and not self._allow_unindexed:
+        if reader.chunk_infos() is None and not self._allow_unindexed:
             reader.close()
             raise ROSBagUnindexedException()
         self._reader = reader
@@ -281,11 +287,18 @@ class Bag:
         try:
             reader = open_reader(backup)
             try:
-                if reader.file_index() is None and not self._allow_unindexed:
+                if reader.chunk_infos() is None and not self._allow_unindexed:
                     raise ROSBagUnindexedException()
                 self._writer = self._new_writer(path)
-                for conn, t, data in time_ordered(reader):
-                    self._writer.write(self._connection_id(conn.topic, conn.header_fields()), t, data)
+                table = self._chunk_table(reader)
+                conns, payload = reader.connections, reader.payload
+                for part in merged_batches(table):
+                    for conn_id, t, chunk, offset in zip(part.conn_ids.tolist(), part.times.tolist(),
+                                                         part.chunks.tolist(), part.offsets.tolist()):
+                        conn = conns[conn_id]
+                        self._writer.write(self._connection_id(conn.topic, conn.header_fields()), t,
+                                           payload(chunk, offset))
+                self._table = None
                 self._topic_ids = {}  # new messages get new connections, as in a .bag appended to
             finally:
                 reader.close()
@@ -441,22 +454,32 @@ class Bag:
         finally:
             reader.close()
 
-    def _index_rows(self, reader: Reader) -> Iterator[tuple[Connection, int, int, int]]:
-        """``(connection, time_ns, chunk, offset)`` of every message in time order, equal times in connection
-        order as rosbag's merge of its per-connection indexes gives them (file order for an unindexed file)."""
-        import numpy as np
+    def _chunk_table(self, reader: Reader) -> ChunkTable:
+        """The chunks of ``reader``'s file, from its index (or found by reading its chunks, for a file without
+        one), kept while the bag reads through the same reader; equal times in connection order, as rosbag's
+        merge of its per-connection indexes gives them, then in file order."""
+        if self._table is not None and self._table[0] is reader:
+            return self._table[1]
+        infos = reader.chunk_infos()
+        if infos is None:
+            infos = reader.scan_chunk_infos()
 
-        index = reader.file_index()
-        if index is None:
-            index = reader.scan_index()
-        conns = reader.connections
-        # the index is sorted by time, ties in file order: a stable sort by (time, connection) keeps that order
-        order = np.lexsort((np.arange(len(index)), index.conn_ids, index.times))
-        block = 8192
-        for lo in range(0, len(order), block):
-            rows = order[lo:lo + block]
-            yield from zip((conns[c] for c in index.conn_ids[rows].tolist()), index.times[rows].tolist(),
-                           index.chunks[rows].tolist(), index.offsets[rows].tolist())
+        def load(_file: int, chunk: int) -> Any:
+            return reader.chunk_entries(chunk)
+
+        table = table_of([infos], load, by_connection=True)
+        self._table = (reader, table)
+        return table
+
+    def _index_rows(self, reader: Reader, start: int | None = None, end: int | None = None
+                    ) -> Iterator[tuple[list[int], list[int], list[int], list[int]]]:
+        """``(connection ids, times, chunks, offsets)`` of the messages from ``start`` to ``end`` (None:
+        unbounded; both included) in time order, a block at a time."""
+        try:
+            for part in merged_batches(self._chunk_table(reader), start, end):
+                yield part.conn_ids.tolist(), part.times.tolist(), part.chunks.tolist(), part.offsets.tolist()
+        except BagError as exc:
+            raise ROSBagFormatException(str(exc)) from None
 
     def _message_class(self, conn: Connection) -> type[Message]:
         """The class of ``conn``'s messages: the script's own when its md5sum is the bag's, else the class the
@@ -516,30 +539,35 @@ class Bag:
                   raw: bool, with_header: bool) -> Iterator[Any]:
         stamp = stamp_class()
         new = object.__new__
+        conns = reader.connections
+        payload = reader.payload
         chunk_positions = self._chunk_positions(reader) if raw else []
-        for position, (conn, t, chunk, offset) in enumerate(self._index_rows(reader)):
-            if (start is not None and t < start) or not wanted(conn):
-                continue
-            if end is not None and t > end:
-                break
-            data = reader.payload(chunk, offset)
-            cls = self._message_class(conn)
-            if raw:
-                where: Any = (chunk_positions[chunk], offset) if chunk < len(chunk_positions) else position
-                message: Any = (conn.type, bytes(data), conn.md5sum, where, cls)
-            else:
-                try:
-                    message = cls().deserialize(data)
-                except Exception as exc:  # the generated deserialiser's errors on damaged data
-                    raise ROSBagFormatException(f"cannot decode a {conn.type} message on {conn.topic}: "
-                                                f"{exc}") from None
-            # a bag's times are unsigned and whole: the stamp needs none of the constructor's checks
-            when = new(stamp)
-            when.secs, when.nsecs = divmod(t, 1_000_000_000)
-            if with_header:
-                yield BagMessageWithConnectionHeader(conn.topic, message, when, _header_bytes(conn))
-            else:
-                yield BagMessage(conn.topic, message, when)
+        # MCAP's raw position: the message's place in time order among all the bag's messages
+        position = self._chunk_table(reader).count_before(start) if raw and start is not None else 0
+        for conn_ids, times, chunks, offsets in self._index_rows(reader, start, end):
+            for conn_id, t, chunk, offset in zip(conn_ids, times, chunks, offsets):
+                position += 1
+                conn = conns[conn_id]
+                if not wanted(conn):
+                    continue
+                data = payload(chunk, offset)
+                cls = self._message_class(conn)
+                if raw:
+                    where: Any = (chunk_positions[chunk], offset) if chunk < len(chunk_positions) else position - 1
+                    message: Any = (conn.type, bytes(data), conn.md5sum, where, cls)
+                else:
+                    try:
+                        message = cls().deserialize(data)
+                    except Exception as exc:  # the generated deserialiser's errors on damaged data
+                        raise ROSBagFormatException(f"cannot decode a {conn.type} message on {conn.topic}: "
+                                                    f"{exc}") from None
+                # a bag's times are unsigned and whole: the stamp needs none of the constructor's checks
+                when = new(stamp)
+                when.secs, when.nsecs = divmod(t, 1_000_000_000)
+                if with_header:
+                    yield BagMessageWithConnectionHeader(conn.topic, message, when, _header_bytes(conn))
+                else:
+                    yield BagMessage(conn.topic, message, when)
 
     def _chunk_positions(self, reader: Reader) -> list[int]:
         """Where each chunk of a ``.bag`` starts, by chunk number (rosbag's raw position is ``(chunk position,
@@ -594,9 +622,12 @@ class Bag:
             stamps: dict[str, list[float]] = {}
             if names:
                 wanted = set(names)
-                for conn, t, _chunk, _offset in self._index_rows(reader):
-                    if conn.topic in wanted:
-                        stamps.setdefault(conn.topic, []).append(t / 1e9)
+                topic_of = {conn.id: conn.topic for conn in conns}
+                for conn_ids, times, _chunks, _offsets in self._index_rows(reader):
+                    for conn_id, t in zip(conn_ids, times):
+                        topic = topic_of[conn_id]
+                        if topic in wanted:
+                            stamps.setdefault(topic, []).append(t / 1e9)
         topics: dict[str, TopicTuple] = {}
         for name in names:
             of_topic = [c for c in conns if c.topic == name]

@@ -254,8 +254,9 @@ def merged_batches(table: ChunkTable, start_ns: int | None = None, end_ns: int |
     Only the chunks that reach ``start_ns`` are read to start with (the others are found from the table's
     first and last times); then each chunk's entries are read when the merge reaches its first time. While
     one chunk is open, a batch is a slice of its entries; chunks that overlap in time are merged a batch at a
-    time, at most ``batch`` entries from them together (plus all those of one time), so the entries held are
-    the table's budget and one batch. A chunk whose entries cannot be read raises its BagError.
+    time, at most ``batch`` entries from them together (one a chunk when more than ``batch`` chunks are open;
+    every message of one time at once), so the entries held are the table's budget and one batch. A chunk
+    whose entries cannot be read raises its BagError.
     """
     import numpy as np
 

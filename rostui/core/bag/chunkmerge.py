@@ -255,8 +255,10 @@ def merged_batches(table: ChunkTable, start_ns: int | None = None, end_ns: int |
     first and last times); then each chunk's entries are read when the merge reaches its first time. While
     one chunk is open, a batch is a slice of its entries; chunks that overlap in time are merged a batch at a
     time, at most ``batch`` entries from them together (one a chunk when more than ``batch`` chunks are open;
-    every message of one time at once), so the entries held are the table's budget and one batch. A chunk
-    whose entries cannot be read raises its BagError.
+    every message of one time at once). The chunks open in the merge are kept while their entries fit in the
+    table's budget (besides the table's own cache, so at most twice the budget and one batch are held); past
+    that (many chunks spanning the same times), their entries are read again through the cache as the merge
+    needs them: slower, in the same memory. A chunk whose entries cannot be read raises its BagError.
     """
     import numpy as np
 
@@ -265,23 +267,46 @@ def merged_batches(table: ChunkTable, start_ns: int | None = None, end_ns: int |
     ties = ["times", "conn_ids", "files", "chunks", "offsets"] if table.by_connection else \
         ["times", "files", "chunks", "offsets"]
     active: dict[int, int] = {}  # row -> position of its next entry
+    kept: dict[int, ChunkEntries] = {}  # the open chunks' entries, while they fit in the budget
+    kept_entries = 0
+
+    def entries(row: int) -> ChunkEntries:
+        nonlocal kept_entries
+        found = kept.get(row)
+        if found is None:
+            found = table.entries(row)
+            if kept_entries + len(found.times) <= table.budget:
+                kept[row] = found
+                kept_entries += len(found.times)
+        return found
+
+    def close(row: int) -> None:
+        nonlocal kept_entries
+        del active[row]
+        dropped = kept.pop(row, None)
+        if dropped is not None:
+            kept_entries -= len(dropped.times)
+
     next_row = 0
     if start_ns is not None:
         next_row = int(np.searchsorted(starts, start_ns, side="right"))
         for row in np.flatnonzero(ends[:next_row] >= start_ns).tolist():
-            times = table.entries(row).times
+            times = entries(row).times
             at = int(np.searchsorted(times, start_ns, side="left"))
-            if at < len(times):
-                active[row] = at
+            active[row] = at
+            if at == len(times):
+                close(row)
     while True:
-        low = min((int(table.entries(row).times[at]) for row, at in active.items()), default=None)
+        low = min((int(entries(row).times[at]) for row, at in active.items()), default=None)
         while next_row < n and (low is None or int(starts[next_row]) <= low):
             row = next_row
             next_row += 1
-            times = table.entries(row).times
-            if len(times):
-                active[row] = 0
-                low = int(times[0]) if low is None else min(low, int(times[0]))
+            times = entries(row).times
+            active[row] = 0
+            if not len(times):
+                close(row)
+                continue
+            low = int(times[0]) if low is None else min(low, int(times[0]))
         if low is None or (end_ns is not None and low > end_ns):
             return
         cut = int(starts[next_row]) if next_row < n else None  # entries before the next chunk's first time
@@ -289,7 +314,7 @@ def merged_batches(table: ChunkTable, start_ns: int | None = None, end_ns: int |
             cut = end_ns + 1 if cut is None else min(cut, end_ns + 1)
         share = max(batch // len(active), 1)
         for row, at in active.items():
-            times = table.entries(row).times
+            times = entries(row).times
             if at + share < len(times):
                 limit = int(times[at + share])
                 cut = limit if cut is None else min(cut, limit)
@@ -298,19 +323,19 @@ def merged_batches(table: ChunkTable, start_ns: int | None = None, end_ns: int |
         parts: list[MergedBatch] = []
         for row in list(active):
             at = active[row]
-            entries = table.entries(row)
-            times = entries.times
+            chunk = entries(row)
+            times = chunk.times
             end = len(times) if cut is None else at + int(np.searchsorted(times[at:], cut, side="left"))
             if end == at:
                 continue
             if end == len(times):
-                del active[row]
+                close(row)
             else:
                 active[row] = end
             k = end - at
             parts.append(MergedBatch(times[at:end], np.full(k, table.files[row], dtype=np.uint16),
-                                     np.full(k, table.numbers[row], dtype=np.uint32), entries.offsets[at:end],
-                                     entries.conn_ids[at:end]))
+                                     np.full(k, table.numbers[row], dtype=np.uint32), chunk.offsets[at:end],
+                                     chunk.conn_ids[at:end]))
         if len(parts) == 1:
             yield parts[0]
         elif parts:

@@ -206,7 +206,7 @@ def test_overlapping_chunks_of_a_real_rosbag_read_as_debian_reads_them(tmp_path:
     assert bool((infos.starts[1:] < infos.ends[:-1]).any()), "the chunks overlap in time"
     theirs = _real(["read.py", "real.bag"], tmp_path)
     r = subprocess.run([sys.executable, "-m", "rostui", "python", "--rostui", "read.py", "real.bag"],
-                       env={**_env(), "ROSTUI_BAG_INDEX_ENTRIES": "100"}, cwd=tmp_path, capture_output=True,
+                       env={**_env(), "ROSTUI_BAG_INDEX_ENTRIES": "300"}, cwd=tmp_path, capture_output=True,
                        text=True, timeout=120)
     assert r.returncode == 0, r.stderr
     assert r.stdout == theirs
@@ -218,8 +218,8 @@ def test_merged_batches_of_several_files_give_the_players_order(tmp_path: Path) 
     from rostui.core.bag.files import merged_messages
 
     paths = [tmp_path / "one.mcap", tmp_path / "two.bag"]
-    write_bag(paths[0], 900, 30, seed=5)
-    write_bag(paths[1], 500, 20, seed=6)
+    write_bag(paths[0], 400, 30, seed=5)
+    write_bag(paths[1], 250, 20, seed=6)
     readers = [open_reader(str(p)) for p in paths]
     try:
         expected = [(t, i, conn.id, Int32().deserialize(data).data) for conn, t, data, i in merged_messages(readers)]
@@ -238,3 +238,48 @@ def test_merged_batches_of_several_files_give_the_players_order(tmp_path: Path) 
     finally:
         for reader in readers:
             reader.close()
+
+
+def brute_frequency(stamps: list[int]) -> float | None:
+    """rosbag's frequency of a topic: 1 / the median difference of its stamps in seconds, in time order."""
+    seen = sorted(stamps)
+    if len(seen) < 2:
+        return None
+    periods = sorted(b / 1e9 - a / 1e9 for a, b in zip(seen, seen[1:]))
+    half = len(periods) // 2
+    period = periods[half] if len(periods) % 2 else float(periods[half - 1] + periods[half]) / 2
+    return 1.0 / period if period > 0.0 else None
+
+
+@pytest.mark.parametrize("suffix", [".bag", ".mcap"])
+def test_frequencies_are_rosbags_exact_medians_within_the_budget(tmp_path: Path, budget: int, suffix: str) -> None:
+    """Topics of thousands of jittered periods (several passes over the index), equal stamps, two messages,
+    one, an even count of equal periods; written out of order in small chunks that overlap."""
+    rng = random.Random(8)
+    stamps: dict[str, list[int]] = {
+        "/jitter": [T0 + i * 10 * MS + rng.randrange(-3 * MS, 3 * MS) for i in range(3_001)],
+        "/ties": [T0 + rng.randrange(40) * 25 * MS for _ in range(2_000)],
+        "/steady": [T0 + i * 4 * MS for i in range(1_000)],
+        "/two": [T0 + 5 * MS, T0 + 7 * MS],
+        "/one": [T0],
+        "/same": [T0 + 3 * MS] * 10,
+    }
+    messages = [(t, topic) for topic, ts in stamps.items() for t in ts]
+    messages.sort(key=lambda m: m[0] + rng.randrange(100 * MS))  # out of order by up to 0.1 s
+    path = tmp_path / f"periods{suffix}"
+    writer = open_writer(str(path))
+    ids = {topic: i for i, topic in enumerate(stamps)}
+    for topic, conn_id in ids.items():
+        writer.add_connection(Connection(conn_id, topic, "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/x"))
+    for i, (t, topic) in enumerate(messages):
+        writer.write(ids[topic], t, Int32(data=i).serialize())
+        if i % 50 == 49:
+            writer.flush()
+    writer.close()
+    with Bag(str(path)) as bag:
+        info = bag.get_type_and_topic_info()
+        assert bag._table is not None and bag._table[1].held_entries <= budget
+    for topic, ts in stamps.items():
+        assert info.topics[topic].message_count == len(ts)
+        assert info.topics[topic].frequency == brute_frequency(ts), topic
+    assert info.topics["/one"].frequency is None and info.topics["/same"].frequency is None

@@ -105,14 +105,6 @@ class CompressionTuple(NamedTuple):
     compressed: int
 
 
-def _median(values: list[float]) -> float:
-    ordered = sorted(values)
-    half = len(ordered) // 2
-    if len(ordered) % 2:
-        return ordered[half]
-    return float(ordered[half - 1] + ordered[half]) / 2
-
-
 def _ns(stamp: Any) -> int:
     """Nanoseconds of a genpy/rospy ``Time`` (anything with ``secs`` and ``nsecs``) or of a number of seconds."""
     if isinstance(stamp, (int, float)):
@@ -147,6 +139,10 @@ def _header_bytes(conn: Connection) -> dict[str, bytes]:
 
 
 _COMPRESSIONS = (Compression.NONE, Compression.BZ2, Compression.LZ4)
+
+READ_CACHE_BYTES = 4 * 1024 * 1024
+"""Decompressed chunks a bag keeps while it reads messages (the chunk in use is always kept): a read goes
+through the chunks in time order, needing more than one only where chunks overlap."""
 
 
 class Bag:
@@ -463,6 +459,7 @@ class Bag:
         infos = reader.chunk_infos()
         if infos is None:
             infos = reader.scan_chunk_infos()
+        reader.cache.max_bytes = min(reader.cache.max_bytes, READ_CACHE_BYTES)
 
         def load(_file: int, chunk: int) -> Any:
             return reader.chunk_entries(chunk)
@@ -470,6 +467,25 @@ class Bag:
         table = table_of([infos], load, by_connection=True)
         self._table = (reader, table)
         return table
+
+    def _median_periods(self, reader: Reader, topic_conns: dict[str, list[int]]) -> dict[str, float]:
+        """The median period of each topic's messages in time order (seconds), for topics with two or more;
+        exact, each pass over the index holding at most the entry budget of periods
+        (:mod:`rostui.compat.rosbag_periods`)."""
+        from rostui.core.bag import chunkmerge
+
+        from .rosbag_periods import median_periods
+
+        table = self._chunk_table(reader)
+
+        def passes() -> Iterator[tuple[Any, Any]]:
+            try:
+                for part in merged_batches(table):
+                    yield part.times, part.conn_ids
+            except BagError as exc:
+                raise ROSBagFormatException(str(exc)) from None
+
+        return median_periods(passes, topic_conns, chunkmerge.ENTRY_BUDGET)
 
     def _index_rows(self, reader: Reader, start: int | None = None, end: int | None = None
                     ) -> Iterator[tuple[list[int], list[int], list[int], list[int]]]:
@@ -544,14 +560,19 @@ class Bag:
         chunk_positions = self._chunk_positions(reader) if raw else []
         # MCAP's raw position: the message's place in time order among all the bag's messages
         position = self._chunk_table(reader).count_before(start) if raw and start is not None else 0
+        chosen: dict[int, tuple[Connection, type[Message]] | None] = {}  # per connection: None when filtered out
         for conn_ids, times, chunks, offsets in self._index_rows(reader, start, end):
             for conn_id, t, chunk, offset in zip(conn_ids, times, chunks, offsets):
                 position += 1
-                conn = conns[conn_id]
-                if not wanted(conn):
+                try:
+                    pick = chosen[conn_id]
+                except KeyError:
+                    conn = conns[conn_id]
+                    pick = chosen[conn_id] = (conn, self._message_class(conn)) if wanted(conn) else None
+                if pick is None:
                     continue
+                conn, cls = pick
                 data = payload(chunk, offset)
-                cls = self._message_class(conn)
                 if raw:
                     where: Any = (chunk_positions[chunk], offset) if chunk < len(chunk_positions) else position - 1
                     message: Any = (conn.type, bytes(data), conn.md5sum, where, cls)
@@ -619,26 +640,21 @@ class Bag:
                 names = sorted(set([topic_filters] if not isinstance(topic_filters, list) else topic_filters))
             else:
                 names = sorted({c.topic for c in conns})
-            stamps: dict[str, list[float]] = {}
-            if names:
-                wanted = set(names)
-                topic_of = {conn.id: conn.topic for conn in conns}
-                for conn_ids, times, _chunks, _offsets in self._index_rows(reader):
-                    for conn_id, t in zip(conn_ids, times):
-                        topic = topic_of[conn_id]
-                        if topic in wanted:
-                            stamps.setdefault(topic, []).append(t / 1e9)
+            wanted = set(names)
+            topic_conns: dict[str, list[int]] = {}
+            for conn in conns:
+                if conn.topic in wanted:
+                    topic_conns.setdefault(conn.topic, []).append(conn.id)
+            periods = self._median_periods(reader, topic_conns) if topic_conns else {}
         topics: dict[str, TopicTuple] = {}
         for name in names:
             of_topic = [c for c in conns if c.topic == name]
             if not of_topic:
                 continue
             frequency = None
-            seen = stamps.get(name, [])
-            if len(seen) > 1:
-                period = _median([b - a for a, b in zip(seen, seen[1:])])
-                if period > 0.0:
-                    frequency = 1.0 / period
+            period = periods.get(name)
+            if period is not None and period > 0.0:
+                frequency = 1.0 / period
             topics[name] = TopicTuple(of_topic[0].type, sum(counts.get(c.id, 0) for c in of_topic), len(of_topic),
                                       frequency)
         return TypesAndTopicsTuple(types, topics)

@@ -46,7 +46,6 @@ from rostui.core.node.services import ServiceException, make_response, probe_ser
 from rostui.core.node.topics import TopicType
 from rostui.core.rostime import Duration, Time
 from rostui.core.xmlrpc import RosApiError, XmlRpcClient, XmlRpcConnectionError, call_sync, ros_result
-from rostui.core.xmlrpc.quick import quick_call
 
 
 class _State:
@@ -123,25 +122,30 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     if wait_for_master:
         def warn() -> None:
             node.log.warn("Unable to contact the master at [%s]; will keep trying.", node.master_uri)
-        try:
-            engine.run(node.wait_for_master(on_wait=warn))
-        except _node.MasterError:
-            if node.is_shutdown:
-                raise ROSInterruptException("shutdown while waiting for the master") from None
-            raise
-        engine.run(node.announce())
-        if not disable_rostime:
+        if engine.run(_connect(node, warn, not disable_rostime)):
             _start_sim_time(engine, node)
 
 
-def _start_sim_time(engine: Engine, node: _node.AsyncNode) -> None:
-    """Follow ``/clock`` when the master's ``/use_sim_time`` is true (zero until the first message)."""
+async def _connect(node: _node.AsyncNode, on_wait: Callable[[], None], ask_sim_time: bool) -> bool:
+    """Wait for the master, announce the node's logging, and say whether the master's ``/use_sim_time`` is true
+    (when *ask_sim_time*): one trip to the engine thread, and over the node's own connection to the master."""
     try:
-        code, _, value = quick_call(node.master_uri, "getParam", node.name, USE_SIM_TIME_PARAM)
-    except XmlRpcConnectionError as exc:
+        await node.wait_for_master(on_wait=on_wait)
+    except _node.MasterError:
+        if node.is_shutdown:
+            raise ROSInterruptException("shutdown while waiting for the master") from None
+        raise
+    await node.announce()
+    if not ask_sim_time:
+        return False
+    try:
+        return bool(await node.get_param(USE_SIM_TIME_PARAM, False))
+    except _node.MasterError as exc:
         raise ROSException(unreachable_text(node.master_uri, str(exc))) from exc
-    if code != 1 or not value:
-        return
+
+
+def _start_sim_time(engine: Engine, node: _node.AsyncNode) -> None:
+    """Follow ``/clock`` (the master's ``/use_sim_time`` is true): zero until the first message."""
     clock = _state.clock
     clock.set(Time(0, 0))
     node.log.clock = clock.now_ns

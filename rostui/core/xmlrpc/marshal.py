@@ -73,6 +73,8 @@ _fast: tuple[re.Pattern[bytes], re.Pattern[bytes]] | None = None
 
 def _decode_fast(body: bytes) -> tuple[tuple[Any, ...], str] | None:
     global _fast
+    if b"<array>" in body or b"<struct>" in body:  # never a match (requestTopic, publisherUpdate): no compiling
+        return None
     if _fast is None:
         _fast = re.compile(_FAST_CALL_PATTERN), re.compile(_FAST_PARAM_PATTERN)
     fast_call, fast_param = _fast

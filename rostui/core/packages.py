@@ -22,6 +22,7 @@ from __future__ import annotations
 import os
 import stat
 import threading
+from collections.abc import Iterator
 from pathlib import Path
 
 __all__ = [
@@ -32,6 +33,7 @@ __all__ = [
     "list_packages",
     "find_package",
     "find_package_dirs",
+    "iter_package_dirs",
     "get_package_path",
     "clear_cache",
     "package_of",
@@ -64,6 +66,8 @@ _lock = threading.Lock()
 _cache_key: tuple[str, ...] | None = None
 _cache: dict[str, Path] = {}
 _cache_all: dict[str, list[Path]] = {}
+_roots_key: tuple[str, ...] | None = None
+_roots: dict[str, list[Path]] = {}
 
 
 def package_roots() -> list[Path]:
@@ -166,6 +170,28 @@ def _package_name(pkg_dir: Path) -> str:
     return pkg_dir.name
 
 
+def _roots_found(key: tuple[str, ...]) -> dict[str, list[Path]]:
+    """The packages below :func:`package_roots` (not :data:`SYSTEM_SHARE`), scanned again when *key* changed;
+    the caller holds ``_lock``."""
+    global _roots_key, _roots
+    if _roots_key != key:
+        found: dict[str, list[Path]] = {}
+        for root in package_roots():
+            _scan_root(root, found)
+        _roots, _roots_key = found, key
+    return _roots
+
+
+def _scan_roots() -> dict[str, list[Path]]:
+    """The cached name -> directories map of the roots alone: a name found there needs no look at
+    :data:`SYSTEM_SHARE` for its first directory (200 folders, most of a node's package lookups)."""
+    key = (os.environ.get("ROS_PACKAGE_PATH", ""),)
+    if _roots_key == key:
+        return _roots
+    with _lock:
+        return _roots_found(key)
+
+
 def _scan() -> tuple[dict[str, Path], dict[str, list[Path]]]:
     """The cached maps name -> directory and name -> every directory, rebuilt when ROS_PACKAGE_PATH changed."""
     global _cache_key, _cache, _cache_all
@@ -174,9 +200,7 @@ def _scan() -> tuple[dict[str, Path], dict[str, list[Path]]]:
         return _cache, _cache_all
     with _lock:
         if _cache_key != key:
-            found: dict[str, list[Path]] = {}
-            for root in package_roots():
-                _scan_root(root, found)
+            found = {name: list(dirs) for name, dirs in _roots_found(key).items()}
             _scan_share(SYSTEM_SHARE, found)
             _cache, _cache_all, _cache_key = {name: dirs[0] for name, dirs in found.items()}, found, key
         return _cache, _cache_all
@@ -194,12 +218,25 @@ def list_packages() -> dict[str, Path]:
 
 def find_package(name: str) -> Path | None:
     """The directory of package *name*, or None when it is not found."""
+    first = _scan_roots().get(name)
+    if first:
+        return first[0]
     return _packages().get(name)
 
 
 def find_package_dirs(name: str) -> list[Path]:
     """Every directory of package *name*, first (the one :func:`find_package` gives) to last; [] when none."""
     return list(_scan()[1].get(name, ()))
+
+
+def iter_package_dirs(name: str) -> Iterator[Path]:
+    """The directories :func:`find_package_dirs` gives, in its order, looking in :data:`SYSTEM_SHARE` only
+    when the caller asks for more than the roots hold (a lookup the built-in copy answers never scans it)."""
+    first = list(_scan_roots().get(name, ()))
+    yield from first
+    for later in _scan()[1].get(name, ()):
+        if later not in first:
+            yield later
 
 
 def get_package_path(name: str) -> Path:
@@ -212,9 +249,9 @@ def get_package_path(name: str) -> Path:
 
 def clear_cache() -> None:
     """Forget the scanned packages so the next lookup scans again."""
-    global _cache_key
+    global _cache_key, _roots_key
     with _lock:
-        _cache_key = None
+        _cache_key = _roots_key = None
 
 
 def package_files(name: str, folder: str, pattern: str) -> list[Path]:

@@ -9,6 +9,7 @@ classes for a connection header's or a bag's ``message_definition`` come from
 from __future__ import annotations
 
 import threading
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
@@ -104,13 +105,13 @@ class TypeStore:
                 return spec
             pkg, _, name = type_name.partition("/")
             if self.load_from_packages:
+                path = _first_file(packages.iter_package_dirs(pkg), "msg", f"{name}.msg")
+                if path is not None:  # without listing every directory of the package (Debian's too)
+                    spec = parse_msg_text(_read(path), type_name, str(path))
+                    self._specs[type_name] = spec
+                    return spec
                 pkg_dirs = packages.find_package_dirs(pkg)
                 if pkg_dirs:
-                    path = _first_file(pkg_dirs, "msg", f"{name}.msg")
-                    if path is not None:
-                        spec = parse_msg_text(_read(path), type_name, str(path))
-                        self._specs[type_name] = spec
-                        return spec
                     spec = self._action_spec(pkg, name, pkg_dirs)
                     if spec is not None:
                         return spec
@@ -152,11 +153,12 @@ class TypeStore:
             if spec is not None:
                 return spec
             pkg, _, name = type_name.partition("/")
-            pkg_dirs = packages.find_package_dirs(pkg) if self.load_from_packages else []
-            if not pkg_dirs:
-                raise UnknownMessageTypeError(type_name, f"package {pkg} not found")
-            path = _first_file(pkg_dirs, "srv", f"{name}.srv")
+            path = _first_file(packages.iter_package_dirs(pkg), "srv", f"{name}.srv") if self.load_from_packages \
+                else None
             if path is None:
+                pkg_dirs = packages.find_package_dirs(pkg) if self.load_from_packages else []
+                if not pkg_dirs:
+                    raise UnknownMessageTypeError(type_name, f"package {pkg} not found")
                 raise UnknownMessageTypeError(type_name, f"no {name}.srv in package {pkg} ({_dirs_text(pkg_dirs)})")
             spec = parse_srv_text(_read(path), type_name, str(path))
             self._srv_specs[type_name] = spec
@@ -301,7 +303,7 @@ def _check_type_name(type_name: str, source: str | None) -> None:
         raise MessageSpecError(f"{shown(type_name)} is not a valid pkg/Type name", source)
 
 
-def _first_file(pkg_dirs: list[Path], folder: str, file_name: str) -> Path | None:
+def _first_file(pkg_dirs: Iterable[Path], folder: str, file_name: str) -> Path | None:
     """The first ``<dir>/<folder>/<file_name>`` that exists: a package dir without it does not hide later ones."""
     for pkg_dir in pkg_dirs:
         path = pkg_dir / folder / file_name

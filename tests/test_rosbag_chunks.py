@@ -283,3 +283,36 @@ def test_frequencies_are_rosbags_exact_medians_within_the_budget(tmp_path: Path,
         assert info.topics[topic].message_count == len(ts)
         assert info.topics[topic].frequency == brute_frequency(ts), topic
     assert info.topics["/one"].frequency is None and info.topics["/same"].frequency is None
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_median_periods_are_exact_whatever_the_spread(seed: int) -> None:
+    """rosbag_periods against brute force on streams cut in blocks: steady, jittered, bursty (many zero
+    periods), spread over decades, a few distinct values; 64 periods held at most per rank."""
+    import numpy as np
+
+    from rostui.compat.rosbag_periods import median_periods
+
+    rng = random.Random(seed)
+    shapes = {
+        "steady": [T0 + i * 3 * MS for i in range(5_000)],
+        "jitter": [T0 + i * 10 * MS + rng.randrange(-4 * MS, 4 * MS) for i in range(4_001)],
+        "bursts": [T0 + (i // 7) * 50 * MS for i in range(3_000)],
+        "decades": [T0 + int(10 ** rng.uniform(2, 9)) for _ in range(2_000)],
+        "few": [T0 + rng.choice((1, 2, 3)) * i * MS for i in range(1_500)],
+    }
+    ids = {name: i for i, name in enumerate(shapes)}
+    merged = sorted((t, ids[name]) for name, ts in shapes.items() for t in ts)
+    times = np.array([t for t, _ in merged], dtype=np.int64)
+    conns = np.array([c for _, c in merged], dtype=np.uint32)
+    step = rng.randrange(50, 500)
+
+    def passes() -> Iterator[tuple[Any, Any]]:
+        for lo in range(0, len(times), step):
+            yield times[lo:lo + step], conns[lo:lo + step]
+
+    medians = median_periods(passes, {name: [i] for name, i in ids.items()}, held=64)
+    for name, ts in shapes.items():
+        frequency = brute_frequency(ts)
+        got = medians[name]
+        assert (1.0 / got if got > 0.0 else None) == frequency, name

@@ -6,9 +6,9 @@ differences are streamed from the bag's index a block at a time: a topic with at
 most ``held`` periods has them gathered and sorted in the first pass; for a
 longer one, each pass counts the periods by the leading bits of their float's
 bit pattern (which orders non-negative floats as their values) around the
-rank wanted, until the values around the median are few enough to gather, or
-one value. Each pass reads the index again (no payload), about four for
-millions of periods.
+rank wanted (the range narrowed to the values seen), until the values around the
+median are few enough to gather, or one value. Each pass reads the index again
+(no payload): two for a steady rate, a few more for jittered periods.
 """
 
 from __future__ import annotations
@@ -38,6 +38,8 @@ class _Target:
         self.shift = max(0, (self.hi - self.lo).bit_length() - BITS)
         self.hist = np.zeros(1 << BITS, dtype=np.int64)
         self.seen = 0
+        self.least = self.hi
+        self.most = self.lo
         self.kept: list[Any] | None = []
 
     def add(self, bits: Any) -> None:
@@ -47,6 +49,8 @@ class _Target:
         if not inside.shape[0]:
             return
         self.seen += int(inside.shape[0])
+        self.least = min(self.least, int(inside.min()))
+        self.most = max(self.most, int(inside.max()))
         self.hist += np.bincount(((inside - np.uint64(self.lo)) >> np.uint64(self.shift)).astype(np.int64),
                                  minlength=1 << BITS)
         if self.kept is not None:
@@ -62,12 +66,16 @@ class _Target:
         if self.kept is not None:
             self.value = int(np.sort(np.concatenate(self.kept))[want]) if self.kept else None
             return
+        if self.least == self.most:  # one value fills the range (a steady rate's period, to the last bit)
+            self.value = self.least
+            return
         cum = np.cumsum(self.hist)
         bucket = int(np.searchsorted(cum, want, side="right"))
         self.below += int(cum[bucket - 1]) if bucket else 0
-        self.lo += bucket << self.shift
-        self.hi = min(self.hi, self.lo + (1 << self.shift) - 1)
-        if self.shift == 0:
+        lo = self.lo + (bucket << self.shift)
+        # the bucket, narrowed to the values seen: the next pass splits only the bits in which they differ
+        self.lo, self.hi = max(lo, self.least), min(self.hi, lo + (1 << self.shift) - 1, self.most)
+        if self.lo == self.hi:
             self.value = self.lo
         else:
             self.start_pass()

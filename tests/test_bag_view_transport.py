@@ -211,3 +211,32 @@ def test_clock_ticks_never_run_ahead_of_the_next_message(index: BagIndex) -> Non
     ticks = len(times) - transport.published
     assert ticks > 0
     assert times == sorted(times)
+
+
+def test_messages_due_close_together_still_leave_the_loop_its_turns(tmp_path: Path) -> None:
+    """Messages 10 ms apart at ``-r 5`` (2 ms) go out without a loop turn each, but the loop still runs between
+    them at least every LOOP_TURN_PERIOD (20 ms) of the schedule: a callback on the loop sees playback part-way."""
+    reader = open_reader(str(write_counts(tmp_path / "dense.bag", count=100)))
+    sink = Sink()
+    transport = Transport(StreamSource(lambda: ((c, t, d) for c, t, d, _i in merged_messages([reader]))), sink,
+                          start_ns=T0, end_ns=T0 + 99 * STEP_NS, rate=5.0)
+    seen: list[int] = []
+
+    async def scenario() -> None:
+        loop = asyncio.get_running_loop()
+
+        def look() -> None:
+            seen.append(len(sink.got))
+            if len(sink.got) < 150:
+                loop.call_later(0.005, look)
+
+        look()
+        await until(lambda: len(sink.got) == 150, "every message")
+
+    drive(transport, scenario)
+    reader.close()
+    part_way = {n for n in seen if 0 < n < 150}
+    # the schedule is 0.2 s long: 10 turns of 20 ms at least; a transport that turned the loop only where messages
+    # are far apart would show none
+    assert len(part_way) >= 3, seen
+    assert sink.values() == list(range(100))

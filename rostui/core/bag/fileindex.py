@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from rostui.core.bag.inflate import inflate
-from rostui.core.bag.model import MalformedRecord
+from rostui.core.bag.model import MalformedRecord, frame_of
 
 if TYPE_CHECKING:
     from rostui.core.bag.chunkinfo import ChunkInfos
@@ -163,6 +163,14 @@ class ChunkedFile:
         self._infos_read = False
         self._entries_scanned = False
         self._broken: dict[int, MalformedRecord] = {}
+
+    def frame(self, chunk: int, offset: int) -> bytes | memoryview:
+        """The message :meth:`payload` finds, with TCPROS's 4-byte length before it."""
+        return frame_of(self.payload(chunk, offset))
+
+    def payload(self, chunk: int, offset: int) -> bytes:
+        """The serialised message whose record lies at ``offset`` of chunk ``chunk`` (each format's own)."""
+        raise NotImplementedError
 
     def file_index(self) -> FileIndex | None:
         """Where every message lies, from the file's own index (read once, no chunk decompressed where the

@@ -9,10 +9,7 @@ from typing import Any, Protocol
 
 from rostui.core.bag.chunkinfo import ChunkInfos
 from rostui.core.bag.fileindex import ChunkCache, ChunkEntries, FileIndex
-from rostui.core.bag.mcapfile import COMPRESSIONS as MCAP_COMPRESSIONS
-from rostui.core.bag.mcapfile import MAGIC as MCAP_MAGIC
-from rostui.core.bag.mcapfile import McapBagReader, McapBagWriter
-from rostui.core.bag.model import BagError, BagSummary, Connection
+from rostui.core.bag.model import MCAP_COMPRESSIONS, MCAP_MAGIC, BagError, BagSummary, Connection
 from rostui.core.bag.progress import Progress, counted
 from rostui.core.bag.rosbag2_0 import COMPRESSIONS as BAG_COMPRESSIONS
 from rostui.core.bag.rosbag2_0 import MAGIC as BAG_MAGIC
@@ -36,6 +33,7 @@ class Reader(Protocol):
     def file_index(self) -> FileIndex | None: ...
     def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex: ...
     def payload(self, chunk: int, offset: int) -> bytes: ...
+    def frame(self, chunk: int, offset: int) -> bytes | memoryview: ...
     def chunk_infos(self) -> ChunkInfos | None: ...
     def scan_chunk_infos(self, progress: Callable[[int], None] | None = None) -> ChunkInfos: ...
     def chunk_entries(self, number: int) -> ChunkEntries: ...
@@ -80,6 +78,8 @@ def open_reader(path: str) -> Reader:
     except OSError as exc:
         raise BagError(f"cannot open {path}: {exc.strerror}") from None
     if head.startswith(MCAP_MAGIC):
+        from rostui.core.bag.mcapfile import McapBagReader  # the mcap library loads for MCAP files only
+
         return McapBagReader(path)
     if head.startswith(b"#ROSBAG"):
         return BagReader(path)
@@ -98,6 +98,8 @@ def open_writer(path: str, compression: str = "none", *, max_chunk_age: float = 
     try:
         if is_rosbag_name(path):
             return BagWriter(path, compression=compression, max_chunk_age=max_chunk_age, direct=direct)
+        from rostui.core.bag.mcapfile import McapBagWriter
+
         return McapBagWriter(path, compression=compression, max_chunk_age=max_chunk_age, chunk_crcs=chunk_crcs,
                              direct=direct)
     except OSError as exc:
@@ -204,6 +206,8 @@ def reindex(path: str, progress: Progress | None = None) -> tuple[int, str]:
         compression = max(kinds, key=lambda k: kinds[k]) if kinds else "none"
         if compression not in (BAG_COMPRESSIONS if rosbag else MCAP_COMPRESSIONS):
             compression = "none"
+        from rostui.core.bag.mcapfile import McapBagWriter
+
         writer: Writer = (BagWriter(path, compression=compression) if rosbag
                           else McapBagWriter(path, compression=compression))
         try:

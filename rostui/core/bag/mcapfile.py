@@ -24,11 +24,11 @@ from mcap.records import Channel, ChunkIndex, DataEnd, Footer, Header, MessageIn
 
 from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace
 from rostui.core.bag.iov import Parts
-from rostui.core.bag.model import BagError, BagSummary, Connection, MalformedRecord
+from rostui.core.bag.model import MCAP_COMPRESSIONS, MCAP_MAGIC, BagError, BagSummary, Connection, MalformedRecord
 from rostui.core.bag.sink import open_append
 
-MAGIC = b"\x89MCAP0\r\n"
-COMPRESSIONS = ("none", "lz4", "zstd")
+MAGIC = MCAP_MAGIC
+COMPRESSIONS = MCAP_COMPRESSIONS
 PROFILE = "ros1"
 
 

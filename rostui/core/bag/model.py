@@ -2,7 +2,20 @@
 
 from __future__ import annotations
 
+import struct
 from dataclasses import dataclass, field
+
+_FRAME_LENGTH = struct.Struct("<I")
+
+MCAP_MAGIC = b"\x89MCAP0\r\n"
+"""The bytes an MCAP file starts and ends with."""
+MCAP_COMPRESSIONS = ("none", "lz4", "zstd")
+"""The chunk compressions rostui writes and reads in MCAP files."""
+
+
+def frame_of(data: bytes) -> bytes:
+    """``data`` as TCPROS frames a message: its length in 4 little-endian bytes, then the bytes."""
+    return _FRAME_LENGTH.pack(len(data)) + data
 
 
 class BagError(Exception):

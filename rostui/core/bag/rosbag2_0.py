@@ -20,7 +20,7 @@ from typing import Any, BinaryIO
 from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace
 from rostui.core.bag.inflate import inflate
 from rostui.core.bag.iov import Parts
-from rostui.core.bag.model import BagError, BagSummary, Connection, MalformedRecord
+from rostui.core.bag.model import BagError, BagSummary, Connection, MalformedRecord, frame_of
 from rostui.core.bag.sink import AppendFile, open_append
 
 MAGIC = b"#ROSBAG V2.0\n"
@@ -663,6 +663,19 @@ class BagReader(ChunkedFile):
             if record.op != OP_MSG_DATA:
                 raise record.place.error("the index places a message here")
             return bytes(record.data)
+        plain, data_at, end = self._data_in_chunk(chunk, offset)
+        return plain[data_at:end]
+
+    def frame(self, chunk: int, offset: int) -> bytes | memoryview:
+        """The message as :meth:`payload` finds it, with its 4-byte length before it, as TCPROS sends it: in a
+        chunk the record's own data-length field is that prefix, so this is a view of the chunk, not a copy."""
+        if chunk == NO_CHUNK:
+            return frame_of(self.payload(chunk, offset))
+        plain, data_at, end = self._data_in_chunk(chunk, offset)
+        return memoryview(plain)[data_at - 4:end]
+
+    def _data_in_chunk(self, chunk: int, offset: int) -> tuple[bytes, int, int]:
+        """Chunk ``chunk``'s plain bytes and where the data of the message record at ``offset`` starts and ends."""
         plain = self.cache.get(chunk)
         end = len(plain)
         if 0 <= offset <= end - 8:
@@ -670,7 +683,7 @@ class BagReader(ChunkedFile):
             if data_at <= end:
                 (dlen,) = _U32.unpack_from(plain, data_at - 4)
                 if dlen <= end - data_at:
-                    return plain[data_at:data_at + dlen]
+                    return plain, data_at, data_at + dlen
         raise MalformedRecord(self.path, self.chunk_table[chunk].record_at,
                               f"the index places a message {offset} bytes into the chunk, where none fits")
 

@@ -31,6 +31,9 @@ from rostui.core.bag.precise_sleep import PreciseSleeper, lower_timer_slack
 MessageItem = tuple[Connection, int, bytes]
 
 SPIN_BEFORE = 0.003  # the last moments before a message are slept without the loop (its timers are ms-grained)
+LOOP_TURN_PERIOD = 0.02
+"""The longest the transport publishes messages due close together without giving the event loop a turn (s):
+keys, signals, new subscribers and slow sockets wait at most this long, and a turn is not paid per message."""
 TICK_PERIOD = 0.1
 SKIP_BATCH = 1000  # messages skipped (disabled topics) between two turns of the loop
 
@@ -379,4 +382,23 @@ class Transport:
             target = await self._wait_bag(item[1])
             if target is not None:
                 self._emit(item, target)
+                self._emit_due(target + LOOP_TURN_PERIOD)
         return self.published
+
+    def _emit_due(self, turn_by: float) -> None:
+        """Publish the messages that follow while each is due within SPIN_BEFORE and the loop's next turn is not
+        due (``turn_by``, a wall time): the loop cannot change anything meanwhile, so each is only slept for and
+        sent.  A message not wanted, the pass's end, or one due later leaves it to :meth:`run`."""
+        clock = self.clock
+        sleep_until = self._sleeper.sleep_until
+        peek = self._pass_head
+        wanted = self._wanted
+        while True:
+            item = peek()
+            if item is None or not wanted(item[0]):
+                return
+            target = self._wall_of(item[1])
+            if target > turn_by or target - clock() > SPIN_BEFORE:
+                return
+            sleep_until(target)
+            self._emit(item, target)

@@ -134,7 +134,7 @@ class OutgoingLink:
         self.remainder_pending = False
         self._sock = _direct_socket(conn)
 
-    def send(self, data: bytes, count: int = 1) -> None:
+    def send(self, data: bytes | memoryview, count: int = 1) -> None:
         """Write framed bytes on the engine thread, or queue them while the peer is slow."""
         if self.paused:
             self._queue(data)
@@ -143,7 +143,7 @@ class OutgoingLink:
         self.messages_sent += count
         self.bytes_sent += len(data)
 
-    def _queue(self, data: bytes) -> None:
+    def _queue(self, data: bytes | memoryview) -> None:
         """Keep a message for a subscriber that does not keep up: within the queue size, else the byte bound."""
         backlog = self.backlog
         if self.gone:
@@ -160,6 +160,8 @@ class OutgoingLink:
             self.conn.drop(f"subscriber [{self.callerid}] of {self.pub.topic} does not keep up: over "
                            f"{self.max_backlog} bytes queued for it")
             return
+        if isinstance(data, memoryview):  # a view of a bag's chunk: queued, it would keep the whole chunk alive
+            data = data.tobytes()
         backlog.append(data)
         self.backlog_bytes += len(data)
 
@@ -430,6 +432,21 @@ class Publication:
         with self.lock:
             for link in self.links:
                 link.send(data)
+            self.messages_published += 1
+
+    def publish_frame(self, frame: bytes | memoryview) -> None:
+        """Send a message already framed as TCPROS sends it (its 4-byte length, then its bytes; a view of a bag's
+        chunk) to every subscriber, as :meth:`publish` would.
+
+        On the engine thread, with no same-process subscriber and no latching, the frame goes out as it is;
+        otherwise this is :meth:`publish` of a copy of its bytes.
+        """
+        if self.local or self.latch or get_ident() != self.node.loop_thread_id:
+            self.publish(AnyMsg(bytes(frame[4:])))
+            return
+        with self.lock:
+            for link in self.links:
+                link.send(frame)
             self.messages_published += 1
 
     def _flush(self) -> None:

@@ -19,7 +19,8 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from rostui.core.bag.clock import DEFAULT_HZ, BagClock
-from rostui.core.bag.files import Reader, merged_messages, open_reader, time_ordered, unordered_notice
+from rostui.core.bag.files import Reader, open_reader, unordered_notice
+from rostui.core.bag.frames import merged_framed_messages
 from rostui.core.bag.model import BagError, BagSummary, Connection
 from rostui.core.bag.transport import MessageItem, StreamSource, Transport
 
@@ -125,6 +126,8 @@ class Player:
         # --topics names topics as recorded: resolved, but not remapped
         self.wanted = {resolve_name(t, node.namespace, node.name) for t in opts.topics} if opts.topics else None
         self.publishers: dict[tuple[str, str], Any] = {}
+        # by id() of a Connection, kept beside it so that no other object can take its id
+        self._senders: dict[int, tuple[Connection, Callable[[Any], None]]] = {}
         self.clock = BagClock(opts.clock_hz) if opts.clock else None
         self.stop = asyncio.Event()
         self.stats = PlayStats()
@@ -136,9 +139,7 @@ class Player:
                                    on_tick=self._on_tick, tick_period=tick)
 
     def _stream(self) -> Iterator[MessageItem]:
-        if len(self.readers) == 1:  # nothing to merge: one generator fewer between the file and the socket
-            return time_ordered(self.readers[0])
-        return ((conn, t, data) for conn, t, data, _i in merged_messages(self.readers))
+        return merged_framed_messages(self.readers)  # items carry frames, not payloads: see _publish
 
     @property
     def paused(self) -> bool:
@@ -163,10 +164,18 @@ class Player:
     def _accepts(self, conn: Connection) -> bool:
         return (conn.topic, conn.md5sum) in self.publishers
 
-    def _publish(self, conn: Connection, t: int, data: bytes) -> None:
+    def _send_frame_of(self, conn: Connection) -> Callable[[Any], None]:
+        """The call that publishes ``conn``'s frames (looked up once a connection)."""
+        known = self._senders.get(id(conn))
+        if known is None or known[0] is not conn:
+            known = self._senders[id(conn)] = (conn, self.publishers[(conn.topic, conn.md5sum)].impl.publish_frame)
+        return known[1]
+
+    def _publish(self, conn: Connection, t: int, frame: Any) -> None:
+        """Publish one message of the stream: ``frame`` is its bytes as TCPROS frames them."""
         if self.clock is not None:
             self.clock.publish(t)
-        self.publishers[(conn.topic, conn.md5sum)].impl.publish_serialized(data)
+        self._send_frame_of(conn)(frame)
         if self.status is not None:
             self._show()
 

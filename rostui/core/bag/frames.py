@@ -1,0 +1,42 @@
+"""A bag's messages in time order as TCPROS frames, ready for a socket: what a player publishes.
+
+A ``.bag`` chunk stores each message's data right after its 4-byte length, which
+is exactly how TCPROS frames a message, so a frame is a view of the chunk the
+reader holds (:meth:`~rostui.core.bag.files.Reader.frame`): nothing is copied
+between the file and the socket.  Other formats add the prefix.
+"""
+
+from __future__ import annotations
+
+import heapq
+from collections.abc import Iterator, Sequence
+
+from rostui.core.bag.files import Reader
+from rostui.core.bag.model import Connection, frame_of
+
+#: ``(connection, time_ns, frame)``: one message, its bytes framed as TCPROS sends them.
+FramedMessage = tuple[Connection, int, "bytes | memoryview"]
+
+
+def framed_messages(reader: Reader) -> Iterator[FramedMessage]:
+    """One file's messages in time order (ties in file order, as rosbag plays them), framed; in file order when
+    the file has no index."""
+    index = reader.file_index()
+    if index is None:
+        for conn, t, data in reader.messages():
+            yield conn, t, frame_of(data)
+        return
+    conns = reader.connections
+    frame = reader.frame
+    for t, conn_id, chunk, offset in index.rows():
+        yield conns[conn_id], t, frame(chunk, offset)
+
+
+def merged_framed_messages(readers: Sequence[Reader]) -> Iterator[FramedMessage]:
+    """Several files' messages in time order, framed; equal times in the order the files are given."""
+    if len(readers) == 1:
+        yield from framed_messages(readers[0])
+        return
+    streams = [((t, i, conn, data) for conn, t, data in framed_messages(r)) for i, r in enumerate(readers)]
+    for t, _i, conn, data in heapq.merge(*streams, key=lambda item: (item[0], item[1])):
+        yield conn, t, data

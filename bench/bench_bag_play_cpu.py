@@ -15,6 +15,11 @@ every message of every run, or the run counts as failed.
     .venv/bin/python bench/bench_bag_play_cpu.py                 # 3 rounds, about 5 minutes
     .venv/bin/python bench/bench_bag_play_cpu.py --load 2        # with two busy-looping processes
     .venv/bin/python bench/bench_bag_play_cpu.py --rounds 1 --only lz4 --json out.json
+    .venv/bin/python bench/bench_bag_play_cpu.py --rostui /tmp/new/bin/rostui --before /tmp/old/bin/rostui
+
+``--rostui`` plays with another install's ``rostui`` (a regular ``pip install``, as
+users have, starts faster than the editable ``.venv``); ``--before`` adds a fourth
+player, an install of the commit before a change, to the same rounds.
 """
 
 from __future__ import annotations
@@ -83,10 +88,10 @@ def write_bag(path: Path, compression: str) -> None:
                     str(DATA_BYTES), str(RATE_HZ)], check=True)
 
 
-def player_argv(kind: str, bag: Path) -> list[str]:
-    """The command line of one player."""
-    if kind == "rostui":
-        return [ROSTUI, "bag", "play", "-q", "-d", "1", "-r", PLAY_RATE, str(bag)]
+def player_argv(kind: str, bag: Path, exes: dict[str, str]) -> list[str]:
+    """The command line of one player (``exes``: the ``rostui`` executable of each rostui kind)."""
+    if kind in exes:
+        return [exes[kind], "bag", "play", "-q", "-d", "1", "-r", PLAY_RATE, str(bag)]
     return ["rosbag", "play", "-q", "-d", "1", "-r", PLAY_RATE, str(bag)]
 
 
@@ -121,7 +126,12 @@ def main() -> int:
     parser.add_argument("--only", choices=["none", "lz4"], help="one of the two bags")
     parser.add_argument("--dir", help="where the bags are written (kept there when given)")
     parser.add_argument("--json", help="write the results here")
+    parser.add_argument("--rostui", default=ROSTUI, help="the rostui executable to measure")
+    parser.add_argument("--before", help="another rostui executable (the commit before) measured in the same rounds")
     args = parser.parse_args()
+    exes = {"rostui": args.rostui}
+    if args.before:
+        exes["before"] = args.before
 
     folder = Path(args.dir or tempfile.mkdtemp(prefix="bench-play-cpu-"))
     folder.mkdir(parents=True, exist_ok=True)
@@ -150,15 +160,15 @@ def main() -> int:
         sub.stdout.readline()
         for _ in range(args.load):
             procs.append(subprocess.Popen([sys.executable, "-c", BUSY], start_new_session=True))
-        kinds = ["rosbag", "rosbag-cpp", "rostui"]
+        kinds = ["rosbag", "rosbag-cpp", *exes]
         for rnd in range(args.rounds):
-            order = kinds[rnd % 3:] + kinds[:rnd % 3]
+            order = kinds[rnd % len(kinds):] + kinds[:rnd % len(kinds)]
             for comp, bag in bags.items():
                 for kind in order:
                     if kind == "rosbag-cpp":
                         res = cpp_play_cpu(bag, env)
                     else:
-                        res = run_player(player_argv(kind, bag), env)
+                        res = run_player(player_argv(kind, bag, exes), env)
                     time.sleep(0.5)  # the subscriber's last callbacks
                     sub.stdin.write("count\n")
                     sub.stdin.flush()
@@ -193,6 +203,8 @@ def main() -> int:
         print(f"  {comp:4}: rosbag play {med['rosbag']:.2f} (its C++ play alone {med['rosbag-cpp']:.2f}),"
               f" rostui {med['rostui']:.2f}: rostui/rosbag {summary[comp]['rostui/rosbag']:.2f}x,"
               f" rostui/C++ play {summary[comp]['rostui/rosbag-cpp']:.2f}x;"
+              + (f" before {med['before']:.2f} ({med['before'] / med['rosbag']:.2f}x);" if "before" in med else "")
+              +
               f" every message delivered: {'yes' if complete else 'NO'}")
     if args.json:
         Path(args.json).write_text(json.dumps({"runs": results, "summary": summary}, indent=1))

@@ -26,6 +26,7 @@ from typing import Any, NamedTuple
 
 from rostui.core.bag.bag_append import NotIndexed, read_chunk_infos, resume_bag
 from rostui.core.bag.chunkmerge import ChunkTable, merged_batches, table_of
+from rostui.core.bag.fileindex import ChunkEntries
 from rostui.core.bag.files import Reader, Writer, open_reader, open_writer
 from rostui.core.bag.mcapfile import MAGIC as MCAP_MAGIC
 from rostui.core.bag.model import BagError, Connection
@@ -461,7 +462,7 @@ class Bag:
             infos = reader.scan_chunk_infos()
         reader.cache.max_bytes = min(reader.cache.max_bytes, READ_CACHE_BYTES)
 
-        def load(_file: int, chunk: int) -> Any:
+        def load(_file: int, chunk: int) -> ChunkEntries:
             return reader.chunk_entries(chunk)
 
         table = table_of([infos], load, by_connection=True)

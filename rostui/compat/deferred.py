@@ -1,8 +1,10 @@
-"""Import asyncio and xmlrpc.client without what a ROS node never uses: OpenSSL and http.client.
+"""Import asyncio and xmlrpc.client without what a ROS node never uses: OpenSSL, http.client, base64, decimal.
 
 asyncio imports ``ssl`` at once, and with it OpenSSL (5 MB of a rospy talker's
 peak memory); xmlrpc.client imports ``http.client`` (and with it ``email`` and
-``ssl`` again) for its ServerProxy alone, which rostui's XML-RPC does not use.
+``ssl`` again) for its ServerProxy alone, which rostui's XML-RPC does not use,
+and ``base64`` and ``decimal`` for values ROS never sends (2.5 ms of a talker's
+start, with the ``http`` package's status enums).
 :func:`import_lean` imports both with a stand-in in those places: it answers
 ``ssl is not None`` as the real module would, and the first attribute read
 through it (an ``SSLContext`` check, a TLS handshake, a ServerProxy call)
@@ -30,23 +32,34 @@ class _Deferred(types.ModuleType):
 
     The *classes* named are only tested with ``isinstance`` (asyncio asks whether each socket is an
     ``SSLSocket``): no object is an instance of them until the module is imported, so until then the
-    stand-in answers them with :class:`_NoInstances` instead of importing it.
+    stand-in answers them with :class:`_NoInstances` instead of importing it. The *callables* named are
+    only called (xmlrpc.client's ``Decimal``, taken by ``from decimal import Decimal``): the stand-in
+    answers them with a function that imports the module when first called.
     """
 
     def __init__(self, name: str, put_back: Callable[[types.ModuleType], None],
-                 classes: frozenset[str] = frozenset()) -> None:
+                 classes: frozenset[str] = frozenset(), callables: frozenset[str] = frozenset()) -> None:
         super().__init__(name, f"Stands for {name}; imports it when first used.")
         self._put_back = put_back
         self._classes = classes
+        self._callables = callables
 
     def __getattr__(self, attr: str) -> object:
-        if attr.startswith("__") or attr in ("_put_back", "_classes"):
+        if attr.startswith("__") or attr in ("_put_back", "_classes", "_callables"):
             raise AttributeError(attr)
         if attr in self._classes and self.__name__ not in sys.modules:
             return _NoInstances
+        if attr in self._callables:
+            def call(*args: object, **kwargs: object) -> object:
+                return getattr(self._real(), attr)(*args, **kwargs)
+
+            return call
+        return getattr(self._real(), attr)
+
+    def _real(self) -> types.ModuleType:
         real = importlib.import_module(self.__name__)
         self._put_back(real)
-        return getattr(real, attr)
+        return real
 
 
 def _import_asyncio() -> None:
@@ -73,20 +86,34 @@ def _import_asyncio() -> None:
 
 
 def _import_xmlrpc_client() -> None:
-    import http
+    """xmlrpc.client without ``http`` (its status enums), ``http.client``, ``base64`` and ``decimal``: stand-ins
+    that import the real module when xmlrpc.client first uses it (a ServerProxy call, a ``<base64>`` or
+    ``<bigdecimal>`` value)."""
 
-    def put_back(real: types.ModuleType) -> None:
-        setattr(client, "http", http)  # the package, its client now imported
+    def put_back_http(real: types.ModuleType) -> None:
+        setattr(client, "http", sys.modules["http"])  # the package, its client now imported
 
-    stand_in = _Deferred("http.client", put_back)
-    sys.modules["http.client"] = stand_in
+    def put_back(name: str) -> Callable[[types.ModuleType], None]:
+        return lambda real: setattr(client, name, real)
+
+    stand_ins: dict[str, types.ModuleType] = {
+        "http.client": _Deferred("http.client", put_back_http),
+        "base64": _Deferred("base64", put_back("base64")),
+        "decimal": _Deferred("decimal", lambda real: setattr(client, "Decimal", real.Decimal),
+                             callables=frozenset({"Decimal"})),
+    }
+    if "http" not in sys.modules:  # only ``import http.client`` reads it, and never through xmlrpc.client's global
+        stand_ins["http"] = types.ModuleType("http")
+    stand_ins = {name: module for name, module in stand_ins.items() if name not in sys.modules}
+    sys.modules.update(stand_ins)
     try:
         import xmlrpc.client as client
     finally:
-        if sys.modules.get("http.client") is stand_in:
-            del sys.modules["http.client"]
+        for name, module in stand_ins.items():
+            if sys.modules.get(name) is module:
+                del sys.modules[name]
     # xmlrpc.client reaches http.client as its global http's attribute: only its own global sees the stand-in
-    setattr(client, "http", types.SimpleNamespace(client=stand_in))
+    setattr(client, "http", types.SimpleNamespace(client=stand_ins.get("http.client", sys.modules.get("http.client"))))
 
 
 def import_lean() -> None:

@@ -86,3 +86,30 @@ def test_a_view_queued_for_a_slow_subscriber_is_copied(tmp_path: Path) -> None:
     assert [type(b) for b in link.backlog] == [bytes, bytes]
     assert list(link.backlog) == [chunk[100:150], chunk[200:250]]
     assert link.backlog_bytes == 100 and link.dropped == 1
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_chunk_order_is_exact_over_overlapping_chunks(seed: int) -> None:
+    """Chunks whose spans overlap, touch, nest or stand apart, equal times across chunks: the merge gives
+    brute force's order (time, then chunk number, then offset), reading each chunk once."""
+    import random
+
+    from rostui.core.bag.chunkorder import chunk_order
+
+    rng = random.Random(seed)
+    chunks: dict[int, list[tuple[int, int, int]]] = {}
+    for number in range(rng.randint(1, 12)):
+        base = rng.choice([0, 10, 50, rng.randint(0, 200)])
+        times = sorted(base + rng.randint(0, rng.choice([0, 5, 40])) for _ in range(rng.randint(1, 20)))
+        chunks[number] = sorted((t, offset * 7, rng.randint(0, 3)) for offset, t in enumerate(times))
+    spans = [(rows[0][0], rows[-1][0], number) for number, rows in chunks.items()]
+    read: list[int] = []
+
+    def rows(number: int) -> list[tuple[int, int, int]]:
+        read.append(number)
+        return chunks[number]
+
+    got = list(chunk_order(spans, rows))
+    expected = sorted((t, number, offset, conn) for number, entries in chunks.items() for t, offset, conn in entries)
+    assert got == expected
+    assert sorted(read) == sorted(chunks)

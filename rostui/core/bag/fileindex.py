@@ -211,6 +211,22 @@ class ChunkedFile:
                     self._entries_scanned = False
         return self._infos
 
+    def chunk_spans(self) -> list[tuple[int, int, int]] | None:
+        """``(first time, last time, chunk number)`` of every chunk holding messages, from the file's own index
+        (messages outside chunks as chunk NO_CHUNK); None when the file has no usable index."""
+        infos = self.chunk_infos()
+        if infos is None:
+            return None
+        return list(zip(infos.starts.tolist(), infos.ends.tolist(), infos.numbers.tolist()))
+
+    def chunk_rows(self, number: int) -> list[tuple[int, int, int]]:
+        """``(time, offset, connection id)`` of chunk ``number``'s messages (NO_CHUNK: those outside chunks),
+        sorted by time, then offset."""
+        entries = self._infos.loose if number == NO_CHUNK and self._infos is not None else None
+        if entries is None:
+            entries = self.chunk_entries(number)
+        return list(zip(entries.times.tolist(), entries.offsets.tolist(), entries.conn_ids.tolist()))
+
     def scan_chunk_infos(self, progress: Callable[[int], None] | None = None) -> ChunkInfos:
         """Each readable chunk's times and counts, by reading every chunk once (a file without an index);
         ``progress(bytes_read)`` after each chunk."""

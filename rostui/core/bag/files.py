@@ -8,6 +8,7 @@ from collections.abc import Callable, Iterable, Iterator
 from typing import Any, Protocol
 
 from rostui.core.bag.chunkinfo import ChunkInfos
+from rostui.core.bag.chunkorder import chunk_order
 from rostui.core.bag.fileindex import ChunkCache, ChunkEntries, FileIndex
 from rostui.core.bag.model import MCAP_COMPRESSIONS, MCAP_MAGIC, BagError, BagSummary, Connection
 from rostui.core.bag.progress import Progress, counted
@@ -34,6 +35,8 @@ class Reader(Protocol):
     def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex: ...
     def payload(self, chunk: int, offset: int) -> bytes: ...
     def frame(self, chunk: int, offset: int) -> bytes | memoryview: ...
+    def chunk_spans(self) -> list[tuple[int, int, int]] | None: ...
+    def chunk_rows(self, number: int) -> list[tuple[int, int, int]]: ...
     def chunk_infos(self) -> ChunkInfos | None: ...
     def scan_chunk_infos(self, progress: Callable[[int], None] | None = None) -> ChunkInfos: ...
     def chunk_entries(self, number: int) -> ChunkEntries: ...
@@ -108,28 +111,27 @@ def open_writer(path: str, compression: str = "none", *, max_chunk_age: float = 
 
 def unordered_notice(reader: Reader) -> str:
     """Why ``reader`` plays in file order (it has no index to play it in time order), or ''."""
-    if reader.file_index() is not None:
+    if reader.chunk_spans() is not None:
         return ""
     return (f"{reader.path} has no index ({'cut short' if reader.truncated else 'not closed'}): its messages "
             "play in file order; `rostui bag reindex` writes one")
 
 
-def indexed_messages(reader: Reader, index: FileIndex, start: int = 0) -> Iterator[tuple[Connection, int, bytes]]:
-    """``(connection, time_ns, data)`` of ``index``'s entries from position ``start`` on, payloads read
-    through the reader's chunk cache."""
+def time_ordered(reader: Reader) -> Iterator[tuple[Connection, int, bytes]]:
+    """One file's messages in time order, chunk by chunk (ties in file order, as rosbag plays them; memory
+    follows the chunks open, not the messages); in file order when it has no index (:func:`unordered_notice`
+    says so)."""
+    spans = reader.chunk_spans()
+    if spans is None:
+        return reader.messages()
+    return _by_chunks(reader, spans)
+
+
+def _by_chunks(reader: Reader, spans: list[tuple[int, int, int]]) -> Iterator[tuple[Connection, int, bytes]]:
     conns = reader.connections
     payload = reader.payload
-    for t, conn_id, chunk, offset in index.rows(start):
+    for t, chunk, offset, conn_id in chunk_order(spans, reader.chunk_rows):
         yield conns[conn_id], t, payload(chunk, offset)
-
-
-def time_ordered(reader: Reader) -> Iterator[tuple[Connection, int, bytes]]:
-    """One file's messages in time order through its index (ties in file order, as rosbag plays them);
-    in file order when it has none (:func:`unordered_notice` says so)."""
-    index = reader.file_index()
-    if index is None:
-        return reader.messages()
-    return indexed_messages(reader, index)
 
 
 def merged_messages(readers: Iterable[Reader]) -> Iterator[tuple[Connection, int, bytes, int]]:

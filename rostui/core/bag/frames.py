@@ -4,13 +4,19 @@ A ``.bag`` chunk stores each message's data right after its 4-byte length, which
 is exactly how TCPROS frames a message, so a frame is a view of the chunk the
 reader holds (:meth:`~rostui.core.bag.files.Reader.frame`): nothing is copied
 between the file and the socket.  Other formats add the prefix.
+
+Time order comes from the chunks (:func:`~rostui.core.bag.chunkorder.chunk_order`):
+memory follows the chunks in play, whatever the number of messages, and a
+``.bag`` is read without numpy.
 """
 
 from __future__ import annotations
 
 import heapq
 from collections.abc import Iterator, Sequence
+from typing import Any
 
+from rostui.core.bag.chunkorder import chunk_order
 from rostui.core.bag.files import Reader
 from rostui.core.bag.model import Connection, frame_of
 
@@ -20,15 +26,15 @@ FramedMessage = tuple[Connection, int, "bytes | memoryview"]
 
 def framed_messages(reader: Reader) -> Iterator[FramedMessage]:
     """One file's messages in time order (ties in file order, as rosbag plays them), framed; in file order when
-    the file has no index."""
-    index = reader.file_index()
-    if index is None:
+    the file has no index (:func:`~rostui.core.bag.files.unordered_notice` says so)."""
+    spans = reader.chunk_spans()
+    if spans is None:
         for conn, t, data in reader.messages():
             yield conn, t, frame_of(data)
         return
     conns = reader.connections
     frame = reader.frame
-    for t, conn_id, chunk, offset in index.rows():
+    for t, chunk, offset, conn_id in chunk_order(spans, reader.chunk_rows):
         yield conns[conn_id], t, frame(chunk, offset)
 
 
@@ -37,6 +43,11 @@ def merged_framed_messages(readers: Sequence[Reader]) -> Iterator[FramedMessage]
     if len(readers) == 1:
         yield from framed_messages(readers[0])
         return
-    streams = [((t, i, conn, data) for conn, t, data in framed_messages(r)) for i, r in enumerate(readers)]
+    streams: list[Iterator[Any]] = [_tagged(framed_messages(r), i) for i, r in enumerate(readers)]
     for t, _i, conn, data in heapq.merge(*streams, key=lambda item: (item[0], item[1])):
         yield conn, t, data
+
+
+def _tagged(messages: Iterator[FramedMessage], i: int) -> Iterator[tuple[int, int, Connection, Any]]:
+    for conn, t, data in messages:
+        yield t, i, conn, data

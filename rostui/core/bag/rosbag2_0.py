@@ -37,6 +37,8 @@ direct writes take it without a copy (see :mod:`rostui.core.bag.sink`)."""
 _TIME = struct.Struct("<II")
 _INDEX_ENTRY = [("sec", "<u4"), ("nsec", "<u4"), ("offset", "<u4")]
 """An index-data entry (version 1): time and the message record's offset in its decompressed chunk."""
+_INDEX_ROW = struct.Struct("<III")
+"""The same entry for struct."""
 
 
 def _field(name: str, value: bytes) -> bytes:
@@ -415,6 +417,8 @@ class BagReader(ChunkedFile):
         self.truncated = ""
         self.index_pos = 0
         self.chunk_count = 0
+        self._spans: list[tuple[int, int, int]] | None = None
+        self._spans_unreadable = False
         try:
             self._read_file_header()
         except BaseException:
@@ -597,15 +601,70 @@ class BagReader(ChunkedFile):
                 break
             yield self._index_entries(record, number)
 
+    def chunk_spans(self) -> list[tuple[int, int, int]] | None:
+        """``(first time, last time, chunk number)`` of every chunk as its chunk info record gives them (as
+        rosbag plays by them), without reading any chunk's index entries; None when the file was not closed or
+        its index cannot be read."""
+        if self._spans is None and self.closed_properly and not self._spans_unreadable:
+            try:
+                self._spans = self._chunk_info_spans()
+            except (MalformedRecord, EOFError) as exc:
+                self._spans_unreadable = True
+                self._index_unreadable(exc)
+        return self._spans
+
+    def _chunk_info_spans(self) -> list[tuple[int, int, int]]:
+        self.file.seek(self.index_pos)
+        infos: list[tuple[int, int, int]] = []
+        while self.file.tell() < self.size:
+            record = self._read_record()
+            if record.op == OP_CONNECTION:
+                self._connection(record)
+            elif record.op == OP_CHUNK_INFO:
+                infos.append((record.number("chunk_pos", 8), record.time("start_time"), record.time("end_time")))
+        if len(infos) != self.chunk_count:
+            raise MalformedRecord(self.path, self.index_pos, f"the index lists {len(infos)} of the "
+                                                             f"{self.chunk_count} chunks the file header counts")
+        table: list[ChunkPlace] = []
+        for pos, _start, _end in sorted(infos):
+            if not self.data_start <= pos < self.index_pos:
+                raise MalformedRecord(self.path, self.index_pos, f"the index places a chunk at byte {pos}, "
+                                                                 "outside the chunks")
+            self.file.seek(pos)
+            record = self._read_record(skip_chunk_data=True)
+            if record.op != OP_CHUNK:
+                raise record.place.error("the index places a chunk here")
+            table.append(self._chunk_place(record))
+        self.chunk_table = table
+        return [(start, end, number) for number, (_pos, start, end) in enumerate(sorted(infos))]
+
+    def chunk_rows(self, number: int) -> list[tuple[int, int, int]]:
+        """``(time, offset, connection id)`` of chunk ``number``'s messages from the index data records after it,
+        sorted by time, then offset (the file's order); read without numpy, a chunk at a time."""
+        place = self.chunk_table[number]
+        self.file.seek(place.data_at + place.stored)
+        rows: list[tuple[int, int, int]] = []
+        try:
+            while self.file.tell() < self.index_pos:
+                record = self._read_record(skip_chunk_data=True)
+                if record.op != OP_INDEX_DATA:
+                    break
+                conn_id, _count = self._index_record(record)
+                rows.extend((sec * 1_000_000_000 + nsec, offset, conn_id)
+                            for sec, nsec, offset in _INDEX_ROW.iter_unpack(record.data))
+        except EOFError:
+            raise MalformedRecord(self.path, place.record_at, "the chunk's index runs past the end of the file") \
+                from None
+        rows.sort()
+        return rows
+
     def _chunk_index_parts(self, number: int) -> list[ChunkEntries]:
         first, end = self._index_spans[number]
         self.file.seek(first)
         return list(self._index_data(number, end))
 
-    def _index_entries(self, record: _Record, number: int) -> ChunkEntries:
-        """The entries of an index data record of chunk ``number``."""
-        import numpy as np
-
+    def _index_record(self, record: _Record) -> tuple[int, int]:
+        """An index data record's connection id and entry count, each checked against the file."""
         version = record.number("ver")
         if version != 1:
             raise record.place.error(f"an index data record of version {version} (only 1 is known)")
@@ -616,6 +675,13 @@ class BagReader(ChunkedFile):
         count = record.number("count")
         if count * 12 != len(record.data):
             raise record.place.error(f"an index data record of {count} entries holds {len(record.data)} bytes")
+        return conn_id, count
+
+    def _index_entries(self, record: _Record, number: int) -> ChunkEntries:
+        """The entries of an index data record of chunk ``number``."""
+        import numpy as np
+
+        conn_id, count = self._index_record(record)
         entries = np.frombuffer(record.data, dtype=_INDEX_ENTRY, count=count)
         times = entries["sec"].astype(np.int64) * 1_000_000_000 + entries["nsec"]
         return ChunkEntries(times, np.full(count, conn_id, dtype=np.uint32), entries["offset"], number)
@@ -705,6 +771,20 @@ class BagReader(ChunkedFile):
                 self._stop(exc)
                 return
 
+    def _index_data_spans(self, index_data: list[tuple[int, int, int]], chunk_spans: list[list[int]]) -> None:
+        """Widen each chunk's span to the times of its index entries (``(chunk, where, count)`` records)."""
+        if not index_data:
+            return
+        import numpy as np
+
+        for chunk, data_at, count in index_data:
+            self.file.seek(data_at)
+            raw = self.file.read(count * 12)
+            entries = np.frombuffer(raw, dtype=_INDEX_ENTRY, count=len(raw) // 12)
+            if entries.shape[0]:
+                stamps = entries["sec"].astype(np.int64) * 1_000_000_000 + entries["nsec"]
+                chunk_spans[chunk].extend((int(stamps.min()), int(stamps.max())))
+
     def summary(self) -> BagSummary:
         """Counts and times from the index records, without decompressing any chunk.
 
@@ -715,6 +795,7 @@ class BagReader(ChunkedFile):
         index_counts: dict[int, int] = {}
         chunk_spans: list[list[int]] = []
         chunk_infos: list[tuple[int, int, dict[int, int]]] = []
+        index_data: list[tuple[int, int, int]] = []  # (chunk, where its entries are, how many)
         for record in self._records(with_chunk_data=False):
             try:
                 if record.op == OP_CONNECTION:
@@ -727,12 +808,7 @@ class BagReader(ChunkedFile):
                     conn_id, count = record.number("conn"), record.number("count")
                     index_counts[conn_id] = index_counts.get(conn_id, 0) + count
                     if count and len(record.data) >= 12 and chunk_spans:
-                        import numpy as np
-
-                        entries = np.frombuffer(record.data, dtype=_INDEX_ENTRY,
-                                                count=min(count, len(record.data) // 12))
-                        stamps = entries["sec"].astype(np.int64) * 1_000_000_000 + entries["nsec"]
-                        chunk_spans[-1].extend((int(stamps.min()), int(stamps.max())))
+                        index_data.append((len(chunk_spans) - 1, record.data_at, min(count, len(record.data) // 12)))
                 elif record.op == OP_CHUNK_INFO:
                     chunk_infos.append(_chunk_info(record))
             except MalformedRecord as exc:
@@ -743,6 +819,8 @@ class BagReader(ChunkedFile):
             for _conn, _t, _d in self.messages():
                 pass
         summary.connections = list(self.connections.values())
+        if not chunk_infos:  # only then are the chunks' spans read from their index entries
+            self._index_data_spans(index_data, chunk_spans)
         spans = [(min(s), max(s)) for s in chunk_spans if s]
         if chunk_infos:
             for _start, _end, counts in chunk_infos:

@@ -122,19 +122,32 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     if wait_for_master:
         def warn() -> None:
             node.log.warn("Unable to contact the master at [%s]; will keep trying.", node.master_uri)
-        if engine.run(_connect(node, warn, not disable_rostime)):
+        try:
+            sim_time = engine.run(_connect(node, warn, not disable_rostime))
+        except _WaitFailed as failed:
+            if node.is_shutdown:
+                raise ROSInterruptException("shutdown while waiting for the master") from None
+            raise failed.error from None
+        if sim_time:
             _start_sim_time(engine, node)
+
+
+class _WaitFailed(Exception):
+    """The master did not answer :func:`_connect`'s wait (*error* says why)."""
+
+    def __init__(self, error: _node.MasterError) -> None:
+        super().__init__(str(error))
+        self.error = error
 
 
 async def _connect(node: _node.AsyncNode, on_wait: Callable[[], None], ask_sim_time: bool) -> bool:
     """Wait for the master, announce the node's logging, and say whether the master's ``/use_sim_time`` is true
-    (when *ask_sim_time*): one trip to the engine thread, and over the node's own connection to the master."""
+    (when *ask_sim_time*): one trip to the engine thread, and over the node's own connection to the master.
+    Only Exceptions leave it: a BaseException (ROSInterruptException) raised on the engine thread ends its loop."""
     try:
         await node.wait_for_master(on_wait=on_wait)
-    except _node.MasterError:
-        if node.is_shutdown:
-            raise ROSInterruptException("shutdown while waiting for the master") from None
-        raise
+    except _node.MasterError as exc:
+        raise _WaitFailed(exc) from None
     await node.announce()
     if not ask_sim_time:
         return False

@@ -1,8 +1,8 @@
-"""The bag transport's sleeper: it learns how late its sleeps wake and spins only what is left."""
+"""The bag transport's sleep: one sleep to the moment, no spin (the spin cost a player 45 µs of CPU a message)."""
 
 from __future__ import annotations
 
-from rostui.core.bag.precise_sleep import MAX_EARLY, PreciseSleeper, lower_timer_slack
+from rostui.core.bag.precise_sleep import lower_timer_slack, sleep_until
 
 
 class FakeTime:
@@ -13,6 +13,7 @@ class FakeTime:
         self.late = late
         self.tick = tick
         self.reads = 0
+        self.slept: list[float] = []
 
     def clock(self) -> float:
         self.reads += 1
@@ -20,45 +21,23 @@ class FakeTime:
         return self.now
 
     def sleep(self, seconds: float) -> None:
+        self.slept.append(seconds)
         self.now += seconds + self.late
 
 
-def spin_reads(fake: FakeTime, sleeper: PreciseSleeper, moment: float) -> int:
-    """How many clock readings ``sleep_until(moment)`` makes (the spin is what makes many); checks it returned at
-    the moment, not before."""
-    before = fake.reads
-    sleeper.sleep_until(moment)
-    assert fake.now >= moment
-    return fake.reads - before
-
-
-def test_it_returns_at_the_moment_and_learns_to_spin_little() -> None:
+def test_it_sleeps_once_to_the_moment_and_reads_the_clock_once() -> None:
     fake = FakeTime(late=60e-6)
-    sleeper = PreciseSleeper(fake.clock, fake.sleep)
-    assert sleeper.early == MAX_EARLY  # nothing learnt yet: the longest spin
-    first = spin_reads(fake, sleeper, fake.now + 0.0025)
-    for _ in range(20):
-        spin_reads(fake, sleeper, fake.now + 0.0025)
-    assert abs(sleeper.early - 60e-6) < 1e-6  # it sleeps until 60 µs before, as its sleeps wake 60 µs late
-    later = spin_reads(fake, sleeper, fake.now + 0.0025)
-    assert later < first / 10
-
-
-def test_a_late_wake_up_returns_at_once_and_spins_nothing() -> None:
-    fake = FakeTime(late=0.005)  # a busy machine: the sleep wakes well after the moment
-    sleeper = PreciseSleeper(fake.clock, fake.sleep)
-    moment = fake.now + 0.001
-    sleeper.sleep_until(moment)
-    assert fake.now > moment
-    assert sleeper.early == MAX_EARLY  # a wake-up later than the bound is not chased
+    moment = fake.now + 0.0025
+    sleep_until(moment, fake.clock, fake.sleep)
+    assert len(fake.slept) == 1 and abs(fake.slept[0] - 0.0025) < 1e-6
+    assert fake.reads == 1  # no spin: a spinning wait reads the clock thousands of times
+    assert fake.now >= moment
 
 
 def test_a_moment_already_passed_returns_without_sleeping() -> None:
     fake = FakeTime(late=0.0)
-    slept: list[float] = []
-    sleeper = PreciseSleeper(fake.clock, slept.append)
-    sleeper.sleep_until(fake.now - 1.0)
-    assert slept == []
+    sleep_until(fake.now - 1.0, fake.clock, fake.sleep)
+    assert fake.slept == []
 
 
 def test_the_timer_slack_can_be_lowered_here() -> None:

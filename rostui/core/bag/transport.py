@@ -13,8 +13,8 @@ before the next message is kept), a rate change re-anchors it at its current
 value, a seek re-anchors it at the target. A message is published when the bag
 clock reaches its time: the loop sleeps on asyncio until the last few
 milliseconds (asyncio timers are millisecond-grained), then sleeps without the
-loop and spins only the microseconds its wake-up is early
-(:class:`~rostui.core.bag.precise_sleep.PreciseSleeper`).
+loop, with the timer slack lowered and no spin
+(:func:`~rostui.core.bag.precise_sleep.sleep_until`).
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ from collections.abc import Callable, Iterator
 from typing import Protocol
 
 from rostui.core.bag.model import Connection
-from rostui.core.bag.precise_sleep import PreciseSleeper, lower_timer_slack
+from rostui.core.bag.precise_sleep import lower_timer_slack, sleep_until
 
 #: ``(connection, time_ns, raw bytes)``: one recorded message.
 MessageItem = tuple[Connection, int, bytes]
@@ -142,7 +142,6 @@ class Transport:
         self._started = False
         self._positioned = False  # run() starts at play_from unless seek() came first
         self._pass_published = 0
-        self._sleeper = PreciseSleeper(clock)
 
     # -- the bag clock -------------------------------------------------------------------
     @property
@@ -307,9 +306,7 @@ class Transport:
                 await self._sleep(min(remaining - SPIN_BEFORE, self.tick_period))
                 self._tick(horizon=t_ns)
                 continue
-            # a blocking sleep that yields the CPU and spins only the few microseconds its wake-up is
-            # early (a spin of its own would make the scheduler preempt us on a busy machine)
-            self._sleeper.sleep_until(target)
+            sleep_until(target, self.clock)  # the loop's timers are ms-grained
             return target
 
     def _emit(self, item: MessageItem, target: float | None) -> None:
@@ -390,7 +387,6 @@ class Transport:
         due (``turn_by``, a wall time): the loop cannot change anything meanwhile, so each is only slept for and
         sent.  A message not wanted, the pass's end, or one due later leaves it to :meth:`run`."""
         clock = self.clock
-        sleep_until = self._sleeper.sleep_until
         peek = self._pass_head
         wanted = self._wanted
         while True:
@@ -400,5 +396,5 @@ class Transport:
             target = self._wall_of(item[1])
             if target > turn_by or target - clock() > SPIN_BEFORE:
                 return
-            sleep_until(target)
+            sleep_until(target, clock)
             self._emit(item, target)

@@ -46,6 +46,9 @@ def run_plain(args: Sequence[str]) -> int | None:
         at += 1
     if at >= len(args) or (args[at].startswith("-") and args[at] not in ("-c", "-m")) or len(set(modes)) > 1:
         return None
+    from rostui.compat.deferred import pause_gc, resume_gc
+
+    collecting = pause_gc()  # until the script's first line: rostui's start makes no garbage
     from rostui.compat.choice import Mode
     from rostui.compat.launcher import plan
 
@@ -54,5 +57,6 @@ def run_plain(args: Sequence[str]) -> int | None:
     from rostui.compat.inplace import can_run_here, run_here
 
     if can_run_here(how):  # a script file: run in this interpreter rather than start a second one
-        return run_here(how)
+        return run_here(how, collecting=collecting)
+    resume_gc(collecting)
     return exec_plan(how, "rostui python")

@@ -82,8 +82,9 @@ def _run_sitecustomize() -> None:
     spec.loader.exec_module(module)
 
 
-def run_here(how: Plan) -> int:
-    """Run *how*'s script here (see the module's docstring); 0 when it returns, else its exception propagates."""
+def _prepare(how: Plan) -> tuple[types.ModuleType, types.CodeType | None]:
+    """Make this interpreter look as *how*'s would at its script's first line; the script's ``__main__`` and code
+    (None when it does not compile: Python's message is printed)."""
     script, args = how.argv[1], how.argv[2:]
     for key in [k for k in os.environ if k not in how.env]:
         del os.environ[key]
@@ -96,17 +97,35 @@ def run_here(how: Plan) -> int:
     _run_sitecustomize()
     with open(path, "rb") as source:
         text = source.read()
+    main = types.ModuleType("__main__")
     try:
         code = compile(text, path, "exec", dont_inherit=True)
     except (SyntaxError, ValueError) as exc:  # printed as Python prints a script it cannot compile: no traceback
         sys.excepthook(type(exc), exc.with_traceback(None), None)
-        return 1
+        return main, None
     from importlib.machinery import SourceFileLoader
 
-    main = types.ModuleType("__main__")
     main.__dict__.update(__file__=path, __cached__=None, __loader__=SourceFileLoader("__main__", path),
                          __spec__=None, __builtins__=builtins)
     sys.modules["__main__"] = main
     _trimming_hook(code)
+    return main, code
+
+
+def run_here(how: Plan, *, collecting: bool | None = None) -> int:
+    """Run *how*'s script here (see the module's docstring); 0 when it returns, else its exception propagates.
+
+    *collecting* is what :func:`~rostui.compat.deferred.pause_gc` returned when the caller paused the garbage
+    collector for its start: the collector runs again (everything imported so far frozen out of its reach)
+    just before the script's first line, and ``None`` means the caller did not pause it."""
+    try:
+        main, code = _prepare(how)
+    finally:
+        if collecting is not None:
+            from .deferred import resume_gc
+
+            resume_gc(collecting, freeze=True)
+    if code is None:
+        return 1
     exec(code, main.__dict__)  # noqa: S102 (the user's script, as python SCRIPT would run it)
     return 0

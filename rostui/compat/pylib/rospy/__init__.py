@@ -13,44 +13,48 @@ import os
 import warnings
 from typing import Any, Callable, Mapping, Sequence
 
-from rostui.compat.deferred import import_lean
+from rostui.compat.deferred import import_lean, pause_gc, resume_gc
 
-import_lean()  # before the engine's modules: a node that opens no TLS connection never loads OpenSSL
+_collecting = pause_gc()  # the imports below make thousands of objects and no garbage: no collections
+try:
+    import_lean()  # before the engine's modules: a node that opens no TLS connection never loads OpenSSL
 
-from rostui.core.node import engine as _engine
+    from rostui.core.node import engine as _engine
 
-_engine.prefer_uvloop = False  # uvloop loads OpenSSL; ROSTUI_EVENT_LOOP=uvloop still picks it
+    _engine.prefer_uvloop = False  # uvloop loads OpenSSL; ROSTUI_EVENT_LOOP=uvloop still picks it
 
-from rostui.core.msg import Message
-from rostui.core.node import sync as _sync
-from rostui.core.node.anymsg import AnyMsg
-from rostui.core.rostime import Duration as _Duration
-from rostui.core.rostime import Time as _Time
-from rostui.core.node.sync import (
-    get_master_uri, get_node_uri, get_param_cached, is_shutdown, logdebug, logdebug_once, logdebug_throttle, logerr, logerr_once, logerr_throttle, logfatal,
-    logfatal_once, logfatal_throttle, loginfo, loginfo_once, loginfo_throttle, logwarn, logwarn_once,
-    logwarn_throttle, myargv, on_shutdown, signal_shutdown, sleep, spin,
-    wait_for_message,
-)
-from rostui.core.master_errors import unreachable_text
-from rostui.core.node.services import parse_rosrpc_uri
-from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync, ros_result
-from rostui.compat.rospy_console import RospyConsole, RospyConsoleBeforeInit
+    from rostui.core.msg import Message
+    from rostui.core.node import sync as _sync
+    from rostui.core.node.anymsg import AnyMsg
+    from rostui.core.rostime import Duration as _Duration
+    from rostui.core.rostime import Time as _Time
+    from rostui.core.node.sync import (
+        get_master_uri, get_node_uri, get_param_cached, is_shutdown, logdebug, logdebug_once, logdebug_throttle, logerr, logerr_once, logerr_throttle, logfatal,
+        logfatal_once, logfatal_throttle, loginfo, loginfo_once, loginfo_throttle, logwarn, logwarn_once,
+        logwarn_throttle, myargv, on_shutdown, signal_shutdown, sleep, spin,
+        wait_for_message,
+    )
+    from rostui.core.master_errors import unreachable_text
+    from rostui.core.node.services import parse_rosrpc_uri
+    from rostui.core.xmlrpc import XmlRpcConnectionError, call_sync, ros_result
+    from rostui.compat.rospy_console import RospyConsole, RospyConsoleBeforeInit
 
-from . import exceptions, msproxy, names, rostime
-from ._params import delete_param, get_param, get_param_names, has_param, search_param, set_param
-from ._callback_thread import CallbackThread
-from ._impl import PublisherImpl, SubscriberImpl
-from ._nodeless import caller as _nodeless_caller
-from ._peers import ListenerRelay, rospy_service_header
-from .exceptions import (
-    ROSException, ROSInitException, ROSInternalException, ROSInterruptException, ROSSerializationException,
-    ROSTimeMovedBackwardsException, ServiceException, TransportException, TransportInitError, TransportTerminated,
-)
-from .msproxy import MasterProxy, get_master
-from ._node_name import check_node_name
-from .names import get_caller_id, get_name, get_namespace, remap_name, resolve_name
-from .rostime import Duration, Time, get_rostime, get_time
+    from . import exceptions, msproxy, names, rostime
+    from ._params import delete_param, get_param, get_param_names, has_param, search_param, set_param
+    from ._callback_thread import CallbackThread
+    from ._impl import PublisherImpl, SubscriberImpl
+    from ._nodeless import caller as _nodeless_caller
+    from ._peers import ListenerRelay, rospy_service_header
+    from .exceptions import (
+        ROSException, ROSInitException, ROSInternalException, ROSInterruptException, ROSSerializationException,
+        ROSTimeMovedBackwardsException, ServiceException, TransportException, TransportInitError, TransportTerminated,
+    )
+    from .msproxy import MasterProxy, get_master
+    from ._node_name import check_node_name
+    from .names import get_caller_id, get_name, get_namespace, remap_name, resolve_name
+    from .rostime import Duration, Time, get_rostime, get_time
+finally:
+    resume_gc(_collecting)
 
 __all__ = [
     "AnyMsg", "DEBUG", "Duration", "ERROR", "FATAL", "INFO", "MasterProxy", "Message", "Publisher", "ROSException",

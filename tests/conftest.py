@@ -31,6 +31,16 @@ SYSTEM_PYTHON = "/usr/bin/python3"
 if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
     signal.signal(signal.SIGINT, signal.default_int_handler)
 
+# Every script a test runs under `rostui python` keeps its compiled message code (rostui/core/msg/codecache.py) in
+# a folder of this run's own, whatever its environment's ROS_HOME (tests that copy os.environ have none): never in
+# the user's ~/.ros. The workers inherit the folder of the run that made it; that run removes it at its end.
+if "ROSTUI_MSG_CACHE" not in os.environ:
+    import atexit
+    import tempfile
+
+    os.environ["ROSTUI_MSG_CACHE"] = tempfile.mkdtemp(prefix="rostui-msg-code-")
+    atexit.register(shutil.rmtree, os.environ["ROSTUI_MSG_CACHE"], ignore_errors=True)
+
 #: Real scripts kept as test data (run by the tests as programs, never imported by pytest:
 #: ros_comm's and others' names such as ``timer_test.py`` look like test modules).
 collect_ignore_glob = ["python_compat/*"]

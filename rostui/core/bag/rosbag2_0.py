@@ -560,29 +560,40 @@ class BagReader(ChunkedFile):
     def _own_index_parts(self) -> Iterator[ChunkEntries] | None:
         return self._file_index_parts() if self.closed_properly else None
 
-    def _file_index_parts(self) -> Iterator[ChunkEntries]:
+    def _chunk_info_records(self) -> list[tuple[int, _Record]]:
+        """The index section's chunk info records by the position of their chunk, in file order (its connection
+        records taken in on the way); MalformedRecord when they are not one for each chunk the header counts."""
         self.file.seek(self.index_pos)
-        chunk_positions: list[int] = []
+        infos: list[tuple[int, _Record]] = []
         while self.file.tell() < self.size:
             record = self._read_record()
             if record.op == OP_CONNECTION:
                 self._connection(record)
             elif record.op == OP_CHUNK_INFO:
-                chunk_positions.append(record.number("chunk_pos", 8))
-        if len(chunk_positions) != self.chunk_count:
-            raise MalformedRecord(self.path, self.index_pos, f"the index lists {len(chunk_positions)} of the "
+                infos.append((record.number("chunk_pos", 8), record))
+        if len(infos) != self.chunk_count:
+            raise MalformedRecord(self.path, self.index_pos, f"the index lists {len(infos)} of the "
                                                              f"{self.chunk_count} chunks the file header counts")
+        infos.sort(key=lambda info: info[0])
+        return infos
+
+    def _indexed_chunk(self, pos: int) -> ChunkPlace:
+        """The chunk record the index places at ``pos`` (its data skipped: the file stands at its end)."""
+        if not self.data_start <= pos < self.index_pos:
+            raise MalformedRecord(self.path, self.index_pos, f"the index places a chunk at byte {pos}, "
+                                                             "outside the chunks")
+        self.file.seek(pos)
+        record = self._read_record(skip_chunk_data=True)
+        if record.op != OP_CHUNK:
+            raise record.place.error("the index places a chunk here")
+        return self._chunk_place(record)
+
+    def _file_index_parts(self) -> Iterator[ChunkEntries]:
+        infos = self._chunk_info_records()
         self.chunk_table = []
         self._index_spans: list[tuple[int, int]] = []
-        for number, pos in enumerate(sorted(chunk_positions)):
-            if not self.data_start <= pos < self.index_pos:
-                raise MalformedRecord(self.path, self.index_pos, f"the index places a chunk at byte {pos}, "
-                                                                 "outside the chunks")
-            self.file.seek(pos)
-            record = self._read_record(skip_chunk_data=True)
-            if record.op != OP_CHUNK:
-                raise record.place.error("the index places a chunk here")
-            self.chunk_table.append(self._chunk_place(record))
+        for number, (pos, _info) in enumerate(infos):
+            self.chunk_table.append(self._indexed_chunk(pos))
             first = self.file.tell()
             parts = list(self._index_data(number))
             self._index_spans.append((first, self.file.tell()))
@@ -614,29 +625,10 @@ class BagReader(ChunkedFile):
         return self._spans
 
     def _chunk_info_spans(self) -> list[tuple[int, int, int]]:
-        self.file.seek(self.index_pos)
-        infos: list[tuple[int, int, int]] = []
-        while self.file.tell() < self.size:
-            record = self._read_record()
-            if record.op == OP_CONNECTION:
-                self._connection(record)
-            elif record.op == OP_CHUNK_INFO:
-                infos.append((record.number("chunk_pos", 8), record.time("start_time"), record.time("end_time")))
-        if len(infos) != self.chunk_count:
-            raise MalformedRecord(self.path, self.index_pos, f"the index lists {len(infos)} of the "
-                                                             f"{self.chunk_count} chunks the file header counts")
-        table: list[ChunkPlace] = []
-        for pos, _start, _end in sorted(infos):
-            if not self.data_start <= pos < self.index_pos:
-                raise MalformedRecord(self.path, self.index_pos, f"the index places a chunk at byte {pos}, "
-                                                                 "outside the chunks")
-            self.file.seek(pos)
-            record = self._read_record(skip_chunk_data=True)
-            if record.op != OP_CHUNK:
-                raise record.place.error("the index places a chunk here")
-            table.append(self._chunk_place(record))
-        self.chunk_table = table
-        return [(start, end, number) for number, (_pos, start, end) in enumerate(sorted(infos))]
+        infos = self._chunk_info_records()
+        spans = [(info.time("start_time"), info.time("end_time"), number) for number, (_pos, info) in enumerate(infos)]
+        self.chunk_table = [self._indexed_chunk(pos) for pos, _info in infos]
+        return spans
 
     def chunk_rows(self, number: int) -> list[tuple[int, int, int]]:
         """``(time, offset, connection id)`` of chunk ``number``'s messages from the index data records after it,

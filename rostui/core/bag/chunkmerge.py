@@ -205,19 +205,28 @@ def connection_ordered(entries: ChunkEntries) -> ChunkEntries:
     return ChunkEntries(times[order], entries.conn_ids[order], entries.offsets[order], entries.chunk)
 
 
-def table_of(per_file: Sequence[ChunkInfos], load: Callable[[int, int], ChunkEntries], budget: int | None = None,
-             by_connection: bool = False) -> ChunkTable:
-    """The :class:`ChunkTable` of files whose chunks ``per_file`` describes (in the files' order, which breaks
-    ties); ``load(file, chunk)`` reads a chunk's entries, ``budget`` bounds those held (None:
-    :data:`ENTRY_BUDGET`). Messages outside chunks are kept whole (pinned)."""
+class ChunkLayout(NamedTuple):
+    """The chunks of several files in a table's order: their first and last times, file and number, sorted by
+    (first time, file, number); ``row_of[first_row[file] + i]`` is the row of the i-th chunk of ``file``'s
+    :class:`~rostui.core.bag.chunkinfo.ChunkInfos`."""
+
+    starts: Any
+    ends: Any
+    files: Any
+    numbers: Any
+    row_of: Any
+    first_row: Any
+
+
+def chunk_layout(per_file: Sequence[ChunkInfos]) -> ChunkLayout:
+    """Where each chunk of the files ``per_file`` describes (in the files' order, which breaks ties) sits in a
+    :class:`ChunkTable`."""
     import numpy as np
 
-    if budget is None:
-        budget = ENTRY_BUDGET
     if not per_file:
         empty = np.zeros(0, dtype=np.int64)
-        return ChunkTable(empty, empty, np.zeros(0, dtype=np.uint16), np.zeros(0, dtype=np.uint32), empty, load,
-                          budget, by_connection=by_connection)
+        return ChunkLayout(empty, empty, np.zeros(0, dtype=np.uint16), np.zeros(0, dtype=np.uint32), empty,
+                           np.zeros(1, dtype=np.int64))
     starts = np.concatenate([f.starts for f in per_file])
     ends = np.concatenate([f.ends for f in per_file])
     files = np.concatenate([np.full(len(f), i, dtype=np.uint16) for i, f in enumerate(per_file)])
@@ -226,14 +235,33 @@ def table_of(per_file: Sequence[ChunkInfos], load: Callable[[int, int], ChunkEnt
     row_of = np.empty(len(order), dtype=np.int64)
     row_of[order] = np.arange(len(order))
     first_row = np.cumsum([0] + [len(f) for f in per_file])
-    counts = np.zeros(len(order), dtype=np.int64)
+    return ChunkLayout(starts[order], ends[order], files[order], numbers[order], row_of, first_row)
+
+
+def table_of(per_file: Sequence[ChunkInfos], load: Callable[[int, int], ChunkEntries], budget: int | None = None,
+             by_connection: bool = False) -> ChunkTable:
+    """The :class:`ChunkTable` of files whose chunks ``per_file`` describes (in the files' order, which breaks
+    ties); ``load(file, chunk)`` reads a chunk's entries, ``budget`` bounds those held (None:
+    :data:`ENTRY_BUDGET`). Messages outside chunks are kept whole (pinned)."""
+    import numpy as np
+
+    layout = chunk_layout(per_file)
+    counts = np.zeros(len(layout.starts), dtype=np.int64)
     pinned: dict[int, ChunkEntries] = {}
     for i, infos in enumerate(per_file):
-        np.add.at(counts, row_of[first_row[i] + infos.pair_rows], infos.pair_counts)
+        rows = layout.row_of[layout.first_row[i] + infos.pair_rows]
+        np.add.at(counts, rows, infos.pair_counts)
         if infos.loose is not None:
-            pinned[int(row_of[first_row[i] + int(np.flatnonzero(infos.numbers == NO_CHUNK)[0])])] = infos.loose
-    return ChunkTable(starts[order], ends[order], files[order], numbers[order], counts, load, budget, pinned,
-                      by_connection)
+            pinned[loose_row(layout, i, infos)] = infos.loose
+    return ChunkTable(layout.starts, layout.ends, layout.files, layout.numbers, counts, load,
+                      ENTRY_BUDGET if budget is None else budget, pinned, by_connection)
+
+
+def loose_row(layout: ChunkLayout, file: int, infos: ChunkInfos) -> int:
+    """The row of ``file``'s messages outside chunks (its pseudo-chunk NO_CHUNK) in ``layout``."""
+    import numpy as np
+
+    return int(layout.row_of[layout.first_row[file] + int(np.flatnonzero(infos.numbers == NO_CHUNK)[0])])
 
 
 class MergedBatch(NamedTuple):

@@ -20,8 +20,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from rostui.core.bag.chunkinfo import ChunkInfos
-from rostui.core.bag.chunkmerge import ENTRY_BUDGET, ChunkTable, MergeCursor, MessageRef
-from rostui.core.bag.fileindex import NO_CHUNK, ChunkEntries
+from rostui.core.bag.chunkmerge import ENTRY_BUDGET, ChunkTable, MergeCursor, MessageRef, chunk_layout, loose_row
+from rostui.core.bag.fileindex import ChunkEntries
 from rostui.core.bag.files import Reader, open_reader
 from rostui.core.bag.model import BagError, Connection
 from rostui.core.bag.transport import MessageItem
@@ -328,28 +328,20 @@ def _gather(index: BagIndex, per_file: list[ChunkInfos], budget: int) -> None:
     """The chunk table, the per-topic tracks and the connections in order of their first chunk."""
     import numpy as np
 
-    starts = np.concatenate([f.starts for f in per_file]) if per_file else np.zeros(0, dtype=np.int64)
-    ends = np.concatenate([f.ends for f in per_file]) if per_file else np.zeros(0, dtype=np.int64)
-    files = np.concatenate([np.full(len(f), i, dtype=np.uint16) for i, f in enumerate(per_file)]) if per_file \
-        else np.zeros(0, dtype=np.uint16)
-    numbers = np.concatenate([f.numbers for f in per_file]) if per_file else np.zeros(0, dtype=np.uint32)
-    order = np.lexsort((numbers, files, starts))
-    row_of = np.empty(len(order), dtype=np.int64)
-    row_of[order] = np.arange(len(order))
-    first_row = np.cumsum([0] + [len(f) for f in per_file])
-    counts = np.zeros(len(order), dtype=np.int64)
+    layout = chunk_layout(per_file)
+    counts = np.zeros(len(layout.starts), dtype=np.int64)
     pinned: dict[int, ChunkEntries] = {}
     firsts: dict[tuple[int, int], int] = {}
     per_topic: dict[str, list[tuple[Any, Any, int, Any]]] = {}
     for i, infos in enumerate(per_file):
-        rows = row_of[first_row[i] + infos.pair_rows]
+        rows = layout.row_of[layout.first_row[i] + infos.pair_rows]
         np.add.at(counts, rows, infos.pair_counts)
         if infos.loose is not None:
-            pinned[int(row_of[first_row[i] + int(np.flatnonzero(infos.numbers == NO_CHUNK)[0])])] = infos.loose
+            pinned[loose_row(layout, i, infos)] = infos.loose
         conns = index.readers[i].connections
         for conn_id in np.unique(infos.pair_conns).tolist():
             mine = infos.pair_conns == conn_id
-            firsts[(i, conn_id)] = int(starts[order][rows[mine]].min())
+            firsts[(i, conn_id)] = int(layout.starts[rows[mine]].min())
             per_topic.setdefault(conns[conn_id].topic, []).append((rows[mine], infos.pair_counts[mine], i, conn_id))
     for (i, conn_id) in sorted(firsts, key=lambda key: (firsts[key], key)):
         index.connections.append(index.readers[i].connections[conn_id])
@@ -368,7 +360,7 @@ def _gather(index: BagIndex, per_file: list[ChunkInfos], budget: int) -> None:
     def load(file: int, chunk: int) -> ChunkEntries:
         return readers[file].chunk_entries(chunk)
 
-    index.table = ChunkTable(starts[order], ends[order], files[order], numbers[order], counts, load, budget, pinned)
+    index.table = ChunkTable(layout.starts, layout.ends, layout.files, layout.numbers, counts, load, budget, pinned)
 
 
 class IndexSource:

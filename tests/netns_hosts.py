@@ -175,7 +175,7 @@ def make_hosts(tmp_path: Path, names: list[str], unreachable: list[str] | None =
     Each name in ``unreachable`` gets an address on the same subnet that no
     namespace answers (for a host that does not answer).
     """
-    need_peer(have_netns(), "root with ip (iproute2), nsenter (util-linux), sshd (openssh-server) and ssh (openssh-client)")
+    need_peer(have_netns(), "ip (iproute2), nsenter (util-linux), sshd (openssh-server), ssh (openssh-client), run as root")
     tag = secrets.token_hex(3)
     subnet = f"10.{200 + secrets.randbelow(50)}.{secrets.randbelow(250)}"
     switch = f"rt{tag}sw"
@@ -244,4 +244,4 @@ def make_hosts(tmp_path: Path, names: list[str], unreachable: list[str] | None =
 @pytest.fixture
 def netns_required() -> None:
     """Skip (locally) or fail (in CI) when network namespaces cannot be made."""
-    need_peer(have_netns(), "root with ip (iproute2), nsenter (util-linux), sshd (openssh-server) and ssh (openssh-client)")
+    need_peer(have_netns(), "ip (iproute2), nsenter (util-linux), sshd (openssh-server), ssh (openssh-client), run as root")

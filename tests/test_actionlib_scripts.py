@@ -50,7 +50,7 @@ def _generate(out: Path) -> None:
 @pytest.fixture(scope="session")
 def tutorials_python(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """Debian's Python modules of actionlib_tutorials, made once for the run."""
-    need_peer(GENACTION.exists() and GENMSG.exists(), "genaction and genpy (Debian libactionlib-msgs-dev, python3-genpy)")
+    need_peer(GENACTION.exists() and GENMSG.exists(), "genaction, genpy (Debian libactionlib-msgs-dev, python3-genpy)")
     need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import actionlib"], capture_output=True).returncode == 0,
               "actionlib (Debian python3-actionlib)")
     return shared_build(tmp_path_factory, "actionlib_tutorials_genpy", _generate) / "python"

@@ -191,7 +191,7 @@ def _rosbag_tools() -> bool:
 @pytest.fixture(scope="module")
 def rosbag_bags(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A directory of bags the rosbag Python API wrote."""
-    need_peer(_rosbag_tools(), "rosbag and its Python API (Debian python3-rosbag, python3-roslz4)")
+    need_peer(_rosbag_tools(), "rosbag with its Python API (Debian python3-rosbag, python3-roslz4)")
     where = tmp_path_factory.mktemp("rosbag_bags")
     written = subprocess.run(["/usr/bin/python3", "-c", ROSBAG_WRITER, str(where)], capture_output=True, text=True,
                              timeout=300)
@@ -309,7 +309,7 @@ def _write_rostui_bag(path: Path, compression: str, shape: str) -> None:
 @pytest.mark.parametrize("shape", ["connections", "big"])
 def test_info_of_a_rostui_written_bag_is_rosbag_infos(tmp_path: Path, ros_env: dict[str, str], compression: str,
                                                       shape: str) -> None:
-    need_peer(_rosbag_tools(), "rosbag and its Python API (Debian python3-rosbag, python3-roslz4)")
+    need_peer(_rosbag_tools(), "rosbag with its Python API (Debian python3-rosbag, python3-roslz4)")
     path = tmp_path / f"ours_{shape}_{compression}.bag"
     _write_rostui_bag(path, compression, shape)
     theirs, ours = _both(path, ros_env)
@@ -370,7 +370,7 @@ def test_sizes_and_times_format_as_rosbags_own_helpers(ros_env: dict[str, str]) 
 
     from rostui.tools.bag.info import human_size, human_time, seconds_of
 
-    need_peer(_rosbag_tools(), "rosbag and its Python API (Debian python3-rosbag, python3-roslz4)")
+    need_peer(_rosbag_tools(), "rosbag with its Python API (Debian python3-rosbag, python3-roslz4)")
     rng = random.Random(18)
     sizes = [0, 1, 512, 1023, 1024, 4096 + 300, 1048524, 1048525, 1048576, 1024**3 - 1, 1024**4 * 1023.96, 1024**8,
              1024**9, *(rng.randrange(1, 1 << 50) for _ in range(300))]

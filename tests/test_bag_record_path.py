@@ -247,7 +247,7 @@ def _rosbag_tools() -> bool:
 @pytest.mark.parametrize("compression", ["lz4", "bz2", "none"])
 def test_info_prints_what_rosbag_info_prints_with_compression_ratios(tmp_path: Path, ros_env: dict[str, str],
                                                                       compression: str) -> None:
-    need_peer(_rosbag_tools(), "rosbag and its Python API (Debian rosbag, python3-rosbag)")
+    need_peer(_rosbag_tools(), "rosbag with its Python API (Debian rosbag, python3-rosbag)")
     path = tmp_path / f"theirs_{compression}.bag"
     written = subprocess.run(["/usr/bin/python3", "-c", ROSBAG_WRITE, str(path), compression],
                              capture_output=True, text=True, timeout=120)

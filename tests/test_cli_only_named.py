@@ -46,3 +46,40 @@ def test_only_the_named_path_is_built_and_the_tree_comes_back_whole() -> None:
 def test_serve_gets_every_command_to_look_its_app_up() -> None:
     with only_the_commands_named(app, ["serve", "graph"]):
         assert {"graph", "serve"} <= set(typer.main.get_command(app).commands)  # type: ignore[attr-defined]
+
+
+def test_each_group_registers_its_own_word_and_its_other_words_only() -> None:
+    """groups_for finds a group by the first word of a command line: each group must register exactly its
+    name and the other words the registry gives it (a new top-level command elsewhere would be missed)."""
+    import importlib
+
+    from rostui.cli.main import groups_for
+    from rostui.cli.registry import COMMAND_GROUPS, OTHER_WORDS
+    from rostui.cli.tree import _command_name
+
+    for group in COMMAND_GROUPS:
+        alone = typer.Typer()
+        importlib.import_module(f"rostui.cli.{group}_cmd").register(alone)
+        words = {_command_name(c) for c in alone.registered_commands} | {g.name for g in alone.registered_groups}
+        assert words == {group, *OTHER_WORDS.get(group, ())}, group
+        for word in words:
+            assert groups_for([word, "--help"]) == (COMMAND_GROUPS if word == "serve" else (group,))
+
+
+@pytest.mark.parametrize("words", [[], ["--help"], ["-h"], ["nosuch"], ["serve", "graph"], ["--version"]],
+                         ids=lambda w: " ".join(w) or "nothing")
+def test_help_typos_and_serve_get_every_group(words: list[str]) -> None:
+    from rostui.cli.main import groups_for
+    from rostui.cli.registry import COMMAND_GROUPS
+
+    assert groups_for(words) == COMMAND_GROUPS
+
+
+@pytest.mark.parametrize("words", WORDS + [["srv", "list"], ["teleop", "--help"]], ids=" ".join)
+def test_a_tree_of_the_named_group_says_what_the_whole_tree_says(words: list[str]) -> None:
+    from rostui.cli.main import groups_for
+    from rostui.cli.tree import new_app
+
+    lean = new_app(groups_for(words))
+    result = CliRunner().invoke(lean, words, prog_name="rostui")
+    assert (result.exit_code, result.output) == said(words)

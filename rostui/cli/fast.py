@@ -107,6 +107,6 @@ def main() -> None:
     from rostui.compat.deferred import import_lean
 
     import_lean()  # no OpenSSL or http.client until a command uses them (15-35 ms of every node's start)
-    from rostui.cli.main import main as full_cli
+    from rostui.cli.tree import main as full_cli
 
     full_cli()

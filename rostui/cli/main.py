@@ -1,106 +1,15 @@
-"""The `rostui` command: a Typer app; each command group lives in its own module.
+"""The `rostui` command with its whole tree: every command group registered, for what reads every command.
 
-Every ``rostui/cli/<group>_cmd.py`` named in :data:`rostui.cli.registry.COMMAND_GROUPS`
-exposes ``register(app)``; its command
-functions import their work lazily, so commands that only talk to the master
-start fast and never import Textual.
+A command line runs through :func:`rostui.cli.tree.main`, which builds only the
+group it names; ``rostui serve``, the help tests and the layer checks read
+:data:`app`, the whole tree.
 """
 
 from __future__ import annotations
 
-import importlib
-from collections.abc import Iterator, Sequence
-from contextlib import contextmanager
-from typing import Any
+from rostui.cli.tree import groups_for, main, new_app, only_the_commands_named
 
-import typer
+__all__ = ["app", "groups_for", "main", "only_the_commands_named"]
 
-from rostui.cli.help_text import reflow_commands
-from rostui.cli.registry import COMMAND_GROUPS, READS_EVERY_COMMAND
-
-CONTEXT = {"help_option_names": ["-h", "--help"]}
-
-app = typer.Typer(
-    name="rostui",
-    help="The ROS 1 developer toolbox for the terminal.",
-    no_args_is_help=True,
-    add_completion=True,
-    context_settings=CONTEXT,
-)
-
-
-def _print_version(value: bool) -> None:
-    if value:
-        from rostui import __version__
-
-        typer.echo(f"rostui {__version__}")
-        raise typer.Exit()
-
-
-@app.callback()
-def root(
-    version: bool = typer.Option(False, "--version", callback=_print_version, is_eager=True,
-                                 help="Print rostui's version and exit."),
-) -> None:
-    """rostui: roscore, rostopic, rosnode, rosservice, rosparam and friends, in one terminal tool."""
-
-
-for _group in COMMAND_GROUPS:
-    importlib.import_module(f"rostui.cli.{_group}_cmd").register(app)
-reflow_commands(app)
-
-
-def main() -> None:
-    """Console-script entry point: a bare negative number is refused with one line before Typer parses; a
-    Ctrl-C that surfaced as another error (see :func:`interrupted`) exits 130 without a traceback."""
-    import sys
-
-    from rostui.cli.common import interrupted
-    from rostui.cli.negative import looks_negative, refuse_bare_negatives
-
-    if any(looks_negative(word) for word in sys.argv[1:]):
-        refuse_bare_negatives(typer.main.get_command(app), sys.argv[1:])
-    try:
-        with only_the_commands_named(app, sys.argv[1:]):
-            app()
-    except Exception as exc:
-        if not interrupted(exc):
-            raise
-        raise SystemExit(130) from None  # Ctrl-C during a lazy import: no traceback, the shell's code
-
-
-@contextmanager
-def only_the_commands_named(typer_app: typer.Typer, words: Sequence[str]) -> Iterator[None]:
-    """While inside, ``typer_app`` (and each group on the way) holds only the command or group that ``words``
-    name, level by level, as far as they name one.
-
-    Typer builds the click command of every command it holds before it parses a word, which was a third of
-    the start of a command that does little (``rostui bag play``: 84 commands and 216 signatures read). What
-    runs, its help and its errors are the same; a word that names nothing (an option, a typo, no word at all)
-    leaves that level whole, so ``rostui --help`` and "No such command" still list everything. The commands of
-    :data:`~rostui.cli.registry.READS_EVERY_COMMAND` get the whole tree.
-    """
-    kept: list[tuple[typer.Typer, list[Any], list[Any]]] = []
-    level: typer.Typer | None = typer_app if words[:1] and words[0] not in READS_EVERY_COMMAND else None
-    try:
-        for word in words:
-            if not isinstance(level, typer.Typer) or word.startswith("-"):
-                break
-            commands = [c for c in level.registered_commands if _command_name(c) == word]
-            groups = [g for g in level.registered_groups if g.name == word]
-            if len(commands) + len(groups) != 1:
-                break
-            kept.append((level, level.registered_commands, level.registered_groups))
-            level.registered_commands, level.registered_groups = commands, groups
-            level = groups[0].typer_instance if groups else None
-        yield
-    finally:
-        for level_app, commands_before, groups_before in reversed(kept):
-            level_app.registered_commands, level_app.registered_groups = commands_before, groups_before
-
-
-def _command_name(info: Any) -> str:
-    """The word that runs a registered Typer command (Typer's own rule: the function's name, dashed)."""
-    if info.name:
-        return str(info.name)
-    return typer.main.get_command_name(info.callback.__name__) if info.callback is not None else ""
+app = new_app()
+"""Every command group of ``rostui``."""

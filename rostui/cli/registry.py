@@ -9,12 +9,16 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Sequence
 
-__all__ = ["App", "APPS", "COMMAND_GROUPS", "READS_EVERY_COMMAND", "app_of", "served_apps"]
+__all__ = ["App", "APPS", "COMMAND_GROUPS", "OTHER_WORDS", "READS_EVERY_COMMAND", "app_of", "served_apps"]
 
 #: Every command group, as ``rostui/cli/<group>_cmd.py`` registers it, in the order the help lists them.
 COMMAND_GROUPS = ("core", "run", "node", "topic", "msg", "service", "param", "dynparam", "pkg", "wtf", "clean",
                   "turtlesim", "graph", "console", "loggers", "launch", "bag", "monitor", "serve", "python", "tf", "view",
                   "reconfigure", "diagnostics", "top", "action", "publish", "call")
+
+#: The words a group registers besides its own name (``rostui srv`` lives in msg_cmd.py): with the groups' names,
+#: what the first word of a command line may be.
+OTHER_WORDS: dict[str, tuple[str, ...]] = {"msg": ("srv",), "turtlesim": ("teleop",), "python": ("shell-env",)}
 
 #: Commands that look other commands up in the whole command tree (``rostui serve graph`` parses graph's options
 #: with graph's own command): the tree is built whole for them.

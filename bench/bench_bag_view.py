@@ -397,12 +397,7 @@ def topic_counts(path: Path) -> dict[str, int]:
     reader = open_reader(str(path))
     try:
         counts: dict[str, int] = {}
-        index = reader.file_index()
-        assert index is not None
-        import numpy as np
-
-        ids, n = np.unique(index.conn_ids, return_counts=True)
-        for conn_id, c in zip(ids.tolist(), n.tolist()):
+        for conn_id, c in reader.summary().counts.items():
             topic = reader.connections[conn_id].topic
             counts[topic] = counts.get(topic, 0) + c
         return counts
@@ -553,9 +548,9 @@ def bag_span_s(path: Path) -> float:
 
     reader = open_reader(str(path))
     try:
-        index = reader.file_index()
-        assert index is not None and len(index)
-        return (int(index.times[-1]) - int(index.times[0])) / 1e9
+        summary = reader.summary()
+        assert summary.message_count
+        return (summary.end_ns - summary.start_ns) / 1e9
     finally:
         reader.close()
 

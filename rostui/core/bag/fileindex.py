@@ -1,15 +1,14 @@
-"""Where each message of one bag file lies, in time order, and a bounded cache of decompressed chunks.
+"""What both bag readers share: their chunk table, a bounded cache of decompressed chunks, and their index
+read a chunk at a time.
 
 Both formats index their messages per chunk: a rosbag ``.bag`` has an index-data
 record per connection after each chunk, an MCAP file a message-index record per
-channel. A :class:`FileIndex` gathers those into four columns (time, connection,
-chunk, offset), stably sorted by time, so messages with equal times keep their
-order in the file. Payloads stay on disk: :class:`ChunkCache` decompresses the
-chunks a reader asks for and keeps the most recent ones up to a byte budget.
-A FileIndex costs 24 bytes a message plus the cache, whatever the file's size;
-what needs less reads the same index a chunk at a time instead
+channel. Readers hand that index out a chunk at a time
 (:meth:`ChunkedFile.chunk_infos` for each chunk's times and counts,
-:meth:`ChunkedFile.chunk_entries` for one chunk's entries).
+:meth:`ChunkedFile.chunk_entries` and :meth:`ChunkedFile.chunk_rows` for one
+chunk's entries), so what reads them holds memory by the chunk, not by the
+message. Payloads stay on disk: :class:`ChunkCache` decompresses the chunks a
+reader asks for and keeps the most recent ones up to a byte budget.
 """
 
 from __future__ import annotations
@@ -17,7 +16,7 @@ from __future__ import annotations
 import os
 import zlib
 from collections import OrderedDict
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, NamedTuple
 
@@ -55,53 +54,6 @@ class ChunkEntries:
     conn_ids: Any
     offsets: Any
     chunk: int
-
-
-@dataclass
-class FileIndex:
-    """Every message of one file: time, connection id, chunk number and offset, sorted by time.
-
-    ``from_file_index`` is False when the entries were gathered by reading every
-    chunk of a file that had no index (unindexed or cut short).
-    """
-
-    times: Any
-    conn_ids: Any
-    chunks: Any
-    offsets: Any
-    from_file_index: bool = True
-
-    def __len__(self) -> int:
-        return int(self.times.shape[0])
-
-    @classmethod
-    def build(cls, parts: Sequence[ChunkEntries], *, from_file_index: bool = True) -> FileIndex:
-        """Join per-chunk entries (given in file order) and sort them by time; ties keep file order."""
-        import numpy as np
-
-        if not parts:
-            empty = np.zeros(0, dtype=np.int64)
-            return cls(empty, np.zeros(0, dtype=np.uint32), np.zeros(0, dtype=np.uint32),
-                       np.zeros(0, dtype=np.uint64), from_file_index)
-        times = np.concatenate([np.asarray(p.times, dtype=np.int64) for p in parts])
-        conn_ids = np.concatenate([np.asarray(p.conn_ids, dtype=np.uint32) for p in parts])
-        chunks = np.concatenate([np.full(len(p.times), p.chunk, dtype=np.uint32) for p in parts])
-        offsets = np.concatenate([np.asarray(p.offsets, dtype=np.uint64) for p in parts])
-        # np.lexsort sorts by its last key first: time, then the chunk's place in the file, then the offset
-        order = np.lexsort((offsets, chunks, times))
-        if bool(np.any(order[1:] < order[:-1])):  # one column at a time, so only one is held twice
-            times = times[order]
-            conn_ids = conn_ids[order]
-            chunks = chunks[order]
-            offsets = offsets[order]
-        return cls(times, conn_ids, chunks, offsets, from_file_index)
-
-    def rows(self, start: int = 0, block: int = 8192) -> Iterator[tuple[int, int, int, int]]:
-        """``(time_ns, conn_id, chunk, offset)`` from position ``start`` on, read in blocks."""
-        for lo in range(start, len(self), block):
-            hi = lo + block
-            yield from zip(self.times[lo:hi].tolist(), self.conn_ids[lo:hi].tolist(),
-                           self.chunks[lo:hi].tolist(), self.offsets[lo:hi].tolist())
 
 
 class ChunkCache:
@@ -157,8 +109,6 @@ class ChunkedFile:
         self.chunk_table: list[ChunkPlace] = []
         """Per chunk number: where it lies and what it declares."""
         self.cache = ChunkCache(self._load_chunk)
-        self._index: FileIndex | None = None
-        self._index_read = False
         self._infos: ChunkInfos | None = None
         self._infos_read = False
         self._entries_scanned = False
@@ -171,28 +121,6 @@ class ChunkedFile:
     def payload(self, chunk: int, offset: int) -> bytes:
         """The serialised message whose record lies at ``offset`` of chunk ``chunk`` (each format's own)."""
         raise NotImplementedError
-
-    def file_index(self) -> FileIndex | None:
-        """Where every message lies, from the file's own index (read once, no chunk decompressed where the
-        format indexes messages); None when the file has no usable index (never closed, or cut short)."""
-        if not self._index_read:
-            self._index_read = True
-            parts = self._own_index_parts()
-            if parts is not None:
-                try:
-                    self._index = FileIndex.build(list(parts))
-                except (MalformedRecord, EOFError) as exc:
-                    self._index_unreadable(exc)
-                else:
-                    self._entries_scanned = False
-        return self._index
-
-    def scan_index(self, progress: Callable[[int], None] | None = None) -> FileIndex:
-        """Where every readable message lies, by reading every chunk once (payloads are not kept); a file cut
-        short is read up to its last complete record. ``progress(bytes_read)`` after each chunk."""
-        index = FileIndex.build(list(self._fresh_scan(progress)), from_file_index=False)
-        self._entries_scanned = True
-        return index
 
     def chunk_infos(self) -> ChunkInfos | None:
         """Each chunk's times and counts per connection from the file's own index (read once, each chunk's

@@ -689,7 +689,7 @@ class McapBagReader(ChunkedFile):
 
     def payload(self, chunk: int, offset: int) -> bytes:
         """The serialised message whose record starts at ``offset`` of chunk ``chunk``'s records (or of
-        the file, for a message outside any chunk), as a :class:`FileIndex` locates it; MalformedRecord when no
+        the file, for a message outside any chunk), as an index entry locates it; MalformedRecord when no
         message record fits there."""
         if chunk == NO_CHUNK:
             if not 0 <= offset <= self.size - 9:

@@ -709,7 +709,7 @@ class BagReader(ChunkedFile):
 
     def payload(self, chunk: int, offset: int) -> bytes:
         """The serialised message whose record starts at ``offset`` of chunk ``chunk`` (or of the file,
-        for a message outside any chunk), as a :class:`FileIndex` locates it; MalformedRecord when no record
+        for a message outside any chunk), as an index entry locates it; MalformedRecord when no record
         fits there."""
         if chunk == NO_CHUNK:
             self.file.seek(offset)

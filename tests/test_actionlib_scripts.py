@@ -97,7 +97,7 @@ def run_unittest_against(server: str, server_script: str, client: str, client_sc
     """Start ``server_script`` on one side, run the rostest-style ``client_script`` on the other; the client's
     ``[Testcase: ...]`` lines, all it printed and all the server printed."""
     need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import actionlib, rostest"], capture_output=True).returncode
-              == 0, "actionlib and rostest (Debian python3-actionlib, python3-rostest)")
+              == 0, "actionlib with rostest (Debian python3-actionlib, python3-rostest)")
     env = {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}
     serving = Running(script_command(server, EXERCISE / server_script), env, tmp_path / "server.log")
     try:

@@ -36,7 +36,7 @@ def turtlesim_python(tmp_path_factory: pytest.TempPathFactory) -> dict[str, str]
     """PYTHONPATH and ROS_PACKAGE_PATH that give the real tools a genpy-generated turtlesim package."""
     need_peer(GENMSG.exists() and GENSRV.exists(), "genpy generators (Debian python3-genpy)")
     need_peer(shutil.which("rostopic") is not None and shutil.which("rosservice") is not None,
-              "rostopic and rosservice (Debian ros-core)")
+              "rostopic, rosservice (Debian ros-core)")
 
     def build(root: Path) -> None:
         python_dir, packages = root / "python", root / "packages"

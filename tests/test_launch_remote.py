@@ -215,7 +215,7 @@ def test_a_host_missing_from_known_hosts_is_refused(three_hosts: NetnsHosts, tmp
 
 def test_real_roslaunch_drives_rostui_children(three_hosts: NetnsHosts, tmp_path: Path) -> None:
     """Debian's roslaunch on A starts `roslaunch -c` on B, which the env-loader there makes rostui's child."""
-    need_peer(have_rospy() and Path(PARAMIKO).exists(), "roslaunch's SSH (python3-paramiko) and rospy")
+    need_peer(have_rospy() and Path(PARAMIKO).exists(), "roslaunch's SSH (python3-paramiko) with rospy")
     hosts = three_hosts
     a, b = hosts["a"], hosts["b"]
     shim = tmp_path / "rostui-roslaunch"
@@ -333,7 +333,7 @@ def test_killing_the_launcher_stops_the_remote_nodes(three_hosts: NetnsHosts, tm
 @pytest.mark.parametrize("parent", ["rostui", "roslaunch"])
 def test_one_file_with_a_rostui_host_and_a_ros_host(three_hosts: NetnsHosts, tmp_path: Path, parent: str) -> None:
     """The same file under either launcher: B has only rostui (its `roslaunch` is rostui), C has only ROS."""
-    need_peer(have_rospy() and Path(PARAMIKO).exists(), "roslaunch's SSH (python3-paramiko) and rospy")
+    need_peer(have_rospy() and Path(PARAMIKO).exists(), "roslaunch's SSH (python3-paramiko) with rospy")
     hosts = three_hosts
     a, b, c = hosts["a"], hosts["b"], hosts["c"]
     shim = tmp_path / "rostui-roslaunch"

@@ -105,7 +105,7 @@ def _genmsg_ok() -> bool:
 @pytest.fixture(scope="module")
 def oracle() -> dict[str, Any]:
     """Every corpus type as Debian's genmsg and genpy compute it (one subprocess for all)."""
-    need_peer(_genmsg_ok(), "genmsg and genpy (python3-genmsg, python3-genpy) under /usr/bin/python3")
+    need_peer(_genmsg_ok(), "genmsg, genpy (python3-genmsg, python3-genpy) under /usr/bin/python3")
     r = subprocess.run([SYSTEM_PYTHON, "-c", _ORACLE, *map(str, ROOTS)], capture_output=True, text=True,
                        timeout=300)
     assert r.returncode == 0, r.stderr[-3000:]

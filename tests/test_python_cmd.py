@@ -65,7 +65,7 @@ def _genpy_ok() -> bool:
 
 
 def need_genpy() -> None:
-    need_peer(_genpy_ok(), "genpy, genmsg, roslib and the message packages (python3-genpy, python3-genmsg, "
+    need_peer(_genpy_ok(), "genpy, genmsg, roslib, the message packages (python3-genpy, python3-genmsg, "
                            "python3-roslib, python3-std-msgs, ...) under /usr/bin/python3")
 
 

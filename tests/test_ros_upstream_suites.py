@@ -45,7 +45,7 @@ def outcomes(argv: list[str], env: dict[str, str], cwd: Path) -> list[str]:
 @pytest.mark.parametrize("suite", OFFLINE_SUITES, ids=lambda path: f"{path.parent.name}/{path.stem}")
 def test_a_suite_gives_what_it_gives_under_debian(suite: Path, ros_env: dict[str, str]) -> None:
     need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import rosgraph, rospkg"], capture_output=True).returncode == 0,
-              "rosgraph and rospkg (Debian python3-rosgraph, python3-rospkg)")
+              "rosgraph, rospkg (Debian python3-rosgraph, python3-rospkg)")
     env = script_env(ros_env)
     debian = outcomes([SYSTEM_PYTHON, str(RUNNER), str(suite)], env, suite.parent)
     ours = outcomes(rostui_cmd("python", "--rostui", str(RUNNER), str(suite)), env, suite.parent)
@@ -57,7 +57,7 @@ def test_a_suite_gives_what_it_gives_under_debian(suite: Path, ros_env: dict[str
 
 def test_ros_comms_online_master_test_passes_as_written(any_master: str, ros_env: dict[str, str]) -> None:
     need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import rosgraph, rostest"], capture_output=True).returncode == 0,
-              "rosgraph and rostest (Debian python3-rosgraph, python3-rostest)")
+              "rosgraph, rostest (Debian python3-rosgraph, python3-rostest)")
     suite = REAL / "rosgraph_tests" / "test_rosgraph_masterapi_online.py"
     env = script_env(ros_env)
     reports = []

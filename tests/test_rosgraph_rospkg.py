@@ -64,7 +64,7 @@ def package_tree(root: Path) -> Path:
 def test_probe_prints_what_it_prints_under_debian(any_master: str, ros_env: dict[str, str],
                                                   tmp_path: Path) -> None:
     need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import rosgraph, rospkg"], capture_output=True).returncode == 0,
-              "rosgraph and rospkg (Debian python3-rosgraph, python3-rospkg)")
+              "rosgraph, rospkg (Debian python3-rosgraph, python3-rospkg)")
     env = {k: v for k, v in ros_env.items() if not k.startswith("ROSTUI_PYTHON")}
     env["ROS_PACKAGE_PATH"] = str(package_tree(tmp_path / "packages"))
     env.pop("ROS_NAMESPACE", None)

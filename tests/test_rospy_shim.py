@@ -66,7 +66,7 @@ def _generate_real_srv(out: Path) -> None:
 @pytest.fixture(scope="session")
 def generated(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """The tutorial packages' generated srv modules, made once for the whole run (every worker reads the same)."""
-    need_peer(have_rospy() and Path(GENSRV).exists(), "rospy and genpy (Debian python3-rospy, python3-genpy)")
+    need_peer(have_rospy() and Path(GENSRV).exists(), "rospy, genpy (Debian python3-rospy, python3-genpy)")
     return shared_build(tmp_path_factory, "tutorial_srv_genpy", _generate_real_srv)
 
 

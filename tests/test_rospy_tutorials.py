@@ -47,7 +47,7 @@ def _generate(out: Path) -> None:
 @pytest.fixture(scope="session")
 def generated(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """rospy_tutorials' generated modules, made once for the whole run (every worker reads the same)."""
-    need_peer(have_rospy() and Path(GENMSG).exists(), "rospy and genpy (Debian python3-rospy, python3-genpy)")
+    need_peer(have_rospy() and Path(GENMSG).exists(), "rospy, genpy (Debian python3-rospy, python3-genpy)")
     need_peer(subprocess.run([SYSTEM_PYTHON, "-c", "import numpy"], capture_output=True).returncode == 0,
               "numpy under the system Python (Debian python3-numpy)")
     return shared_build(tmp_path_factory, "rospy_tutorials_genpy", _generate)

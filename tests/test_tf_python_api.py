@@ -31,7 +31,7 @@ def run(cmd: list[str], home: Path) -> list[str]:
 
 
 def test_tfs_python_test_passes_and_reports_as_under_debian(tmp_path: Path) -> None:
-    need_peer(_debian_tf(), "Debian's tf and rostest (python3-tf, python3-rostest)")
+    need_peer(_debian_tf(), "Debian's tf, rostest (python3-tf, python3-rostest)")
     theirs = run([SYSTEM_PYTHON, str(SCRIPT)], tmp_path / "debian")
     ours = run(rostui_cmd("python", "--rostui", str(SCRIPT)), tmp_path / "rostui")
     assert sorted(ours) == sorted(theirs)  # stderr and stdout interleave differently; the lines are the same

@@ -21,8 +21,8 @@ import pytest
 from conftest import rostui_cmd
 
 HEAVY = ("numpy", "ssl", "_ssl", "_hashlib", "yaml", "http.client", "email.parser", "uvloop", "importlib.resources",
-         "tempfile", "textual", "typer", "rich")
-"""Modules a talker needs none of (OpenSSL alone is 5 MB of its memory)."""
+         "tempfile", "textual", "typer", "rich", "subprocess", "dataclasses")
+"""Modules a talker needs none of (OpenSSL alone is 5 MB of its memory; subprocess and dataclasses cost its start)."""
 
 TALKER = '''#!/usr/bin/env python
 import rospy
@@ -156,3 +156,23 @@ def test_ctrl_c_ends_the_script_as_python_does(tmp_path: Path) -> None:
     assert proc.returncode == -signal.SIGINT
     lines = err.splitlines()
     assert lines[1].startswith(f'  File "{script}", line ') and lines[-1] == "KeyboardInterrupt", err
+
+
+def test_asyncio_subprocess_after_rospy(ros_env: dict[str, str], tmp_path: Path) -> None:
+    """asyncio imported without subprocess (a stand-in in its modules) still starts child processes, and the
+    script's own ``import subprocess`` is the real module."""
+    code = '''import sys
+import rospy
+print("subprocess" in sys.modules)
+import asyncio
+async def main():
+    proc = await asyncio.create_subprocess_exec(sys.executable, "-c", "print('child')", stdout=asyncio.subprocess.PIPE)
+    print((await proc.communicate())[0].decode().strip(), asyncio.subprocess.PIPE == -1)
+asyncio.run(main())
+import subprocess
+print(subprocess.run([sys.executable, "-c", "print(1)"], capture_output=True, text=True).stdout.strip(),
+      type(subprocess).__name__)
+'''
+    out = _run(tmp_path, "children.py", code, ros_env)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.splitlines() == ["False", "child True", "1 module"], out.stdout + out.stderr

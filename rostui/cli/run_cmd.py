@@ -38,14 +38,13 @@ def run_command(
     Python script gets what `rostui python` gives it: rostui's rospy, genpy,
     roslib, rosbag and message modules, or the real ROS where one is installed.
     """
-    import dataclasses
     import os
     import shlex
     import sys
 
     from rostui.cli.python_cmd import mode_name, run_script
     from rostui.compat.choice import Mode
-    from rostui.compat.launcher import plan
+    from rostui.compat.launcher import Plan, plan
     from rostui.tools.run import RunError, argv_for, choose_interactively, exec_argv, locate, ros_python_script
 
     mode = Mode(mode_name(real_ros, use_rostui, "rostui run"))
@@ -60,7 +59,7 @@ def run_command(
     if script is not None:
         how = plan(mode, str(path), args, os.environ, interpreter=script.interpreter)
         if prefix:
-            how = dataclasses.replace(how, argv=shlex.split(prefix) + how.argv)
+            how = Plan(shlex.split(prefix) + how.argv, how.env, how.notice)
         run_script(how, "rostui run")
         return
     argv = argv_for(path, args, prefix)

@@ -1,16 +1,19 @@
-"""Import asyncio and xmlrpc.client without what a ROS node never uses: OpenSSL, http.client, base64, decimal.
+"""Import asyncio and xmlrpc.client without what a ROS node never uses: OpenSSL, subprocess, http.client, base64,
+decimal.
 
 asyncio imports ``ssl`` at once, and with it OpenSSL (5 MB of a rospy talker's
-peak memory); xmlrpc.client imports ``http.client`` (and with it ``email`` and
+peak memory), and ``subprocess`` (with ``locale``: 2 ms of its start); xmlrpc.client imports ``http.client`` (and with it ``email`` and
 ``ssl`` again) for its ServerProxy alone, which rostui's XML-RPC does not use,
 and ``base64`` and ``decimal`` for values ROS never sends (2.5 ms of a talker's
 start, with the ``http`` package's status enums).
 :func:`import_lean` imports both with a stand-in in those places: it answers
 ``ssl is not None`` as the real module would, and the first attribute read
 through it (an ``SSLContext`` check, a TLS handshake, a ServerProxy call)
-imports the real module and puts it in the stand-in's place. Only asyncio's
-and xmlrpc.client's own globals see a stand-in: a script's ``import ssl`` or
-``from http import client`` gets the real module.
+imports the real module and puts it in the stand-in's place (subprocess's
+stand-in answers ``PIPE``, ``STDOUT`` and ``DEVNULL``, which asyncio reads at
+import, by itself). Only asyncio's and xmlrpc.client's own globals see a
+stand-in: a script's ``import ssl``, ``import subprocess`` or ``from http
+import client`` gets the real module.
 """
 
 from __future__ import annotations
@@ -19,7 +22,7 @@ import gc
 import importlib
 import sys
 import types
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 
 __all__ = ["import_lean", "pause_gc", "resume_gc"]
 
@@ -39,11 +42,14 @@ class _Deferred(types.ModuleType):
     """
 
     def __init__(self, name: str, put_back: Callable[[types.ModuleType], None],
-                 classes: frozenset[str] = frozenset(), callables: frozenset[str] = frozenset()) -> None:
+                 classes: frozenset[str] = frozenset(), callables: frozenset[str] = frozenset(),
+                 constants: Mapping[str, object] | None = None) -> None:
         super().__init__(name, f"Stands for {name}; imports it when first used.")
         self._put_back = put_back
         self._classes = classes
         self._callables = callables
+        for attr, value in (constants or {}).items():  # read without importing the module
+            setattr(self, attr, value)
 
     def __getattr__(self, attr: str) -> object:
         if attr.startswith("__") or attr in ("_put_back", "_classes", "_callables"):
@@ -63,15 +69,45 @@ class _Deferred(types.ModuleType):
         return real
 
 
+_SUBPROCESS_CONSTANTS = {"PIPE": -1, "STDOUT": -2, "DEVNULL": -3}
+"""What asyncio reads of ``subprocess`` at import (its ``asyncio.subprocess.PIPE``, default arguments): the
+values subprocess documents."""
+
+
 def _import_asyncio() -> None:
+    """asyncio without ``ssl`` and ``subprocess`` (with ``locale`` and ``fcntl``, 2 ms of a talker's start): stand-ins
+    in asyncio's modules import the real ones when first used (a TLS connection, a child process)."""
+    users: list[types.ModuleType] = []
+
+    def put_back(real: types.ModuleType) -> None:
+        for module in users:
+            module.subprocess = real  # type: ignore[attr-defined]
+
+    subprocess = None
+    if "subprocess" not in sys.modules:
+        subprocess = _Deferred("subprocess", put_back, constants=_SUBPROCESS_CONSTANTS)
+        sys.modules["subprocess"] = subprocess  # asyncio imports it unconditionally: it gets the stand-in
     sys.modules["ssl"] = None  # type: ignore[assignment]  # asyncio's "import ssl" fails as on a build without it
     try:
         import asyncio  # noqa: F401
     finally:
         if sys.modules.get("ssl", False) is None:
             del sys.modules["ssl"]
-    users = [m for name, m in list(sys.modules.items())
-             if name.startswith("asyncio.") and m is not None and "ssl" in vars(m) and m.ssl is None]
+        if subprocess is not None and sys.modules.get("subprocess") is subprocess:
+            del sys.modules["subprocess"]  # everyone else's import gets the real module
+    if subprocess is not None:
+        users.extend(_asyncio_modules_with("subprocess", subprocess))
+    _stand_in_for_ssl()
+
+
+def _asyncio_modules_with(name: str, value: object) -> list[types.ModuleType]:
+    """asyncio's modules whose global *name* is *value*."""
+    return [m for key, m in list(sys.modules.items())
+            if key.startswith("asyncio.") and m is not None and name in vars(m) and vars(m)[name] is value]
+
+
+def _stand_in_for_ssl() -> None:
+    users = _asyncio_modules_with("ssl", None)
 
     def put_back(ssl: types.ModuleType) -> None:
         for module in users:

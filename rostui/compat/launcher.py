@@ -11,10 +11,8 @@ as rosrun would run it; the notice line is then printed here.
 from __future__ import annotations
 
 import os
-import subprocess
 import sys
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 from pathlib import Path
 
 from . import PYLIB
@@ -33,13 +31,39 @@ _PROBE = (
 )
 
 
-@dataclass(frozen=True)
 class Plan:
-    """What to ``exec``: ``argv`` with ``env``, after printing ``notice`` (if any) on stderr."""
+    """What to ``exec``: ``argv`` with ``env``, after printing ``notice`` (if any) on stderr (immutable).
+
+    A plain class rather than a dataclass (making one costs about a millisecond of `rostui python`'s start);
+    it keeps a frozen dataclass's constructor, equality and repr.
+    """
+
+    __slots__ = ("argv", "env", "notice")
 
     argv: list[str]
     env: dict[str, str]
-    notice: str | None = None
+    notice: str | None
+
+    def __init__(self, argv: list[str], env: dict[str, str], notice: str | None = None) -> None:
+        setter = object.__setattr__
+        setter(self, "argv", argv)
+        setter(self, "env", env)
+        setter(self, "notice", notice)
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError(f"cannot assign to field {name!r}")
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        assert isinstance(other, Plan)
+        return (self.argv, self.env, self.notice) == (other.argv, other.env, other.notice)
+
+    def __hash__(self) -> int:
+        return hash((self.argv, self.env, self.notice))  # unhashable lists: TypeError, as the dataclass gave
+
+    def __repr__(self) -> str:
+        return f"Plan(argv={self.argv!r}, env={self.env!r}, notice={self.notice!r})"
 
 
 def _without_pylib(env: Mapping[str, str]) -> dict[str, str]:
@@ -54,6 +78,8 @@ def _without_pylib(env: Mapping[str, str]) -> dict[str, str]:
 
 def real_ros_of(interpreter: str, env: Mapping[str, str]) -> Path | None:
     """The directory of the real ``rospy`` (or ``genpy``, ``rosbag``) *interpreter* imports, if any."""
+    import subprocess  # here: `rostui python SCRIPT` itself starts no process (asyncio's stand-in, compat/deferred.py)
+
     try:
         out = subprocess.run([interpreter, "-c", _PROBE], env=_without_pylib(env), capture_output=True,
                              text=True, timeout=_PROBE_TIMEOUT, stdin=subprocess.DEVNULL)

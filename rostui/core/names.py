@@ -26,7 +26,6 @@ import os
 import re
 import threading
 import time
-from dataclasses import dataclass, field
 from typing import Any, Mapping, Sequence
 
 __all__ = [
@@ -306,7 +305,6 @@ def anonymous_name(base: str) -> str:
 # --------------------------------------------------------------------------- argv
 
 
-@dataclass
 class NodeArgs:
     """What a ROS 1 command line carries for a node, split from the program's own arguments.
 
@@ -316,18 +314,37 @@ class NodeArgs:
     as written, known or not; ``params`` holds private parameters
     (``_rate:=10`` -> ``{"rate": 10}``) with YAML-typed values; ``args`` is
     everything else, in order.
+
+    A plain class rather than a dataclass (making one costs about a millisecond of every node's start); it
+    keeps the dataclass's constructor, equality and repr.
     """
 
-    remaps: dict[str, str] = field(default_factory=dict)
-    name: str | None = None
-    namespace: str | None = None
-    log: str | None = None
-    ip: str | None = None
-    hostname: str | None = None
-    master: str | None = None
-    params: dict[str, Any] = field(default_factory=dict)
-    args: list[str] = field(default_factory=list)
-    specials: dict[str, str] = field(default_factory=dict)
+    _FIELDS = ("remaps", "name", "namespace", "log", "ip", "hostname", "master", "params", "args", "specials")
+
+    def __init__(self, remaps: dict[str, str] | None = None, name: str | None = None, namespace: str | None = None,
+                 log: str | None = None, ip: str | None = None, hostname: str | None = None,
+                 master: str | None = None, params: dict[str, Any] | None = None, args: list[str] | None = None,
+                 specials: dict[str, str] | None = None) -> None:
+        self.remaps: dict[str, str] = {} if remaps is None else remaps
+        self.name = name
+        self.namespace = namespace
+        self.log = log
+        self.ip = ip
+        self.hostname = hostname
+        self.master = master
+        self.params: dict[str, Any] = {} if params is None else params
+        self.args: list[str] = [] if args is None else args
+        self.specials: dict[str, str] = {} if specials is None else specials
+
+    def __eq__(self, other: object) -> bool:
+        if other.__class__ is not self.__class__:
+            return NotImplemented
+        return all(getattr(self, f) == getattr(other, f) for f in self._FIELDS)
+
+    __hash__ = None  # type: ignore[assignment]  # mutable, as the dataclass it was
+
+    def __repr__(self) -> str:
+        return "NodeArgs(" + ", ".join(f"{f}={getattr(self, f)!r}" for f in self._FIELDS) + ")"
 
 
 _SPECIAL_FIELDS = {

@@ -16,7 +16,6 @@ definition.  Bad bytes raise :class:`LazyDecodeError` (one line).
 
 from __future__ import annotations
 
-import dataclasses
 import struct
 from array import array
 from typing import Any, Iterator, Sequence
@@ -189,7 +188,7 @@ class _Reader:
 
 def _scalar(f: Field) -> Field:
     """Field ``f`` as one element (an array's item)."""
-    return dataclasses.replace(f, type=f.base_type, is_array=False, array_len=None)
+    return Field(f.name, f.base_type, f.base_type, False, None)
 
 
 class LazyArray(Sequence[LazyMessage]):

@@ -123,26 +123,33 @@ class NodeLogging:
         """Start receiving rostui's library warnings (called when the node starts)."""
         self.forwarder = attach_library_log(self.node)
 
-    async def announce(self, *, publish_rosout: bool = True) -> None:
+    async def announce(self, *, publish_rosout: bool = True, services: bool = True) -> None:
         """Register /rosout and the logger services; open the node's log file.
 
-        Called again after a failure (the master went away half-way), it does only what is left.
+        Without *services*, the logger services wait for :meth:`serve_loggers`. Called again after a failure
+        (the master went away half-way), it does only what is left.
         """
         node = self.node
         if publish_rosout and self.rosout is None:
             self.rosout = await node.advertise("/rosout", self.log_class, queue_size=ROSOUT_QUEUE)
             node.log.add_sink(self.publish)
-        services = (("~get_loggers", "roscpp/GetLoggers", self.get_loggers),
-                    ("~set_logger_level", "roscpp/SetLoggerLevel", self.set_logger_level))
-        for name, srv_type, handler in services:
-            if name not in self.served:
-                await node.advertise_service(name, get_service_class(srv_type), handler)
-                self.served.add(name)
+        if services:
+            await self.serve_loggers()
         if self.file is None:
             run_id = await node.get_param("/run_id", None)
             folder = run_log_dir(str(run_id)) if run_id else log_root()
             self.file = NodeLogFile.for_node(node.name, folder, node.args.log)
             node.log.add_sink(self.file)
+
+    async def serve_loggers(self) -> None:
+        """Serve and register ``~get_loggers`` and ``~set_logger_level`` (those not served yet); none once the
+        node is shutting down."""
+        services = (("~get_loggers", "roscpp/GetLoggers", self.get_loggers),
+                    ("~set_logger_level", "roscpp/SetLoggerLevel", self.set_logger_level))
+        for name, srv_type, handler in services:
+            if name not in self.served and not self.node.is_shutdown:
+                await self.node.advertise_service(name, get_service_class(srv_type), handler)
+                self.served.add(name)
 
     def publish(self, record: LogRecord) -> None:
         """The /rosout sink: one rosgraph_msgs/Log per record."""

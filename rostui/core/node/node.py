@@ -197,9 +197,12 @@ class AsyncNode:
                 raise
         return self
 
-    async def announce(self, *, publish_rosout: bool = True) -> None:
-        """Publish log records on /rosout, serve the logger-level services, open the log file."""
-        await self.logging.announce(publish_rosout=publish_rosout)
+    async def announce(self, *, publish_rosout: bool = True, logger_services: bool = True) -> None:
+        """Publish log records on /rosout, serve the logger-level services, open the log file.
+
+        Without *logger_services* the services wait for ``self.logging.serve_loggers()``.
+        """
+        await self.logging.announce(publish_rosout=publish_rosout, services=logger_services)
 
     async def wait_for_master(self, timeout: float | None = None, on_wait: Callable[[], None] | None = None) -> None:
         """Wait until the master answers; ``on_wait`` is called once if it does not at first."""

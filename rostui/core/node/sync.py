@@ -21,6 +21,7 @@ thread, callbacks included.
 
 from __future__ import annotations
 
+import asyncio
 import atexit
 import os
 import signal
@@ -83,7 +84,7 @@ _previous_excepthook = sys.excepthook
 def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = False,
               log_level: int | Level | None = None, disable_signals: bool = False,
               master_uri: str | None = None, wait_for_master: bool = True,
-              disable_rostime: bool = False, lenient_name: bool = False) -> None:
+              disable_rostime: bool = False, lenient_name: bool = False, logger_services_later: bool = False) -> None:
     """Start this process's node.
 
     ``argv`` is the full command line, program name first, as in rospy
@@ -93,7 +94,9 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     :func:`get_rostime`), unless *disable_rostime* (or *wait_for_master* is
     False: without a master to ask, the node keeps the wall clock).
     ``lenient_name`` takes any name without ``/`` or ``~``, as rospy does
-    (``draw_circle.py``).
+    (``draw_circle.py``). With ``logger_services_later`` the node's
+    ``~get_loggers`` and ``~set_logger_level`` are registered by
+    :func:`serve_logger_services` instead, in the background.
     """
     global _previous_excepthook
     if _state.node is not None:
@@ -123,7 +126,7 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
         def warn() -> None:
             node.log.warn("Unable to contact the master at [%s]; will keep trying.", node.master_uri)
         try:
-            sim_time = engine.run(_connect(node, warn, not disable_rostime))
+            sim_time = engine.run(_connect(node, warn, not disable_rostime, not logger_services_later))
         except _WaitFailed as failed:
             if node.is_shutdown:
                 raise ROSInterruptException("shutdown while waiting for the master") from None
@@ -140,21 +143,56 @@ class _WaitFailed(Exception):
         self.error = error
 
 
-async def _connect(node: _node.AsyncNode, on_wait: Callable[[], None], ask_sim_time: bool) -> bool:
-    """Wait for the master, announce the node's logging, and say whether the master's ``/use_sim_time`` is true
-    (when *ask_sim_time*): one trip to the engine thread, and over the node's own connection to the master.
+async def _connect(node: _node.AsyncNode, on_wait: Callable[[], None], ask_sim_time: bool,
+                   logger_services: bool = True) -> bool:
+    """Wait for the master, announce the node's logging (its logger services too, with *logger_services*), and
+    say whether the master's ``/use_sim_time`` is true (when *ask_sim_time*): one trip to the engine thread,
+    and over the node's own connection to the master.
     Only Exceptions leave it: a BaseException (ROSInterruptException) raised on the engine thread ends its loop."""
     try:
         await node.wait_for_master(on_wait=on_wait)
     except _node.MasterError as exc:
         raise _WaitFailed(exc) from None
-    await node.announce()
+    await node.announce(logger_services=logger_services)
     if not ask_sim_time:
         return False
     try:
         return bool(await node.get_param(USE_SIM_TIME_PARAM, False))
     except _node.MasterError as exc:
         raise ROSException(unreachable_text(node.master_uri, str(exc))) from exc
+
+
+def serve_logger_services() -> None:
+    """Register the node's ``~get_loggers`` and ``~set_logger_level`` in the background, now (after
+    ``init_node(logger_services_later=True)``); returns at once.
+
+    rospy registers them as the last step of its ``init_node``; two calls to the master (with the
+    services' classes built) are 2-4 ms that a script's first publish need not wait for. Here they are
+    registered a few milliseconds after ``init_node`` returns, on the engine thread, over the node's own
+    connection to the master. If the master does not take them (it went away), the node's master watch
+    registers them with the next master that answers.
+    """
+    engine, node = _require()
+
+    def start() -> None:
+        task = node.loop.create_task(_serve_loggers(node))
+        _background.add(task)  # the loop keeps only a weak reference
+        task.add_done_callback(_background.discard)
+
+    engine.call_soon(start)
+
+
+_background: set[asyncio.Task[None]] = set()
+
+
+async def _serve_loggers(node: _node.AsyncNode) -> None:
+    try:
+        await node.logging.serve_loggers()
+    except Exception as exc:  # the master went away: its successor gets them (the watch's hooks do only what is left)
+        if node.is_shutdown or node.master_watch is None:
+            return
+        node.log.debug("logger services not registered yet (%s); the next master that answers gets them", exc)
+        node.master_watch.on_connect.append(node.logging.serve_loggers)
 
 
 def _start_sim_time(engine: Engine, node: _node.AsyncNode) -> None:

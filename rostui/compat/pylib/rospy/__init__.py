@@ -119,8 +119,11 @@ def init_node(name: str, argv: Sequence[str] | None = None, anonymous: bool = Fa
     """
     check_node_name(name)
     _sync.init_node(name, argv=argv, anonymous=anonymous, log_level=log_level, disable_signals=disable_signals,
-                    disable_rostime=disable_rostime, lenient_name=True)
-    _Topic.start_pending()
+                    disable_rostime=disable_rostime, lenient_name=True, logger_services_later=True)
+    try:
+        _Topic.start_pending()
+    finally:
+        _sync.serve_logger_services()  # in the background: the script's first publish does not wait for them
 
 
 class _Topic(abc.ABC):

@@ -21,8 +21,9 @@ import pytest
 from conftest import rostui_cmd
 
 HEAVY = ("numpy", "ssl", "_ssl", "_hashlib", "yaml", "http.client", "email.parser", "uvloop", "importlib.resources",
-         "tempfile", "textual", "typer", "rich", "subprocess", "dataclasses")
-"""Modules a talker needs none of (OpenSSL alone is 5 MB of its memory; subprocess and dataclasses cost its start)."""
+         "tempfile", "textual", "typer", "rich", "subprocess", "dataclasses", "datetime")
+"""Modules a talker needs none of (OpenSSL alone is 5 MB of its memory; subprocess, dataclasses and datetime
+cost its start)."""
 
 TALKER = '''#!/usr/bin/env python
 import rospy
@@ -176,3 +177,21 @@ print(subprocess.run([sys.executable, "-c", "print(1)"], capture_output=True, te
     out = _run(tmp_path, "children.py", code, ros_env)
     assert out.returncode == 0, out.stderr
     assert out.stdout.splitlines() == ["False", "child True", "1 module"], out.stdout + out.stderr
+
+
+def test_xmlrpc_datetime_after_rospy(ros_env: dict[str, str], tmp_path: Path) -> None:
+    """xmlrpc.client imported without the datetime module still marshals the datetime class a script's
+    ``import datetime`` gives (the same class), both ways."""
+    code = '''import sys
+import rospy
+import xmlrpc.client
+print("datetime" in sys.modules)
+import datetime
+stamp = datetime.datetime(2020, 1, 2, 3, 4, 5)
+body = xmlrpc.client.dumps((stamp,), "m")
+print("<dateTime.iso8601>20200102T03:04:05</dateTime.iso8601>" in body,
+      xmlrpc.client.loads(body, use_builtin_types=True)[0][0] == stamp, xmlrpc.client.datetime is datetime.datetime)
+'''
+    out = _run(tmp_path, "stamps.py", code, ros_env)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.splitlines() == ["False", "True True True"], out.stdout + out.stderr

@@ -414,6 +414,20 @@ def test_ctrl_c_leaves_no_half_file_and_the_original_as_it_was(command: str, tmp
     assert src.read_bytes() == before
 
 
+def test_a_ctrl_c_inside_text_run_from_a_string_still_exits_1_under_python_m(tmp_path: Path,
+                                                                             ros_env: dict[str, str]) -> None:
+    """CPython notes a KeyboardInterrupt that leaves ``exec``'d text even once it is handled, and a ``python -m``
+    run ending with the note set killed itself with SIGINT after printing its one line (status -2, a fresh-ci
+    flake when Ctrl-C landed in such text). The expression stands for any such text."""
+    src = tmp_path / "counts.bag"
+    _counts_bag(src, 10)
+    done = subprocess.run([sys.executable, "-m", "rostui", "bag", "filter", str(src), str(tmp_path / "out.bag"),
+                           'exec("raise KeyboardInterrupt")'], env=ros_env, capture_output=True, text=True,
+                          timeout=60)
+    assert (done.returncode, done.stderr) == (1, f"rostui bag filter: interrupted; {tmp_path / 'out.bag'} not written\n")
+    assert sorted(p.name for p in tmp_path.iterdir() if p.name != "ros_home") == ["counts.bag"]
+
+
 def test_ctrl_c_while_the_new_file_is_made_leaves_no_partial_file(tmp_path: Path,
                                                                    monkeypatch: pytest.MonkeyPatch) -> None:
     """Ctrl-C after the writer made its file but before it returned (a fresh-ci run left the file behind)."""

@@ -60,3 +60,21 @@ def test_a_resolvable_localhost_is_left_to_the_resolver(monkeypatch: pytest.Monk
     monkeypatch.setattr(localhost, "_resolvable", {})
     assert localhost.connect_host("localhost") == "localhost"
     assert localhost.connect_host("robot.example") == "robot.example"
+
+
+@pytest.mark.parametrize("host", ["127.0.0.1", "127.0.0.255", "127.255.1.2", "10.0.0.1", "0.0.0.0", "192.168.1.1",
+                                  "255.255.255.255", "127.1", "127.000.0.1", "127.0.0.01", "256.0.0.1", "1.2.3",
+                                  "127.0.0.", "127.0.0.1 ", "\u0661\u0662\u0667.0.0.1", "::1", "::ffff:127.0.0.1",
+                                  "fe80::1", "localhost", "robot.local"])
+def test_loopback_hosts_as_ipaddress_says(host: str) -> None:
+    """is_loopback_host reads dotted quads itself (no ipaddress import at a node's start) and agrees with
+    ipaddress on every address, and on names (localhost's, or none of them)."""
+    import ipaddress
+
+    from rostui.core.network import is_loopback_host
+
+    try:
+        expected = ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        expected = host in localhost.LOCALHOST_NAMES
+    assert is_loopback_host(host) is expected

@@ -23,7 +23,8 @@ from conftest import rostui_cmd
 HEAVY = ("numpy", "ssl", "_ssl", "_hashlib", "yaml", "http.client", "email.parser", "uvloop", "importlib.resources",
          "tempfile", "textual", "typer", "rich", "subprocess", "dataclasses", "datetime")
 """Modules a talker needs none of (OpenSSL alone is 5 MB of its memory; subprocess, dataclasses and datetime
-cost its start)."""
+cost its start). Not ipaddress: a regular install's talker does without it, but the editable install's import
+hook imports pathlib, and so urllib.parse with it, before rostui.compat can."""
 
 TALKER = '''#!/usr/bin/env python
 import rospy
@@ -195,3 +196,15 @@ print("<dateTime.iso8601>20200102T03:04:05</dateTime.iso8601>" in body,
     out = _run(tmp_path, "stamps.py", code, ros_env)
     assert out.returncode == 0, out.stderr
     assert out.stdout.splitlines() == ["False", "True True True"], out.stdout + out.stderr
+
+
+def test_compat_imports_urllib_parse_without_ipaddress() -> None:
+    """rostui.compat imports pathlib (and so urllib.parse) with a stand-in for ipaddress, which imports the real
+    module when a bracketed host needs it; run without site, so no editable install's hook imports them first."""
+    code = ("import sys, rostui.compat, urllib.parse; print('ipaddress' in sys.modules); "
+            "print(urllib.parse.urlsplit('http://[::1]:11311/').hostname, 'ipaddress' in sys.modules); "
+            "import ipaddress; print(urllib.parse.ipaddress is ipaddress)")
+    out = subprocess.run([sys.executable, "-S", "-c", code], env={"PYTHONPATH": str(Path(__file__).parent.parent)},
+                         capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.splitlines() == ["False", "::1 True", "True"], out.stdout + out.stderr

@@ -9,7 +9,11 @@ installs the import hook of :mod:`.finder` that makes ``<pkg>.msg`` and
 
 from __future__ import annotations
 
-from pathlib import Path
+from rostui.compat.deferred import import_urllib_parse_lean
+
+import_urllib_parse_lean()  # before pathlib imports it: without ipaddress until a bracketed host needs it
+
+from pathlib import Path  # noqa: E402
 
 __all__ = ["PKGPY", "PYLIB", "ROSTUI_ROOT"]
 

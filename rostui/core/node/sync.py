@@ -149,11 +149,14 @@ async def _connect(node: _node.AsyncNode, on_wait: Callable[[], None], ask_sim_t
     say whether the master's ``/use_sim_time`` is true (when *ask_sim_time*): one trip to the engine thread,
     and over the node's own connection to the master.
     Only Exceptions leave it: a BaseException (ROSInterruptException) raised on the engine thread ends its loop."""
-    try:
-        await node.wait_for_master(on_wait=on_wait)
-    except _node.MasterError as exc:
-        raise _WaitFailed(exc) from None
-    await node.announce(logger_services=logger_services)
+    try:  # at once: a master that answers it needs no getPid first (one trip fewer on the way to the first publish)
+        await node.announce(logger_services=logger_services)
+    except _node.MasterError:  # none answers yet, or not as a master: wait for one, as before, then announce again
+        try:
+            await node.wait_for_master(on_wait=on_wait)
+        except _node.MasterError as exc:
+            raise _WaitFailed(exc) from None
+        await node.announce(logger_services=logger_services)
     if not ask_sim_time:
         return False
     try:

@@ -25,7 +25,7 @@ from urllib.parse import urlparse
 
 from rostui.core import names
 from rostui.core.log import Console, LoggerTree, NodeLog, package_logger
-from rostui.core.memory import tune_allocator
+from rostui.core.memory import TUNE_DELAY, tune_allocator
 from rostui.core.network import Addressing, connect_host, master_uri_from_env, resolve_addressing
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.busypoll import BusyPoll, busy_poll_for
@@ -171,9 +171,9 @@ class AsyncNode:
         with the master at once (see :meth:`announce`); pass False to do that
         later, e.g. after waiting for the master.
         """
-        tune_allocator()
         self.logging.attach()
         self.loop = asyncio.get_running_loop()
+        self.loop.call_later(TUNE_DELAY, tune_allocator)  # after the start (ctypes), before big messages stream
         self.loop_thread_id = threading.get_ident()
         self.busy_poll = busy_poll_for(self.loop) if self._wants_busy_poll else None
         self._done = asyncio.Event()

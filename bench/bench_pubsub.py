@@ -22,6 +22,9 @@ and the ratios rostui/rospy and rostui/roscpp, and the targets.
     .venv/bin/python bench/bench_pubsub.py                 # 3 rounds, about 2 minutes
     .venv/bin/python bench/bench_pubsub.py --libs rostui,rospy --rounds 1
     .venv/bin/python bench/bench_pubsub.py --json out.json --window 5 --round-trips 3000
+    git worktree add /tmp/before HEAD~1
+    .venv/bin/python bench/bench_pubsub.py --only latency --load 2 --before /tmp/before \
+        --libs rostui,rostui-before,rostui-nopoll,rospy,roscpp     # a change against its parent, and no spin
 
 Each round measures every library once (order rotated between rounds) and
 the table shows the median per metric with its range, so a burst of load from
@@ -53,6 +56,12 @@ CPP_LIBS = ["-lroscpp", "-lrosconsole", "-lroscpp_serialization", "-lrostime", "
             "-lcpp_common", "-lboost_system"]
 SYSTEM_PYTHON = "/usr/bin/python3"
 LIBS = ("rospy", "roscpp", "rostui")
+NO_POLL = "rostui-nopoll"
+"""An extra library for ``--libs``: rostui with its busy-poll off (``ROSTUI_BUSY_POLL_US=0``), to see what the spin
+gives or costs in the same run."""
+BEFORE = "rostui-before"
+"""An extra library for ``--libs``: rostui as in the checkout ``--before`` names (``git worktree add DIR COMMIT``),
+run by this venv's Python with that checkout first on its path."""
 SMALL = 16
 LARGE = 1_000_000
 
@@ -89,7 +98,8 @@ def free_port() -> int:
 class Run:
     """One benchmark run: a private ROS_HOME, a master, and the processes started."""
 
-    def __init__(self, master: str) -> None:
+    def __init__(self, master: str, before: Path | None = None) -> None:
+        self.before = before
         self.tmp = Path(tempfile.mkdtemp(prefix="rostui-bench-"))
         self.port = free_port()
         self.env = dict(os.environ)
@@ -160,10 +170,16 @@ class Run:
             return [str(CPP_BIN), *args]
         if lib == "rospy":
             return [SYSTEM_PYTHON, str(BENCH / "py_peer.py"), "rospy", *args]
+        if lib == BEFORE:
+            code = ("import runpy, sys; sys.meta_path = [f for f in sys.meta_path if 'editable' not in repr(f).lower()];"
+                    " sys.path.insert(0, sys.argv[1]); del sys.argv[:2]; runpy.run_path(sys.argv[0], run_name='__main__')")
+            return [venv_python(), "-c", code, str(self.before), str(BENCH / "py_peer.py"), "rostui", *args]
+        if lib == NO_POLL:
+            return ["env", "ROSTUI_BUSY_POLL_US=0", venv_python(), str(BENCH / "py_peer.py"), "rostui", *args]
         return [venv_python(), str(BENCH / "py_peer.py"), "rostui", *args]
 
     def throughput(self, lib: str, size: int, window: float) -> dict[str, float]:
-        topic = f"/bench/{lib}/flood_{size}"
+        topic = f"/bench/{lib.replace('-', '_')}/flood_{size}"
         counter = self.spawn(self.peer_cmd(lib, "count", topic, str(window)), f"{lib}-count-{size}")
         flooder = self.spawn(self.peer_cmd(lib, "flood", topic, str(size), str(window + 20)),
                              f"{lib}-flood-{size}")
@@ -181,7 +197,7 @@ class Run:
         return {"msgs_s": n / secs, "MB_s": nbytes / secs / 1e6, "count": n, "seconds": secs}
 
     def latency(self, lib: str, round_trips: int) -> dict[str, float]:
-        a, b = f"/bench/{lib}/ping", f"/bench/{lib}/pong"
+        a, b = f"/bench/{lib.replace('-', '_')}/ping", f"/bench/{lib.replace('-', '_')}/pong"
         ponger = self.spawn(self.peer_cmd(lib, "pong", a, b), f"{lib}-pong")
         pinger = self.spawn(self.peer_cmd(lib, "ping", a, b, str(round_trips)), f"{lib}-ping")
         try:
@@ -278,7 +294,7 @@ def report(rounds: dict[str, list[dict[str, float]]], master: str, args: argpars
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--libs", default=",".join(LIBS), help="comma list of rospy,roscpp,rostui")
+    parser.add_argument("--libs", default=",".join(LIBS), help=f"comma list of rospy,roscpp,rostui (and {NO_POLL}, {BEFORE})")
     parser.add_argument("--rounds", type=int, default=3, help="interleaved rounds; the table shows medians")
     parser.add_argument("--window", type=float, default=3.0, help="throughput window per round, seconds")
     parser.add_argument("--round-trips", type=int, default=5000, help="timed ping-pong round trips per round")
@@ -288,14 +304,17 @@ def main() -> int:
     parser.add_argument("--load", type=int, default=0,
                         help="start this many busy-looping processes for the whole run (a loaded machine)")
     parser.add_argument("--only", choices=("latency",), help="measure the round trips only")
+    parser.add_argument("--before", type=Path, help=f"a checkout of an earlier commit, measured as {BEFORE}")
     args = parser.parse_args()
     libs = [x for x in args.libs.split(",") if x]
-    unknown = set(libs) - set(LIBS)
+    unknown = set(libs) - set(LIBS) - {NO_POLL, BEFORE}
     if unknown or not libs:
         parser.error(f"unknown libraries: {', '.join(sorted(unknown))}")
+    if (BEFORE in libs) != (args.before is not None):
+        parser.error(f"--before DIR and {BEFORE} in --libs go together")
     if "roscpp" in libs:
         build_cpp_peer()
-    run = Run(args.master)
+    run = Run(args.master, args.before)
     rounds: dict[str, list[dict[str, float]]] = {lib: [] for lib in libs}
     floors: list[float] = []
     started = time.monotonic()

@@ -89,6 +89,18 @@ def test_zero_window_means_no_busy_poll() -> None:
         loop.close()
 
 
+def write_loadavg(path, running: int) -> None:
+    """A /proc/loadavg saying ``running`` threads are runnable now (the reader among them)."""
+    path.write_text(f"0.50 0.40 0.30 {running}/321 4242\n")
+
+
+def calm(tmp_path):
+    """A /proc/loadavg of a machine where only the reader runs."""
+    path = tmp_path / "loadavg"
+    write_loadavg(path, 1)
+    return str(path)
+
+
 def write_stat(path, idle_ticks: int) -> None:
     """A /proc/stat whose first line has ``idle_ticks`` idle and 0 iowait ticks."""
     path.write_text(f"cpu  500 0 100 {idle_ticks} 0 0 0 0 0 0\ncpu0 1 2 3 4 5 6 7 8 9 10\n")
@@ -98,7 +110,7 @@ def test_idle_gauge_says_no_when_no_cpu_is_spare(tmp_path) -> None:
     stat = tmp_path / "stat"
     clock, own = FakeClock(), [0.0]
     write_stat(stat, 1000)
-    gauge = IdleGauge(period=0.5, path=str(stat), own_cpu=lambda: own[0], clock=clock)
+    gauge = IdleGauge(period=0.5, path=str(stat), own_cpu=lambda: own[0], clock=clock, loadavg_path=calm(tmp_path))
     write_stat(stat, 100_000)
     assert not gauge.spare()  # no whole period seen yet: no spin, whatever the machine does
     write_stat(stat, 1000)
@@ -116,7 +128,7 @@ def test_idle_gauge_resamples_only_once_per_period(tmp_path) -> None:
     stat = tmp_path / "stat"
     clock = FakeClock()
     write_stat(stat, 0)
-    gauge = IdleGauge(period=0.5, path=str(stat), own_cpu=lambda: 0.0, clock=clock)
+    gauge = IdleGauge(period=0.5, path=str(stat), own_cpu=lambda: 0.0, clock=clock, loadavg_path=calm(tmp_path))
     clock.now += 1.0
     write_stat(stat, 10)
     assert not gauge.spare()
@@ -124,6 +136,55 @@ def test_idle_gauge_resamples_only_once_per_period(tmp_path) -> None:
     clock.now += 0.1
     assert not gauge.spare()  # still the old sample
     clock.now += 0.5
+    assert gauge.spare()
+
+
+def test_a_crowded_machine_gets_no_spin_even_where_the_spin_itself_looks_like_a_spare_cpu(tmp_path) -> None:
+    """A busy loop on each of two cores, and ping and pong spinning: the machine shows no idle time, but each
+    process's own spin counts as spare; only the count of runnable threads tells the cores are taken."""
+    stat, loadavg = tmp_path / "stat", tmp_path / "loadavg"
+    clock = FakeClock()
+    write_stat(stat, 0)
+    write_loadavg(loadavg, 4)  # two busy loops, the other side's spin and this reader
+    gauge = IdleGauge(period=0.5, path=str(stat), own_cpu=lambda: clock.now, clock=clock,
+                      loadavg_path=str(loadavg), cpus=2)
+    for _ in range(300):  # 1.5 s of dense traffic asking; only one count per CROWD_STEP is read
+        clock.now += 0.005
+        gauge.spare()
+    assert not gauge.spare(), "no idle time but a whole CPU of our own: spare by idle time alone"
+    write_loadavg(loadavg, 2)  # the busy loops gone: the other side's spin and this reader
+    for _ in range(250):  # a whole period of calm counts after the mixed one
+        clock.now += 0.005
+        gauge.spare()
+    assert gauge.spare()
+
+
+def test_runnable_threads_are_counted_at_most_every_crowd_step(tmp_path) -> None:
+    stat, loadavg = tmp_path / "stat", tmp_path / "loadavg"
+    clock = FakeClock()
+    write_stat(stat, 0)
+    write_loadavg(loadavg, 1)
+    gauge = IdleGauge(period=0.5, path=str(stat), own_cpu=lambda: clock.now, clock=clock,
+                      loadavg_path=str(loadavg), cpus=2)
+    clock.now += 0.004
+    gauge.spare()  # one calm count, at the start
+    write_loadavg(loadavg, 9)
+    for _ in range(100):  # 100 asks within the same step: none is counted
+        clock.now += 0.00001
+        gauge.spare()
+    write_loadavg(loadavg, 1)
+    clock.now += 0.6
+    assert gauge.spare(), "two calm counts decide the period: the crowded asks between them were not counted"
+
+
+def test_an_unreadable_loadavg_leaves_the_idle_time_to_decide(tmp_path) -> None:
+    stat = tmp_path / "stat"
+    clock = FakeClock()
+    write_stat(stat, 0)
+    gauge = IdleGauge(period=0.5, path=str(stat), own_cpu=lambda: 0.0, clock=clock,
+                      loadavg_path=str(tmp_path / "missing"))
+    clock.now += 1.0
+    write_stat(stat, 150)
     assert gauge.spare()
 
 
@@ -137,7 +198,7 @@ def test_busy_machine_stops_dense_traffic_from_spinning(tmp_path) -> None:
         stat = tmp_path / "stat"
         clock = FakeClock()
         write_stat(stat, 0)
-        gauge = IdleGauge(period=0.5, path=str(stat), own_cpu=lambda: 0.0, clock=clock)
+        gauge = IdleGauge(period=0.5, path=str(stat), own_cpu=lambda: 0.0, clock=clock, loadavg_path=calm(tmp_path))
         clock.now += 1.0
         write_stat(stat, 5)  # 0.05 CPU idle
         poll = BusyPoll(asyncio.get_running_loop(), 250e-6, clock, gauge)

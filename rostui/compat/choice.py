@@ -15,6 +15,8 @@ from collections.abc import Iterable, Mapping
 from importlib.machinery import PathFinder
 from pathlib import Path
 
+from rostui.core.records import FrozenRecord
+
 from . import PYLIB, ROSTUI_ROOT
 
 __all__ = ["ENV_MODE", "ENV_NOTICE_SHOWN", "REAL_ROS_MODULES", "Mode", "Choice", "find_real_ros", "choose",
@@ -44,36 +46,19 @@ class Mode(enum.Enum):
             return cls.AUTO
 
 
-class Choice:
+class Choice(FrozenRecord):
     """The outcome: whether the script gets rostui's modules, and the real ROS found, if any (immutable).
 
-    A plain class rather than a dataclass (making one costs about a millisecond of `rostui python`'s start);
-    it keeps a frozen dataclass's constructor, equality, hash and repr.
+    A record rather than a dataclass: :mod:`rostui.core.records` says why.
     """
 
-    __slots__ = ("use_rostui", "real_ros")
+    __slots__ = _fields = ("use_rostui", "real_ros")
 
     use_rostui: bool
     real_ros: Path | None
 
     def __init__(self, use_rostui: bool, real_ros: Path | None) -> None:
-        object.__setattr__(self, "use_rostui", use_rostui)
-        object.__setattr__(self, "real_ros", real_ros)
-
-    def __setattr__(self, name: str, value: object) -> None:
-        raise AttributeError(f"cannot assign to field {name!r}")
-
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        assert isinstance(other, Choice)
-        return (self.use_rostui, self.real_ros) == (other.use_rostui, other.real_ros)
-
-    def __hash__(self) -> int:
-        return hash((self.use_rostui, self.real_ros))
-
-    def __repr__(self) -> str:
-        return f"Choice(use_rostui={self.use_rostui!r}, real_ros={self.real_ros!r})"
+        self._set(use_rostui, real_ros)
 
     def describe(self) -> str:
         """One line saying which ROS the script gets and where it comes from."""

@@ -15,6 +15,8 @@ import sys
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+from rostui.core.records import FrozenRecord
+
 from . import PYLIB
 from .choice import REAL_ROS_MODULES, Choice, Mode, child_env, find_real_ros
 
@@ -31,39 +33,20 @@ _PROBE = (
 )
 
 
-class Plan:
+class Plan(FrozenRecord):
     """What to ``exec``: ``argv`` with ``env``, after printing ``notice`` (if any) on stderr (immutable).
 
-    A plain class rather than a dataclass (making one costs about a millisecond of `rostui python`'s start);
-    it keeps a frozen dataclass's constructor, equality and repr.
+    A record rather than a dataclass: :mod:`rostui.core.records` says why.
     """
 
-    __slots__ = ("argv", "env", "notice")
+    __slots__ = _fields = ("argv", "env", "notice")
 
     argv: list[str]
     env: dict[str, str]
     notice: str | None
 
     def __init__(self, argv: list[str], env: dict[str, str], notice: str | None = None) -> None:
-        setter = object.__setattr__
-        setter(self, "argv", argv)
-        setter(self, "env", env)
-        setter(self, "notice", notice)
-
-    def __setattr__(self, name: str, value: object) -> None:
-        raise AttributeError(f"cannot assign to field {name!r}")
-
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        assert isinstance(other, Plan)
-        return (self.argv, self.env, self.notice) == (other.argv, other.env, other.notice)
-
-    def __hash__(self) -> int:
-        return hash((self.argv, self.env, self.notice))  # unhashable lists: TypeError, as the dataclass gave
-
-    def __repr__(self) -> str:
-        return f"Plan(argv={self.argv!r}, env={self.env!r}, notice={self.notice!r})"
+        self._set(argv, env, notice)
 
 
 def _without_pylib(env: Mapping[str, str]) -> dict[str, str]:

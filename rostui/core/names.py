@@ -28,6 +28,8 @@ import threading
 import time
 from typing import Any, Mapping, Sequence
 
+from rostui.core.records import Record
+
 __all__ = [
     "SEP",
     "PRIV",
@@ -305,7 +307,7 @@ def anonymous_name(base: str) -> str:
 # --------------------------------------------------------------------------- argv
 
 
-class NodeArgs:
+class NodeArgs(Record):
     """What a ROS 1 command line carries for a node, split from the program's own arguments.
 
     ``remaps`` holds ``from:=to`` remappings as written (unresolved); the special
@@ -315,11 +317,10 @@ class NodeArgs:
     (``_rate:=10`` -> ``{"rate": 10}``) with YAML-typed values; ``args`` is
     everything else, in order.
 
-    A plain class rather than a dataclass (making one costs about a millisecond of every node's start); it
-    keeps the dataclass's constructor, equality and repr.
+    A record rather than a dataclass: :mod:`rostui.core.records` says why.
     """
 
-    _FIELDS = ("remaps", "name", "namespace", "log", "ip", "hostname", "master", "params", "args", "specials")
+    _fields = ("remaps", "name", "namespace", "log", "ip", "hostname", "master", "params", "args", "specials")
 
     def __init__(self, remaps: dict[str, str] | None = None, name: str | None = None, namespace: str | None = None,
                  log: str | None = None, ip: str | None = None, hostname: str | None = None,
@@ -336,15 +337,7 @@ class NodeArgs:
         self.args: list[str] = [] if args is None else args
         self.specials: dict[str, str] = {} if specials is None else specials
 
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        return all(getattr(self, f) == getattr(other, f) for f in self._FIELDS)
 
-    __hash__ = None  # type: ignore[assignment]  # mutable, as the dataclass it was
-
-    def __repr__(self) -> str:
-        return "NodeArgs(" + ", ".join(f"{f}={getattr(self, f)!r}" for f in self._FIELDS) + ")"
 
 
 _SPECIAL_FIELDS = {

@@ -16,6 +16,8 @@ from __future__ import annotations
 import ast
 import re
 
+from rostui.core.records import FrozenRecord, Record
+
 from .errors import MessageSpecError
 
 __all__ = [
@@ -87,19 +89,10 @@ def is_valid_type_name(type_name: str) -> bool:
     return m is not None and m.group(2) is None and "/" in type_name
 
 
-def _frozen(self: object, name: str, value: object = None) -> None:
-    raise AttributeError(f"cannot assign to field {name!r}")
-
-
-# Plain classes, not dataclasses: making a dataclass costs 0.3-1 ms at import (it compiles its methods), and a
-# rospy talker imports these before its first publish. They keep a dataclass's constructor, fields, equality,
-# hash (the frozen ones), repr and read-only fields.
-
-
-class Field:
+class Field(FrozenRecord):
     """One field of a message: its name and resolved type (immutable)."""
 
-    __slots__ = ("name", "type", "base_type", "is_array", "array_len")
+    __slots__ = _fields = ("name", "type", "base_type", "is_array", "array_len")
 
     name: str
     """The field name."""
@@ -113,33 +106,7 @@ class Field:
     """N for fixed arrays ``T[N]``, None otherwise."""
 
     def __init__(self, name: str, type: str, base_type: str, is_array: bool, array_len: int | None) -> None:
-        setter = object.__setattr__
-        setter(self, "name", name)
-        setter(self, "type", type)
-        setter(self, "base_type", base_type)
-        setter(self, "is_array", is_array)
-        setter(self, "array_len", array_len)
-
-    __setattr__ = _frozen
-    __delattr__ = _frozen
-
-    def _key(self) -> tuple[str, str, str, bool, int | None]:
-        return self.name, self.type, self.base_type, self.is_array, self.array_len
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, Field) or other.__class__ is not self.__class__:
-            return NotImplemented
-        return self._key() == other._key()
-
-    def __hash__(self) -> int:
-        return hash(self._key())
-
-    def __repr__(self) -> str:
-        return (f"Field(name={self.name!r}, type={self.type!r}, base_type={self.base_type!r}, "
-                f"is_array={self.is_array!r}, array_len={self.array_len!r})")
-
-    def __reduce__(self) -> tuple[object, tuple[str, str, str, bool, int | None]]:
-        return Field, self._key()
+        self._set(name, type, base_type, is_array, array_len)
 
     @property
     def is_builtin(self) -> bool:
@@ -147,10 +114,10 @@ class Field:
         return self.base_type in BUILTIN_TYPES
 
 
-class Constant:
+class Constant(FrozenRecord):
     """A constant declaration ``TYPE NAME=VALUE`` (immutable)."""
 
-    __slots__ = ("type", "name", "value", "val_text")
+    __slots__ = _fields = ("type", "name", "value", "val_text")
 
     type: str
     """The constant's primitive type."""
@@ -162,35 +129,14 @@ class Constant:
     """The value exactly as written (stripped); used for the md5 text."""
 
     def __init__(self, type: str, name: str, value: bool | int | float | str, val_text: str) -> None:
-        setter = object.__setattr__
-        setter(self, "type", type)
-        setter(self, "name", name)
-        setter(self, "value", value)
-        setter(self, "val_text", val_text)
-
-    __setattr__ = _frozen
-    __delattr__ = _frozen
-
-    def _key(self) -> tuple[str, str, bool | int | float | str, str]:
-        return self.type, self.name, self.value, self.val_text
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, Constant) or other.__class__ is not self.__class__:
-            return NotImplemented
-        return self._key() == other._key()
-
-    def __hash__(self) -> int:
-        return hash(self._key())
-
-    def __repr__(self) -> str:
-        return f"Constant(type={self.type!r}, name={self.name!r}, value={self.value!r}, val_text={self.val_text!r})"
-
-    def __reduce__(self) -> tuple[object, tuple[str, str, bool | int | float | str, str]]:
-        return Constant, self._key()
+        self._set(type, name, value, val_text)
 
 
-class MsgSpec:
+class MsgSpec(Record):
     """A parsed message definition."""
+
+    _fields = ("type_name", "fields", "constants", "text", "source", "md5sum")
+    _compared = ("type_name", "fields", "constants", "text", "source")
 
     type_name: str
     """Full type name ``pkg/Name``."""
@@ -214,18 +160,6 @@ class MsgSpec:
         self.source = source
         self.md5sum = md5sum
 
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        assert isinstance(other, MsgSpec)
-        return ((self.type_name, self.fields, self.constants, self.text, self.source)
-                == (other.type_name, other.fields, other.constants, other.text, other.source))
-
-    __hash__ = None  # type: ignore[assignment]  # mutable, as the dataclass it was
-
-    def __repr__(self) -> str:
-        return (f"MsgSpec(type_name={self.type_name!r}, fields={self.fields!r}, constants={self.constants!r}, "
-                f"text={self.text!r}, source={self.source!r}, md5sum={self.md5sum!r})")
 
     @property
     def package(self) -> str:
@@ -247,8 +181,10 @@ class MsgSpec:
         return [f.base_type for f in self.fields if not f.is_builtin]
 
 
-class SrvSpec:
+class SrvSpec(Record):
     """A parsed service definition: request and response message specs."""
+
+    _fields = ("type_name", "request", "response", "text", "source")
 
     type_name: str
     """Full service type name ``pkg/Name``."""
@@ -269,18 +205,6 @@ class SrvSpec:
         self.text = text
         self.source = source
 
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        assert isinstance(other, SrvSpec)
-        return ((self.type_name, self.request, self.response, self.text, self.source)
-                == (other.type_name, other.request, other.response, other.text, other.source))
-
-    __hash__ = None  # type: ignore[assignment]  # mutable, as the dataclass it was
-
-    def __repr__(self) -> str:
-        return (f"SrvSpec(type_name={self.type_name!r}, request={self.request!r}, response={self.response!r}, "
-                f"text={self.text!r}, source={self.source!r})")
 
 
 def _strip_comment(line: str) -> str:

@@ -32,50 +32,26 @@ from rostui.core.node.header_check import HeaderCheck
 from rostui.core.node.transport import (
     InboundConnection, PublisherConnection, ReportedRefusal, SubscriberConnection, set_nodelay,
 )
+from rostui.core.records import FrozenRecord
 from rostui.core.tcpros import LEN, encode_header, max_backlog_from_env
 
 log = logging.getLogger("rostui.topics")
 
 
-class TopicType:
+class TopicType(FrozenRecord):
     """What a topic carries: type name, md5sum and message_definition (immutable).
 
-    A plain class rather than a dataclass (making one costs about a millisecond of every node's start); it
-    keeps a frozen dataclass's constructor, equality, hash and repr.
+    A record rather than a dataclass: :mod:`rostui.core.records` says why.
     """
 
-    __slots__ = ("type", "md5sum", "definition")
+    __slots__ = _fields = ("type", "md5sum", "definition")
 
     type: str
     md5sum: str
     definition: str
 
     def __init__(self, type: str, md5sum: str, definition: str) -> None:
-        setter = object.__setattr__
-        setter(self, "type", type)
-        setter(self, "md5sum", md5sum)
-        setter(self, "definition", definition)
-
-    def __setattr__(self, name: str, value: object) -> None:
-        raise AttributeError(f"cannot assign to field {name!r}")
-
-    def __delattr__(self, name: str) -> None:
-        raise AttributeError(f"cannot assign to field {name!r}")
-
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        assert isinstance(other, TopicType)
-        return (self.type, self.md5sum, self.definition) == (other.type, other.md5sum, other.definition)
-
-    def __hash__(self) -> int:
-        return hash((self.type, self.md5sum, self.definition))
-
-    def __repr__(self) -> str:
-        return f"TopicType(type={self.type!r}, md5sum={self.md5sum!r}, definition={self.definition!r})"
-
-    def __reduce__(self) -> tuple[object, tuple[str, str, str]]:
-        return TopicType, (self.type, self.md5sum, self.definition)
+        self._set(type, md5sum, definition)
 
     @classmethod
     def of(cls, msg_class: Any) -> "TopicType":

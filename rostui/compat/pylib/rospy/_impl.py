@@ -9,36 +9,20 @@ from __future__ import annotations
 
 from typing import Any
 
+from rostui.core.records import FrozenRecord
+
 __all__ = ["PublisherImpl", "SubscriberImpl", "Connection"]
 
 
-class Connection:
+class Connection(FrozenRecord):
     """One connection of a subscriber: the publisher it comes from."""
 
-    __slots__ = ("callerid_pub",)
+    __slots__ = _fields = ("callerid_pub",)
 
     callerid_pub: str
 
     def __init__(self, callerid_pub: str) -> None:
-        object.__setattr__(self, "callerid_pub", callerid_pub)
-
-    def __setattr__(self, name: str, value: object) -> None:
-        raise AttributeError(f"cannot assign to field {name!r}")
-
-    def __eq__(self, other: object) -> bool:
-        if other.__class__ is not self.__class__:
-            return NotImplemented
-        assert isinstance(other, Connection)
-        return self.callerid_pub == other.callerid_pub
-
-    def __hash__(self) -> int:
-        return hash((self.callerid_pub,))
-
-    def __repr__(self) -> str:
-        return f"Connection(callerid_pub={self.callerid_pub!r})"
-
-    def __reduce__(self) -> tuple[type[Connection], tuple[str]]:
-        return Connection, (self.callerid_pub,)
+        self._set(callerid_pub)
 
 
 class PublisherImpl:

@@ -93,7 +93,7 @@ MODULES: dict[str, str] = {
     "rospkg": "python3-rospkg",
 }
 
-#: What a bare Debian with python3, venv, pip, git, ca-certificates and procps already has.
+#: What a bare Debian with python3, venv, pip, git, ca-certificates, procps already has.
 BASE_COMMANDS: frozenset[str] = frozenset({
     "bash", "sh", "du", "stty", "dpkg", "env", "kill", "ps", "pgrep", "python3", "git", "cat", "true", "sleep",
 })

@@ -172,7 +172,7 @@ class SshServer:
 def sshd(tmp_path: Path) -> Iterator[SshServer]:
     """`/usr/sbin/sshd -D` on a free port with a temporary host key and authorized key."""
     need_peer(Path("/usr/sbin/sshd").exists() and shutil.which("ssh") is not None
-              and shutil.which("ssh-keygen") is not None, "sshd and ssh (openssh-server, openssh-client)")
+              and shutil.which("ssh-keygen") is not None, "sshd, ssh (openssh-server, openssh-client)")
     root = tmp_path / "sshd"
     root.mkdir()
     for name in ("host_key", "client_key"):

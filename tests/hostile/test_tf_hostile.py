@@ -71,7 +71,7 @@ def rostui_answer(buf: TfBuffer, target: str, source: str) -> str:
 
 
 def test_lookups_through_a_deep_chain_and_a_loop_answer_as_tf2() -> None:
-    need_peer(have_rospy(), "rospy and tf2_py (Debian python3-tf2)")
+    need_peer(have_rospy(), "rospy, tf2_py (Debian python3-rospy, python3-tf2)")
     tracemalloc.start()
     try:
         buf = hostile_buffer()
@@ -201,7 +201,7 @@ def test_live_tree_beside_a_legit_broadcaster_and_tf2_ros_on_the_same_input(
         rostui_core: Any, ros_env: dict[str, str], spawn: Spawn) -> None:  # noqa: F811
     """The chain and the loop from one node, the legitimate chain from another: `rostui tf tree` shows both,
     the legitimate edges' rates keep coming; Debian's tf2_ros listener answers the same lookups (recorded)."""
-    need_peer(have_rospy(), "rospy and tf2_ros (Debian python3-tf2-ros)")
+    need_peer(have_rospy(), "rospy, tf2_ros (Debian python3-rospy, python3-tf2-ros)")
     spawn([sys.executable, str(REPO / "tests" / "peers" / "rostui_tf_bomb.py"), str(DEPTH), "10"],
           label="tf bomb").wait_for("broadcasting")
     spawn([sys.executable, str(REPO / "tests" / "peers" / "rostui_tf_chain.py"), "20"],

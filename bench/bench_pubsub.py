@@ -72,6 +72,11 @@ TARGETS = {  # metric: (rostui/rospy ratio wanted, higher is better)
 }
 
 
+def topic_prefix(lib: str) -> str:
+    """The namespace of one library's bench topics (a ROS name: no ``-``)."""
+    return "/bench/" + lib.replace("-", "_")
+
+
 def venv_python() -> str:
     """The project's venv interpreter, or the one running this script."""
     candidate = ROOT / ".venv" / "bin" / "python"
@@ -179,7 +184,7 @@ class Run:
         return [venv_python(), str(BENCH / "py_peer.py"), "rostui", *args]
 
     def throughput(self, lib: str, size: int, window: float) -> dict[str, float]:
-        topic = f"/bench/{lib.replace('-', '_')}/flood_{size}"
+        topic = f"{topic_prefix(lib)}/flood_{size}"
         counter = self.spawn(self.peer_cmd(lib, "count", topic, str(window)), f"{lib}-count-{size}")
         flooder = self.spawn(self.peer_cmd(lib, "flood", topic, str(size), str(window + 20)),
                              f"{lib}-flood-{size}")
@@ -197,7 +202,7 @@ class Run:
         return {"msgs_s": n / secs, "MB_s": nbytes / secs / 1e6, "count": n, "seconds": secs}
 
     def latency(self, lib: str, round_trips: int) -> dict[str, float]:
-        a, b = f"/bench/{lib.replace('-', '_')}/ping", f"/bench/{lib.replace('-', '_')}/pong"
+        a, b = f"{topic_prefix(lib)}/ping", f"{topic_prefix(lib)}/pong"
         ponger = self.spawn(self.peer_cmd(lib, "pong", a, b), f"{lib}-pong")
         pinger = self.spawn(self.peer_cmd(lib, "ping", a, b, str(round_trips)), f"{lib}-ping")
         try:

@@ -128,7 +128,7 @@ class IdleGauge:
             wall = sample[0] - previous[0]
             if wall > 0:
                 self._idle_spare = (sample[1] - previous[1] + sample[2] - previous[2]) / wall >= 1.0
-        self._spare = self._idle_spare and not self._crowded and previous is not None
+        self._spare = self._idle_spare and not self._crowded
 
     def _idle_seconds(self) -> float | None:
         """Idle and iowait time of all CPUs together, in seconds (None when unreadable)."""

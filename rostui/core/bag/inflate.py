@@ -12,6 +12,7 @@ from __future__ import annotations
 import os
 from typing import Protocol
 
+from rostui.core.bag.lz4frame import decompress_frame
 from rostui.core.bag.model import MalformedRecord
 
 #: What ``ROSTUI_BAG_MAX_CHUNK`` is when unset: a chunk holds at least one message, and ROS refuses messages over
@@ -76,7 +77,11 @@ def _bz2(data: bytes, limit: int) -> tuple[list[bytes], bool]:
 
 
 def _lz4(data: bytes, limit: int) -> tuple[list[bytes], bool]:
-    """One lz4 frame, up to ``limit`` bytes; and whether it ended."""
+    """One lz4 frame, up to ``limit`` bytes; and whether it ended (python-lz4's frame decoder only for frames
+    :mod:`~rostui.core.bag.lz4frame` leaves to it)."""
+    read = decompress_frame(data, limit)
+    if read is not None:
+        return read
     import lz4.frame
 
     frame = lz4.frame.LZ4FrameDecompressor()
@@ -104,11 +109,12 @@ def _zstd(data: bytes, limit: int, declared: int) -> tuple[list[bytes], bool]:
 
 
 def _errors() -> tuple[type[Exception], ...]:
-    """What the decompressors raise on data that is not theirs (bz2: OSError, lz4: RuntimeError, zstd:
-    ZstdError)."""
+    """What the decompressors raise on data that is not theirs (bz2: OSError, lz4: RuntimeError or LZ4BlockError,
+    a broken lz4 frame: FrameError, a ValueError; zstd: ZstdError)."""
+    import lz4.block
     import zstandard
 
-    return OSError, EOFError, RuntimeError, ValueError, zstandard.ZstdError
+    return OSError, EOFError, RuntimeError, ValueError, lz4.block.LZ4BlockError, zstandard.ZstdError
 
 
 def inflate(compression: str, data: bytes, declared: int, *, path: str, offset: int) -> bytes:

@@ -1,0 +1,138 @@
+"""One lz4 frame decompressed block by block, its checksums checked with xxhash.
+
+python-lz4's frame decoder checks a frame's content checksum (which roslz4, the
+compressor of ``rosbag record --lz4``, always writes) at 0.75 GB/s on the
+benchmark machine; xxhash's one-shot hash does it at 10 GB/s (its streaming
+one, which lz4 uses, at 2), and lz4's own block decoder
+copies a stored block at memory speed (bench/README.md, "Bag play CPU", third
+pass). So this reads the frame format (lz4's ``lz4_Frame_format.md``) itself:
+the header, each block (stored or compressed, linked to the previous 64 KiB or
+independent, with or without its own checksum), the end mark and the content
+checksum, and hands each compressed block to ``lz4.block``.
+
+What it does not read (a dictionary id, reserved bits set, a version other
+than 1, a skippable frame) it leaves to python-lz4: :func:`decompress_frame`
+returns None for those.
+"""
+
+from __future__ import annotations
+
+import struct
+
+_U32 = struct.Struct("<I")
+_U64 = struct.Struct("<Q")
+FRAME_MAGIC = 0x184D2204
+END_MARK = 0
+STORED_BIT = 0x80000000
+MAX_RATIO = 255
+"""The most bytes one byte of an lz4 block decompresses to (each byte of a match's length adds at most 255)."""
+LINK_WINDOW = 64 * 1024
+"""How far back a linked block may copy from (lz4's window)."""
+_BLOCK_MAX = {4: 64 * 1024, 5: 256 * 1024, 6: 1024 * 1024, 7: 4 * 1024 * 1024}
+
+_FLG_VERSION_SHIFT = 6
+_FLG_INDEPENDENT = 0x20
+_FLG_BLOCK_CHECKSUM = 0x10
+_FLG_CONTENT_SIZE = 0x08
+_FLG_CONTENT_CHECKSUM = 0x04
+_FLG_RESERVED = 0x02
+_FLG_DICT_ID = 0x01
+_BD_RESERVED = 0x8F
+
+
+class FrameError(ValueError):
+    """An lz4 frame that breaks the format or fails a checksum."""
+
+
+class _NotRead(Exception):
+    """A frame this module leaves to python-lz4, found out after its header."""
+
+
+def decompress_frame(data: bytes | memoryview, limit: int) -> tuple[list[bytes], bool] | None:
+    """The blocks of the lz4 frame at the start of ``data``, decompressed until they pass ``limit`` bytes or the
+    frame ends; and whether it ended (its end mark read and its content checksum, when it has one, matched).
+
+    None for a frame this does not read (see the module); :class:`FrameError` for a broken one (``lz4.block``
+    raises its own error for a block that does not decompress).
+    """
+    view = memoryview(data)
+    if len(view) < 7 or _U32.unpack_from(view, 0)[0] != FRAME_MAGIC:
+        return None
+    flg, bd = view[4], view[5]
+    if flg >> _FLG_VERSION_SHIFT != 1 or flg & (_FLG_RESERVED | _FLG_DICT_ID) or bd & _BD_RESERVED:
+        return None
+    block_max = _BLOCK_MAX.get(bd >> 4)
+    if block_max is None:
+        return None
+    import xxhash  # here: only chunks read from lz4 files need it
+
+    pos = 6 + (8 if flg & _FLG_CONTENT_SIZE else 0)
+    if len(view) <= pos:
+        return [], False  # cut short in its header
+    if view[pos] != (xxhash.xxh32_intdigest(view[4:pos]) >> 8) & 0xFF:
+        raise FrameError("the frame's header checksum does not match")
+    content_size = _U64.unpack_from(view, 6)[0] if flg & _FLG_CONTENT_SIZE else None
+    try:
+        parts, end = _blocks(view, pos + 1, flg, block_max, limit)
+    except _NotRead:
+        return None
+    if end is None:
+        return parts, False
+    if flg & _FLG_CONTENT_CHECKSUM:
+        if len(view) < end + 4:
+            return parts, False
+        parts = [parts[0] if len(parts) == 1 else b"".join(parts)]  # xxhash's one-shot hash is 5x its streaming one
+        if xxhash.xxh32_intdigest(parts[0]) != _U32.unpack_from(view, end)[0]:
+            raise FrameError("the frame's content checksum does not match")
+    got = sum(len(p) for p in parts)
+    if content_size is not None and content_size != got:
+        raise FrameError(f"the frame holds {got} bytes and declares {content_size}")
+    return parts, True
+
+
+def _blocks(view: memoryview, pos: int, flg: int, block_max: int, limit: int) -> tuple[list[bytes], int | None]:
+    """The frame's blocks from ``pos``: their bytes, and where the end mark ends (None when it was not reached
+    within the data or within ``limit`` bytes)."""
+    import lz4.block
+    import xxhash
+
+    linked = not flg & _FLG_INDEPENDENT
+    checked = bool(flg & _FLG_BLOCK_CHECKSUM)
+    parts: list[bytes] = []
+    got = 0
+    while got < limit:
+        if len(view) < pos + 4:
+            return parts, None
+        (size,) = _U32.unpack_from(view, pos)
+        pos += 4
+        if size == END_MARK:
+            return parts, pos
+        stored = bool(size & STORED_BIT)
+        size &= ~STORED_BIT
+        if size > block_max:
+            raise FrameError(f"a block of {size} bytes is over the frame's {block_max}-byte blocks")
+        if len(view) < pos + size + (4 if checked else 0):
+            return parts, None
+        block = view[pos:pos + size]
+        pos += size
+        if checked:
+            if xxhash.xxh32_intdigest(block) != _U32.unpack_from(view, pos)[0]:
+                raise FrameError("a block's checksum does not match")
+            pos += 4
+        if stored:
+            out = bytes(block)
+        elif linked and parts:
+            if len(parts[-1]) < LINK_WINDOW:
+                raise _NotRead  # a short block before a linked one: its window spans blocks; python-lz4 keeps it
+            out = lz4.block.decompress(block, uncompressed_size=_room(size, block_max),
+                                       dict=memoryview(parts[-1])[-LINK_WINDOW:])
+        else:
+            out = lz4.block.decompress(block, uncompressed_size=_room(size, block_max))
+        parts.append(out)
+        got += len(out)
+    return parts, None
+
+
+def _room(size: int, block_max: int) -> int:
+    """The buffer a compressed block of ``size`` bytes needs: a frame of many tiny blocks costs no large one each."""
+    return min(block_max, MAX_RATIO * size)

@@ -49,10 +49,10 @@ while not ros.is_shutdown():
 '''
 
 
-def write_counts(path: Path, count: int = 100, flush_every: int = 0) -> Path:
+def write_counts(path: Path, count: int = 100, flush_every: int = 0, compression: str = "none") -> Path:
     """``/count`` 0..count-1 and ``/odd`` (the odd ones), 10 ms apart, from T0; with ``flush_every`` a chunk
     ends after every that many counts (as the recorder's timer leaves them)."""
-    writer = open_writer(str(path))
+    writer = open_writer(str(path), compression)
     writer.add_connection(Connection(0, "/count", "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/c"))
     writer.add_connection(Connection(1, "/odd", "std_msgs/Int32", Int32._md5sum, Int32._full_text, "/o"))
     for i in range(count):

@@ -1,13 +1,16 @@
-"""A player's frames: each message of a bag as TCPROS sends it, a view of the chunk in a ``.bag``.
+"""A player's frames: each message of a bag as TCPROS sends it, a view of the chunk in a compressed ``.bag``, the
+region of the file in an uncompressed one.
 
 Every frame must be the message's 4-byte little-endian length and then exactly the bytes :meth:`payload` reads,
 in the order the player plays (time order, ties in file order; file order without an index), for both formats;
-and a view queued for a slow subscriber must not keep its chunk alive.
+a view queued for a slow subscriber must not keep its chunk alive; a region reaches a real socket whole, however
+little the socket takes at once, and a file cut short under it is the chunk's one-line error.
 """
 
 from __future__ import annotations
 
 import os
+import socket
 import struct
 from pathlib import Path
 
@@ -15,26 +18,31 @@ import pytest
 
 from rostui.core.bag.files import merged_messages, open_reader, open_writer
 from rostui.core.bag.frames import framed_messages, merged_framed_messages
-from rostui.core.bag.model import Connection
+from rostui.core.bag.model import Connection, Frame, MalformedRecord, frame_of
+from rostui.core.file_region import FileRegion
 
 from bag_view_helpers import STEP_NS, T0, Int32, write_counts
 
 
-def _plain(frame: bytes | memoryview) -> bytes:
-    (length,) = struct.unpack_from("<I", frame)
-    assert length == len(frame) - 4
-    return bytes(frame[4:])
+def _plain(frame: Frame) -> bytes:
+    whole = bytes(frame)
+    (length,) = struct.unpack_from("<I", whole)
+    assert length == len(whole) - 4 == len(frame) - 4
+    return whole[4:]
 
 
-@pytest.mark.parametrize("name", ["c.bag", "c.mcap"])
-def test_frames_are_the_payloads_with_their_length_in_play_order(tmp_path: Path, name: str) -> None:
-    path = str(write_counts(tmp_path / name, count=120, flush_every=25))
+@pytest.mark.parametrize("name,compression,kind", [("c.bag", "none", FileRegion), ("c.bag", "lz4", memoryview),
+                                                   ("c.bag", "bz2", memoryview), ("c.mcap", "lz4", bytes)])
+def test_frames_are_the_payloads_with_their_length_in_play_order(tmp_path: Path, name: str, compression: str,
+                                                                  kind: type) -> None:
+    """A ``.bag`` frame is the record's own length field and data: in the file when the chunk is plain, in the
+    decompressed chunk otherwise; MCAP's are copies with a length added."""
+    path = str(write_counts(tmp_path / name, count=120, flush_every=25, compression=compression))
     reader = open_reader(path)
     expected = [(c.topic, t, d) for c, t, d, _i in merged_messages([reader])]
     frames = list(framed_messages(reader))
     assert [(c.topic, t, _plain(f)) for c, t, f in frames] == expected
-    if name.endswith(".bag"):  # the record's own length field: no copy
-        assert all(isinstance(f, memoryview) for _c, _t, f in frames)
+    assert {type(f) for _c, _t, f in frames} <= {kind, *kind.__subclasses__()}
     reader.close()
 
 
@@ -86,6 +94,86 @@ def test_a_view_queued_for_a_slow_subscriber_is_copied(tmp_path: Path) -> None:
     assert [type(b) for b in link.backlog] == [bytes, bytes]
     assert list(link.backlog) == [chunk[100:150], chunk[200:250]]
     assert link.backlog_bytes == 100 and link.dropped == 1
+
+
+def _frames_of_a_plain_bag(tmp_path: Path) -> tuple[Path, list[FileRegion], list[bytes]]:
+    """An uncompressed bag of 300 std_msgs/String of 0 to 6 KB in 3 chunks: its frames (regions) and the frames'
+    bytes as its payloads give them."""
+    from rostui.core.msg import get_message_class
+
+    text = get_message_class("std_msgs/String")
+    path = tmp_path / "plain.bag"
+    writer = open_writer(str(path))
+    writer.add_connection(Connection(0, "/text", "std_msgs/String", text._md5sum, text._full_text, "/t"))
+    for i in range(300):
+        writer.write(0, T0 + i * STEP_NS, text(data=chr(65 + i % 26) * (i * 20)).serialize())
+        if i % 100 == 99:
+            writer.flush()
+    writer.close()
+    reader = open_reader(str(path))
+    frames = [f for _c, _t, f in framed_messages(reader)]
+    assert all(isinstance(f, FileRegion) for f in frames)
+    return path, frames, [frame_of(d) for _c, _t, d, _i in merged_messages([reader])]
+
+
+def test_regions_reach_a_socket_whole_however_little_it_takes_at_once(tmp_path: Path) -> None:
+    """A subscriber's link sends a region by sendfile while nothing waits before it; what a full socket does not
+    take is read and queued in the transport, and what follows waits behind it: the bytes arrive in order."""
+    from rostui.core.node.topics import OutgoingLink
+
+    _path, frames, expected = _frames_of_a_plain_bag(tmp_path)
+    ours, theirs = socket.socketpair()
+    ours.setblocking(False)
+    theirs.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+
+    class Transport:
+        """What uvloop's transport does with a write: send what the socket takes, queue the rest."""
+
+        def __init__(self) -> None:
+            self.queue = bytearray()
+            self.queued_writes = 0
+
+        def write(self, data: bytes) -> None:
+            self.queue += data
+            self.queued_writes += 1
+            self.flush()
+
+        def flush(self) -> None:
+            while self.queue:
+                try:
+                    sent = ours.send(self.queue)
+                except BlockingIOError:
+                    return
+                del self.queue[:sent]
+
+    transport = Transport()
+    link = OutgoingLink.__new__(OutgoingLink)
+    link.paused = False
+    link.conn = transport  # type: ignore[assignment]
+    link._sock = ours
+    link.messages_sent = link.bytes_sent = 0
+    link.can_send_direct = lambda: not transport.queue  # type: ignore[method-assign]
+    got = bytearray()
+    for number, frame in enumerate(frames):
+        link.send(frame)
+        if number % 10 == 9:  # a subscriber that reads now and then, a little at a time
+            got += theirs.recv(8192)
+            transport.flush()
+    want = sum(len(f) for f in expected)
+    while len(got) < want:
+        transport.flush()
+        got += theirs.recv(1 << 16)
+    assert bytes(got) == b"".join(expected)
+    assert 0 < transport.queued_writes < len(frames) / 2, "sendfile or the read-and-queue path went untried"
+    assert link.messages_sent == len(frames) and link.bytes_sent == want
+
+
+def test_a_file_cut_short_under_its_regions_is_the_chunks_error(tmp_path: Path) -> None:
+    path, frames, _expected = _frames_of_a_plain_bag(tmp_path)
+    os.truncate(path, frames[-1].offset + 2)
+    with pytest.raises(MalformedRecord, match=f"{path}: a chunk is cut short"):
+        frames[-1].read()
+    assert frames[0].read()  # what is still there reads
 
 
 @pytest.mark.parametrize("seed", range(6))

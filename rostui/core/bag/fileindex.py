@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from rostui.core.bag.inflate import inflate
-from rostui.core.bag.model import MalformedRecord, frame_of
+from rostui.core.bag.model import Frame, MalformedRecord, frame_of
 
 if TYPE_CHECKING:
     from rostui.core.bag.chunkinfo import ChunkInfos
@@ -114,7 +114,7 @@ class ChunkedFile:
         self._entries_scanned = False
         self._broken: dict[int, MalformedRecord] = {}
 
-    def frame(self, chunk: int, offset: int) -> bytes | memoryview:
+    def frame(self, chunk: int, offset: int) -> Frame:
         """The message :meth:`payload` finds, with TCPROS's 4-byte length before it."""
         return frame_of(self.payload(chunk, offset))
 

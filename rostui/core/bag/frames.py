@@ -3,7 +3,10 @@
 A ``.bag`` chunk stores each message's data right after its 4-byte length, which
 is exactly how TCPROS frames a message, so a frame is a view of the chunk the
 reader holds (:meth:`~rostui.core.bag.files.Reader.frame`): nothing is copied
-between the file and the socket.  Other formats add the prefix.
+between the file and the socket.  An uncompressed chunk without a CRC is not
+even read: its frames are regions of the file
+(:class:`~rostui.core.file_region.FileRegion`) the kernel sends itself.  Other
+formats add the prefix.
 
 Time order comes from the chunks (:func:`~rostui.core.bag.chunkorder.chunk_order`):
 memory follows the chunks in play, whatever the number of messages, and a
@@ -18,10 +21,10 @@ from typing import Any
 
 from rostui.core.bag.chunkorder import chunk_order
 from rostui.core.bag.files import Reader
-from rostui.core.bag.model import Connection, frame_of
+from rostui.core.bag.model import Connection, Frame, frame_of
 
 #: ``(connection, time_ns, frame)``: one message, its bytes framed as TCPROS sends them.
-FramedMessage = tuple[Connection, int, "bytes | memoryview"]
+FramedMessage = tuple[Connection, int, Frame]
 
 
 def framed_messages(reader: Reader) -> Iterator[FramedMessage]:

@@ -4,8 +4,14 @@ from __future__ import annotations
 
 import struct
 from dataclasses import dataclass, field
+from typing import Union
+
+from rostui.core.file_region import FileRegion
 
 _FRAME_LENGTH = struct.Struct("<I")
+
+Frame = Union[bytes, memoryview, FileRegion]
+"""A message as TCPROS frames it (its 4-byte length, then its bytes): in memory, or where it lies in a file."""
 
 MCAP_MAGIC = b"\x89MCAP0\r\n"
 """The bytes an MCAP file starts and ends with."""

@@ -20,8 +20,9 @@ from typing import Any, BinaryIO
 from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace
 from rostui.core.bag.inflate import inflate
 from rostui.core.bag.iov import Parts
-from rostui.core.bag.model import BagError, BagSummary, Connection, MalformedRecord, frame_of
+from rostui.core.bag.model import BagError, BagSummary, Connection, Frame, MalformedRecord, frame_of
 from rostui.core.bag.sink import AppendFile, open_append
+from rostui.core.file_region import FileRegion
 
 MAGIC = b"#ROSBAG V2.0\n"
 FILE_HEADER_LENGTH = 4096
@@ -31,6 +32,10 @@ FILE_HEADER_RECORD_SIZE = 4 + FILE_HEADER_LENGTH + 4
 OP_MSG_DATA, OP_FILE_HEADER, OP_INDEX_DATA, OP_CHUNK, OP_CHUNK_INFO, OP_CONNECTION = 2, 3, 4, 5, 6, 7
 COMPRESSIONS = ("none", "bz2", "lz4")
 _U32 = struct.Struct("<I")
+_UNCOMPRESSED = ("", "none")
+_RECORD_PEEK = 64
+"""Bytes read to find a message record's data: its header length, the header rosbag writes (op, conn and time:
+38 bytes) and the data length."""
 PAD_FIELD = "pad"
 """A chunk header field of spaces that puts the chunk's big message on a block boundary, so the recorder's
 direct writes take it without a copy (see :mod:`rostui.core.bag.sink`)."""
@@ -394,6 +399,21 @@ def _record_in(view: memoryview, pos: int, path: str, chunk_at: int) -> tuple[_R
     return _Record(path, chunk_at, pos, op, fields, view[data_at:data_at + dlen], data_at, dlen), data_at + dlen
 
 
+class _ChunkRegion(FileRegion):
+    """A message's frame in an uncompressed chunk: a file cut short while played is a malformed chunk."""
+
+    __slots__ = ("path", "record_at")
+
+    def __init__(self, fd: int, offset: int, length: int, path: str, record_at: int) -> None:
+        super().__init__(fd, offset, length)
+        self.path = path
+        self.record_at = record_at
+
+    def cut_short(self) -> Exception:
+        """The chunk's error, as reading it whole would give."""
+        return MalformedRecord(self.path, self.record_at, "a chunk is cut short")
+
+
 class BagReader(ChunkedFile):
     """Reads a rosbag v2.0 file in file order, or through its index; a file cut short reads up to its last
     complete chunk.
@@ -724,13 +744,37 @@ class BagReader(ChunkedFile):
         plain, data_at, end = self._data_in_chunk(chunk, offset)
         return plain[data_at:end]
 
-    def frame(self, chunk: int, offset: int) -> bytes | memoryview:
+    def frame(self, chunk: int, offset: int) -> Frame:
         """The message as :meth:`payload` finds it, with its 4-byte length before it, as TCPROS sends it: in a
-        chunk the record's own data-length field is that prefix, so this is a view of the chunk, not a copy."""
+        chunk the record's own data-length field is that prefix, so this is a view of the chunk, not a copy; in
+        an uncompressed chunk without a CRC to check, the region of the file that holds it (its chunk unread)."""
         if chunk == NO_CHUNK:
             return frame_of(self.payload(chunk, offset))
+        place = self.chunk_table[chunk]
+        if place.compression in _UNCOMPRESSED and not place.crc and place.plain_size == place.stored \
+                and place.data_at + place.stored <= self.size:
+            return self._region_in_chunk(place, offset)
         plain, data_at, end = self._data_in_chunk(chunk, offset)
         return memoryview(plain)[data_at - 4:end]
+
+    def _region_in_chunk(self, place: ChunkPlace, offset: int) -> FileRegion:
+        """The frame of the message record at ``offset`` of the uncompressed chunk at ``place``, as a region of
+        the file: only the record's header length and its data length are read (a syscall, 64 bytes)."""
+        end = place.stored
+        if 0 <= offset <= end - 8:
+            fd = self.file.fileno()
+            head = os.pread(fd, _RECORD_PEEK, place.data_at + offset)
+            if len(head) >= 4:
+                data_at = offset + 8 + _U32.unpack_from(head)[0]
+                if data_at <= end:
+                    length_field = head[data_at - 4 - offset:data_at - offset]
+                    if len(length_field) < 4:
+                        length_field = os.pread(fd, 4, place.data_at + data_at - 4)
+                    (dlen,) = _U32.unpack(length_field)
+                    if dlen <= end - data_at:
+                        return _ChunkRegion(fd, place.data_at + data_at - 4, dlen + 4, self.path, place.record_at)
+        raise MalformedRecord(self.path, place.record_at,
+                              f"the index places a message {offset} bytes into the chunk, where none fits")
 
     def _data_in_chunk(self, chunk: int, offset: int) -> tuple[bytes, int, int]:
         """Chunk ``chunk``'s plain bytes and where the data of the message record at ``offset`` starts and ends."""

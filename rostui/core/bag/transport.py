@@ -22,13 +22,14 @@ from __future__ import annotations
 import asyncio
 import time
 from collections.abc import Callable, Iterator
-from typing import Protocol
+from typing import Any, Protocol
 
 from rostui.core.bag.model import Connection
 from rostui.core.bag.precise_sleep import lower_timer_slack, sleep_until
 
-#: ``(connection, time_ns, raw bytes)``: one recorded message.
-MessageItem = tuple[Connection, int, bytes]
+#: ``(connection, time_ns, bytes)``: one recorded message; the transport hands its bytes to ``publish`` unlooked-at
+#: (bag view's: the payload; a player's: the frame, in memory or where it lies in the file).
+MessageItem = tuple[Connection, int, Any]
 
 SPIN_BEFORE = 0.003  # the last moments before a message are slept without the loop (its timers are ms-grained)
 LOOP_TURN_PERIOD = 0.02

@@ -25,6 +25,7 @@ import threading
 from threading import get_ident
 from typing import Any, Callable, Iterable, Iterator, Protocol, Sequence
 
+from rostui.core.file_region import FileRegion
 from rostui.core.localhost import connect_host
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.busypoll import BusyPoll
@@ -141,16 +142,26 @@ class OutgoingLink:
         self.remainder_pending = False
         self._sock = _direct_socket(conn)
 
-    def send(self, data: bytes | memoryview, count: int = 1) -> None:
+    def send(self, data: bytes | memoryview | FileRegion, count: int = 1) -> None:
         """Write framed bytes on the engine thread, or queue them while the peer is slow."""
         if self.paused:
             self._queue(data)
             return
-        self.conn.write(data)
+        if isinstance(data, FileRegion):
+            self._send_region(data)
+        else:
+            self.conn.write(data)
         self.messages_sent += count
         self.bytes_sent += len(data)
 
-    def _queue(self, data: bytes | memoryview) -> None:
+    def _send_region(self, region: FileRegion) -> None:
+        """A file's bytes to the socket by ``sendfile`` while nothing waits before them; what the socket does not
+        take at once (or all, when something waits) is read and goes through the transport."""
+        sent = region.send_to(self._sock) if self._sock is not None and self.can_send_direct() else 0
+        if sent < len(region):
+            self.conn.write(region.read(sent))
+
+    def _queue(self, data: bytes | memoryview | FileRegion) -> None:
         """Keep a message for a subscriber that does not keep up: within the queue size, else the byte bound."""
         backlog = self.backlog
         if self.gone:
@@ -167,8 +178,8 @@ class OutgoingLink:
             self.conn.drop(f"subscriber [{self.callerid}] of {self.pub.topic} does not keep up: over "
                            f"{self.max_backlog} bytes queued for it")
             return
-        if isinstance(data, memoryview):  # a view of a bag's chunk: queued, it would keep the whole chunk alive
-            data = data.tobytes()
+        if not isinstance(data, bytes):  # a view of a bag's chunk would keep it alive; a file's region is read
+            data = bytes(data)
         backlog.append(data)
         self.backlog_bytes += len(data)
 
@@ -441,15 +452,15 @@ class Publication:
                 link.send(data)
             self.messages_published += 1
 
-    def publish_frame(self, frame: bytes | memoryview) -> None:
-        """Send a message already framed as TCPROS sends it (its 4-byte length, then its bytes; a view of a bag's
-        chunk) to every subscriber, as :meth:`publish` would.
+    def publish_frame(self, frame: bytes | memoryview | FileRegion) -> None:
+        """Send a message already framed as TCPROS sends it (its 4-byte length, then its bytes: a view of a bag's
+        chunk, or the region of the file that holds them) to every subscriber, as :meth:`publish` would.
 
         On the engine thread, with no same-process subscriber and no latching, the frame goes out as it is;
         otherwise this is :meth:`publish` of a copy of its bytes.
         """
         if self.local or self.latch or get_ident() != self.node.loop_thread_id:
-            self.publish(AnyMsg(bytes(frame[4:])))
+            self.publish(AnyMsg(frame.read(4) if isinstance(frame, FileRegion) else bytes(frame[4:])))
             return
         with self.lock:
             for link in self.links:

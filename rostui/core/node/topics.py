@@ -149,17 +149,20 @@ class OutgoingLink:
             return
         if isinstance(data, FileRegion):
             self._send_region(data)
-        else:
-            self.conn.write(data)
+            return
+        self.conn.write(data)
         self.messages_sent += count
         self.bytes_sent += len(data)
 
     def _send_region(self, region: FileRegion) -> None:
         """A file's bytes to the socket by ``sendfile`` while nothing waits before them; what the socket does not
         take at once (or all, when something waits) is read and goes through the transport."""
+        length = region.length
         sent = region.send_to(self._sock) if self._sock is not None and self.can_send_direct() else 0
-        if sent < len(region):
+        if sent < length:
             self.conn.write(region.read(sent))
+        self.messages_sent += 1
+        self.bytes_sent += length
 
     def _queue(self, data: bytes | memoryview | FileRegion) -> None:
         """Keep a message for a subscriber that does not keep up: within the queue size, else the byte bound."""

@@ -175,7 +175,8 @@ class Player:
         """Publish one message of the stream: ``frame`` is its bytes as TCPROS frames them."""
         if self.clock is not None:
             self.clock.publish(t)
-        self._send_frame_of(conn)(frame)
+        known = self._senders.get(id(conn))
+        (known[1] if known is not None and known[0] is conn else self._send_frame_of(conn))(frame)
         if self.status is not None:
             self._show()
 

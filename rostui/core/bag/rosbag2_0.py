@@ -749,11 +749,12 @@ class BagReader(ChunkedFile):
     def frame(self, chunk: int, offset: int) -> Frame:
         """The message as :meth:`payload` finds it, with its 4-byte length before it, as TCPROS sends it: in a
         chunk the record's own data-length field is that prefix, so this is a view of the chunk, not a copy; in
-        an uncompressed chunk without a CRC to check, the region of the file that holds it (its chunk unread)."""
+        an uncompressed chunk (whole in the file, of the size it declares), the region of the file that holds it:
+        the chunk is not read (rosbag's chunks carry no CRC that reading would check)."""
         if chunk == NO_CHUNK:
             return frame_of(self.payload(chunk, offset))
         place = self.chunk_table[chunk]
-        if place.compression in _UNCOMPRESSED and not place.crc and place.plain_size == place.stored \
+        if place.compression in _UNCOMPRESSED and place.plain_size == place.stored \
                 and place.data_at + place.stored <= self.size:
             return self._region_in_chunk(place, offset)
         plain, data_at, end = self._data_in_chunk(chunk, offset)

@@ -391,8 +391,8 @@ class Transport:
         sent.  A message not wanted, the pass's end, or one due later leaves it to :meth:`run`.
 
         :meth:`_emit`, :meth:`_wanted` and :meth:`_wall_of` are written out here: after the sleep before each
-        message every call runs with cold caches, and the calls saved were a fifth of a player's CPU a
-        message (bench/README.md, "Bag play CPU", third pass)."""
+        message every call runs with cold caches, and the calls saved were about 7% of a player's CPU
+        (bench/README.md, "Bag play CPU", third pass)."""
         clock = self.clock
         sleep = time.sleep
         source = self.source

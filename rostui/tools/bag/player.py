@@ -164,19 +164,17 @@ class Player:
     def _accepts(self, conn: Connection) -> bool:
         return (conn.topic, conn.md5sum) in self.publishers
 
-    def _send_frame_of(self, conn: Connection) -> Callable[[Any], None]:
-        """The call that publishes ``conn``'s frames (looked up once a connection)."""
-        known = self._senders.get(id(conn))
-        if known is None or known[0] is not conn:
-            known = self._senders[id(conn)] = (conn, self.publishers[(conn.topic, conn.md5sum)].impl.publish_frame)
-        return known[1]
+    def _look_up_sender(self, conn: Connection) -> Callable[[Any], None]:
+        """The call that publishes ``conn``'s frames, remembered for the connection (:meth:`_publish` asks once)."""
+        self._senders[id(conn)] = (conn, self.publishers[(conn.topic, conn.md5sum)].impl.publish_frame)
+        return self._senders[id(conn)][1]
 
     def _publish(self, conn: Connection, t: int, frame: Any) -> None:
         """Publish one message of the stream: ``frame`` is its bytes as TCPROS frames them."""
         if self.clock is not None:
             self.clock.publish(t)
         known = self._senders.get(id(conn))
-        (known[1] if known is not None and known[0] is conn else self._send_frame_of(conn))(frame)
+        (known[1] if known is not None and known[0] is conn else self._look_up_sender(conn))(frame)
         if self.status is not None:
             self._show()
 

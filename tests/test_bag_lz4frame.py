@@ -1,8 +1,9 @@
-"""rostui's own lz4 frame reader (core/bag/lz4frame.py) against python-lz4's and Debian's roslz4.
+"""rostui's own lz4 frame reader and writer (core/bag/lz4frame.py) against python-lz4's and Debian's roslz4.
 
 Every frame form python-lz4 writes (block sizes, linked or independent blocks, block and content checksums,
 with and without the content size) and the frames of roslz4 (rosbag's lz4 library, run in Debian's Python)
-read back byte for byte without python-lz4's frame decoder; broken frames (a flipped byte under any checksum, a
+read back byte for byte without python-lz4's frame decoder; the frames rostui writes for .bag chunks are the bytes
+python-lz4's frame compressor writes in roslz4's form, and roslz4 reads them; broken frames (a flipped byte under any checksum, a
 frame cut short, a chunk that declares fewer bytes than its frame holds) are malformed records; forms it does
 not read go to python-lz4 and still read.
 """
@@ -19,7 +20,7 @@ import pytest
 import xxhash
 
 from rostui.core.bag.inflate import inflate
-from rostui.core.bag.lz4frame import FrameError, decompress_frame
+from rostui.core.bag.lz4frame import FrameError, compress_frame, decompress_frame
 from rostui.core.bag.model import MalformedRecord
 
 from conftest import SYSTEM_PYTHON, need_peer
@@ -70,6 +71,25 @@ def test_roslz4_frames_read_back_without_python_lz4s_frame_decoder() -> None:
                                input=data, capture_output=True, check=True).stdout
         assert frame[:7] == bytes.fromhex("04224d18646085"), name  # independent 1 MiB blocks, content checksum
         assert _read(frame) == data, name
+
+
+WRITTEN = {**SAMPLES, "noise 2.5 MB (three blocks, stored)": NOISE[:2_500_000],
+           "exactly one block": (NOISE[:300_000] + bytes(200_000)) * 2 + bytes(48_576)}
+
+
+def test_the_frames_rostui_writes_are_python_lz4s_in_roslz4s_form_and_roslz4_reads_them() -> None:
+    probe = subprocess.run([SYSTEM_PYTHON, "-c", "import roslz4"], capture_output=True)
+    need_peer(probe.returncode == 0, "roslz4 for Debian's Python (Debian python3-roslz4)")
+    for name, data in WRITTEN.items():
+        frame = compress_frame(data)
+        reference = lz4.frame.LZ4FrameCompressor(block_size=lz4.frame.BLOCKSIZE_MAX1MB, block_linked=False,
+                                                 content_checksum=True, auto_flush=True)
+        assert frame == reference.begin() + reference.compress(data) + reference.flush(), name
+        assert _read(frame) == data, name
+        back = subprocess.run([SYSTEM_PYTHON, "-c", "import sys, roslz4; "
+                               "sys.stdout.buffer.write(roslz4.decompress(sys.stdin.buffer.read()))"],
+                              input=frame, capture_output=True, check=True).stdout
+        assert back == data, name
 
 
 def _malformed(frame: bytes, declared: int) -> str:

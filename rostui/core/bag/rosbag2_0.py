@@ -101,16 +101,14 @@ def _roslz4_frame(data: bytes) -> bytes:
     """``data`` as one lz4 frame in the form roslz4 (rosbag's lz4 library) writes, the only form its reader
     takes: independent 1 MiB blocks, no block checksums, no content size, a content checksum.
 
-    roslz4 refuses linked blocks, python-lz4's default, which a chunk over one block needs.  The streaming
-    compressor keeps the 1 MiB block size id for small chunks too (``lz4.frame.compress`` would lower it), and
-    one ``compress`` call cuts blocks at every 1 MiB of the chunk, as roslz4 does.
+    roslz4 refuses linked blocks, python-lz4's default, which a chunk over one block needs, and keeps the
+    1 MiB block size id for small chunks too (``lz4.frame.compress`` would lower it).  Written block by block
+    (:func:`~rostui.core.bag.lz4frame.compress_frame`): python-lz4's frame compressor spends more on the
+    content checksum than on compressing.
     """
-    import lz4.frame
+    from rostui.core.bag.lz4frame import compress_frame
 
-    frame = lz4.frame.LZ4FrameCompressor(block_size=lz4.frame.BLOCKSIZE_MAX1MB, block_linked=False,
-                                         block_checksum=False, content_checksum=True, auto_flush=True)
-    packed: bytes = frame.begin() + frame.compress(data) + frame.flush()
-    return packed
+    return compress_frame(data)
 
 
 @dataclass(frozen=True)

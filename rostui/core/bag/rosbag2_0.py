@@ -403,9 +403,7 @@ class _ChunkRegion(FileRegion):
     __slots__ = ("path", "record_at")
 
     def __init__(self, fd: int, offset: int, length: int, path: str, record_at: int) -> None:
-        self.fd = fd  # FileRegion's fields set here, not by its __init__: a call less for each message played
-        self.offset = offset
-        self.length = length
+        super().__init__(fd, offset, length)
         self.path = path
         self.record_at = record_at
 

@@ -49,3 +49,38 @@ def test_sync_api_in_a_script(rostui_core: Any, ros_env: dict[str, str]) -> None
     assert "ticks >= 3: True" in lines
     assert "search /sync_api/gain has True" in lines
     assert lines[-2:] == ["hook ran", "ok False is_shutdown True"]
+
+
+INTERRUPTED = textwrap.dedent("""
+    import atexit, os, signal, threading
+    from rostui import client as ros
+
+    def engines_left():
+        print("engines at exit:", [t.name for t in threading.enumerate() if t.name == "rostui-engine" and t.is_alive()],
+              flush=True)
+
+    atexit.register(engines_left)  # before the node's: runs after its hooks
+    Pose = ros.msg("turtlesim/Pose")
+    ros.init_node("interrupted")
+    got = threading.Event()
+    count = []
+    def pose(msg):
+        count.append(msg)
+        if len(count) == 20:
+            got.set()
+    ros.Subscriber("turtle1/pose", Pose, pose)
+    pub = ros.Publisher("turtle1/pose", Pose, queue_size=10)
+    ros.Timer(0.002, lambda event: pub.publish(Pose(x=1.0)))
+    got.wait(20)
+    os.kill(os.getpid(), signal.SIGINT)  # Ctrl-C while messages arrive
+    ros.spin()
+    print("spun", flush=True)
+""")
+
+
+def test_ctrl_c_while_messages_arrive_stops_the_engine_before_exit(rostui_core: Any, ros_env: dict[str, str]) -> None:
+    """A node interrupted while messages arrive exits 0 with its engine's loop thread ended: a loop thread left
+    running while the interpreter finalizes can crash the process on its way out (it did, once, in CI: 139)."""
+    done = subprocess.run([sys.executable, "-c", INTERRUPTED], env=ros_env, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == ["spun", "engines at exit: []"], done.stdout

@@ -9,6 +9,7 @@ loop in a worker thread instead of deadlocking.
 from __future__ import annotations
 
 import asyncio
+import atexit
 import concurrent.futures
 import os
 import threading
@@ -38,7 +39,7 @@ def new_event_loop() -> asyncio.AbstractEventLoop:
 
 
 class Engine:
-    """Runs one asyncio loop on a daemon thread until stopped."""
+    """Runs one asyncio loop on a daemon thread until stopped, at the latest when the interpreter exits."""
 
     def __init__(self) -> None:
         self.loop = new_event_loop()
@@ -46,6 +47,11 @@ class Engine:
         self.thread = threading.Thread(target=self._run, name="rostui-engine", daemon=True)
         self.thread.start()
         self._ready.wait()
+        # A loop thread still running while the interpreter finalizes can take the GIL back from a uvloop callback
+        # after the interpreter's state is freed, and the process dies of SIGSEGV on its way out (a node Ctrl-C'd
+        # while messages arrive). Made before its node, the engine is stopped after the node's exit hook
+        # (atexit runs the last registered first). A callback that holds the loop past a second is left running.
+        atexit.register(self.stop, 1.0)
 
     def _run(self) -> None:
         asyncio.set_event_loop(self.loop)
@@ -99,9 +105,9 @@ class Engine:
         """Schedule a plain function on the loop from any thread."""
         self.loop.call_soon_threadsafe(fn, *args)
 
-    def stop(self) -> None:
-        """Stop the loop and join the thread."""
+    def stop(self, timeout: float = 5.0) -> None:
+        """Stop the loop and join the thread, waiting at most *timeout* seconds for the callback it runs."""
         if self.loop.is_running():
             self.loop.call_soon_threadsafe(self.loop.stop)
         if not self.on_engine_thread:
-            self.thread.join(timeout=5)
+            self.thread.join(timeout)

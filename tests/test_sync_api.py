@@ -84,3 +84,25 @@ def test_ctrl_c_while_messages_arrive_stops_the_engine_before_exit(rostui_core: 
     done = subprocess.run([sys.executable, "-c", INTERRUPTED], env=ros_env, capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr
     assert done.stdout.splitlines() == ["spun", "engines at exit: []"], done.stdout
+
+
+LATE_HOOK = textwrap.dedent("""
+    import atexit
+    from rostui import client as ros
+
+    def late():  # registered before the node: runs after its shutdown and its engine's stop
+        try:
+            ros.Publisher("late", ros.msg("std_msgs/String"), queue_size=1)
+        except Exception as exc:
+            print("late call:", type(exc).__name__, exc, flush=True)
+
+    atexit.register(late)
+    ros.init_node("late_hook")
+""")
+
+
+def test_a_call_after_the_engine_stopped_fails_at_once(rostui_core: Any, ros_env: dict[str, str]) -> None:
+    """An exit hook that advertises after the node's shutdown gets an error, not a wait for ever."""
+    done = subprocess.run([sys.executable, "-c", LATE_HOOK], env=ros_env, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == ["late call: RuntimeError the node's engine has stopped"], done.stdout

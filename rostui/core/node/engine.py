@@ -68,6 +68,9 @@ class Engine:
         if self.on_engine_thread:
             coro.close()
             raise RuntimeError("blocking engine call from the engine thread; use run_detached")
+        if not self.thread.is_alive():  # stopped (at exit, after its node's shutdown): nothing would run it
+            coro.close()
+            raise RuntimeError("the node's engine has stopped")
         future = asyncio.run_coroutine_threadsafe(coro, self.loop)
         try:
             return future.result(timeout)

@@ -2,7 +2,7 @@
 
 Every frame form python-lz4 writes (block sizes, linked or independent blocks, block and content checksums,
 with and without the content size) reads back byte for byte without python-lz4's frame decoder, as do the
-frames of roslz4, rosbag's lz4 library (Debian python3-roslz4, run by the system Python). The frames rostui
+frames of roslz4, rosbag's lz4 library, which the system Python runs (Debian python3-roslz4). The frames rostui
 writes for .bag chunks are the bytes python-lz4's frame compressor writes in roslz4's form, and roslz4 reads
 them. Broken frames (a flipped byte under any checksum, a frame cut short, a chunk that declares fewer bytes
 than its frame holds) are malformed records; forms it does not read go to python-lz4 and still read.
@@ -64,7 +64,7 @@ def test_every_frame_python_lz4_writes_reads_back(name: str, block_size: int, li
 def test_roslz4_frames_read_back_without_python_lz4s_frame_decoder() -> None:
     """Frames of roslz4 (what ``rosbag record --lz4`` writes), of each sample."""
     probe = subprocess.run([SYSTEM_PYTHON, "-c", "import roslz4"], capture_output=True)
-    need_peer(probe.returncode == 0, "roslz4 for the system Python (Debian python3-roslz4)")
+    need_peer(probe.returncode == 0, "roslz4 (Debian python3-roslz4)")
     for name, data in SAMPLES.items():
         frame = subprocess.run([SYSTEM_PYTHON, "-c", "import sys, roslz4; "
                                 "sys.stdout.buffer.write(roslz4.compress(sys.stdin.buffer.read()))"],
@@ -79,7 +79,7 @@ WRITTEN = {**SAMPLES, "noise 2.5 MB (three blocks, stored)": NOISE[:2_500_000],
 
 def test_the_frames_rostui_writes_are_python_lz4s_in_roslz4s_form_and_roslz4_reads_them() -> None:
     probe = subprocess.run([SYSTEM_PYTHON, "-c", "import roslz4"], capture_output=True)
-    need_peer(probe.returncode == 0, "roslz4 for the system Python (Debian python3-roslz4)")
+    need_peer(probe.returncode == 0, "roslz4 (Debian python3-roslz4)")
     for name, data in WRITTEN.items():
         frame = compress_frame(data)
         reference = lz4.frame.LZ4FrameCompressor(block_size=lz4.frame.BLOCKSIZE_MAX1MB, block_linked=False,

@@ -129,7 +129,9 @@ class Transport:
         self.tick_period = tick_period
         self.clock = clock
         self.disabled: set[str] = set()
-        self._wanted_cache: dict[int, bool] = {}  # id(connection): _wanted(connection), until a control call
+        # id(connection): the connection and its _wanted answer, until a control call (the id alone could be a
+        # later connection's, once a reader lets its first go)
+        self._wanted_cache: dict[int, tuple[Connection, bool]] = {}
         self.published = 0
         self.lateness: list[float] = []
         self.last_ns: int | None = None  # time of the last message published
@@ -408,10 +410,10 @@ class Transport:
             conn, t, data = item
             if until is not None and t > until:
                 return
-            ok = wanted.get(id(conn))
-            if ok is None:
-                ok = wanted[id(conn)] = self._wanted(conn)
-            if not ok:
+            known = wanted.get(id(conn))
+            if known is None or known[0] is not conn:
+                known = wanted[id(conn)] = (conn, self._wanted(conn))
+            if not known[1]:
                 return
             target = anchor_wall + (t - anchor_bag) / 1e9 / rate
             left = target - clock()

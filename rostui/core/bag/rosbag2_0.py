@@ -772,8 +772,7 @@ class BagReader(ChunkedFile):
                     (dlen,) = _U32.unpack(length_field)
                     if dlen <= end - data_at:
                         return _ChunkRegion(fd, place.data_at + data_at - 4, dlen + 4, self.path, place.record_at)
-        raise MalformedRecord(self.path, place.record_at,
-                              f"the index places a message {offset} bytes into the chunk, where none fits")
+        raise self._no_record_at(place, offset)
 
     def _data_in_chunk(self, chunk: int, offset: int) -> tuple[bytes, int, int]:
         """Chunk ``chunk``'s plain bytes and where the data of the message record at ``offset`` starts and ends."""
@@ -785,8 +784,12 @@ class BagReader(ChunkedFile):
                 (dlen,) = _U32.unpack_from(plain, data_at - 4)
                 if dlen <= end - data_at:
                     return plain, data_at, data_at + dlen
-        raise MalformedRecord(self.path, self.chunk_table[chunk].record_at,
-                              f"the index places a message {offset} bytes into the chunk, where none fits")
+        raise self._no_record_at(self.chunk_table[chunk], offset)
+
+    def _no_record_at(self, place: ChunkPlace, offset: int) -> MalformedRecord:
+        """The error for an index entry whose offset holds no whole message record of its chunk."""
+        return MalformedRecord(self.path, place.record_at,
+                               f"the index places a message {offset} bytes into the chunk, where none fits")
 
     def messages(self) -> Iterator[tuple[Connection, int, bytes]]:
         """``(connection, time_ns, data)`` in file order, up to the last complete chunk."""

@@ -1,12 +1,18 @@
-"""bag play holds a bounded number of decompressed chunks, whatever the bag's size and however many files."""
+"""bag play holds a bounded number of decompressed chunks, whatever the bag's size and however many files, and
+loads no module it does not use."""
 
 from __future__ import annotations
 
+import subprocess
 from pathlib import Path
+from typing import Any
 
 from rostui.core.bag.files import merged_messages, open_writer
 from rostui.core.bag.model import Connection
 from rostui.tools.bag.player import PLAY_CACHE_BYTES, open_bags
+
+from conftest import rostui_cmd, stop_process
+from interop_helpers import wait_for_publisher
 
 T0 = 1_700_000_000_000_000_000
 BLOB = 200_000  # bytes a message: four to a chunk, 40 MB in all (over the bound, under the old 64 MB a file)
@@ -39,3 +45,18 @@ def test_playing_two_big_files_keeps_a_bounded_cache(tmp_path: Path) -> None:
     finally:
         for reader in readers:
             reader.close()
+
+
+def test_a_player_loads_neither_uvloop_nor_openssl(ros_env: dict[str, str], rostui_core: Any, tmp_path: Path) -> None:
+    """bag play runs on asyncio's loop: uvloop and the OpenSSL it loads (5 MB, 8 ms of every start) stay out
+    of the process, as /proc/PID/maps shows while it plays."""
+    path = tmp_path / "blobs.bag"
+    write_blobs(path, 3, 0)
+    player = subprocess.Popen(rostui_cmd("bag", "play", "-q", "--pause", str(path)), env=ros_env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        wait_for_publisher(ros_env, "/blob")
+        maps = Path(f"/proc/{player.pid}/maps").read_text()
+        assert "uvloop" not in maps and "libssl" not in maps and "_ssl" not in maps
+    finally:
+        stop_process(player)

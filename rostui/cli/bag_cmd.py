@@ -107,7 +107,9 @@ def run_play(args: list[str], *, rate: float, loop_play: bool, pause: bool, star
         print("\nWaiting %.1f seconds after advertising topics... done.\n\nHit space to toggle paused, "
               "or 's' to step." % delay, flush=True)
     status = None if quiet else _status_writer(sys.stdout)
-    ev = new_event_loop()
+    # asyncio's loop: the player sleeps and sends without it, and it spares uvloop's import and OpenSSL's
+    # (8 of 90 ms of CPU of a start; bench/README.md, "Bag play CPU", fifth pass)
+    ev = new_event_loop(uvloop_wanted=False)
     try:
         ev.run_until_complete(play(opts, ros_args, status=status, controls=TerminalKeys()))
     except BagError as exc:

@@ -26,10 +26,13 @@ prefer_uvloop = True
 at import (5 MB): rospy scripts under ``rostui python`` turn it off to stay light."""
 
 
-def new_event_loop() -> asyncio.AbstractEventLoop:
-    """A new event loop: uvloop's when installed and wanted (:data:`ENV_LOOP`, :data:`prefer_uvloop`)."""
+def new_event_loop(uvloop_wanted: bool | None = None) -> asyncio.AbstractEventLoop:
+    """A new event loop: uvloop's when installed and wanted (:data:`ENV_LOOP`, else ``uvloop_wanted``, else
+    :data:`prefer_uvloop`)."""
     wanted = os.environ.get(ENV_LOOP, "").strip().lower()
-    if wanted == "asyncio" or (wanted != "uvloop" and not prefer_uvloop):
+    if uvloop_wanted is None:
+        uvloop_wanted = prefer_uvloop
+    if wanted == "asyncio" or (wanted != "uvloop" and not uvloop_wanted):
         return asyncio.new_event_loop()
     try:
         import uvloop

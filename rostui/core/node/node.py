@@ -27,6 +27,7 @@ from rostui.core import names
 from rostui.core.log import Console, LoggerTree, NodeLog, package_logger
 from rostui.core.memory import TUNE_DELAY, tune_allocator
 from rostui.core.network import Addressing, connect_host, master_uri_from_env, resolve_addressing
+from rostui.core.startup_gc import start_up_done
 from rostui.core.node.anymsg import AnyMsg
 from rostui.core.node.busypoll import BusyPoll, busy_poll_for
 from rostui.core.node.logging_link import NodeLogging
@@ -195,6 +196,7 @@ class AsyncNode:
             except BaseException:
                 await self.shutdown("could not register with the master")
                 raise
+        start_up_done()
         return self
 
     async def announce(self, *, publish_rosout: bool = True, logger_services: bool = True) -> None:

@@ -213,13 +213,13 @@ def test_clock_ticks_never_run_ahead_of_the_next_message(index: BagIndex) -> Non
     assert times == sorted(times)
 
 
-def test_messages_due_close_together_still_leave_the_loop_its_turns(tmp_path: Path) -> None:
-    """Messages 10 ms apart at ``-r 5`` (2 ms) go out without a loop turn each, but the loop still runs between
-    them at least every LOOP_TURN_PERIOD (20 ms) of the schedule: a callback on the loop sees playback part-way."""
-    reader = open_reader(str(write_counts(tmp_path / "dense.bag", count=100)))
+def _turns_seen(tmp_path: Path, count: int = 100, **options: float) -> set[int]:
+    """``count`` messages 10 ms apart played at ``-r 5`` (2 ms): how many had gone out each time a callback on
+    the loop looked, between the first and the last."""
+    reader = open_reader(str(write_counts(tmp_path / f"dense{count}.bag", count=count)))
     sink = Sink()
     transport = Transport(StreamSource(lambda: ((c, t, d) for c, t, d, _i in merged_messages([reader]))), sink,
-                          start_ns=T0, end_ns=T0 + 99 * STEP_NS, rate=5.0)
+                          start_ns=T0, end_ns=T0 + 99 * STEP_NS, rate=5.0, **options)
     seen: list[int] = []
 
     async def scenario() -> None:
@@ -227,16 +227,31 @@ def test_messages_due_close_together_still_leave_the_loop_its_turns(tmp_path: Pa
 
         def look() -> None:
             seen.append(len(sink.got))
-            if len(sink.got) < 150:
+            if len(sink.got) < every:
                 loop.call_later(0.005, look)
 
         look()
-        await until(lambda: len(sink.got) == 150, "every message")
+        await until(lambda: len(sink.got) == every, "every message")
 
+    every = count + count // 2  # /count and /odd
     drive(transport, scenario)
     reader.close()
-    part_way = {n for n in seen if 0 < n < 150}
-    # the schedule is 0.2 s long: 10 turns of 20 ms at least; a transport that turned the loop only where messages
-    # are far apart would show none
-    assert len(part_way) >= 3, seen
-    assert sink.values() == list(range(100))
+    assert sink.values() == list(range(count))
+    return {n for n in seen if 0 < n < every}
+
+
+def test_messages_due_close_together_still_leave_the_loop_its_turns(tmp_path: Path) -> None:
+    """They go out without a loop turn each, but the loop still runs between them at least every LOOP_TURN_PERIOD
+    (20 ms) of the schedule: a callback on the loop sees playback part-way."""
+    part_way = _turns_seen(tmp_path)
+    # the schedule is 0.2 s long: 9 turns of 20 ms part-way; a transport that turned the loop only where messages
+    # are far apart would show none, one whose turn ran callbacks only after the next batch 4
+    assert len(part_way) >= 7, part_way
+
+
+def test_a_longer_turn_period_turns_the_loop_less_often_but_still_turns_it(tmp_path: Path) -> None:
+    """A player's turn period (0.1 s) over a 0.6 s schedule: the loop runs part-way 5 times, against 29 at the
+    default 20 ms."""
+    player = _turns_seen(tmp_path, count=300, turn_period=0.1)
+    screen = _turns_seen(tmp_path, count=300)
+    assert 4 <= len(player) <= 6 and len(screen) >= 20, (player, screen)

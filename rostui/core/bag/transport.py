@@ -33,10 +33,18 @@ MessageItem = tuple[Connection, int, Any]
 
 SPIN_BEFORE = 0.003  # the last moments before a message are slept without the loop (its timers are ms-grained)
 LOOP_TURN_PERIOD = 0.02
-"""The longest the transport publishes messages due close together without giving the event loop a turn (s):
-keys, signals, new subscribers and slow sockets wait at most this long, and a turn is not paid per message."""
+"""The longest the transport publishes messages due close together without giving the event loop a turn (s), by
+default: keys, signals, new subscribers, slow sockets and a screen (bag view's) wait at most this long, and a turn
+is not paid per message.  A player without a screen takes longer (``turn_period``)."""
 TICK_PERIOD = 0.1
 SKIP_BATCH = 1000  # messages skipped (disabled topics) between two turns of the loop
+
+
+async def _turn() -> None:
+    """Give the event loop a turn: what it finds ready (sends, connections, signals, keys, timers) runs before this
+    returns.  One yield would only let the loop look: what it found runs after the caller's next step."""
+    await asyncio.sleep(0)
+    await asyncio.sleep(0)
 
 
 class MessageSource(Protocol):
@@ -103,7 +111,9 @@ class Transport:
     publisher exists); topics can further be switched off and on while
     playing. ``play_from``/``play_until`` bound what one pass plays (``-s``,
     ``-u``); ``hold_at_end`` keeps :meth:`run` alive, paused, at the end
-    instead of returning (the app). ``clock`` is the wall clock in seconds.
+    instead of returning (the app). ``turn_period`` is the longest the event
+    loop goes without a turn while messages are due close together
+    (:data:`LOOP_TURN_PERIOD`). ``clock`` is the wall clock in seconds.
     """
 
     def __init__(self, source: MessageSource, publish: Callable[[Connection, int, bytes], None], *,
@@ -111,7 +121,7 @@ class Transport:
                  play_from: int | None = None, play_until: int | None = None, hold_at_end: bool = False,
                  accepts: Callable[[Connection], bool] | None = None,
                  on_tick: Callable[[int], None] | None = None, tick_period: float = TICK_PERIOD,
-                 clock: Callable[[], float] = time.perf_counter) -> None:
+                 turn_period: float = LOOP_TURN_PERIOD, clock: Callable[[], float] = time.perf_counter) -> None:
         if not rate > 0:
             raise ValueError("the rate must be greater than 0")
         self.source = source
@@ -127,6 +137,7 @@ class Transport:
         self.accepts = accepts
         self.on_tick = on_tick
         self.tick_period = tick_period
+        self.turn_period = turn_period
         self.clock = clock
         self.disabled: set[str] = set()
         # id(connection): the connection and its _wanted answer, until a control call (the id alone could be a
@@ -356,7 +367,7 @@ class Transport:
             self.source.seek(self.play_from)
             self._positioned = True
         while not self.stopped:
-            await asyncio.sleep(0)  # the loop's turn: sends, connections, signals, keys
+            await _turn()
             item = self._pass_head()
             wanted = item is None or self._wanted(item[0])
             skipped = 0
@@ -384,7 +395,7 @@ class Transport:
             target = await self._wait_bag(item[1])
             if target is not None:
                 self._emit(item, target)
-                self._emit_due(target + LOOP_TURN_PERIOD)
+                self._emit_due(target + self.turn_period)
         return self.published
 
     def _emit_due(self, turn_by: float) -> None:

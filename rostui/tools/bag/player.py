@@ -25,6 +25,11 @@ from rostui.core.bag.model import BagError, BagSummary, Connection
 from rostui.core.bag.transport import MessageItem, StreamSource, Transport
 
 STATUS_PERIOD = 0.1
+TURN_PERIOD = 0.1
+"""The longest the player publishes messages due close together without a turn of its event loop (s): keys,
+Ctrl-C and new subscribers wait at most this long (a screen's 20 ms is for bag view).  About 25 µs of CPU a
+turn: 40 turns a second fewer than at 20 ms are 3% of a 20 s play's CPU (bench/README.md, "Bag play CPU",
+fifth pass)."""
 PLAY_CACHE_BYTES = int(os.environ.get("ROSTUI_BAG_PLAY_CACHE_BYTES", str(16 * 1024 * 1024)))
 """Bytes of decompressed chunks the player keeps, shared by its files: it reads in time order, so a chunk
 left behind is read again only where chunks overlap in time (about 20 chunks of rosbag's 768 KB may
@@ -136,7 +141,7 @@ class Player:
         self.transport = Transport(StreamSource(self._stream), self._publish, start_ns=self.bag_start,
                                    end_ns=self.bag_end, rate=opts.rate, loop=opts.loop, paused=opts.start_paused,
                                    play_from=play_from, play_until=play_until, accepts=self._accepts,
-                                   on_tick=self._on_tick, tick_period=tick)
+                                   on_tick=self._on_tick, tick_period=tick, turn_period=TURN_PERIOD)
 
     def _stream(self) -> Iterator[MessageItem]:
         return merged_framed_messages(self.readers)  # items carry frames, not payloads: see _publish

@@ -108,7 +108,7 @@ def run_play(args: list[str], *, rate: float, loop_play: bool, pause: bool, star
               "or 's' to step." % delay, flush=True)
     status = None if quiet else _status_writer(sys.stdout)
     # asyncio's loop: the player sleeps and sends without it, and it spares uvloop's import and OpenSSL's
-    # (8 of 90 ms of CPU of a start; bench/README.md, "Bag play CPU", fifth pass)
+    # (8 of 83 ms of CPU of a start; bench/README.md, "Bag play CPU", fifth pass)
     ev = new_event_loop(uvloop_wanted=False)
     try:
         ev.run_until_complete(play(opts, ros_args, status=status, controls=TerminalKeys()))

@@ -107,7 +107,7 @@ def main() -> None:
     from rostui.compat.deferred import import_lean
     from rostui.core.startup_gc import collect_rarely
 
-    collect_rarely()  # until the command's node has started (25 ms of a small bag's play)
+    collect_rarely()  # until the command's node has started (27 ms of a small bag's play)
     import_lean()  # no OpenSSL or http.client until a command uses them (15-35 ms of every node's start)
     from rostui.cli.tree import main as full_cli
 

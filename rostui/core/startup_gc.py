@@ -3,7 +3,7 @@
 A command's start (Typer, asyncio, a node's modules, a bag's index, the node's registration) makes a few
 hundred thousand objects and next to no garbage.  At Python's default first threshold (a collection every
 700 new objects) the collector walks them again and again, and at exit the interpreter's teardown walks
-them once more: 25 ms of the 115 ms of CPU that ``rostui bag play`` spent on a ten-message bag
+them once more: 27 ms of the 120 ms of CPU that ``rostui bag play`` spent on a ten-message bag
 (bench/README.md, "Bag play CPU", fifth pass).  The CLI calls :func:`collect_rarely` before its commands
 load; a node calls :func:`start_up_done` once it has started, which freezes what is alive (``gc.freeze``:
 later collections and the teardown skip it) and restores the threshold.  A command that starts no node

@@ -28,7 +28,7 @@ STATUS_PERIOD = 0.1
 TURN_PERIOD = 0.1
 """The longest the player publishes messages due close together without a turn of its event loop (s): keys,
 Ctrl-C and new subscribers wait at most this long (a screen's 20 ms is for bag view).  About 25 µs of CPU a
-turn: 40 turns a second fewer than at 20 ms are 3% of a 20 s play's CPU (bench/README.md, "Bag play CPU",
+turn: 40 turns a second fewer than at 20 ms are about 6% of a 20 s play's CPU (bench/README.md, "Bag play CPU",
 fifth pass)."""
 PLAY_CACHE_BYTES = int(os.environ.get("ROSTUI_BAG_PLAY_CACHE_BYTES", str(16 * 1024 * 1024)))
 """Bytes of decompressed chunks the player keeps, shared by its files: it reads in time order, so a chunk

@@ -244,13 +244,14 @@ def test_messages_due_close_together_still_leave_the_loop_its_turns(tmp_path: Pa
     """They go out without a loop turn each, but the loop still runs between them at least every LOOP_TURN_PERIOD
     (20 ms) of the schedule: a callback on the loop sees playback part-way."""
     part_way = _turns_seen(tmp_path)
-    # the schedule is 0.2 s long: 9 turns of 20 ms part-way; a transport that turned the loop only where messages
-    # are far apart would show none, one whose turn ran callbacks only after the next batch 4
-    assert len(part_way) >= 7, part_way
+    # the schedule is 0.2 s long: 9 turns of 20 ms part-way (a look re-armed less than 5 ms before a turn misses
+    # it: a stall can cost one); a transport that turned the loop only where messages are far apart would show
+    # none, one whose turn ran callbacks only after the next batch 4
+    assert len(part_way) >= 6, part_way
 
 
 def test_a_longer_turn_period_turns_the_loop_less_often_but_still_turns_it(tmp_path: Path) -> None:
-    """A player's turn period (0.1 s) over a 0.6 s schedule: the loop runs part-way 5 times, against 29 at the
+    """A player's turn period (0.1 s) over a 0.6 s schedule: the loop runs part-way 5 times, against 27 at the
     default 20 ms."""
     player = _turns_seen(tmp_path, count=300, turn_period=0.1)
     screen = _turns_seen(tmp_path, count=300)

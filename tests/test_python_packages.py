@@ -5,7 +5,7 @@ modules rostui does not provide.
   its messages import.
 - A package whose source tree holds its own Python (``src/<pkg>/__init__.py``, catkin's layout) is that
   Python, with its messages beside it (``<pkg>.msg``), as in a catkin devel space.
-- A package whose real Python module rostui lacks (Debian installed one beside its messages) fails at the
+- A package whose real Python module rostui lacks (one that Debian installed beside its messages) fails at the
   import, naming the module and docs/rospy.md, never as an empty module that fails later.
 """
 

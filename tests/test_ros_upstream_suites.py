@@ -25,7 +25,7 @@ OFFLINE_SUITES = sorted(
                                                     "test_rosgraph_masterapi_offline.py")]
 )
 #: Tests that fail under Debian's rospkg as they do under rostui's, for the same reason: both add folders
-#: after ROS_PACKAGE_PATH (Debian /usr/share, rostui its built-in packages and /usr/share), so
+#: after ROS_PACKAGE_PATH (/usr/share for Debian's rospkg; its built-in packages, then /usr/share, for rostui's), so
 #: ``get_ros_package_path`` is never None and a RosPack with no ROS environment still finds roscpp.
 FAIL_UNDER_BOTH = {"test_get_ros_package_path", "test_RosPack_no_env"}
 

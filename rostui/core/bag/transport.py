@@ -20,6 +20,8 @@ loop, with the timer slack lowered and no spin
 from __future__ import annotations
 
 import asyncio
+import collections
+import itertools
 import time
 from collections.abc import Callable, Iterator
 from typing import Any, Protocol
@@ -37,6 +39,8 @@ LOOP_TURN_PERIOD = 0.02
 default: keys, signals, new subscribers, slow sockets and a screen (bag view's) wait at most this long, and a turn
 is not paid per message.  A player without a screen takes longer (``turn_period``)."""
 TICK_PERIOD = 0.1
+READ_AHEAD = 64
+"""Messages a :class:`StreamSource` reads at a time."""
 SKIP_BATCH = 1000  # messages skipped (disabled topics) between two turns of the loop
 
 
@@ -67,40 +71,68 @@ class StreamSource:
     """Messages from a stream that can only be read forwards (files read in order).
 
     ``open_stream`` starts a new pass over the messages; seeking backwards
-    starts a new pass and skips to the target.
+    starts a new pass and skips to the target. Messages are read
+    :data:`READ_AHEAD` at a time: a player sleeps before each message, and the
+    stream's code run between two sleeps ran with cold caches (about 5 µs a
+    message more than in one run: bench/README.md, "Bag play CPU", sixth pass).
+    An error of the stream is raised where it stands, after the messages
+    before it.
     """
 
     def __init__(self, open_stream: Callable[[], Iterator[MessageItem]]) -> None:
         self._open = open_stream
         self._stream: Iterator[MessageItem] | None = None
-        self._head: MessageItem | None = None
+        self._ahead: collections.deque[MessageItem] = collections.deque()
+        self._error: BaseException | None = None
         self._last_ns: int | None = None  # time of the last message moved past
 
     def _start(self) -> None:
         self._stream = self._open()
-        self._head = next(self._stream, None)
+        self._ahead.clear()
+        self._error = None
         self._last_ns = None
+        self._read_ahead()
+
+    def _read_ahead(self) -> None:
+        """Read up to READ_AHEAD more messages; an error is kept for when the messages before it are used."""
+        stream, ahead = self._stream, self._ahead
+        if stream is None or self._error is not None:
+            return
+        try:
+            for item in itertools.islice(stream, READ_AHEAD):
+                ahead.append(item)
+        except Exception as exc:  # noqa: BLE001 - raised again in its place (peek)
+            self._error = exc
+            self._stream = iter(())
 
     def peek(self) -> MessageItem | None:
         """The message at the read position, or None at the end."""
+        if self._ahead:
+            return self._ahead[0]
         if self._stream is None:
             self._start()
-        return self._head
+        else:
+            self._read_ahead()
+        if self._ahead:
+            return self._ahead[0]
+        if self._error is not None:
+            error, self._error = self._error, None
+            raise error  # once, as the stream itself raised it; it has ended
+        return None
 
     def advance(self) -> None:
         """Move past the message at the read position."""
-        if self._stream is None:
-            self._start()
-        if self._head is not None:
-            self._last_ns = self._head[1]
-            assert self._stream is not None
-            self._head = next(self._stream, None)
+        if self._ahead or self.peek() is not None:
+            self._last_ns = self._ahead.popleft()[1]
 
     def seek(self, t_ns: int) -> None:
         """Move to the first message at ``t_ns`` or later (a new pass when that lies behind)."""
         if self._stream is None or (self._last_ns is not None and self._last_ns >= t_ns):
             self._start()
-        while self._head is not None and self._head[1] < t_ns:
+        while True:
+            head = self.peek()
+            if head is None or head[1] >= t_ns:
+                return
             self.advance()
 
 

@@ -25,6 +25,11 @@ from rostui.core.bag.model import BagError, BagSummary, Connection
 from rostui.core.bag.transport import MessageItem, StreamSource, Transport
 
 STATUS_PERIOD = 0.1
+QUIET_TICK_PERIOD = 1.0
+"""How long a player with no status line and no /clock waits at most before it looks at its schedule again (s):
+nothing is shown while it waits, and controls wake it at once.  Each wake-up of an idle process costs this
+VM 50-70 µs of CPU (bench/README.md, "Bag play CPU", sixth pass): ten a second were 4 ms of CPU a second
+through a bag's quiet stretches."""
 TURN_PERIOD = 0.1
 """The longest the player publishes messages due close together without a turn of its event loop (s): keys,
 Ctrl-C and new subscribers wait at most this long (a screen's 20 ms is for bag view).  About 25 µs of CPU a
@@ -138,6 +143,8 @@ class Player:
         self.stats = PlayStats()
         self._last_status = 0.0
         tick = STATUS_PERIOD if self.clock is None else self.clock.tick_period(STATUS_PERIOD)
+        if self.clock is None and status is None:
+            tick = QUIET_TICK_PERIOD
         self.transport = Transport(StreamSource(self._stream), self._publish, start_ns=self.bag_start,
                                    end_ns=self.bag_end, rate=opts.rate, loop=opts.loop, paused=opts.start_paused,
                                    play_from=play_from, play_until=play_until, accepts=self._accepts,

@@ -127,11 +127,19 @@ def test_regions_reach_a_socket_whole_however_little_it_takes_at_once(tmp_path: 
     theirs.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
 
     class Transport:
-        """What uvloop's transport does with a write: send what the socket takes, queue the rest."""
+        """What an asyncio transport does with a write: send what the socket takes, queue the rest (the link's
+        connection, and its transport)."""
 
         def __init__(self) -> None:
             self.queue = bytearray()
             self.queued_writes = 0
+            self.transport = self
+
+        def is_closing(self) -> bool:
+            return False
+
+        def get_write_buffer_size(self) -> int:
+            return len(self.queue)
 
         def write(self, data: bytes) -> None:
             self.queue += data
@@ -151,8 +159,9 @@ def test_regions_reach_a_socket_whole_however_little_it_takes_at_once(tmp_path: 
     link.paused = False
     link.conn = transport  # type: ignore[assignment]
     link._sock = ours
+    link._sock_fd = ours.fileno()
+    link.remainder_pending = False
     link.messages_sent = link.bytes_sent = 0
-    link.can_send_direct = lambda: not transport.queue  # type: ignore[method-assign]
     got = bytearray()
     for number, frame in enumerate(frames):
         link.send(frame)

@@ -12,11 +12,11 @@ subscriber, less under a bare one).
 from __future__ import annotations
 
 import os
-import socket
 
 
 class FileRegion:
-    """``length`` bytes at ``offset`` of the open file ``fd``: what :meth:`send_to` sends, :meth:`read` reads."""
+    """``length`` bytes at ``offset`` of the open file ``fd``: what a subscriber's link hands to ``os.sendfile``,
+    and what :meth:`read` reads."""
 
     __slots__ = ("fd", "offset", "length")
 
@@ -30,14 +30,6 @@ class FileRegion:
 
     def __bytes__(self) -> bytes:
         return self.read()
-
-    def send_to(self, sock: socket.socket) -> int:
-        """How many of the bytes the (non-blocking) socket took at once: 0 when it is full or broken (its
-        transport sees a broken one)."""
-        try:
-            return os.sendfile(sock.fileno(), self.fd, self.offset, self.length)
-        except OSError:
-            return 0
 
     def read(self, start: int = 0) -> bytes:
         """The bytes from ``start`` on; :meth:`cut_short` when the file no longer holds them all."""

@@ -148,30 +148,32 @@ class OutgoingLink:
         if self.paused:
             self._queue(data)
             return
-        if isinstance(data, FileRegion):
-            self._send_region(data)
+        if not isinstance(data, bytes):
+            self._send_frame(data)
             return
         self.conn.write(data)
         self.messages_sent += count
         self.bytes_sent += len(data)
 
-    def _send_region(self, region: FileRegion) -> None:
-        """A file's bytes to the socket by ``sendfile`` while nothing waits before them; what the socket does not
-        take at once (or all, when something waits) is read and goes through the transport.
+    def _send_frame(self, frame: memoryview | FileRegion) -> None:
+        """A bag's message to the socket at once while nothing waits before it (a view of a chunk by ``send``, a
+        file's region by ``sendfile``); what the socket does not take (all, when something waits) goes through
+        the transport, a region's bytes read first.
 
-        :meth:`can_send_direct` and :meth:`FileRegion.send_to` are written out here: a player calls this once a
-        message, after a sleep, with cold caches (bench/README.md, "Bag play CPU", sixth pass)."""
-        length = region.length
+        :meth:`can_send_direct` is written out here, and the transport's own write skipped: a player calls this
+        once a message, after a sleep, with cold caches (bench/README.md, "Bag play CPU", sixth pass)."""
+        length = len(frame)
         sent = 0
         transport = self.conn.transport
         if self._sock is not None and not self.remainder_pending and transport is not None \
                 and not transport.is_closing() and not transport.get_write_buffer_size():
             try:
-                sent = os.sendfile(self._sock_fd, region.fd, region.offset, length)
+                sent = os.sendfile(self._sock_fd, frame.fd, frame.offset, length) if isinstance(frame, FileRegion) \
+                    else self._sock.send(frame)
             except OSError:
                 sent = 0  # a full socket, or a broken one (its transport sees that)
         if sent < length:
-            self.conn.write(region.read(sent))
+            self.conn.write(frame.read(sent) if isinstance(frame, FileRegion) else frame[sent:])
         self.messages_sent += 1
         self.bytes_sent += length
 

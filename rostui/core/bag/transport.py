@@ -73,8 +73,8 @@ class StreamSource:
     ``open_stream`` starts a new pass over the messages; seeking backwards
     starts a new pass and skips to the target. Messages are read
     :data:`READ_AHEAD` at a time: a player sleeps before each message, and the
-    stream's code run between two sleeps ran with cold caches (about 5 µs a
-    message more than in one run: bench/README.md, "Bag play CPU", sixth pass).
+    stream's code, run once between two sleeps, ran with cold caches every time
+    (bench/README.md, "Bag play CPU", sixth pass).
     An error of the stream is raised where it stands, after the messages
     before it.
     """

@@ -94,13 +94,12 @@ class StreamSource:
         self._read_ahead()
 
     def _read_ahead(self) -> None:
-        """Read up to READ_AHEAD more messages; an error is kept for when the messages before it are used."""
-        stream, ahead = self._stream, self._ahead
-        if stream is None or self._error is not None:
+        """Read up to READ_AHEAD more messages; an error is kept for when the messages before it are used, and
+        ends the stream."""
+        if self._stream is None:
             return
         try:
-            for item in itertools.islice(stream, READ_AHEAD):
-                ahead.append(item)
+            self._ahead.extend(itertools.islice(self._stream, READ_AHEAD))
         except Exception as exc:  # noqa: BLE001 - raised again in its place (peek)
             self._error = exc
             self._stream = iter(())

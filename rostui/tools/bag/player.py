@@ -142,9 +142,10 @@ class Player:
         self.stop = asyncio.Event()
         self.stats = PlayStats()
         self._last_status = 0.0
-        tick = STATUS_PERIOD if self.clock is None else self.clock.tick_period(STATUS_PERIOD)
-        if self.clock is None and status is None:
-            tick = QUIET_TICK_PERIOD
+        if self.clock is not None:
+            tick = self.clock.tick_period(STATUS_PERIOD)
+        else:
+            tick = STATUS_PERIOD if status is not None else QUIET_TICK_PERIOD
         self.transport = Transport(StreamSource(self._stream), self._publish, start_ns=self.bag_start,
                                    end_ns=self.bag_end, rate=opts.rate, loop=opts.loop, paused=opts.start_paused,
                                    play_from=play_from, play_until=play_until, accepts=self._accepts,

@@ -77,7 +77,9 @@ def test_count_listing_reaches_console_rosout_agg_and_rosout_log(rostui_core: An
     async def scenario() -> list[Any]:
         node = await AsyncNode("log_watcher").start()
         seen: list[Any] = []
-        await node.subscribe("/rosout_agg", Log, lambda m: seen.append(m) if m.name == "/count_and_log" else None)
+        agg_sub = await node.subscribe("/rosout_agg", Log,
+                                       lambda m: seen.append(m) if m.name == "/count_and_log" else None)
+        await until(lambda: agg_sub.get_num_connections() > 0)  # else the first lines can pass before it connects
         proc = await asyncio.create_subprocess_exec(sys.executable, "-c", COUNT_SCRIPT, env=ros_env,
                                                     stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.PIPE)
         out, err = await proc.communicate()

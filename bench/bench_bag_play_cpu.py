@@ -10,7 +10,9 @@ script; its CPU (user + system of it and every process it waited for, from
 ``wait4``) is read when it exits. ``rosbag play`` is Debian's command as users
 run it: a Python script that starts the C++ ``play`` program; its C++ part
 alone is reported too. Rounds are interleaved; the subscriber must receive
-every message of every run, or the run counts as failed.
+every message of every run, or the run counts as failed. The summary gives the
+ratio of the medians and rostui's ratio within each round (its run and
+``rosbag play``'s back to back) with their median.
 
     .venv/bin/python bench/bench_bag_play_cpu.py                 # 3 rounds, about 5 minutes
     .venv/bin/python bench/bench_bag_play_cpu.py --load 2        # with two busy-looping processes
@@ -118,6 +120,12 @@ def cpp_play_cpu(bag: Path, env: dict[str, str]) -> dict[str, float]:
     return run_player([play, "-q", "-d", "1", "-r", PLAY_RATE, str(bag)], env)
 
 
+def paired_ratios(ours: list[dict[str, float]], theirs: list[dict[str, float]]) -> list[float]:
+    """rostui's CPU over rosbag's within each round: the two ran minutes apart at most, so a machine whose speed
+    drifts over a run (this VM's does, by a third) moves both sides of each ratio alike."""
+    return [a["cpu"] / b["cpu"] for a, b in zip(ours, theirs)]
+
+
 def main() -> int:
     """Build the bags, run the rounds, print medians and ratios."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -198,10 +206,14 @@ def main() -> int:
     for comp in bags:
         med = {k: statistics.median(r["cpu"] for r in results[f"{k} {comp}"]) for k in kinds}
         complete = all(r["received"] == MESSAGES for k in kinds for r in results[f"{k} {comp}"])
+        paired = paired_ratios(results[f"rostui {comp}"], results[f"rosbag {comp}"])
         summary[comp] = {**med, "rostui/rosbag": med["rostui"] / med["rosbag"],
-                         "rostui/rosbag-cpp": med["rostui"] / med["rosbag-cpp"], "complete": complete}
+                         "rostui/rosbag-cpp": med["rostui"] / med["rosbag-cpp"],
+                         "rostui/rosbag by round": statistics.median(paired), "complete": complete}
         print(f"  {comp:4}: rosbag play {med['rosbag']:.2f} (its C++ play alone {med['rosbag-cpp']:.2f}),"
-              f" rostui {med['rostui']:.2f}: rostui/rosbag {summary[comp]['rostui/rosbag']:.2f}x,"
+              f" rostui {med['rostui']:.2f}: rostui/rosbag {summary[comp]['rostui/rosbag']:.2f}x"
+              f" (each round: {', '.join(f'{r:.2f}' for r in paired)}; their median"
+              f" {summary[comp]['rostui/rosbag by round']:.2f}x),"
               f" rostui/C++ play {summary[comp]['rostui/rosbag-cpp']:.2f}x;"
               + (f" before {med['before']:.2f} ({med['before'] / med['rosbag']:.2f}x);" if "before" in med else "")
               +

@@ -163,7 +163,6 @@ def test_frames_reach_a_socket_whole_however_little_it_takes_at_once(tmp_path: P
     link.paused = False
     link.conn = transport  # type: ignore[assignment]
     link._sock = ours
-    link._sock_fd = ours.fileno()
     link.remainder_pending = False
     link.messages_sent = link.bytes_sent = 0
     got = bytearray()

@@ -141,7 +141,6 @@ class OutgoingLink:
         self.id = pub.node.next_connection_id()
         self.remainder_pending = False
         self._sock = _direct_socket(conn)
-        self._sock_fd = self._sock.fileno() if self._sock is not None else -1
 
     def send(self, data: bytes | memoryview | FileRegion, count: int = 1) -> None:
         """Write framed bytes on the engine thread, or queue them while the peer is slow."""
@@ -158,18 +157,14 @@ class OutgoingLink:
     def _send_frame(self, frame: memoryview | FileRegion) -> None:
         """A bag's message to the socket at once while nothing waits before it (a view of a chunk by ``send``, a
         file's region by ``sendfile``); what the socket does not take (all, when something waits) goes through
-        the transport, a region's bytes read first.
-
-        :meth:`can_send_direct` is written out here, and the transport's own write skipped: a player calls this
-        once a message, after a sleep, with cold caches (bench/README.md, "Bag play CPU", sixth pass)."""
+        the transport, a region's bytes read first."""
         length = len(frame)
         sent = 0
-        transport = self.conn.transport
-        if self._sock is not None and not self.remainder_pending and transport is not None \
-                and not transport.is_closing() and not transport.get_write_buffer_size():
+        sock = self._sock
+        if sock is not None and self.can_send_direct():
             try:
-                sent = os.sendfile(self._sock_fd, frame.fd, frame.offset, length) if isinstance(frame, FileRegion) \
-                    else self._sock.send(frame)
+                sent = os.sendfile(sock.fileno(), frame.fd, frame.offset, length) if isinstance(frame, FileRegion) \
+                    else sock.send(frame)
             except OSError:
                 sent = 0  # a full socket, or a broken one (its transport sees that)
         if sent < length:

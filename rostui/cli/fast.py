@@ -4,8 +4,9 @@ Scripts call `rostui topic list` or `rostui param get NAME` in loops; loading
 Typer costs more than the query itself.  Exactly these plain forms (no
 options) run here, through the same ``rostui.tools`` functions the Typer
 commands use; anything else, including ``--help``, goes to the full CLI.
-`rostui core [-p PORT]` and `rostui python SCRIPT ...` (:mod:`rostui.cli.python_fast`)
-start here too: launches and test suites start them by the hundred.
+`rostui core [-p PORT]`, `rostui python SCRIPT ...` (:mod:`rostui.cli.python_fast`) and
+`rostui bag play` (:mod:`rostui.cli.bag_play_fast`) start here too: launches and test suites start
+them by the hundred, and a player's start is part of what it costs beside `rosbag play`.
 """
 
 from __future__ import annotations
@@ -99,6 +100,12 @@ def main() -> None:
         from rostui.cli.blas_threads import single_threaded_blas
 
         single_threaded_blas()
+    if argv[:2] == ["bag", "play"]:
+        from rostui.cli.bag_play_fast import run_plain as play_plain
+
+        code = play_plain(argv[2:])
+        if code is not None:
+            raise SystemExit(code)
     entry = FAST.get((argv[0], argv[1])) if len(argv) >= 2 else None
     rest = argv[2:]
     if entry is not None and len(rest) == entry[0] and not any(a.startswith("-") for a in rest):

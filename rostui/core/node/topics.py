@@ -148,16 +148,19 @@ class OutgoingLink:
             self._queue(data)
             return
         if not isinstance(data, bytes):
-            self._send_frame(data)
+            self.send_frame(data)
             return
         self.conn.write(data)
         self.messages_sent += count
         self.bytes_sent += len(data)
 
-    def _send_frame(self, frame: memoryview | FileRegion) -> None:
-        """A bag's message to the socket at once while nothing waits before it (a view of a chunk by ``send``, a
-        file's region by ``sendfile``); what the socket does not take (all, when something waits) goes through
-        the transport, a region's bytes read first."""
+    def send_frame(self, frame: bytes | memoryview | FileRegion) -> None:
+        """A bag's message (engine thread), to the socket at once while nothing waits before it (a view of a
+        chunk by ``send``, a file's region by ``sendfile``); what the socket does not take (all, when something
+        waits) goes through the transport, a region's bytes read first; queued while the peer is slow."""
+        if self.paused:
+            self._queue(frame)
+            return
         length = len(frame)
         sent = 0
         sock = self._sock
@@ -475,7 +478,7 @@ class Publication:
             return
         with self.lock:
             for link in self.links:
-                link.send(frame)
+                link.send_frame(frame)
             self.messages_published += 1
 
     def _flush(self) -> None:

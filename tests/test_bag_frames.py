@@ -213,3 +213,16 @@ def test_chunk_order_is_exact_over_overlapping_chunks(seed: int) -> None:
     expected = sorted((t, number, offset, conn) for number, entries in chunks.items() for t, offset, conn in entries)
     assert got == expected
     assert sorted(read) == sorted(chunks)
+
+
+def test_chunk_runs_give_a_lone_chunk_as_one_run_and_overlapping_chunks_a_message_at_a_time() -> None:
+    """Chunks apart in time come whole (the player frames each run with one look at its chunk); where two
+    overlap, the merge hands out one message at a time, each run of one chunk."""
+    from rostui.core.bag.chunkorder import chunk_runs
+
+    chunks = {0: [(1, 0, 0), (2, 10, 0), (3, 20, 1)],
+              1: [(10, 0, 0), (12, 10, 0)],
+              2: [(11, 0, 1), (13, 10, 1)]}
+    spans = [(rows[0][0], rows[-1][0], number) for number, rows in chunks.items()]
+    runs = list(chunk_runs(spans, chunks.__getitem__))
+    assert runs == [(0, chunks[0]), (1, [(10, 0, 0)]), (2, [(11, 0, 1)]), (1, [(12, 10, 0)]), (2, [(13, 10, 1)])]

@@ -11,44 +11,51 @@ which is the file's order for equal times, as rosbag plays them.
 from __future__ import annotations
 
 import heapq
+from bisect import bisect_left
 from collections.abc import Callable, Iterator, Sequence
 
 
-def chunk_order(spans: Sequence[tuple[int, int, int]],
-                rows: Callable[[int], list[tuple[int, int, int]]]) -> Iterator[tuple[int, int, int, int]]:
-    """``(time, chunk, offset, connection id)`` of every message of the chunks ``spans`` lists (``(first time,
-    last time, number)``), in time order, ties by chunk number, then offset; ``rows(number)`` reads a chunk's
-    entries, sorted, when the merge reaches its first time."""
+Row = tuple[int, int, int]
+"""``(time, offset, connection id)``: one message of a chunk, as :meth:`~rostui.core.bag.files.Reader.chunk_rows`
+gives them."""
+
+
+def chunk_runs(spans: Sequence[tuple[int, int, int]],
+               rows: Callable[[int], list[Row]]) -> Iterator[tuple[int, list[Row]]]:
+    """``(chunk, rows)``: runs of one chunk's messages, whose rows taken in turn are every message of the chunks
+    ``spans`` lists (``(first time, last time, number)``) in time order, ties by chunk number, then offset.
+    ``rows(number)`` reads a chunk's entries, sorted, when the merge reaches its first time.  A chunk alone
+    in its time comes as one run (up to the next chunk's first time); chunks that overlap, a message a run."""
     pending = sorted(spans)
-    heap: list[tuple[int, int, int, int, Iterator[tuple[int, int, int]]]] = []
+    heap: list[tuple[int, int, int, list[Row]]] = []  # (time, chunk, index of that row, the chunk's rows)
     next_chunk = 0
     while True:
         # a chunk joins before the merge passes its first time (at an equal time too: ties go by chunk number)
         while next_chunk < len(pending) and (not heap or pending[next_chunk][0] <= heap[0][0]):
             number = pending[next_chunk][2]
             next_chunk += 1
-            entries = iter(rows(number))
-            first = next(entries, None)
-            if first is not None:
-                heapq.heappush(heap, (first[0], number, first[1], first[2], entries))
+            entries = rows(number)
+            if entries:
+                heapq.heappush(heap, (entries[0][0], number, 0, entries))
         if not heap:
             return
-        t, number, offset, conn_id, entries = heap[0]
+        t, number, at, entries = heap[0]
         if len(heap) == 1 and (next_chunk == len(pending) or pending[next_chunk][0] > t):
             # one chunk open: its entries follow one another until the next chunk's first time
-            limit = pending[next_chunk][0] if next_chunk < len(pending) else None
-            yield t, number, offset, conn_id
-            for t, offset, conn_id in entries:
-                if limit is not None and t >= limit:
-                    heap[0] = (t, number, offset, conn_id, entries)
-                    break
-                yield t, number, offset, conn_id
-            else:
-                heap.pop()
-            continue
-        yield t, number, offset, conn_id
-        following = next(entries, None)
-        if following is None:
+            end = len(entries) if next_chunk == len(pending) else bisect_left(entries, (pending[next_chunk][0],), at)
+        else:
+            end = at + 1
+        yield number, entries[at:end]
+        if end == len(entries):
             heapq.heappop(heap)
         else:
-            heapq.heapreplace(heap, (following[0], number, following[1], following[2], entries))
+            heapq.heapreplace(heap, (entries[end][0], number, end, entries))
+
+
+def chunk_order(spans: Sequence[tuple[int, int, int]],
+                rows: Callable[[int], list[Row]]) -> Iterator[tuple[int, int, int, int]]:
+    """``(time, chunk, offset, connection id)`` of every message of the chunks ``spans`` lists, in time order,
+    ties by chunk number, then offset (:func:`chunk_runs`, a message at a time)."""
+    for number, run in chunk_runs(spans, rows):
+        for t, offset, conn_id in run:
+            yield t, number, offset, conn_id

@@ -114,9 +114,10 @@ class ChunkedFile:
         self._entries_scanned = False
         self._broken: dict[int, MalformedRecord] = {}
 
-    def frame(self, chunk: int, offset: int) -> Frame:
-        """The message :meth:`payload` finds, with TCPROS's 4-byte length before it."""
-        return frame_of(self.payload(chunk, offset))
+    def framer(self, chunk: int) -> Callable[[int], Frame]:
+        """The frames of chunk ``chunk``'s messages by offset: each message :meth:`payload` finds, with
+        TCPROS's 4-byte length before it."""
+        return lambda offset: frame_of(self.payload(chunk, offset))
 
     def payload(self, chunk: int, offset: int) -> bytes:
         """The serialised message whose record lies at ``offset`` of chunk ``chunk`` (each format's own)."""

@@ -2,13 +2,13 @@
 
 A ``.bag`` chunk stores each message's data right after its 4-byte length, which
 is exactly how TCPROS frames a message, so a frame is a view of the chunk the
-reader holds (:meth:`~rostui.core.bag.files.Reader.frame`): nothing is copied
+reader holds (:meth:`~rostui.core.bag.files.Reader.framer`): nothing is copied
 between the file and the socket.  An uncompressed chunk without a CRC is not
 even read: its frames are regions of the file
 (:class:`~rostui.core.file_region.FileRegion`) the kernel sends itself.  Other
 formats add the prefix.
 
-Time order comes from the chunks (:func:`~rostui.core.bag.chunkorder.chunk_order`):
+Time order comes from the chunks (:func:`~rostui.core.bag.chunkorder.chunk_runs`):
 memory follows the chunks in play, whatever the number of messages, and a
 ``.bag`` is read without numpy.
 """
@@ -19,7 +19,7 @@ import heapq
 from collections.abc import Iterator, Sequence
 from typing import Any
 
-from rostui.core.bag.chunkorder import chunk_order
+from rostui.core.bag.chunkorder import chunk_runs
 from rostui.core.bag.files import Reader
 from rostui.core.bag.model import Connection, Frame, frame_of
 
@@ -36,9 +36,10 @@ def framed_messages(reader: Reader) -> Iterator[FramedMessage]:
             yield conn, t, frame_of(data)
         return
     conns = reader.connections
-    frame = reader.frame
-    for t, chunk, offset, conn_id in chunk_order(spans, reader.chunk_rows):
-        yield conns[conn_id], t, frame(chunk, offset)
+    for chunk, run in chunk_runs(spans, reader.chunk_rows):
+        frame_at = reader.framer(chunk)  # what every frame needs of its chunk, looked up once a run
+        for t, offset, conn_id in run:
+            yield conns[conn_id], t, frame_at(offset)
 
 
 def merged_framed_messages(readers: Sequence[Reader]) -> Iterator[FramedMessage]:

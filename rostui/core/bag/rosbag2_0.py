@@ -400,16 +400,15 @@ def _record_in(view: memoryview, pos: int, path: str, chunk_at: int) -> tuple[_R
 class _ChunkRegion(FileRegion):
     """A message's frame in an uncompressed chunk: a file cut short while played is a malformed chunk."""
 
-    __slots__ = ("path", "record_at")
+    __slots__ = ("chunk_at",)
 
-    def __init__(self, fd: int, offset: int, length: int, path: str, record_at: int) -> None:
+    def __init__(self, fd: int, offset: int, length: int, chunk_at: tuple[str, int]) -> None:
         super().__init__(fd, offset, length)
-        self.path = path
-        self.record_at = record_at
+        self.chunk_at = chunk_at  # the file's path and where its chunk record starts
 
     def cut_short(self) -> Exception:
         """The chunk's error, as reading it whole would give."""
-        return MalformedRecord(self.path, self.record_at, "a chunk is cut short")
+        return MalformedRecord(*self.chunk_at, "a chunk is cut short")
 
 
 class BagReader(ChunkedFile):
@@ -742,37 +741,44 @@ class BagReader(ChunkedFile):
         plain, data_at, end = self._data_in_chunk(chunk, offset)
         return plain[data_at:end]
 
-    def frame(self, chunk: int, offset: int) -> Frame:
-        """The message as :meth:`payload` finds it, with its 4-byte length before it, as TCPROS sends it: in a
-        chunk the record's own data-length field is that prefix, so this is a view of the chunk, not a copy; in
-        an uncompressed chunk (whole in the file, of the size it declares), the region of the file that holds it:
-        the chunk is not read (rosbag's chunks carry no CRC that reading would check)."""
+    def framer(self, chunk: int) -> Callable[[int], Frame]:
+        """The frames of chunk ``chunk``'s messages by offset: each message as :meth:`payload` finds it, with its
+        4-byte length before it, as TCPROS sends it.  In a chunk the record's own data-length field is that
+        prefix, so a frame is a view of the chunk, not a copy; in an uncompressed chunk (whole in the file, of
+        the size it declares), the region of the file that holds it: the chunk is not read (rosbag's chunks
+        carry no CRC that reading would check).  What each frame needs of the chunk is looked up here, once."""
         if chunk == NO_CHUNK:
-            return frame_of(self.payload(chunk, offset))
+            return lambda offset: frame_of(self.payload(chunk, offset))
         place = self.chunk_table[chunk]
         if place.compression in _UNCOMPRESSED and place.plain_size == place.stored \
                 and place.data_at + place.stored <= self.size:
-            return self._region_in_chunk(place, offset)
-        plain, data_at, end = self._data_in_chunk(chunk, offset)
-        return memoryview(plain)[data_at - 4:end]
+            return self._regions_in_chunk(place)
 
-    def _region_in_chunk(self, place: ChunkPlace, offset: int) -> FileRegion:
-        """The frame of the message record at ``offset`` of the uncompressed chunk at ``place``, as a region of
+        def view_at(offset: int) -> Frame:
+            plain, data_at, end = self._data_in_chunk(chunk, offset)
+            return memoryview(plain)[data_at - 4:end]
+        return view_at
+
+    def _regions_in_chunk(self, place: ChunkPlace) -> Callable[[int], FileRegion]:
+        """The frame of the message record at an offset of the uncompressed chunk at ``place``, as a region of
         the file: only the record's header length and its data length are read (a syscall, 64 bytes)."""
-        end = place.stored
-        if 0 <= offset <= end - 8:
-            fd = self.file.fileno()
-            head = os.pread(fd, _RECORD_PEEK, place.data_at + offset)
-            if len(head) >= 4:
-                data_at = offset + 8 + _U32.unpack_from(head)[0]
-                if data_at <= end:
-                    length_field = head[data_at - 4 - offset:data_at - offset]
-                    if len(length_field) < 4:
-                        length_field = os.pread(fd, 4, place.data_at + data_at - 4)
-                    (dlen,) = _U32.unpack(length_field)
-                    if dlen <= end - data_at:
-                        return _ChunkRegion(fd, place.data_at + data_at - 4, dlen + 4, self.path, place.record_at)
-        raise self._no_record_at(place, offset)
+        fd, start, end, chunk_at = self.file.fileno(), place.data_at, place.stored, (self.path, place.record_at)
+        pread, peek, unpack_from = os.pread, _RECORD_PEEK, _U32.unpack_from
+
+        def region_at(offset: int) -> FileRegion:
+            if 0 <= offset <= end - 8:
+                head = pread(fd, peek, start + offset)
+                if len(head) >= 4:
+                    data_at = offset + 8 + unpack_from(head)[0]
+                    if data_at <= end:
+                        length_field = head[data_at - 4 - offset:data_at - offset]
+                        if len(length_field) < 4:
+                            length_field = pread(fd, 4, start + data_at - 4)
+                        (dlen,) = unpack_from(length_field)
+                        if dlen <= end - data_at:
+                            return _ChunkRegion(fd, start + data_at - 4, dlen + 4, chunk_at)
+            raise self._no_record_at(place, offset)
+        return region_at
 
     def _data_in_chunk(self, chunk: int, offset: int) -> tuple[bytes, int, int]:
         """Chunk ``chunk``'s plain bytes and where the data of the message record at ``offset`` starts and ends."""

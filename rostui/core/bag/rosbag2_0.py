@@ -20,7 +20,7 @@ from typing import Any, BinaryIO
 from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace
 from rostui.core.bag.inflate import inflate
 from rostui.core.bag.iov import Parts
-from rostui.core.bag.model import BagError, BagSummary, Connection, Frame, MalformedRecord, frame_of
+from rostui.core.bag.model import BagError, BagSummary, Connection, Frame, MalformedRecord
 from rostui.core.bag.sink import AppendFile, open_append
 from rostui.core.file_region import FileRegion
 
@@ -748,7 +748,7 @@ class BagReader(ChunkedFile):
         the size it declares), the region of the file that holds it: the chunk is not read (rosbag's chunks
         carry no CRC that reading would check).  What each frame needs of the chunk is looked up here, once."""
         if chunk == NO_CHUNK:
-            return lambda offset: frame_of(self.payload(chunk, offset))
+            return super().framer(chunk)
         place = self.chunk_table[chunk]
         if place.compression in _UNCOMPRESSED and place.plain_size == place.stored \
                 and place.data_at + place.stored <= self.size:

@@ -92,11 +92,8 @@ def run_plain(words: Sequence[str]) -> int | None:
         from rostui.cli.bag_run import run_play
 
         return run_play(args, **params)
-    except KeyboardInterrupt:
-        raise SystemExit(130) from None  # as Typer ends a command that Ctrl-C stops before its handlers are set
-    except Exception as exc:
-        from rostui.cli.common import interrupted
+    except (KeyboardInterrupt, Exception) as exc:  # Ctrl-C before the player's handlers: 130, as Typer ends it
+        from rostui.cli.common import exit_if_interrupted
 
-        if not interrupted(exc):
-            raise
-        raise SystemExit(130) from None
+        exit_if_interrupted(exc)
+        raise

@@ -37,6 +37,12 @@ def interrupted(exc: BaseException) -> bool:
     return False
 
 
+def exit_if_interrupted(exc: BaseException) -> None:
+    """End with code 130 and no traceback, as a shell's Ctrl-C, when ``exc`` is one (:func:`interrupted`)."""
+    if interrupted(exc):
+        raise SystemExit(130) from None
+
+
 def suggestion(name: str, candidates: Callable[[], Iterable[str]]) -> str | None:
     """``did you mean …?`` for a misspelt ``name`` among ``candidates()`` (the master's names); None if none is close.
 

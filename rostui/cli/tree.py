@@ -76,10 +76,10 @@ def new_app(groups: Sequence[str] = COMMAND_GROUPS) -> typer.Typer:
 
 def main() -> None:
     """Console-script entry point: a bare negative number is refused with one line before Typer parses; a
-    Ctrl-C that surfaced as another error (see :func:`interrupted`) exits 130 without a traceback."""
+    Ctrl-C that surfaced as another error (see :func:`~rostui.cli.common.interrupted`) exits 130 without a traceback."""
     import sys
 
-    from rostui.cli.common import interrupted
+    from rostui.cli.common import exit_if_interrupted
     from rostui.cli.negative import looks_negative, refuse_bare_negatives
 
     words = sys.argv[1:]
@@ -90,9 +90,8 @@ def main() -> None:
         with only_the_commands_named(typer_app, words):
             typer_app()
     except Exception as exc:
-        if not interrupted(exc):
-            raise
-        raise SystemExit(130) from None  # Ctrl-C during a lazy import: no traceback, the shell's code
+        exit_if_interrupted(exc)  # Ctrl-C during a lazy import
+        raise
 
 
 @contextmanager

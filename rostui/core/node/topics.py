@@ -144,11 +144,11 @@ class OutgoingLink:
 
     def send(self, data: bytes | memoryview | FileRegion, count: int = 1) -> None:
         """Write framed bytes on the engine thread, or queue them while the peer is slow."""
-        if self.paused:
-            self._queue(data)
-            return
         if not isinstance(data, bytes):
             self.send_frame(data)
+            return
+        if self.paused:
+            self._queue(data)
             return
         self.conn.write(data)
         self.messages_sent += count

@@ -133,6 +133,30 @@ def test_pause_resume_rate_and_topics(index: BagIndex) -> None:
     assert all(v < 10 for v in sink.values("/odd"))
 
 
+def test_a_connections_own_sender_takes_its_bytes_in_place_of_publish_until_its_topic_is_off(
+        index: BagIndex) -> None:
+    sink = Sink()
+    odd: list[int] = []
+
+    def sender_for(conn: Connection) -> Callable[[bytes], None] | None:
+        return (lambda data: odd.append(Int32().deserialize(data).data)) if conn.topic == "/odd" else None
+
+    transport = viewer(index, sink, rate=2.0, sender_for=sender_for)
+    sent_when_off: list[int] = []
+
+    async def scenario() -> None:
+        transport.resume()
+        await until(lambda: len(odd) >= 3, "the first odd values")
+        transport.set_topic_enabled("/odd", False)
+        sent_when_off.append(len(odd))
+        transport.set_rate(50.0)
+        await until(lambda: transport.paused and transport.at_end, "the end")
+
+    drive(transport, scenario)
+    assert sink.values() == list(range(100)) and sink.values("/odd") == []
+    assert odd == list(range(1, 2 * len(odd), 2)) and len(odd) == sent_when_off[0] < 50
+
+
 def test_loop_plays_again_and_end_holds(index: BagIndex) -> None:
     sink = Sink()
     transport = viewer(index, sink, rate=50.0, loop=True)

@@ -45,8 +45,11 @@ def framed_messages(reader: Reader) -> Iterator[FramedMessage]:
 def merged_framed_messages(readers: Sequence[Reader]) -> Iterator[FramedMessage]:
     """Several files' messages in time order, framed; equal times in the order the files are given."""
     if len(readers) == 1:
-        yield from framed_messages(readers[0])
-        return
+        return framed_messages(readers[0])  # itself: a generator around it would add a resumption a message
+    return _merged(readers)
+
+
+def _merged(readers: Sequence[Reader]) -> Iterator[FramedMessage]:
     streams: list[Iterator[Any]] = [_tagged(framed_messages(r), i) for i, r in enumerate(readers)]
     for t, _i, conn, data in heapq.merge(*streams, key=lambda item: (item[0], item[1])):
         yield conn, t, data

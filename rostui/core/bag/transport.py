@@ -32,6 +32,9 @@ from rostui.core.bag.precise_sleep import lower_timer_slack, sleep_until
 #: ``(connection, time_ns, bytes)``: one recorded message; the transport hands its bytes to ``publish`` unlooked-at
 #: (bag view's: the payload; a player's: the frame, in memory or where it lies in the file).
 MessageItem = tuple[Connection, int, Any]
+#: ``(connection, wanted, sender)``: whether a connection's messages are published and its own sender (None:
+#: the transport's ``publish``).
+_Route = tuple[Connection, bool, "Callable[[Any], None] | None"]
 
 SPIN_BEFORE = 0.003  # the last moments before a message are slept without the loop (its timers are ms-grained)
 LOOP_TURN_PERIOD = 0.02
@@ -145,6 +148,9 @@ class Transport:
     instead of returning (the app). ``turn_period`` is the longest the event
     loop goes without a turn while messages are due close together
     (:data:`LOOP_TURN_PERIOD`). ``clock`` is the wall clock in seconds.
+    ``sender_for(conn)`` may give a connection's own sender, called with a
+    message's bytes alone in place of ``publish`` (None: ``publish``): a
+    player without a per-message hook sends straight to the publication.
     """
 
     def __init__(self, source: MessageSource, publish: Callable[[Connection, int, bytes], None], *,
@@ -152,7 +158,8 @@ class Transport:
                  play_from: int | None = None, play_until: int | None = None, hold_at_end: bool = False,
                  accepts: Callable[[Connection], bool] | None = None,
                  on_tick: Callable[[int], None] | None = None, tick_period: float = TICK_PERIOD,
-                 turn_period: float = LOOP_TURN_PERIOD, clock: Callable[[], float] = time.perf_counter) -> None:
+                 turn_period: float = LOOP_TURN_PERIOD, clock: Callable[[], float] = time.perf_counter,
+                 sender_for: Callable[[Connection], Callable[[Any], None] | None] | None = None) -> None:
         if not rate > 0:
             raise ValueError("the rate must be greater than 0")
         self.source = source
@@ -170,10 +177,11 @@ class Transport:
         self.tick_period = tick_period
         self.turn_period = turn_period
         self.clock = clock
+        self.sender_for = sender_for
         self.disabled: set[str] = set()
-        # id(connection): the connection and its _wanted answer, until a control call (the id alone could be a
-        # later connection's, once a reader lets its first go)
-        self._wanted_cache: dict[int, tuple[Connection, bool]] = {}
+        # id(connection): the connection's _route, until a control call (the id alone could be a later
+        # connection's, once a reader lets its first go)
+        self._routes: dict[int, _Route] = {}
         self.published = 0
         self.lateness: list[float] = []
         self.last_ns: int | None = None  # time of the last message published
@@ -217,7 +225,7 @@ class Transport:
 
     def _changed(self) -> None:
         self._gen += 1
-        self._wanted_cache.clear()
+        self._routes.clear()
         self._wake.set()
 
     # -- control (call from the loop the transport runs on) -----------------------------------
@@ -316,6 +324,15 @@ class Transport:
     def _wanted(self, conn: Connection) -> bool:
         return conn.topic not in self.disabled and (self.accepts is None or self.accepts(conn))
 
+    def _route(self, conn: Connection) -> _Route:
+        """``conn``'s route, remembered until a control call."""
+        route = self._routes.get(id(conn))
+        if route is None or route[0] is not conn:
+            wanted = self._wanted(conn)
+            sender = self.sender_for(conn) if wanted and self.sender_for is not None else None
+            route = self._routes[id(conn)] = (conn, wanted, sender)
+        return route
+
     def _pass_head(self) -> MessageItem | None:
         """The message at the read position; None at the end of the pass (or past ``play_until``)."""
         item = self.source.peek()
@@ -358,8 +375,12 @@ class Transport:
 
     def _emit(self, item: MessageItem, target: float | None) -> None:
         conn, t, data = item
+        send = self._route(conn)[2]
         actual = self.clock()
-        self.publish(conn, t, data)
+        if send is None:
+            self.publish(conn, t, data)
+        else:
+            send(data)
         self.source.advance()
         self.last_ns = t
         self._frozen_ns = t
@@ -434,7 +455,7 @@ class Transport:
         due (``turn_by``, a wall time): the loop cannot change anything meanwhile, so each is only slept for and
         sent.  A message not wanted, the pass's end, or one due later leaves it to :meth:`run`.
 
-        :meth:`_emit`, :meth:`_wanted` and :meth:`_wall_of` are written out here: after the sleep before each
+        :meth:`_emit`, :meth:`_route` and :meth:`_wall_of` are written out here: after the sleep before each
         message every call runs with cold caches, and the calls saved were about 7% of a player's CPU
         (bench/README.md, "Bag play CPU", third pass)."""
         clock = self.clock
@@ -442,7 +463,7 @@ class Transport:
         source = self.source
         publish = self.publish
         lateness = self.lateness
-        wanted = self._wanted_cache
+        routes = self._routes
         until = self.play_until
         anchor_wall, anchor_bag, rate = self._anchor_wall, self._anchor_bag, self.rate
         while True:
@@ -452,10 +473,10 @@ class Transport:
             conn, t, data = item
             if until is not None and t > until:
                 return
-            known = wanted.get(id(conn))
-            if known is None or known[0] is not conn:
-                known = wanted[id(conn)] = (conn, self._wanted(conn))
-            if not known[1]:
+            route = routes.get(id(conn))
+            if route is None or route[0] is not conn:
+                route = self._route(conn)
+            if not route[1]:
                 return
             target = anchor_wall + (t - anchor_bag) / 1e9 / rate
             left = target - clock()
@@ -463,8 +484,12 @@ class Transport:
                 return
             if left > 0:
                 sleep(left)
+            send = route[2]
             actual = clock()
-            publish(conn, t, data)
+            if send is None:
+                publish(conn, t, data)
+            else:
+                send(data)
             source.advance()
             self.last_ns = self._frozen_ns = t
             self.published += 1

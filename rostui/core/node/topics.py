@@ -161,7 +161,7 @@ class OutgoingLink:
         if self.paused:
             self._queue(frame)
             return
-        length = len(frame)
+        length = frame.length if isinstance(frame, FileRegion) else len(frame)  # (a region's len() is a Python call)
         sent = 0
         sock = self._sock
         if sock is not None and self.can_send_direct():

@@ -149,7 +149,8 @@ class Player:
         self.transport = Transport(StreamSource(self._stream), self._publish, start_ns=self.bag_start,
                                    end_ns=self.bag_end, rate=opts.rate, loop=opts.loop, paused=opts.start_paused,
                                    play_from=play_from, play_until=play_until, accepts=self._accepts,
-                                   on_tick=self._on_tick, tick_period=tick, turn_period=TURN_PERIOD)
+                                   on_tick=self._on_tick, tick_period=tick, turn_period=TURN_PERIOD,
+                                   sender_for=self._sender_for)
 
     def _stream(self) -> Iterator[MessageItem]:
         return merged_framed_messages(self.readers)  # items carry frames, not payloads: see _publish
@@ -177,9 +178,19 @@ class Player:
     def _accepts(self, conn: Connection) -> bool:
         return (conn.topic, conn.md5sum) in self.publishers
 
+    def _frame_sender(self, conn: Connection) -> Callable[[Any], None]:
+        """The call that publishes ``conn``'s frames."""
+        sender: Callable[[Any], None] = self.publishers[(conn.topic, conn.md5sum)].impl.publish_frame
+        return sender
+
+    def _sender_for(self, conn: Connection) -> Callable[[Any], None] | None:
+        """For the transport: ``conn``'s frame sender while nothing else is done a message (no /clock, no status
+        line), so each message goes from the transport to the publication; else None (:meth:`_publish`)."""
+        return self._frame_sender(conn) if self.clock is None and self.status is None else None
+
     def _look_up_sender(self, conn: Connection) -> Callable[[Any], None]:
         """The call that publishes ``conn``'s frames, remembered for the connection (:meth:`_publish` asks once)."""
-        self._senders[id(conn)] = (conn, self.publishers[(conn.topic, conn.md5sum)].impl.publish_frame)
+        self._senders[id(conn)] = (conn, self._frame_sender(conn))
         return self._senders[id(conn)][1]
 
     def _publish(self, conn: Connection, t: int, frame: Any) -> None:

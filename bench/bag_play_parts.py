@@ -16,7 +16,6 @@ part runs after a wake-up, with cold caches, and costs more (bench/README.md,
 from __future__ import annotations
 
 import asyncio
-import functools
 import os
 import socket
 import subprocess
@@ -25,7 +24,6 @@ import threading
 import time
 import types
 from collections.abc import Callable
-from typing import Any
 
 from rostui.core.bag.files import open_reader
 from rostui.core.bag.frames import merged_framed_messages
@@ -75,10 +73,8 @@ def main(path: str, repeats: int) -> None:
         return len(items)
 
     def chain() -> int:
-        made = player()  # quiet, as the benchmark plays: each connection's sender is its publication's
-        senders: dict[int, Callable[[Any], None]] = {}
-        for c, _t, _frame in items:
-            senders.setdefault(id(c), made.transport._route(c)[2] or functools.partial(made._publish, c, 0))
+        made = player()  # quiet, as the benchmark plays: the transport calls each connection's frame sender
+        senders = {id(c): made._frame_sender(c) for c, _t, _frame in items}
         for c, _t, frame in items:
             senders[id(c)](frame)
         return len(items)

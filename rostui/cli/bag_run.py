@@ -7,6 +7,7 @@ file skips Typer's 16 ms of CPU.
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from typing import Callable, TextIO
@@ -23,8 +24,6 @@ def status_writer(stream: TextIO) -> Callable[[str], None]:
     """A status-line printer: rewritten in place on a terminal, cut short of its width (a line that wraps makes
     the terminal scroll at every update; the last columns are left for the terminal's echo of ^C), one line a
     second otherwise."""
-    import os
-
     tty = stream.isatty()
     last = [0.0]
 

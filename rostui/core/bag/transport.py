@@ -421,13 +421,13 @@ class Transport:
         while not self.stopped:
             await _turn()
             item = self._pass_head()
-            wanted = item is None or self._wanted(item[0])
+            wanted = item is None or self._route(item[0])[1]
             skipped = 0
             while not wanted and skipped < SKIP_BATCH:
                 self.source.advance()
                 skipped += 1
                 item = self._pass_head()
-                wanted = item is None or self._wanted(item[0])
+                wanted = item is None or self._route(item[0])[1]
             if not wanted:
                 continue  # a long run of skipped messages: give the loop its turn first
             if item is None:

@@ -7,12 +7,14 @@ how many it has produced; no node is needed.
 
 from __future__ import annotations
 
+import asyncio
 from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
 
-from rostui.core.bag.transport import READ_AHEAD, MessageItem, StreamSource
+from rostui.core.bag.model import Connection
+from rostui.core.bag.transport import READ_AHEAD, MessageItem, StreamSource, Transport
 from rostui.tools.bag.player import QUIET_TICK_PERIOD, STATUS_PERIOD, PlayOptions, Player, open_bags
 
 from bag_view_helpers import write_counts
@@ -76,6 +78,19 @@ def test_an_error_of_the_stream_comes_after_every_message_before_it_and_ends_the
     assert source.peek() is None  # raised once, as the stream itself did; the pass is over
     source.advance()
     assert source.peek() is None
+
+
+@pytest.mark.parametrize("fail_at", [READ_AHEAD, READ_AHEAD * 2 + 3])
+def test_a_transport_sends_every_message_before_an_error_of_the_stream_then_raises_it(fail_at: int) -> None:
+    stream = Stream(READ_AHEAD * 3, fail_at=fail_at)
+    sent: list[int] = []
+    conn = Connection(0, "/t", "std_msgs/String", "992ce8a1687cec8c8bd883ec73ca41d1", "string data\n")
+    transport = Transport(StreamSource(lambda: ((conn, t, data) for _c, t, data in stream.open())),
+                          lambda _c, t, _d: sent.append(t), start_ns=0,
+                          end_ns=READ_AHEAD * 3 - 1, rate=1000.0)
+    with pytest.raises(ValueError, match=f"damaged record at message {fail_at}"):
+        asyncio.run(transport.run())
+    assert sent == list(range(fail_at)) and transport.published == fail_at
 
 
 def test_seeking_forwards_skips_and_seeking_back_starts_a_new_pass() -> None:

@@ -11,7 +11,9 @@ same and only the node side differs):
 * large throughput: the same with a 1 MB payload, in MB/s (10^6 bytes) received;
 * latency: ping-pong round trips (N after a warm-up), p50 and p99 in µs, and
   the pinging process's CPU time per round trip (less sensitive to load from
-  other work on the machine than wall-clock latency).
+  other work on the machine than wall-clock latency), and the echoing
+  process's CPU time per message (from the ping's start to its end: the cost
+  of one receive, callback and publish, the figure to set beside the floor's).
 
 Peers: bench/roscpp_peer.cpp (built here into bench/_build/),
 bench/py_peer.py rospy (system /usr/bin/python3) and bench/py_peer.py rostui (this
@@ -92,6 +94,18 @@ def build_cpp_peer() -> Path:
     print("building", CPP_BIN.relative_to(ROOT), "...", flush=True)
     subprocess.run(cmd, check=True, timeout=180)
     return CPP_BIN
+
+
+def process_cpu_seconds(pid: int) -> float:
+    """User and system CPU time of a running process, all its threads (``/proc/PID/stat``)."""
+    with open(f"/proc/{pid}/stat") as stat:
+        fields = stat.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def warm_up_trips(round_trips: int) -> int:
+    """The untimed round trips a ping makes before its timed ones (bench/py_peer.py, bench/tcp_floor.py)."""
+    return max(100, round_trips // 10)
 
 
 def free_port() -> int:
@@ -202,11 +216,16 @@ class Run:
         return {"msgs_s": n / secs, "MB_s": nbytes / secs / 1e6, "count": n, "seconds": secs}
 
     def latency(self, lib: str, round_trips: int) -> dict[str, float]:
+        """One ping-pong run: the ping's figures, and ``pong_cpu_us``, the echoing process's CPU a message from
+        the ping's start to its end (its connection set-up included, its own start-up not)."""
         a, b = f"{topic_prefix(lib)}/ping", f"{topic_prefix(lib)}/pong"
         ponger = self.spawn(self.peer_cmd(lib, "pong", a, b), f"{lib}-pong")
+        self.wait_registered(ponger, publishes=b, subscribes=a)
+        cpu_before = process_cpu_seconds(ponger.pid)
         pinger = self.spawn(self.peer_cmd(lib, "ping", a, b, str(round_trips)), f"{lib}-ping")
         try:
             out, _ = pinger.communicate(timeout=60)
+            pong_cpu = process_cpu_seconds(ponger.pid) - cpu_before
         except subprocess.TimeoutExpired:
             self.stop(pinger)
             raise RuntimeError(f"{lib} ping timed out") from None
@@ -215,23 +234,41 @@ class Run:
         fields = dict(re.findall(r"(\w+)=([\d.]+)", out or ""))
         if "p50_us" not in fields:
             raise RuntimeError(f"{lib} ping printed {out!r}, exit {pinger.returncode}")
-        return {k: float(v) for k, v in fields.items()}
+        return {**{k: float(v) for k, v in fields.items()},
+                "pong_cpu_us": pong_cpu / (round_trips + warm_up_trips(round_trips)) * 1e6}
+
+    def wait_registered(self, proc: subprocess.Popen[str], publishes: str, subscribes: str) -> None:
+        """Wait until the master lists a publisher of one topic and a subscriber of another (a peer's set-up done)."""
+        proxy = xmlrpc.client.ServerProxy(self.env["ROS_MASTER_URI"])
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline:
+            if proc.poll() is not None:
+                raise RuntimeError(f"{proc.args!r} exited with {proc.returncode}")
+            pubs, subs, _ = proxy.getSystemState("/bench")[2]
+            if any(t == publishes for t, _ in pubs) and any(t == subscribes for t, _ in subs):
+                return
+            time.sleep(0.05)
+        raise RuntimeError(f"{proc.args!r} did not register {publishes} and {subscribes} within 30 s")
 
 
-    def floor(self, round_trips: int) -> float:
-        """p50 of a no-ROS TCP ping-pong with the ROS ping's threading (bench/tcp_floor.py)."""
+    def floor(self, round_trips: int) -> tuple[float, float]:
+        """p50 of a no-ROS TCP ping-pong with the ROS ping's threading (bench/tcp_floor.py), and its echoing
+        process's CPU a message (µs)."""
         port = free_port()
         ponger = self.spawn([venv_python(), str(BENCH / "tcp_floor.py"), "pong", str(port)], "floor-pong")
         time.sleep(0.3)
+        cpu_before = process_cpu_seconds(ponger.pid)
         try:
             out = subprocess.run([venv_python(), str(BENCH / "tcp_floor.py"), "ping", str(port), str(round_trips)],
                                  capture_output=True, text=True, timeout=60).stdout
+            pong_cpu = process_cpu_seconds(ponger.pid) - cpu_before
         finally:
             self.stop(ponger)
-        return float(dict(re.findall(r"(\w+)=([\d.]+)", out))["p50_us"])
+        p50 = float(dict(re.findall(r"(\w+)=([\d.]+)", out))["p50_us"])
+        return p50, pong_cpu / (round_trips + warm_up_trips(round_trips)) * 1e6
 
 
-METRICS = ("small_msgs_s", "large_MB_s", "p50_us", "p99_us", "ping_cpu_us")
+METRICS = ("small_msgs_s", "large_MB_s", "p50_us", "p99_us", "ping_cpu_us", "pong_cpu_us")
 
 
 def measure(run: Run, lib: str, args: argparse.Namespace) -> dict[str, float]:
@@ -241,7 +278,8 @@ def measure(run: Run, lib: str, args: argparse.Namespace) -> dict[str, float]:
     large = run.throughput(lib, LARGE, args.window) if args.only is None else nothing
     lat = run.latency(lib, args.round_trips)
     return {"small_msgs_s": small["msgs_s"], "large_MB_s": large["MB_s"],
-            "p50_us": lat["p50_us"], "p99_us": lat["p99_us"], "ping_cpu_us": lat.get("cpu_us", float("nan"))}
+            "p50_us": lat["p50_us"], "p99_us": lat["p99_us"], "ping_cpu_us": lat.get("cpu_us", float("nan")),
+            "pong_cpu_us": lat["pong_cpu_us"]}
 
 
 def median(values: list[float]) -> float:
@@ -256,11 +294,11 @@ def summarize(rounds: dict[str, list[dict[str, float]]]) -> dict[str, dict[str, 
 
 
 def report(rounds: dict[str, list[dict[str, float]]], master: str, args: argparse.Namespace,
-           floors: list[float]) -> None:
+           floors: list[tuple[float, float]]) -> None:
     results = summarize(rounds)
     cols = [("small_msgs_s", "16 B msgs/s", "{:,.0f}"), ("large_MB_s", "1 MB MB/s", "{:,.1f}"),
             ("p50_us", "RTT p50 µs", "{:,.1f}"), ("p99_us", "RTT p99 µs", "{:,.1f}"),
-            ("ping_cpu_us", "ping CPU µs/RT", "{:,.1f}")]
+            ("ping_cpu_us", "ping CPU µs/RT", "{:,.1f}"), ("pong_cpu_us", "pong CPU µs/msg", "{:,.1f}")]
     print()
     print(f"std_msgs/String pub/sub, publisher and subscriber in separate processes of the same library,"
           f" one master ({master}), 127.0.0.1")
@@ -286,10 +324,12 @@ def report(rounds: dict[str, list[dict[str, float]]], master: str, args: argpars
     if "rospy" in results:
         print()
         if floors:
-            floor = median(floors)
+            floor = median([p50 for p50, _ in floors])
+            floor_pong = median([cpu for _, cpu in floors])
             print(f"no-ROS floor: a Python TCP ping-pong with the same threading (bench/tcp_floor.py) has"
                   f" p50 {floor:,.1f} µs = {floor / results['rospy']['p50_us']:.2f}x rospy's p50;"
-                  f" rostui is {ours['p50_us'] / floor:.2f}x the floor")
+                  f" rostui is {ours['p50_us'] / floor:.2f}x the floor; its ponger takes {floor_pong:,.1f} µs of"
+                  f" CPU a message (rostui's {ours['pong_cpu_us']:,.1f}, rospy's {results['rospy']['pong_cpu_us']:,.1f})")
         for key, (want, higher) in TARGETS.items():
             ratio = ours[key] / results["rospy"][key]
             ok = ratio >= want if higher else ratio <= want
@@ -321,7 +361,7 @@ def main() -> int:
         build_cpp_peer()
     run = Run(args.master, args.before)
     rounds: dict[str, list[dict[str, float]]] = {lib: [] for lib in libs}
-    floors: list[float] = []
+    floors: list[tuple[float, float]] = []
     started = time.monotonic()
     busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(args.load)]
     try:
@@ -329,7 +369,7 @@ def main() -> int:
         for i in range(args.rounds):
             order = libs[i % len(libs):] + libs[:i % len(libs)]  # rotate so no library always goes first
             floors.append(run.floor(args.round_trips))
-            print(f"round {i + 1} floor   p50_us={floors[-1]:,.1f}", flush=True)
+            print(f"round {i + 1} floor   p50_us={floors[-1][0]:,.1f}  pong_cpu_us={floors[-1][1]:,.1f}", flush=True)
             for lib in order:
                 t = time.monotonic()
                 row = measure(run, lib, args)

@@ -55,6 +55,31 @@ def test_dense_traffic_spins_for_one_window_then_sleeps() -> None:
     asyncio.run(main())
 
 
+def test_each_turn_of_the_spin_gives_the_cpu_away_first() -> None:
+    async def main() -> None:
+        clock = FakeClock()
+        given: list[float] = []
+        poll = BusyPoll(asyncio.get_running_loop(), 250e-6, clock, give_way=lambda: given.append(clock.now))
+        poll.traffic()
+        clock.now += 50e-6
+        poll.traffic()
+        assert given == []  # nothing is given away before the spin's first turn
+        n = await turns(poll, clock, 10e-6)
+        assert not poll.spinning
+        assert len(given) == n  # one for each turn the spin lasted, the turn that ended it included
+        assert given == sorted(set(given))  # once a turn
+    asyncio.run(main())
+
+
+def test_a_spinning_node_yields_by_default() -> None:
+    import os
+
+    async def main() -> None:
+        poll = BusyPoll(asyncio.get_running_loop(), 250e-6)
+        assert poll._give_way is os.sched_yield
+    asyncio.run(main())
+
+
 def test_each_dense_arrival_extends_the_spin() -> None:
     async def main() -> None:
         clock = FakeClock()

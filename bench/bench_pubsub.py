@@ -12,8 +12,8 @@ same and only the node side differs):
 * latency: ping-pong round trips (N after a warm-up), p50 and p99 in µs, and
   the pinging process's CPU time per round trip (less sensitive to load from
   other work on the machine than wall-clock latency), and the echoing
-  process's CPU time per message (from the ping's start to its end: the cost
-  of one receive, callback and publish, the figure to set beside the floor's).
+  process's CPU time per message over the same timed round trips (the cost of
+  one receive, callback and publish, the figure to set beside the floor's).
 
 Peers: bench/roscpp_peer.cpp (built here into bench/_build/),
 bench/py_peer.py rospy (system /usr/bin/python3) and bench/py_peer.py rostui (this
@@ -27,6 +27,8 @@ and the ratios rostui/rospy and rostui/roscpp, and the targets.
     git worktree add /tmp/before HEAD~1
     .venv/bin/python bench/bench_pubsub.py --only latency --load 2 --before /tmp/before \
         --libs rostui,rostui-before,rostui-nopoll,rospy,roscpp     # a change against its parent, and no spin
+    .venv/bin/python bench/bench_pubsub.py --libs rostui,rospy --only latency --load 2 \
+        --floors pong,pong-uvloop,pong-msg     # beside the floor: a uvloop echo, and one that decodes each message
 
 Each round measures every library once (order rotated between rounds) and
 the table shows the median per metric with its range, so a burst of load from
@@ -38,6 +40,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import queue
 import re
 import shutil
 import signal
@@ -45,9 +48,11 @@ import socket
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import xmlrpc.client
 from pathlib import Path
+from typing import IO
 
 BENCH = Path(__file__).resolve().parent
 ROOT = BENCH.parent
@@ -97,15 +102,51 @@ def build_cpp_peer() -> Path:
 
 
 def process_cpu_seconds(pid: int) -> float:
-    """User and system CPU time of a running process, all its threads (``/proc/PID/stat``)."""
-    with open(f"/proc/{pid}/stat") as stat:
-        fields = stat.read().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    """CPU time of a running process, its live threads' together, in nanoseconds' resolution
+    (``/proc/PID/task/*/schedstat``; where that is missing, ``/proc/PID/stat`` in clock ticks)."""
+    try:
+        total = 0
+        for task in os.listdir(f"/proc/{pid}/task"):
+            with open(f"/proc/{pid}/task/{task}/schedstat") as stat:
+                total += int(stat.read().split()[0])
+        return total / 1e9
+    except (OSError, ValueError, IndexError):
+        with open(f"/proc/{pid}/stat") as stat:
+            fields = stat.read().rsplit(")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def warm_up_trips(round_trips: int) -> int:
-    """The untimed round trips a ping makes before its timed ones (bench/py_peer.py, bench/tcp_floor.py)."""
-    return max(100, round_trips // 10)
+def timed_echo(pinger: subprocess.Popen[str], ponger: subprocess.Popen[str], timeout: float) -> tuple[str, float | None]:
+    """Read a ping's output to its end; return it and the echoing process's CPU seconds from the ping's
+    ``timing`` line (its timed round trips start) to its last line (None when no ``timing`` line came)."""
+    assert pinger.stdout is not None
+    lines: queue.Queue[str | None] = queue.Queue()
+
+    def read(stream: IO[str]) -> None:
+        for line in stream:
+            lines.put(line)
+        lines.put(None)
+
+    threading.Thread(target=read, args=(pinger.stdout,), daemon=True).start()
+    deadline = time.monotonic() + timeout
+    out: list[str] = []
+    cpu_at_start: float | None = None
+    cpu = None
+    while True:
+        try:
+            line = lines.get(timeout=max(0.0, deadline - time.monotonic()))
+        except queue.Empty:
+            raise subprocess.TimeoutExpired(pinger.args, timeout) from None
+        if line is None:
+            break
+        if line.strip() == "timing":
+            cpu_at_start = process_cpu_seconds(ponger.pid)
+        else:
+            out.append(line)
+            if cpu_at_start is not None and "p50_us=" in line:
+                cpu = process_cpu_seconds(ponger.pid) - cpu_at_start
+    pinger.wait(max(0.0, deadline - time.monotonic()))
+    return "".join(out), cpu
 
 
 def free_port() -> int:
@@ -216,56 +257,40 @@ class Run:
         return {"msgs_s": n / secs, "MB_s": nbytes / secs / 1e6, "count": n, "seconds": secs}
 
     def latency(self, lib: str, round_trips: int) -> dict[str, float]:
-        """One ping-pong run: the ping's figures, and ``pong_cpu_us``, the echoing process's CPU a message from
-        the ping's start to its end (its connection set-up included, its own start-up not)."""
+        """One ping-pong run: the ping's figures, and ``pong_cpu_us``, the echoing process's CPU a message over
+        the timed round trips (from the ping's ``timing`` line to its result)."""
         a, b = f"{topic_prefix(lib)}/ping", f"{topic_prefix(lib)}/pong"
         ponger = self.spawn(self.peer_cmd(lib, "pong", a, b), f"{lib}-pong")
-        self.wait_registered(ponger, publishes=b, subscribes=a)
-        cpu_before = process_cpu_seconds(ponger.pid)
         pinger = self.spawn(self.peer_cmd(lib, "ping", a, b, str(round_trips)), f"{lib}-ping")
         try:
-            out, _ = pinger.communicate(timeout=60)
-            pong_cpu = process_cpu_seconds(ponger.pid) - cpu_before
+            out, pong_cpu = timed_echo(pinger, ponger, timeout=60)
         except subprocess.TimeoutExpired:
             self.stop(pinger)
             raise RuntimeError(f"{lib} ping timed out") from None
         finally:
             self.stop(ponger)
-        fields = dict(re.findall(r"(\w+)=([\d.]+)", out or ""))
-        if "p50_us" not in fields:
+        fields = dict(re.findall(r"(\w+)=([\d.]+)", out))
+        if "p50_us" not in fields or pong_cpu is None:
             raise RuntimeError(f"{lib} ping printed {out!r}, exit {pinger.returncode}")
-        return {**{k: float(v) for k, v in fields.items()},
-                "pong_cpu_us": pong_cpu / (round_trips + warm_up_trips(round_trips)) * 1e6}
+        return {**{k: float(v) for k, v in fields.items()}, "pong_cpu_us": pong_cpu / round_trips * 1e6}
 
-    def wait_registered(self, proc: subprocess.Popen[str], publishes: str, subscribes: str) -> None:
-        """Wait until the master lists a publisher of one topic and a subscriber of another (a peer's set-up done)."""
-        proxy = xmlrpc.client.ServerProxy(self.env["ROS_MASTER_URI"])
-        deadline = time.monotonic() + 30
-        while time.monotonic() < deadline:
-            if proc.poll() is not None:
-                raise RuntimeError(f"{proc.args!r} exited with {proc.returncode}")
-            pubs, subs, _ = proxy.getSystemState("/bench")[2]
-            if any(t == publishes for t, _ in pubs) and any(t == subscribes for t, _ in subs):
-                return
-            time.sleep(0.05)
-        raise RuntimeError(f"{proc.args!r} did not register {publishes} and {subscribes} within 30 s")
-
-
-    def floor(self, round_trips: int) -> tuple[float, float]:
-        """p50 of a no-ROS TCP ping-pong with the ROS ping's threading (bench/tcp_floor.py), and its echoing
-        process's CPU a message (µs)."""
+    def floor(self, round_trips: int, pong: str = "pong") -> tuple[float, float]:
+        """p50 of a no-ROS TCP ping-pong with the ROS ping's threading (bench/tcp_floor.py, ``pong`` naming its
+        echoing end), and the echoing process's CPU a message (µs) over the timed round trips."""
         port = free_port()
-        ponger = self.spawn([venv_python(), str(BENCH / "tcp_floor.py"), "pong", str(port)], "floor-pong")
+        ponger = self.spawn([venv_python(), str(BENCH / "tcp_floor.py"), pong, str(port)], f"floor-{pong}")
         time.sleep(0.3)
-        cpu_before = process_cpu_seconds(ponger.pid)
+        pinger = self.spawn([venv_python(), str(BENCH / "tcp_floor.py"), "ping", str(port), str(round_trips)],
+                            f"floor-{pong}-ping")
         try:
-            out = subprocess.run([venv_python(), str(BENCH / "tcp_floor.py"), "ping", str(port), str(round_trips)],
-                                 capture_output=True, text=True, timeout=60).stdout
-            pong_cpu = process_cpu_seconds(ponger.pid) - cpu_before
+            out, pong_cpu = timed_echo(pinger, ponger, timeout=60)
         finally:
+            self.stop(pinger)
             self.stop(ponger)
-        p50 = float(dict(re.findall(r"(\w+)=([\d.]+)", out))["p50_us"])
-        return p50, pong_cpu / (round_trips + warm_up_trips(round_trips)) * 1e6
+        fields = dict(re.findall(r"(\w+)=([\d.]+)", out))
+        if "p50_us" not in fields or pong_cpu is None:
+            raise RuntimeError(f"the floor's ping against {pong} printed {out!r}")
+        return float(fields["p50_us"]), pong_cpu / round_trips * 1e6
 
 
 METRICS = ("small_msgs_s", "large_MB_s", "p50_us", "p99_us", "ping_cpu_us", "pong_cpu_us")
@@ -294,7 +319,7 @@ def summarize(rounds: dict[str, list[dict[str, float]]]) -> dict[str, dict[str, 
 
 
 def report(rounds: dict[str, list[dict[str, float]]], master: str, args: argparse.Namespace,
-           floors: list[tuple[float, float]]) -> None:
+           floors: dict[str, list[tuple[float, float]]]) -> None:
     results = summarize(rounds)
     cols = [("small_msgs_s", "16 B msgs/s", "{:,.0f}"), ("large_MB_s", "1 MB MB/s", "{:,.1f}"),
             ("p50_us", "RTT p50 µs", "{:,.1f}"), ("p99_us", "RTT p99 µs", "{:,.1f}"),
@@ -323,13 +348,17 @@ def report(rounds: dict[str, list[dict[str, float]]], master: str, args: argpars
                 f"{ours[key] / results[peer][key]:>{w - 1}.2f}x" for key, _, _ in cols))
     if "rospy" in results:
         print()
-        if floors:
-            floor = median([p50 for p50, _ in floors])
-            floor_pong = median([cpu for _, cpu in floors])
+        if floors.get("pong"):
+            floor = median([p50 for p50, _ in floors["pong"]])
+            floor_pong = median([cpu for _, cpu in floors["pong"]])
             print(f"no-ROS floor: a Python TCP ping-pong with the same threading (bench/tcp_floor.py) has"
                   f" p50 {floor:,.1f} µs = {floor / results['rospy']['p50_us']:.2f}x rospy's p50;"
                   f" rostui is {ours['p50_us'] / floor:.2f}x the floor; its ponger takes {floor_pong:,.1f} µs of"
                   f" CPU a message (rostui's {ours['pong_cpu_us']:,.1f}, rospy's {results['rospy']['pong_cpu_us']:,.1f})")
+        for pong, rows in floors.items():
+            if pong != "pong" and rows:
+                print(f"the floor's ping against tcp_floor.py {pong}: p50 {median([p50 for p50, _ in rows]):,.1f} µs,"
+                      f" its ponger {median([cpu for _, cpu in rows]):,.1f} µs of CPU a message")
         for key, (want, higher) in TARGETS.items():
             ratio = ours[key] / results["rospy"][key]
             ok = ratio >= want if higher else ratio <= want
@@ -350,26 +379,32 @@ def main() -> int:
                         help="start this many busy-looping processes for the whole run (a loaded machine)")
     parser.add_argument("--only", choices=("latency",), help="measure the round trips only")
     parser.add_argument("--before", type=Path, help=f"a checkout of an earlier commit, measured as {BEFORE}")
+    parser.add_argument("--floors", default="pong",
+                        help="the no-ROS echoing ends measured each round: a comma list of tcp_floor.py's pong (the"
+                             " floor), pong-uvloop, pong-msg")
     args = parser.parse_args()
     libs = [x for x in args.libs.split(",") if x]
     unknown = set(libs) - set(LIBS) - {NO_POLL, BEFORE}
     if unknown or not libs:
         parser.error(f"unknown libraries: {', '.join(sorted(unknown))}")
+    if set(args.floors.split(",")) - {"pong", "pong-uvloop", "pong-msg", ""}:
+        parser.error(f"unknown floors in {args.floors!r}")
     if (BEFORE in libs) != (args.before is not None):
         parser.error(f"--before DIR and {BEFORE} in --libs go together")
     if "roscpp" in libs:
         build_cpp_peer()
     run = Run(args.master, args.before)
     rounds: dict[str, list[dict[str, float]]] = {lib: [] for lib in libs}
-    floors: list[tuple[float, float]] = []
+    floors: dict[str, list[tuple[float, float]]] = {pong: [] for pong in args.floors.split(",") if pong}
     started = time.monotonic()
     busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(args.load)]
     try:
         run.start_master()
         for i in range(args.rounds):
             order = libs[i % len(libs):] + libs[:i % len(libs)]  # rotate so no library always goes first
-            floors.append(run.floor(args.round_trips))
-            print(f"round {i + 1} floor   p50_us={floors[-1][0]:,.1f}  pong_cpu_us={floors[-1][1]:,.1f}", flush=True)
+            for pong, rows in floors.items():
+                rows.append(run.floor(args.round_trips, pong))
+                print(f"round {i + 1} floor {pong}  p50_us={rows[-1][0]:,.1f}  pong_cpu_us={rows[-1][1]:,.1f}", flush=True)
             for lib in order:
                 t = time.monotonic()
                 row = measure(run, lib, args)

@@ -11,8 +11,8 @@ differ.  Same modes and output as bench/roscpp_peer.cpp:
   count TOPIC SECONDS        subscribe (tcp_nodelay), count messages and payload bytes during
                              SECONDS after the first message; print "count=N bytes=B seconds=S"
   pong IN OUT                echo every std_msgs/String from IN to OUT
-  ping OUT IN N              N timed round trips after a warm-up; print
-                             "n=N p50_us=X p99_us=Y mean_us=M min_us=A max_us=B cpu_us=C"
+  ping OUT IN N              N timed round trips after a warm-up; print "timing" when they
+                             start, then "n=N p50_us=X p99_us=Y mean_us=M min_us=A max_us=B cpu_us=C"
                              (cpu_us: this process's CPU time per timed round trip)
 
 Written the way a rospy user would: callbacks on the library's receive thread,
@@ -119,6 +119,7 @@ def ping(topic_out, topic_in, n):
     cpu0 = 0.0
     for i in range(warm + n):
         if i == warm:
+            print("timing", flush=True)  # the timed round trips start (bench_pubsub reads the echo's CPU here)
             cpu0 = time.process_time()
         text = "ping %d" % i
         msg = String(data=text)

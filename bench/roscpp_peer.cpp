@@ -22,8 +22,8 @@
 //                            received during SECONDS after the first message; print
 //                            "count=N bytes=B seconds=S"
 //   pong IN OUT              echo every std_msgs/String from IN to OUT (tcp_nodelay)
-//   ping OUT IN N            N timed round trips after a warm-up; print
-//                            "n=N p50_us=X p99_us=Y mean_us=M min_us=A max_us=B cpu_us=C"
+//   ping OUT IN N            N timed round trips after a warm-up; print "timing" when they
+//                            start, then "n=N p50_us=X p99_us=Y mean_us=M min_us=A max_us=B cpu_us=C"
 //                            (cpu_us: this process's CPU time per timed round trip)
 //
 // std_srvs/SetBool is declared below (wire traits written for this file) so the
@@ -304,7 +304,11 @@ int mode_ping(ros::NodeHandle& nh, const std::string& out, const std::string& in
   rtt.reserve(static_cast<size_t>(n));
   std::clock_t cpu0 = 0;
   for (long i = 0; i < warm + n && ros::ok(); ++i) {
-    if (i == warm) cpu0 = std::clock();
+    if (i == warm) {
+      std::printf("timing\n");  // the timed round trips start
+      std::fflush(stdout);
+      cpu0 = std::clock();
+    }
     msg.data = "ping " + std::to_string(i);
     auto t0 = Clock::now();
     pub.publish(msg);

@@ -20,10 +20,10 @@ from PIL import Image as PILImage
 
 from rostui.apps.view.app import ViewApp
 from rostui.apps.view.halfblock import HalfBlock
-from rostui.apps.view.image_view import GRAPHICS_ENV, ImageView
+from rostui.apps.view.image_view import GRAPHICS_ENV, ON_LOOP_PIXELS, ImageView
 from rostui.apps.view.registry import UnknownViewError, view_class, viewable_types
 from rostui.core.msg import get_message_class
-from rostui.models.sensors.images import ImageDecodeError, colour_map, decode_image, fit
+from rostui.models.sensors.images import ImageDecodeError, colour_map, decode_image, fit, raw_pixels_read
 
 from conftest import have_rospy, need_peer, start_rostui_core, stop_process, until
 from view_helpers import (
@@ -111,6 +111,38 @@ def test_bad_images_say_why_in_one_line(msg: Any, says: str) -> None:
     with pytest.raises(ImageDecodeError) as err:
         decode_image(msg)
     assert says in str(err.value) and "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("width, height, box, step", [
+    (64, 48, (64, 48), 1), (640, 480, (100, 76), 3), (1920, 1080, (156, 70), 7), (4096, 3072, (1000, 600), 2),
+])
+def test_raw_pixels_read_counts_the_strided_read(width: int, height: int, box: tuple[int, int], step: int) -> None:
+    """What a raw frame costs to draw grows with the pixels the strided read touches, not the frame's size."""
+    msg = Image(height=height, width=width, encoding="mono8", step=width, data=bytes(width * height))
+    read = decode_image(msg, box)  # no error: the figure is of a frame that decodes
+    assert read.rgb.shape[:2] == fit(width, height, *box)[::-1]
+    assert raw_pixels_read(msg, box) == -(-width // step) * -(-height // step)
+    assert raw_pixels_read(CompressedImage(format="png", data=b""), box) is None
+
+
+def test_small_raw_frames_are_drawn_on_the_loop_the_rest_on_a_thread(tmp_path: Path) -> None:
+    """A small raw frame skips the trip to a worker thread (a busy machine makes the trip long enough for the
+    next camera frame to replace the waiting one); a compressed one, or a raw one that takes long, takes it."""
+    async def main() -> None:
+        view = ImageView("/camera", kind="kitty")  # a picture of the panel's pixels, not of its half cells
+        app = ViewApp([])
+        async with app.run_test(size=(100, 40)) as pilot:
+            await app.screen.mount(view)
+            await pilot.pause()
+            assert view.laid_out()
+            assert view.off_loop(raw_message("rgb8", pattern()), 0.0) is None
+            big = Image(height=4000, width=4000, encoding="mono8", step=4000, data=bytes(4000 * 4000))
+            assert raw_pixels_read(big, view._layout(big).box) > ON_LOOP_PIXELS  # noqa: SLF001
+            for msg in (big, CompressedImage(format="png", data=compressed_file(tmp_path, "png").read_bytes())):
+                job = view.off_loop(msg, 0.0)
+                assert job is not None and job().msg is msg
+
+    asyncio.run(main())
 
 
 def test_fit_keeps_aspect() -> None:

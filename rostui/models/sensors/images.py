@@ -26,7 +26,7 @@ from PIL import Image as PILImage
 from rostui.core.msg import foreign_version
 
 __all__ = ["Picture", "ImageDecodeError", "ENCODINGS", "COMPRESSED_FORMATS", "MAX_DECODE_PIXELS", "decode_image",
-           "fit", "colour_map"]
+           "raw_pixels_read", "fit", "colour_map"]
 
 #: Raw encodings shown, with (channels, numpy dtype).
 ENCODINGS: dict[str, tuple[int, str]] = {
@@ -100,6 +100,26 @@ def decode_image(msg: Any, max_size: tuple[int, int] = (4096, 4096)) -> Picture:
     return _decode_raw(msg, max_size)
 
 
+def _stride(width: int, height: int, target: tuple[int, int]) -> int:
+    """The step between two source pixels read: a whole number of them per shown pixel, twice the size shown."""
+    return max(1, min(width // (2 * target[0]), height // (2 * target[1])))
+
+
+def raw_pixels_read(msg: Any, max_size: tuple[int, int]) -> int | None:
+    """How many pixels :func:`decode_image` reads of raw image ``msg`` to fit ``max_size`` (what its cost grows
+    with), or None for a compressed image (its cost is only known once decoded) or a message with no such size."""
+    if hasattr(msg, "format"):
+        return None
+    try:
+        width, height = int(msg.width), int(msg.height)
+    except (AttributeError, TypeError, ValueError):
+        return None
+    if width <= 0 or height <= 0:
+        return 0
+    stride = _stride(width, height, fit(width, height, *max_size))
+    return -(-width // stride) * -(-height // stride)
+
+
 def _decode_raw(msg: Any, max_size: tuple[int, int]) -> Picture:
     encoding = str(msg.encoding)
     if encoding not in ENCODINGS:
@@ -123,7 +143,7 @@ def _decode_raw(msg: Any, max_size: tuple[int, int]) -> Picture:
     pixels = grid.view(dtype).reshape(height, width, channels) if itemsize > 1 else grid.reshape(height, width, channels)
     # keep a whole number of source pixels per shown pixel, twice the size shown (Pillow smooths the rest)
     target = fit(width, height, *max_size)
-    stride = max(1, min(width // (2 * target[0]), height // (2 * target[1])))
+    stride = _stride(width, height, target)
     pixels = pixels[::stride, ::stride]
     depth = None
     if encoding in ("rgb8", "rgba8"):

@@ -250,6 +250,48 @@ def test_node_shut_down_while_selected(rostui_core: Any) -> None:
     run_app(quick_app(), scenario)
 
 
+def test_a_node_that_shuts_down_between_look_up_and_call_is_gone_not_dead(
+        rostui_core: Any, ros_env: dict[str, str]) -> None:
+    """/ghost's get_loggers was looked up while it was registered; when our call connects it has unregistered
+    and drops the connection: the master no longer lists it, so it shut down (CI once said "probably died")."""
+    import socket
+    import struct
+    import threading
+
+    from rostui.models.loggers import LoggerLevels, NodeGoneError
+
+    master = xmlrpc.client.ServerProxy(ros_env["ROS_MASTER_URI"])
+    services = socket.socket()
+    services.bind(("127.0.0.1", 0))
+    services.listen(4)
+    service_uri, api = f"rosrpc://127.0.0.1:{services.getsockname()[1]}", "http://127.0.0.1:1/"
+
+    def shut_down_on_first_call() -> None:
+        conn, _ = services.accept()
+        for service in ("get_loggers", "set_logger_level"):
+            master.unregisterService("/ghost", f"/ghost/{service}", service_uri)
+        conn.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack("ii", 1, 0))  # reset, as a closed port
+        conn.close()
+
+    for service in ("get_loggers", "set_logger_level"):
+        assert master.registerService("/ghost", f"/ghost/{service}", service_uri, api)[0] == 1
+    threading.Thread(target=shut_down_on_first_call, daemon=True).start()
+
+    async def main() -> None:
+        levels = await LoggerLevels(ros_env["ROS_MASTER_URI"], timeout=5.0).start()
+        try:
+            with pytest.raises(NodeGoneError, match="^node /ghost is gone: the master no longer lists it$"):
+                await levels.loggers("/ghost")
+            assert master.registerService("/dead", "/dead/get_loggers", service_uri, api)[0] == 1
+            services.close()  # still listed, nothing listening: a node that died
+            with pytest.raises(NodeGoneError, match=r"^node /dead does not answer \(connection refused\)"):
+                await levels.loggers("/dead")
+        finally:
+            await levels.close()
+
+    asyncio.run(main())
+
+
 @pytest.fixture
 def hung_node(rostui_core: Any, ros_env: dict[str, str]) -> Iterator[str]:
     """/hung: alive (its slave API answers getPid) but its logger services accept and never answer."""

@@ -185,7 +185,7 @@ class LoggerLevels(CallingNode):
         except asyncio.TimeoutError:
             raise ServiceTimeoutError(f"node {node} did not answer within {self.timeout:g} s") from None
         except XmlRpcConnectionError as exc:
-            raise NodeGoneError(f"node {node} does not answer ({exc.reason}): it has probably died") from None
+            raise await self._gone_or_dead(node, exc.reason) from None
         except (XmlRpcError, RosApiError, ValueError, TypeError) as exc:
             raise ServiceFailedError(f"node {node} answered getPid wrongly: {exc}") from None
         finally:
@@ -225,9 +225,21 @@ class LoggerLevels(CallingNode):
                 raise NodeGoneError(f"{name} is not registered with the master: node {node} is not running") \
                     from None
             if isinstance(cause, OSError):
-                raise NodeGoneError(f"node {node} does not answer ({_reason(cause)}): it has probably died") \
-                    from None
+                raise await self._gone_or_dead(node, _reason(cause)) from None
             raise ServiceFailedError(f"{name} failed: {exc}") from None
+
+    async def _gone_or_dead(self, node: str, reason: str) -> NodeGoneError:
+        """Why ``node`` could not be reached (``reason``): shut down (the master no longer lists it: a node that
+        shut down between our look-up and our call) or, while the master still lists it, probably died."""
+        from rostui.core.master_errors import MasterError, MasterRefusedError
+
+        try:
+            await asyncio.wait_for(self.node.master_call("lookupNode", node), self.timeout)
+        except MasterRefusedError:
+            return NodeGoneError(f"node {node} is gone: the master no longer lists it")
+        except (asyncio.TimeoutError, MasterError):
+            pass
+        return NodeGoneError(f"node {node} does not answer ({reason}): it has probably died")
 
 
 def resolve_node_name(name: str) -> str:

@@ -16,6 +16,8 @@ main_thread = threading.current_thread()
 
 
 def on_chatter(msg):
+    if rospy.is_shutdown():
+        return  # a late delivery while the script ends (Debian's rospy under load): stdout may be closed already
     print("= chatter callback on the main thread:", threading.current_thread() is main_thread, flush=True)
     pub = rospy.Publisher("echoed", String, queue_size=1, latch=True)
     rospy.sleep(0.5)  # blocks this subscriber's callbacks only
@@ -40,3 +42,4 @@ rospy.Subscriber("chatter", String, on_chatter)
 talk = rospy.Publisher("chatter", String, queue_size=1, latch=True)
 talk.publish(String("hello"))
 print("= heard back:", echoed.wait(30), flush=True)
+rospy.signal_shutdown("done")

@@ -119,8 +119,8 @@ def test_bad_images_say_why_in_one_line(msg: Any, says: str) -> None:
 def test_raw_pixels_read_counts_the_strided_read(width: int, height: int, box: tuple[int, int], step: int) -> None:
     """What a raw frame costs to draw grows with the pixels the strided read touches, not the frame's size."""
     msg = Image(height=height, width=width, encoding="mono8", step=width, data=bytes(width * height))
-    read = decode_image(msg, box)  # no error: the figure is of a frame that decodes
-    assert read.rgb.shape[:2] == fit(width, height, *box)[::-1]
+    picture = decode_image(msg, box)  # no error: the figure is of a frame that decodes
+    assert picture.rgb.shape[:2] == fit(width, height, *box)[::-1]
     assert raw_pixels_read(msg, box) == -(-width // step) * -(-height // step)
     assert raw_pixels_read(CompressedImage(format="png", data=b""), box) is None
 

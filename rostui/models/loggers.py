@@ -178,7 +178,7 @@ class LoggerLevels(CallingNode):
         except MasterUnreachableError:
             raise MasterUnreachableError(self.master_uri) from None
         except MasterRefusedError:
-            raise NodeGoneError(f"node {node} is gone: the master no longer lists it") from None
+            raise _unlisted(node) from None
         client = XmlRpcClient(str(uri), timeout=self.timeout + 1.0)  # wait_for below decides the timeout
         try:
             return int(ros_result(await asyncio.wait_for(client.call("getPid", self.node.name), self.timeout)))
@@ -236,7 +236,7 @@ class LoggerLevels(CallingNode):
         try:
             await asyncio.wait_for(self.node.master_call("lookupNode", node), self.timeout)
         except MasterRefusedError:
-            return NodeGoneError(f"node {node} is gone: the master no longer lists it")
+            return _unlisted(node)
         except (asyncio.TimeoutError, MasterError):
             pass
         return NodeGoneError(f"node {node} does not answer ({reason}): it has probably died")
@@ -283,6 +283,11 @@ def format_loggers(items: Sequence[LoggerLevel]) -> str:
     """One ``logger  LEVEL`` line per logger, levels aligned in a column."""
     width = max((len(item.name) for item in items), default=0)
     return "".join(f"{item.name.ljust(width)}  {item.level}\n" for item in items)
+
+
+def _unlisted(node: str) -> NodeGoneError:
+    """``node`` is gone: the master no longer lists it (it shut down)."""
+    return NodeGoneError(f"node {node} is gone: the master no longer lists it")
 
 
 def _reason(error: OSError) -> str:

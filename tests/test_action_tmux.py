@@ -1,6 +1,7 @@
 """`rostui action` end to end in a real terminal (tmux, 80x24), against the Fibonacci tutorial's server under Debian's
 actionlib (tests/action_helpers.py): the server and its goal template appear, Enter goes to the goal, ctrl+s sends it as
-it is (order 0) and the result comes; q on the action list returns to the shell with 0.
+it is (order 0) and the result comes; the key line says where q goes; q on the action list returns to the shell
+with 0.
 """
 
 from __future__ import annotations
@@ -36,10 +37,11 @@ def test_action_in_tmux(pane: Pane, rostui_core: Any, ros_env: dict[str, str], t
         pane.wait_until(lambda: pane.shows("/fibonacci", "order: 0", "actionlib_tutorials/Fibonacci"),
                         "the server and its goal template")
         pane.keys("Enter")
-        pane.wait_until(lambda: pane.shows("editing the goal"), "the goal editor")
+        pane.wait_until(lambda: pane.shows("editing the goal", "Tab back to the actions"), "the goal editor")
+        assert "q quit" not in pane.screen()  # q types a q here
         pane.keys("C-s")  # the template as it is: order 0 (editing is the pilot test's, test_action_app.py)
         pane.wait_until(lambda: pane.shows("goal SUCCEEDED", "sequence: [0, 1]"), "the result")
         pane.keys("Tab")  # back to the action list, where q quits
-        pane.wait_until(lambda: "q quit" in pane.screen(), "the key line")
+        pane.wait_until(lambda: "q quit" in pane.screen(), "the key line of the action list")
         pane.keys("q")
         pane.wait_until(lambda: f"{EXIT_MARK}0" in pane.screen(), "the shell to report exit status 0 after q")

@@ -12,6 +12,7 @@ import asyncio
 from pathlib import Path
 from typing import Any, ClassVar
 
+from textual import events
 from textual.app import ComposeResult
 from textual.binding import Binding, BindingType
 from textual.containers import Horizontal, Vertical
@@ -31,6 +32,8 @@ from rostui.tools.action import STATUS_NAMES
 __all__ = ["ActionApp", "run_app"]
 
 KEYS = key_line("ctrl+s send goal  ctrl+x cancel  Tab actions/goal")
+#: The key line while the goal editor has focus, where q and ? are typed into the goal.
+EDITING_KEYS = "Tab back to the actions (q and ? type here)  ctrl+s send goal  ctrl+x cancel"
 
 
 class ActionApp(ReleasesOnExit, KeysApp):
@@ -84,6 +87,10 @@ class ActionApp(ReleasesOnExit, KeysApp):
         self.query_one(NameList).focus()
         self.run_worker(self._poll(), name="poll", exit_on_error=False)
         quit_on_signals(self)
+
+    def on_descendant_focus(self, event: events.DescendantFocus) -> None:
+        """The key line for where the keys go now: in the goal editor, q and ? are text."""
+        self.query_one("#keys", Static).update(EDITING_KEYS if event.widget.id == "goal" else KEYS)
 
     def notice(self, name: str) -> Notice:
         """The notice under ``actions`` or ``goal``, or the ``master`` line."""

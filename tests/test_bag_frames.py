@@ -47,6 +47,23 @@ def test_frames_are_the_payloads_with_their_length_in_play_order(tmp_path: Path,
     reader.close()
 
 
+@pytest.mark.parametrize("name", ["c.bag", "c.mcap"])
+def test_a_chunk_leaves_the_cache_once_its_frames_are_out(tmp_path: Path, name: str) -> None:
+    """A player reads in time order and never goes back: each chunk's decompressed bytes leave the reader's
+    cache after its last frame, so it holds the chunk in play and no more, however large its bound."""
+    path = str(write_counts(tmp_path / name, count=120, flush_every=25, compression="lz4"))
+    reader = open_reader(path)
+    chunks = reader.chunk_spans()
+    assert chunks is not None and len(chunks) == 5
+    held = []
+    for _c, _t, frame in framed_messages(reader):
+        held.append(reader.cache.held_bytes)
+        _plain(frame)  # still whole after its chunk left the cache
+    assert 0 < max(held) <= max(place.plain_size for place in reader.chunk_table)
+    assert reader.cache.held_bytes == 0
+    reader.close()
+
+
 def test_two_files_merge_in_time_order_ties_by_file(tmp_path: Path) -> None:
     a = str(write_counts(tmp_path / "a.bag", count=40, flush_every=7))
     b = str(write_counts(tmp_path / "b.mcap", count=30, flush_every=11))
@@ -217,7 +234,7 @@ def test_chunk_order_is_exact_over_overlapping_chunks(seed: int) -> None:
 
 def test_chunk_runs_give_a_lone_chunk_as_one_run_and_overlapping_chunks_a_message_at_a_time() -> None:
     """Chunks apart in time come whole (the player frames each run with one look at its chunk); where two
-    overlap, the merge hands out one message at a time, each run of one chunk."""
+    overlap, the merge hands out one message at a time, each run of one chunk; a chunk's last run says so."""
     from rostui.core.bag.chunkorder import chunk_runs
 
     chunks = {0: [(1, 0, 0), (2, 10, 0), (3, 20, 1)],
@@ -225,4 +242,5 @@ def test_chunk_runs_give_a_lone_chunk_as_one_run_and_overlapping_chunks_a_messag
               2: [(11, 0, 1), (13, 10, 1)]}
     spans = [(rows[0][0], rows[-1][0], number) for number, rows in chunks.items()]
     runs = list(chunk_runs(spans, chunks.__getitem__))
-    assert runs == [(0, chunks[0]), (1, [(10, 0, 0)]), (2, [(11, 0, 1)]), (1, [(12, 10, 0)]), (2, [(13, 10, 1)])]
+    assert runs == [(0, chunks[0], True), (1, [(10, 0, 0)], False), (2, [(11, 0, 1)], False),
+                    (1, [(12, 10, 0)], True), (2, [(13, 10, 1)], True)]

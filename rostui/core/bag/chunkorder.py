@@ -21,11 +21,12 @@ gives them."""
 
 
 def chunk_runs(spans: Sequence[tuple[int, int, int]],
-               rows: Callable[[int], list[Row]]) -> Iterator[tuple[int, list[Row]]]:
-    """``(chunk, rows)``: runs of one chunk's messages, whose rows taken in turn are every message of the chunks
-    ``spans`` lists (``(first time, last time, number)``) in time order, ties by chunk number, then offset.
-    ``rows(number)`` reads a chunk's entries, sorted, when the merge reaches its first time.  A chunk alone
-    in its time comes as one run (up to the next chunk's first time); chunks that overlap, a message a run."""
+               rows: Callable[[int], list[Row]]) -> Iterator[tuple[int, list[Row], bool]]:
+    """``(chunk, rows, last)``: runs of one chunk's messages, whose rows taken in turn are every message of the
+    chunks ``spans`` lists (``(first time, last time, number)``) in time order, ties by chunk number, then
+    offset; ``last`` is True on a chunk's last run (nothing later needs that chunk).  ``rows(number)`` reads a
+    chunk's entries, sorted, when the merge reaches its first time.  A chunk alone in its time comes as one run
+    (up to the next chunk's first time); chunks that overlap, a message a run."""
     pending = sorted(spans)
     heap: list[tuple[int, int, int, list[Row]]] = []  # (time, chunk, index of that row, the chunk's rows)
     next_chunk = 0
@@ -45,8 +46,9 @@ def chunk_runs(spans: Sequence[tuple[int, int, int]],
             end = len(entries) if next_chunk == len(pending) else bisect_left(entries, (pending[next_chunk][0],), at)
         else:
             end = at + 1
-        yield number, entries[at:end]
-        if end == len(entries):
+        last = end == len(entries)
+        yield number, entries[at:end], last
+        if last:
             heapq.heappop(heap)
         else:
             heapq.heapreplace(heap, (entries[end][0], number, end, entries))
@@ -56,6 +58,6 @@ def chunk_order(spans: Sequence[tuple[int, int, int]],
                 rows: Callable[[int], list[Row]]) -> Iterator[tuple[int, int, int, int]]:
     """``(time, chunk, offset, connection id)`` of every message of the chunks ``spans`` lists, in time order,
     ties by chunk number, then offset (:func:`chunk_runs`, a message at a time)."""
-    for number, run in chunk_runs(spans, rows):
+    for number, run, _last in chunk_runs(spans, rows):
         for t, offset, conn_id in run:
             yield t, number, offset, conn_id

@@ -84,6 +84,12 @@ class ChunkCache:
             self._bytes -= len(dropped)
         return data
 
+    def drop(self, chunk: int) -> None:
+        """Stop holding chunk ``chunk`` (nothing when it is not held)."""
+        data = self._chunks.pop(chunk, None)
+        if data is not None:
+            self._bytes -= len(data)
+
     def clear(self) -> None:
         """Drop every chunk held."""
         self._chunks.clear()
@@ -118,6 +124,10 @@ class ChunkedFile:
         """The frames of chunk ``chunk``'s messages by offset: each message :meth:`payload` finds, with
         TCPROS's 4-byte length before it."""
         return lambda offset: frame_of(self.payload(chunk, offset))
+
+    def release(self, chunk: int) -> None:
+        """Chunk ``chunk`` is not needed again soon (a player is past it): its decompressed bytes leave the cache."""
+        self.cache.drop(chunk)
 
     def payload(self, chunk: int, offset: int) -> bytes:
         """The serialised message whose record lies at ``offset`` of chunk ``chunk`` (each format's own)."""

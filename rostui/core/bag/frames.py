@@ -29,17 +29,20 @@ FramedMessage = tuple[Connection, int, Frame]
 
 def framed_messages(reader: Reader) -> Iterator[FramedMessage]:
     """One file's messages in time order (ties in file order, as rosbag plays them), framed; in file order when
-    the file has no index (:func:`~rostui.core.bag.files.unordered_notice` says so)."""
+    the file has no index (:func:`~rostui.core.bag.files.unordered_notice` says so).  A chunk is released from
+    the reader's cache once its last frame is out (a frame still held keeps its bytes)."""
     spans = reader.chunk_spans()
     if spans is None:
         for conn, t, data in reader.messages():
             yield conn, t, frame_of(data)
         return
     conns = reader.connections
-    for chunk, run in chunk_runs(spans, reader.chunk_rows):
+    for chunk, run, last in chunk_runs(spans, reader.chunk_rows):
         frame_at = reader.framer(chunk)  # what every frame needs of its chunk, looked up once a run
         for t, offset, conn_id in run:
             yield conns[conn_id], t, frame_at(offset)
+        if last:
+            reader.release(chunk)  # played: the next chunk takes its place in memory and in the CPU's caches
 
 
 def merged_framed_messages(readers: Sequence[Reader]) -> Iterator[FramedMessage]:

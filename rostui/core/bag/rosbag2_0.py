@@ -375,6 +375,19 @@ def _op(fields: dict[str, bytes], place: _Place) -> int:
     return op[0]
 
 
+def _data_span(plain: bytes, offset: int) -> tuple[int, int] | None:
+    """Where the data of the message record at ``offset`` of a chunk's plain bytes starts and ends; None when no
+    record fits there (an index pointing past the chunk or into the middle of a record)."""
+    end = len(plain)
+    if 0 <= offset <= end - 8:
+        data_at = offset + 8 + _U32.unpack_from(plain, offset)[0]
+        if data_at <= end:
+            (dlen,) = _U32.unpack_from(plain, data_at - 4)
+            if dlen <= end - data_at:
+                return data_at, data_at + dlen
+    return None
+
+
 def _record_in(view: memoryview, pos: int, path: str, chunk_at: int) -> tuple[_Record, int]:
     """The record at ``pos`` of the plain bytes of the chunk at ``chunk_at`` and where the next one starts."""
     end = len(view)
@@ -747,7 +760,8 @@ class BagReader(ChunkedFile):
         4-byte length before it, as TCPROS sends it.  In a chunk the record's own data-length field is that
         prefix, so a frame is a view of the chunk, not a copy; in an uncompressed chunk (whole in the file, of
         the size it declares), the region of the file that holds it: the chunk is not read (rosbag's chunks
-        carry no CRC that reading would check).  What each frame needs of the chunk is looked up here, once."""
+        carry no CRC that reading would check).  What each frame needs of the chunk (its plain bytes, read and
+        decompressed here when the cache does not hold them) is looked up here, once."""
         if chunk == NO_CHUNK:
             return super().framer(chunk)
         place = self.chunk_table[chunk]
@@ -755,9 +769,14 @@ class BagReader(ChunkedFile):
                 and place.data_at + place.stored <= self.size:
             return self._regions_in_chunk(place)
 
+        plain = self.cache.get(chunk)
+        view = memoryview(plain)
+
         def view_at(offset: int) -> Frame:
-            plain, data_at, end = self._data_in_chunk(chunk, offset)
-            return memoryview(plain)[data_at - 4:end]
+            span = _data_span(plain, offset)
+            if span is None:
+                raise self._no_record_at(place, offset)
+            return view[span[0] - 4:span[1]]
         return view_at
 
     def _regions_in_chunk(self, place: ChunkPlace) -> Callable[[int], FileRegion]:
@@ -784,14 +803,10 @@ class BagReader(ChunkedFile):
     def _data_in_chunk(self, chunk: int, offset: int) -> tuple[bytes, int, int]:
         """Chunk ``chunk``'s plain bytes and where the data of the message record at ``offset`` starts and ends."""
         plain = self.cache.get(chunk)
-        end = len(plain)
-        if 0 <= offset <= end - 8:
-            data_at = offset + 8 + _U32.unpack_from(plain, offset)[0]
-            if data_at <= end:
-                (dlen,) = _U32.unpack_from(plain, data_at - 4)
-                if dlen <= end - data_at:
-                    return plain, data_at, data_at + dlen
-        raise self._no_record_at(self.chunk_table[chunk], offset)
+        span = _data_span(plain, offset)
+        if span is None:
+            raise self._no_record_at(self.chunk_table[chunk], offset)
+        return plain, span[0], span[1]
 
     def _no_record_at(self, place: ChunkPlace, offset: int) -> MalformedRecord:
         """The error for an index entry whose offset holds no whole message record of its chunk."""

@@ -36,10 +36,10 @@ Ctrl-C and new subscribers wait at most this long (a screen's 20 ms is for bag v
 turn: 40 turns a second fewer than at 20 ms are about 6% of a 20 s play's CPU (bench/README.md, "Bag play CPU",
 fifth pass)."""
 PLAY_CACHE_BYTES = int(os.environ.get("ROSTUI_BAG_PLAY_CACHE_BYTES", str(16 * 1024 * 1024)))
-"""Bytes of decompressed chunks the player keeps, shared by its files: it reads in time order, so a chunk
-left behind is read again only where chunks overlap in time (about 20 chunks of rosbag's 768 KB may
-interleave before one is read twice). Each reader's own 64 MB filled with chunks never read again: 60 MB
-more resident memory and 16 000 page faults in a 160 MB bag's play."""
+"""Bytes of decompressed chunks the player keeps, shared by its files, while chunks overlap in time (about 20
+chunks of rosbag's 768 KB may interleave before one is read twice); a chunk whose last message has gone leaves
+at once (:func:`~rostui.core.bag.frames.framed_messages`). Each reader's own 64 MB filled with chunks never read
+again: 60 MB more resident memory and 16 000 page faults in a 160 MB bag's play."""
 
 
 @dataclass

@@ -21,9 +21,9 @@ import pytest
 from conftest import rostui_cmd
 
 HEAVY = ("numpy", "ssl", "_ssl", "_hashlib", "yaml", "http.client", "email.parser", "uvloop", "importlib.resources",
-         "tempfile", "textual", "typer", "rich", "subprocess", "dataclasses", "datetime")
-"""Modules a talker needs none of (OpenSSL alone is 5 MB of its memory; subprocess, dataclasses and datetime
-cost its start). Not ipaddress: a regular install's talker does without it, but the editable install's import
+         "tempfile", "textual", "typer", "rich", "subprocess", "dataclasses", "datetime", "inspect", "ast", "dis")
+"""Modules a talker needs none of (OpenSSL alone is 5 MB of its memory; subprocess, dataclasses, datetime and
+inspect cost its start). Not ipaddress: a regular install's talker does without it, but the editable install's import
 hook imports pathlib, and so urllib.parse with it, before rostui.compat can."""
 
 TALKER = '''#!/usr/bin/env python
@@ -178,6 +178,30 @@ print(subprocess.run([sys.executable, "-c", "print(1)"], capture_output=True, te
     out = _run(tmp_path, "children.py", code, ros_env)
     assert out.returncode == 0, out.stderr
     assert out.stdout.splitlines() == ["False", "child True", "1 module"], out.stdout + out.stderr
+
+
+def test_asyncio_inspect_after_rospy(ros_env: dict[str, str], tmp_path: Path) -> None:
+    """asyncio imported without inspect (a stand-in in its modules) still tells coroutine functions apart and
+    names a callback in debug mode, and the script's own ``import inspect`` is the real module."""
+    code = '''import sys
+import rospy
+print("inspect" in sys.modules)
+import asyncio
+async def job():
+    pass
+def plain():
+    pass
+print(asyncio.iscoroutinefunction(job), asyncio.iscoroutinefunction(plain))
+loop = asyncio.new_event_loop()
+loop.set_debug(True)
+print("plain() at " in repr(loop.call_soon(plain)))
+loop.close()
+import inspect
+print(type(inspect).__name__, inspect.isfunction(plain))
+'''
+    out = _run(tmp_path, "coroutines.py", code, ros_env)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.splitlines() == ["False", "True False", "True", "module True"], out.stdout + out.stderr
 
 
 def test_xmlrpc_datetime_after_rospy(ros_env: dict[str, str], tmp_path: Path) -> None:

@@ -1,9 +1,10 @@
-"""Import asyncio and xmlrpc.client without what a ROS node never uses: OpenSSL, subprocess, http.client, base64,
-decimal, datetime.py.
+"""Import asyncio and xmlrpc.client without what a ROS node never uses: OpenSSL, subprocess, inspect, http.client,
+base64, decimal, datetime.py.
 
 asyncio imports ``ssl`` at once, and with it OpenSSL (5 MB of a rospy talker's
-peak memory), and ``subprocess`` (with ``locale``: 2 ms of its start);
-xmlrpc.client imports ``http.client`` (and with it ``email`` and ``ssl``
+peak memory), ``subprocess`` (with ``locale``: 2 ms of its start) and
+``inspect`` (with ``ast`` and ``dis``: 8 ms), which it calls only in debug
+mode, on error paths and when a signal handler is added; xmlrpc.client imports ``http.client`` (and with it ``email`` and ``ssl``
 again) for its ServerProxy alone, which rostui's XML-RPC does not use, and
 ``base64`` and ``decimal`` for values ROS never sends (2.5 ms of a talker's
 start, with the ``http`` package's status enums).
@@ -16,7 +17,8 @@ import, by itself). xmlrpc.client's ``from datetime import datetime`` gets the
 class from CPython's ``_datetime``, the same class the datetime module exports,
 without that module's Python (1.3 ms). Only asyncio's and xmlrpc.client's own
 globals see a stand-in: a script's ``import ssl``, ``import subprocess``,
-``import datetime`` or ``from http import client`` gets the real module.
+``import inspect``, ``import datetime`` or ``from http import client`` gets the
+real module.
 """
 
 from __future__ import annotations
@@ -26,6 +28,10 @@ import importlib
 import sys
 import types
 from collections.abc import Callable, Mapping
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = ["import_lean", "import_urllib_parse_lean", "pause_gc", "resume_gc"]
 
@@ -77,29 +83,48 @@ _SUBPROCESS_CONSTANTS = {"PIPE": -1, "STDOUT": -2, "DEVNULL": -3}
 values subprocess documents."""
 
 
-def _import_asyncio() -> None:
-    """asyncio without ``ssl`` and ``subprocess`` (with ``locale`` and ``fcntl``, 2 ms of a talker's start): stand-ins
-    in asyncio's modules import the real ones when first used (a TLS connection, a child process)."""
+_INSPECT_CALLS = frozenset({"iscoroutinefunction", "unwrap", "isfunction", "isgenerator", "isawaitable"})
+"""What asyncio's modules use of ``inspect``: functions called on a callback, a coroutine's result or an awaitable
+(in debug mode, in a handle's repr, on a coroutine that yields garbage, in ``add_signal_handler``), never at
+import."""
+
+
+def _deferred_in_asyncio(name: str, **what: Any) -> tuple[_Deferred, list[types.ModuleType]] | None:
+    """A stand-in for module *name* in the globals of asyncio's modules that import it, until first used there
+    (see :class:`_Deferred` for *what*), and the list of those modules for the caller to fill once asyncio is
+    imported; None, and nothing stands in, when *name* is imported already."""
+    if name in sys.modules:
+        return None
     users: list[types.ModuleType] = []
 
     def put_back(real: types.ModuleType) -> None:
         for module in users:
-            module.subprocess = real  # type: ignore[attr-defined]
+            setattr(module, name, real)
 
-    subprocess = None
-    if "subprocess" not in sys.modules:
-        subprocess = _Deferred("subprocess", put_back, constants=_SUBPROCESS_CONSTANTS)
-        sys.modules["subprocess"] = subprocess  # asyncio imports it unconditionally: it gets the stand-in
+    return _Deferred(name, put_back, **what), users
+
+
+def _import_asyncio() -> None:
+    """asyncio without ``ssl``, ``subprocess`` (with ``locale`` and ``fcntl``, 2 ms of a talker's start) and
+    ``inspect`` (with ``ast`` and ``dis``, 8 ms of a talker's start here): stand-ins in asyncio's modules import the
+    real ones when first used (a TLS connection, a child process, a debug-mode check)."""
+    stand_ins = {name: made for name, made in (
+        ("subprocess", _deferred_in_asyncio("subprocess", constants=_SUBPROCESS_CONSTANTS)),
+        ("inspect", _deferred_in_asyncio("inspect", callables=_INSPECT_CALLS)),
+    ) if made is not None}
+    for name, (stand_in, _users) in stand_ins.items():
+        sys.modules[name] = stand_in  # asyncio imports them unconditionally: it gets the stand-ins
     sys.modules["ssl"] = None  # type: ignore[assignment]  # asyncio's "import ssl" fails as on a build without it
     try:
         import asyncio  # noqa: F401
     finally:
         if sys.modules.get("ssl", False) is None:
             del sys.modules["ssl"]
-        if subprocess is not None and sys.modules.get("subprocess") is subprocess:
-            del sys.modules["subprocess"]  # everyone else's import gets the real module
-    if subprocess is not None:
-        users.extend(_asyncio_modules_with("subprocess", subprocess))
+        for name, (stand_in, _users) in stand_ins.items():
+            if sys.modules.get(name) is stand_in:
+                del sys.modules[name]  # everyone else's import gets the real module
+    for name, (stand_in, users) in stand_ins.items():
+        users.extend(_asyncio_modules_with(name, stand_in))
     _stand_in_for_ssl()
 
 

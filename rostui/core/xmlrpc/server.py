@@ -17,10 +17,10 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import inspect
 import logging
 import sys
 import zlib
+from collections.abc import Awaitable
 from typing import Any, AsyncIterator, Callable
 from xml.parsers.expat import ExpatError
 
@@ -124,7 +124,7 @@ class XmlRpcServer:
         self._idle: dict[_Conn, None] = {}
         self._reading: dict[_Conn, None] = {}
         self._warned_full = False
-        self._methods: dict[str, tuple[Callable[..., Any], bool] | None] = {}
+        self._methods: dict[str, Callable[..., Any] | None] = {}
 
     # -- lifecycle ---------------------------------------------------------
 
@@ -167,34 +167,32 @@ class XmlRpcServer:
 
     # -- dispatch ----------------------------------------------------------
 
-    def _lookup(self, name: str) -> tuple[Callable[..., Any], bool] | None:
+    def _lookup(self, name: str) -> Callable[..., Any] | None:
         try:
             return self._methods[name]
         except KeyError:
             pass
-        found: tuple[Callable[..., Any], bool] | None = None
+        found: Callable[..., Any] | None = None
         if name and not name.startswith("_") and "." not in name:
             fn = getattr(self.handler, name, None)
             if callable(fn):
-                found = (fn, inspect.iscoroutinefunction(fn))
+                found = fn
         if len(self._methods) < 4096:
             self._methods[name] = found
         return found
 
     async def _invoke(self, method: str, params: tuple[Any, ...] | list[Any]) -> Any:
-        """Call ``method``; exceptions propagate (turned into faults by the caller)."""
+        """Call ``method``, awaiting what it returns when that is awaitable (a coroutine method's call); exceptions
+        propagate (turned into faults by the caller)."""
         if method == "system.multicall":
             if len(params) != 1 or not isinstance(params[0], list):
                 raise TypeError("system.multicall expects one array of calls")
             return await self._multicall(params[0])
-        entry = self._lookup(method)
-        if entry is None:
+        fn = self._lookup(method)
+        if fn is None:
             raise Exception(f'method "{method}" is not supported')
-        fn, is_async = entry
-        if is_async:
-            return await fn(*params)
         result = fn(*params)
-        if inspect.isawaitable(result):
+        if isinstance(result, Awaitable):
             result = await result
         return result
 

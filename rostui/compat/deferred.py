@@ -4,14 +4,15 @@ base64, decimal, datetime.py.
 asyncio imports ``ssl`` at once, and with it OpenSSL (5 MB of a rospy talker's
 peak memory), ``subprocess`` (with ``locale``: 2 ms of its start) and
 ``inspect`` (with ``ast`` and ``dis``: 8 ms), which it calls only in debug
-mode, on error paths and when a signal handler is added; xmlrpc.client imports ``http.client`` (and with it ``email`` and ``ssl``
-again) for its ServerProxy alone, which rostui's XML-RPC does not use, and
-``base64`` and ``decimal`` for values ROS never sends (2.5 ms of a talker's
-start, with the ``http`` package's status enums).
+mode, on error paths and when a signal handler is added; xmlrpc.client
+imports ``http.client`` (and with it ``email`` and ``ssl`` again) for its
+ServerProxy alone, which rostui's XML-RPC does not use, and ``base64`` and
+``decimal`` for values ROS never sends (2.5 ms of a talker's start, with the
+``http`` package's status enums).
 :func:`import_lean` imports both with a stand-in in those places: it answers
 ``ssl is not None`` as the real module would, and the first attribute read
-through it (an ``SSLContext`` check, a TLS handshake, a ServerProxy call)
-imports the real module and puts it in the stand-in's place (subprocess's
+through it (an ``SSLContext`` check, a TLS handshake, a ServerProxy call, an
+``inspect`` function called) imports the real module and puts it in the stand-in's place (subprocess's
 stand-in answers ``PIPE``, ``STDOUT`` and ``DEVNULL``, which asyncio reads at
 import, by itself). xmlrpc.client's ``from datetime import datetime`` gets the
 class from CPython's ``_datetime``, the same class the datetime module exports,

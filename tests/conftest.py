@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import asyncio
 import collections
+import functools
 import os
 import random
 import shutil
@@ -18,6 +19,7 @@ import socket
 import subprocess
 import sys
 import time
+import uuid
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable, Iterator
@@ -275,15 +277,71 @@ def core_argv(kind: str, port: int) -> list[str]:
 
 @contextmanager
 def running_core(kind: str, env: dict[str, str]) -> Iterator[subprocess.Popen]:
-    """A `rostui core` (*kind* "rostui") or a real `roscore` (*kind* "roscore") on *env*'s port, rosout up."""
+    """A `rostui core` (*kind* "rostui") or a real ROS core (*kind* "roscore", see :func:`running_real_core`) on
+    *env*'s port, rosout up; the master's process."""
+    if kind == "roscore":
+        with running_real_core(env) as master:
+            yield master
+        return
     port = master_port(env)
-    proc = subprocess.Popen(core_argv(kind, port), env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                            start_new_session=kind == "roscore")
+    proc = subprocess.Popen(core_argv(kind, port), env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     try:
-        wait_for_core(port, proc, timeout=30 if kind == "rostui" else 60)
+        wait_for_core(port, proc, timeout=30)
         yield proc
     finally:
         stop_process(proc)
+
+
+ROSOUT = "/usr/lib/rosout/rosout"
+
+
+@functools.cache
+def roscore_versions() -> tuple[str, str]:
+    """``/rosversion`` and ``/rosdistro`` as roscore sets them: what `rosversion roslaunch` and `rosversion -d`
+    print, newline included (roscore.xml's ``command=`` parameters)."""
+    return tuple(subprocess.run(["rosversion", *args], capture_output=True, text=True, check=True).stdout
+                 for args in (["roslaunch"], ["-d"]))  # type: ignore[return-value]
+
+
+@contextmanager
+def running_real_core(env: dict[str, str]) -> Iterator[subprocess.Popen]:
+    """What `roscore -p PORT` runs, started as roscore's roslaunch starts it: Debian's `rosmaster --core`, the
+    parameters of roscore.xml and roslaunch's ``/run_id``, then Debian's rosout logging to
+    ``$ROS_HOME/log/<run_id>/`` (``latest`` pointing there); yields the master's process.
+
+    Without roslaunch itself (so without the ``/roslaunch/uris`` entry of its server): its start and its two
+    `rosversion` runs cost about 1.2 s of CPU a core, 7% of the suite's CPU over the 170 cores a run
+    started.  Tests of the `roscore` command itself run it.
+    """
+    from rostui.core.xmlrpc import call_sync
+
+    need_command("rosmaster")
+    port = master_port(env)
+    run_id = str(uuid.uuid1())
+    log_dir = Path(env["ROS_HOME"]) / "log" / run_id
+    log_dir.mkdir(parents=True)
+    latest = log_dir.parent / "latest"
+    if latest.is_symlink():
+        latest.unlink()
+    latest.symlink_to(log_dir)
+    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "start_new_session": True}
+    master = subprocess.Popen(["rosmaster", "--core", "-p", str(port), "-w", "3", f"__log:={log_dir}/master.log"],
+                              env=env, **quiet)  # type: ignore[call-overload]
+    rosout: subprocess.Popen | None = None
+    try:
+        wait_for_port(port, timeout=60, proc=master)
+        uri = f"http://127.0.0.1:{port}/"
+        rosversion, rosdistro = roscore_versions()
+        for name, value in (("/run_id", run_id), ("/rosversion", rosversion), ("/rosdistro", rosdistro)):
+            call_sync(uri, "setParam", "/roslaunch", name, value)
+        rosout = subprocess.Popen([ROSOUT, "__name:=rosout", f"__log:={log_dir}/rosout-1.log"], env=env,
+                                  **quiet)  # type: ignore[call-overload]
+        wait_for_core(port, master, timeout=60)
+        yield master
+    finally:
+        if rosout is not None:
+            stop_process(rosout)
+        stop_process(master)
 
 
 def master_port(env: dict[str, str]) -> int:
@@ -335,7 +393,7 @@ def rostui_core(ros_env: dict[str, str]) -> Iterator[subprocess.Popen]:
 
 @pytest.fixture
 def real_roscore(ros_env: dict[str, str]) -> Iterator[subprocess.Popen]:
-    """A real ROS 1 `roscore` on the ros_env port (required in CI)."""
+    """A real ROS 1 core on the ros_env port (required in CI): :func:`running_real_core`."""
     need_command("roscore")
     with running_core("roscore", ros_env) as proc:
         yield proc

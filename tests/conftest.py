@@ -263,9 +263,7 @@ def module_ros_env(tmp_path_factory: pytest.TempPathFactory) -> dict[str, str]:
 
 @pytest.fixture(scope="module", params=["rostui", "roscore"])
 def module_master(request: pytest.FixtureRequest, module_ros_env: dict[str, str]) -> Iterator[str]:
-    """``any_master`` for a module's shared graph: a `rostui core` or a real roscore on module_ros_env's port."""
-    if request.param == "roscore":
-        need_command("roscore")
+    """``any_master`` for a module's shared graph: a `rostui core` or a real core on module_ros_env's port."""
     with running_core(request.param, module_ros_env):
         yield request.param
 
@@ -299,8 +297,10 @@ ROSOUT = "/usr/lib/rosout/rosout"
 def roscore_versions() -> tuple[str, str]:
     """``/rosversion`` and ``/rosdistro`` as roscore sets them: what `rosversion roslaunch` and `rosversion -d`
     print, newline included (roscore.xml's ``command=`` parameters)."""
-    return tuple(subprocess.run(["rosversion", *args], capture_output=True, text=True, check=True).stdout
-                 for args in (["roslaunch"], ["-d"]))  # type: ignore[return-value]
+    def rosversion(*args: str) -> str:
+        return subprocess.run(["rosversion", *args], capture_output=True, text=True, check=True).stdout
+
+    return rosversion("roslaunch"), rosversion("-d")
 
 
 @contextmanager
@@ -324,9 +324,12 @@ def running_real_core(env: dict[str, str]) -> Iterator[subprocess.Popen]:
     if latest.is_symlink():
         latest.unlink()
     latest.symlink_to(log_dir)
-    quiet = {"stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL, "start_new_session": True}
-    master = subprocess.Popen(["rosmaster", "--core", "-p", str(port), "-w", "3", f"__log:={log_dir}/master.log"],
-                              env=env, **quiet)  # type: ignore[call-overload]
+
+    def start(*argv: str) -> subprocess.Popen:
+        return subprocess.Popen(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                start_new_session=True)
+
+    master = start("rosmaster", "--core", "-p", str(port), "-w", "3", f"__log:={log_dir}/master.log")
     rosout: subprocess.Popen | None = None
     try:
         wait_for_port(port, timeout=60, proc=master)
@@ -334,8 +337,7 @@ def running_real_core(env: dict[str, str]) -> Iterator[subprocess.Popen]:
         rosversion, rosdistro = roscore_versions()
         for name, value in (("/run_id", run_id), ("/rosversion", rosversion), ("/rosdistro", rosdistro)):
             call_sync(uri, "setParam", "/roslaunch", name, value)
-        rosout = subprocess.Popen([ROSOUT, "__name:=rosout", f"__log:={log_dir}/rosout-1.log"], env=env,
-                                  **quiet)  # type: ignore[call-overload]
+        rosout = start(ROSOUT, "__name:=rosout", f"__log:={log_dir}/rosout-1.log")
         wait_for_core(port, master, timeout=60)
         yield master
     finally:
@@ -394,7 +396,6 @@ def rostui_core(ros_env: dict[str, str]) -> Iterator[subprocess.Popen]:
 @pytest.fixture
 def real_roscore(ros_env: dict[str, str]) -> Iterator[subprocess.Popen]:
     """A real ROS 1 core on the ros_env port (required in CI): :func:`running_real_core`."""
-    need_command("roscore")
     with running_core("roscore", ros_env) as proc:
         yield proc
 

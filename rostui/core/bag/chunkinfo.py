@@ -14,26 +14,29 @@ to re-read them from: they are kept whole, as one pseudo-chunk numbered
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 from rostui.core.bag.fileindex import NO_CHUNK, ChunkEntries
+from rostui.core.records import Record
 
 
-@dataclass
-class ChunkInfos:
+class ChunkInfos(Record):
     """Per chunk of one file with messages (in order of chunk number): number, first and last message time, and
-    ``(row, connection id, count)`` triples, one per connection the chunk holds."""
+    ``(row, connection id, count)`` triples, one per connection the chunk holds; ``loose``: the messages outside
+    any chunk, sorted (their row's number is NO_CHUNK). A record: see :mod:`rostui.core.records`."""
 
-    numbers: Any
-    starts: Any
-    ends: Any
-    pair_rows: Any
-    pair_conns: Any
-    pair_counts: Any
-    loose: ChunkEntries | None = None
-    """The messages outside any chunk, sorted (their row's number is NO_CHUNK)."""
-    from_file_index: bool = True
+    _fields = ("numbers", "starts", "ends", "pair_rows", "pair_conns", "pair_counts", "loose", "from_file_index")
+
+    def __init__(self, numbers: Any, starts: Any, ends: Any, pair_rows: Any, pair_conns: Any, pair_counts: Any,
+                 loose: ChunkEntries | None = None, from_file_index: bool = True) -> None:
+        self.numbers = numbers
+        self.starts = starts
+        self.ends = ends
+        self.pair_rows = pair_rows
+        self.pair_conns = pair_conns
+        self.pair_counts = pair_counts
+        self.loose = loose
+        self.from_file_index = from_file_index
 
     def __len__(self) -> int:
         return int(self.numbers.shape[0])

@@ -17,11 +17,11 @@ import os
 import zlib
 from collections import OrderedDict
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from rostui.core.bag.inflate import inflate
 from rostui.core.bag.model import Frame, MalformedRecord, frame_of
+from rostui.core.records import FrozenRecord
 
 if TYPE_CHECKING:
     from rostui.core.bag.chunkinfo import ChunkInfos
@@ -46,14 +46,18 @@ class ChunkPlace(NamedTuple):
     crc: int = 0
 
 
-@dataclass(frozen=True)
-class ChunkEntries:
-    """The index entries of one chunk (or of messages outside chunks), in the file's order."""
+class ChunkEntries(FrozenRecord):
+    """The index entries of one chunk (or of messages outside chunks), in the file's order (a record: see
+    :mod:`rostui.core.records`)."""
 
+    _fields = ("times", "conn_ids", "offsets", "chunk")
     times: Any
     conn_ids: Any
     offsets: Any
     chunk: int
+
+    def __init__(self, times: Any, conn_ids: Any, offsets: Any, chunk: int) -> None:
+        self._set(times, conn_ids, offsets, chunk)
 
 
 class ChunkCache:

@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import struct
-from dataclasses import dataclass, field
 from typing import Union
 
 from rostui.core.file_region import FileRegion
+from rostui.core.records import FrozenRecord, Record
 
 _FRAME_LENGTH = struct.Struct("<I")
 
@@ -44,17 +44,24 @@ class MalformedRecord(BagError):
         return f"{self.what} at byte {self.offset}"
 
 
-@dataclass(frozen=True)
-class Connection:
-    """One publisher connection as recorded: its topic, type, md5sum, definition, callerid and latching."""
+class Connection(FrozenRecord):
+    """One publisher connection as recorded: its topic, type, md5sum, definition, callerid and latching.
 
+    A record rather than a dataclass (:mod:`rostui.core.records` says why): every bag command and every player
+    makes its connections before its first message."""
+
+    _fields = ("id", "topic", "type", "md5sum", "definition", "callerid", "latching")
     id: int
     topic: str
     type: str
     md5sum: str
     definition: str
-    callerid: str = ""
-    latching: bool = False
+    callerid: str
+    latching: bool
+
+    def __init__(self, id: int, topic: str, type: str, md5sum: str, definition: str,
+                 callerid: str = "", latching: bool = False) -> None:
+        self._set(id, topic, type, md5sum, definition, callerid, latching)
 
     def header_fields(self) -> dict[str, str]:
         """The connection-header fields a rosbag connection record carries."""
@@ -67,28 +74,35 @@ class Connection:
         return fields
 
 
-@dataclass
-class BagSummary:
-    """What ``info`` shows: times, counts per connection, compression, and whether the file was closed."""
+class BagSummary(Record):
+    """What ``info`` shows: times, counts per connection, compression, and whether the file was closed.
 
-    path: str
-    format: str
-    version: str
-    size: int
-    connections: list[Connection] = field(default_factory=list)
-    counts: dict[int, int] = field(default_factory=dict)
-    start_ns: int = 0
-    end_ns: int = 0
-    chunk_compression: dict[str, int] = field(default_factory=dict)
-    chunk_bytes: dict[str, tuple[int, int]] = field(default_factory=dict)
-    """Per compression kind: (uncompressed, stored) bytes of all its chunks."""
-    closed: bool = True
-    problem: str = ""
-    info_span: tuple[int, int] | None = None
-    """rosbag info's start and end: the first chunk's start time and the last chunk's end time, chunks in
-    file order (a ``.bag``'s chunk infos). Unlike ``start_ns``/``end_ns`` (the earliest and latest message)
-    they can be inside the bag's time range when chunks are out of time order; None where a format has no
-    such records."""
+    ``chunk_bytes``: per compression kind, (uncompressed, stored) bytes of all its chunks. ``info_span``: rosbag
+    info's start and end, the first chunk's start time and the last chunk's end time, chunks in file order (a
+    ``.bag``'s chunk infos); unlike ``start_ns``/``end_ns`` (the earliest and latest message) they can be inside
+    the bag's time range when chunks are out of time order; None where a format has no such records."""
+
+    _fields = ("path", "format", "version", "size", "connections", "counts", "start_ns", "end_ns",
+               "chunk_compression", "chunk_bytes", "closed", "problem", "info_span")
+
+    def __init__(self, path: str, format: str, version: str, size: int,
+                 connections: list[Connection] | None = None, counts: dict[int, int] | None = None,
+                 start_ns: int = 0, end_ns: int = 0, chunk_compression: dict[str, int] | None = None,
+                 chunk_bytes: dict[str, tuple[int, int]] | None = None, closed: bool = True, problem: str = "",
+                 info_span: tuple[int, int] | None = None) -> None:
+        self.path = path
+        self.format = format
+        self.version = version
+        self.size = size
+        self.connections: list[Connection] = [] if connections is None else connections
+        self.counts: dict[int, int] = {} if counts is None else counts
+        self.start_ns = start_ns
+        self.end_ns = end_ns
+        self.chunk_compression: dict[str, int] = {} if chunk_compression is None else chunk_compression
+        self.chunk_bytes: dict[str, tuple[int, int]] = {} if chunk_bytes is None else chunk_bytes
+        self.closed = closed
+        self.problem = problem
+        self.info_span = info_span
 
     def add_chunk(self, kind: str, uncompressed: int, stored: int) -> None:
         """Count one chunk of ``kind`` (``none``, ``lz4``, ...) and its sizes."""

@@ -14,7 +14,6 @@ import os
 import struct
 import time
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
 from typing import Any, BinaryIO
 
 from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace
@@ -23,6 +22,7 @@ from rostui.core.bag.iov import Parts
 from rostui.core.bag.model import BagError, BagSummary, Connection, Frame, MalformedRecord
 from rostui.core.bag.sink import AppendFile, open_append
 from rostui.core.file_region import FileRegion
+from rostui.core.records import FrozenRecord
 
 MAGIC = b"#ROSBAG V2.0\n"
 FILE_HEADER_LENGTH = 4096
@@ -111,15 +111,19 @@ def _roslz4_frame(data: bytes) -> bytes:
     return compress_frame(data)
 
 
-@dataclass(frozen=True)
-class Resumed:
+class Resumed(FrozenRecord):
     """An existing ``.bag`` a :class:`BagWriter` goes on writing: the file opened at the end of its last
     complete chunk (the old index cut off), its connections and its chunks' infos
     ``(position, start_ns, end_ns, {conn_id: count})`` (:mod:`rostui.core.bag.bag_append` finds them)."""
 
+    _fields = ("out", "connections", "chunks")
     out: AppendFile
     connections: dict[int, Connection]
     chunks: list[tuple[int, int, int, dict[int, int]]]
+
+    def __init__(self, out: AppendFile, connections: dict[int, Connection],
+                 chunks: list[tuple[int, int, int, dict[int, int]]]) -> None:
+        self._set(out, connections, chunks)
 
 
 class BagWriter:
@@ -291,14 +295,16 @@ _OP_NAMES = {OP_MSG_DATA: "message", OP_FILE_HEADER: "file header", OP_INDEX_DAT
 _IN_CHUNKS = (OP_MSG_DATA, OP_CONNECTION)
 
 
-@dataclass(frozen=True)
 class _Place:
     """Where a record lies, for its error line: the file, the record's byte (its chunk's, for a record inside
     one) and, inside a chunk, how far into the chunk's plain bytes."""
 
-    path: str
-    at: int
-    inside: int = -1
+    __slots__ = ("path", "at", "inside")
+
+    def __init__(self, path: str, at: int, inside: int = -1) -> None:
+        self.path = path
+        self.at = at
+        self.inside = inside
 
     def error(self, what: str) -> MalformedRecord:
         """The error line for ``what`` is wrong with the record here."""
@@ -307,20 +313,23 @@ class _Place:
         return MalformedRecord(self.path, self.at, what)
 
 
-@dataclass(slots=True)
 class _Record:
     """One record of the file or of a chunk: where it is (``inside``: its offset in its chunk's plain bytes, -1
     for a record of the file), its op, its header fields, its data (empty when a chunk's data was skipped)
     with where that starts and how long it is."""
 
-    path: str
-    at: int
-    inside: int
-    op: int
-    fields: dict[str, bytes]
-    data: bytes | memoryview
-    data_at: int
-    data_length: int
+    __slots__ = ("path", "at", "inside", "op", "fields", "data", "data_at", "data_length")
+
+    def __init__(self, path: str, at: int, inside: int, op: int, fields: dict[str, bytes], data: bytes | memoryview,
+                 data_at: int, data_length: int) -> None:
+        self.path = path
+        self.at = at
+        self.inside = inside
+        self.op = op
+        self.fields = fields
+        self.data = data
+        self.data_at = data_at
+        self.data_length = data_length
 
     @property
     def place(self) -> _Place:
@@ -483,10 +492,14 @@ class BagReader(ChunkedFile):
         """True when the writer finished the file (index written)."""
         return self.index_pos != 0 and self.index_pos <= self.size
 
-    def _read_record(self, skip_chunk_data: bool = False) -> _Record:
-        """The record at the file's position (a chunk's data skipped with ``skip_chunk_data``); EOFError at the
-        end of the file."""
-        at = self.file.tell()
+    def _read_record(self, skip_chunk_data: bool = False, at: int | None = None) -> _Record:
+        """The record at byte ``at`` (the file's position when None; a chunk's data skipped with
+        ``skip_chunk_data``), the file left at its end; EOFError at the end of the file.  A reader that knows
+        where it stands says ``at``: the buffered file's ``tell`` asks the kernel each time."""
+        if at is None:
+            at = self.file.tell()
+        else:
+            self.file.seek(at)
         place = _Place(self.path, at)
         left = self.size - at
         head = self.file.read(4)
@@ -545,15 +558,16 @@ class BagReader(ChunkedFile):
     def _records(self, with_chunk_data: bool) -> Iterator[_Record]:
         """The file's records in order, from the first after the file header (index data records left out
         when chunks are read); a malformed one ends them (see :meth:`_stop`)."""
-        self.file.seek(self.data_start)
-        while self.file.tell() < self.size:
+        at = self.data_start
+        while at < self.size:
             try:
-                record = self._read_record(skip_chunk_data=not with_chunk_data)
+                record = self._read_record(skip_chunk_data=not with_chunk_data, at=at)
             except EOFError:
                 return
             except MalformedRecord as exc:
                 self._stop(exc)
                 return
+            at = record.data_at + record.data_length
             if record.op == OP_INDEX_DATA and with_chunk_data:
                 continue
             yield record
@@ -594,10 +608,11 @@ class BagReader(ChunkedFile):
     def _chunk_info_records(self) -> list[tuple[int, _Record]]:
         """The index section's chunk info records by the position of their chunk, in file order (its connection
         records taken in on the way); MalformedRecord when they are not one for each chunk the header counts."""
-        self.file.seek(self.index_pos)
         infos: list[tuple[int, _Record]] = []
-        while self.file.tell() < self.size:
-            record = self._read_record()
+        at = self.index_pos
+        while at < self.size:
+            record = self._read_record(at=at)
+            at = record.data_at + record.data_length
             if record.op == OP_CONNECTION:
                 self._connection(record)
             elif record.op == OP_CHUNK_INFO:
@@ -654,6 +669,19 @@ class BagReader(ChunkedFile):
                 self._spans_unreadable = True
                 self._index_unreadable(exc)
         return self._spans
+
+    def _adopt_chunk_spans(self, places: dict[int, ChunkPlace], infos: list[tuple[int, int, int]]) -> None:
+        """Keep what :meth:`chunk_spans` would read again, from a summary's walk of a closed file: its chunk infos
+        ``(chunk position, start, end)`` and the chunk records by position. Only when they are what that reading
+        accepts (one info for each chunk the header counts, each at a chunk before the index); otherwise
+        :meth:`chunk_spans` reads them itself, and says what is wrong."""
+        if self._spans is not None or not self.closed_properly or len(infos) != self.chunk_count:
+            return
+        infos = sorted(infos, key=lambda info: info[0])
+        if not all(pos < self.index_pos and pos in places for pos, _start, _end in infos):
+            return
+        self.chunk_table = [places[pos] for pos, _start, _end in infos]
+        self._spans = [(start, end, number) for number, (_pos, start, end) in enumerate(infos)]
 
     def _chunk_info_spans(self) -> list[tuple[int, int, int]]:
         infos = self._chunk_info_records()
@@ -856,12 +884,15 @@ class BagReader(ChunkedFile):
         chunk_spans: list[list[int]] = []
         chunk_infos: list[tuple[int, int, dict[int, int]]] = []
         index_data: list[tuple[int, int, int]] = []  # (chunk, where its entries are, how many)
+        places: dict[int, ChunkPlace] = {}
+        info_places: list[tuple[int, int, int]] = []  # (chunk position, start, end) of each chunk info
         for record in self._records(with_chunk_data=False):
             try:
                 if record.op == OP_CONNECTION:
                     self._connection(record)
                 elif record.op == OP_CHUNK:
                     place = self._chunk_place(record)
+                    places[record.at] = place
                     summary.add_chunk(place.compression, place.plain_size, place.stored)
                     chunk_spans.append([])
                 elif record.op == OP_INDEX_DATA:
@@ -871,9 +902,12 @@ class BagReader(ChunkedFile):
                         index_data.append((len(chunk_spans) - 1, record.data_at, min(count, len(record.data) // 12)))
                 elif record.op == OP_CHUNK_INFO:
                     chunk_infos.append(_chunk_info(record))
+                    if record.at >= self.index_pos:  # where chunk_spans reads them
+                        info_places.append((record.number("chunk_pos", 8), chunk_infos[-1][0], chunk_infos[-1][1]))
             except MalformedRecord as exc:
                 self._stop(exc)
                 break
+        self._adopt_chunk_spans(places, info_places)
         if not self.closed_properly:
             # connection records live inside chunks: read them from the chunks' data
             for _conn, _t, _d in self.messages():

@@ -143,45 +143,8 @@ def test_frames_reach_a_socket_whole_however_little_it_takes_at_once(tmp_path: P
 
     _path, regions, expected = _frames_of_a_plain_bag(tmp_path)
     frames: list[Any] = regions if kind == "region of the file" else [memoryview(bytes(e)) for e in expected]
-    ours, theirs = socket.socketpair()
-    ours.setblocking(False)
-    theirs.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
-
-    class Transport:
-        """What an asyncio transport does with a write: send what the socket takes, queue the rest (the link's
-        connection, and its transport)."""
-
-        def __init__(self) -> None:
-            self.queue = bytearray()
-            self.queued_writes = 0
-            self.transport = self
-
-        def is_closing(self) -> bool:
-            return False
-
-        def get_write_buffer_size(self) -> int:
-            return len(self.queue)
-
-        def write(self, data: bytes) -> None:
-            self.queue += data
-            self.queued_writes += 1
-            self.flush()
-
-        def flush(self) -> None:
-            while self.queue:
-                try:
-                    sent = ours.send(self.queue)
-                except BlockingIOError:
-                    return
-                del self.queue[:sent]
-
-    transport = Transport()
-    link = OutgoingLink.__new__(OutgoingLink)
-    link.paused = False
-    link.conn = transport  # type: ignore[assignment]
-    link._sock = ours
-    link.remainder_pending = False
-    link.messages_sent = link.bytes_sent = 0
+    transport, theirs = _SocketTransport.pair()
+    link = _link_over(transport)
     got = bytearray()
     for number, frame in enumerate(frames):
         link.send(frame)
@@ -189,12 +152,123 @@ def test_frames_reach_a_socket_whole_however_little_it_takes_at_once(tmp_path: P
             got += theirs.recv(8192)
             transport.flush()
     want = sum(len(f) for f in expected)
-    while len(got) < want:
-        transport.flush()
-        got += theirs.recv(1 << 16)
+    _read_all(transport, theirs, got, want)
     assert bytes(got) == b"".join(expected)
     assert 0 < transport.queued_writes < len(frames), "the direct send or the queue went untried"
     assert link.messages_sent == len(frames) and link.bytes_sent == want
+
+
+class _SocketTransport:
+    """What an asyncio transport does with a write: send what the socket takes, queue the rest (a link's
+    connection, and its transport)."""
+
+    def __init__(self, sock: socket.socket) -> None:
+        self.sock = sock
+        self.queue = bytearray()
+        self.queued_writes = 0
+        self.transport = self
+
+    @classmethod
+    def pair(cls) -> tuple[_SocketTransport, socket.socket]:
+        """A transport over one end of a socket pair whose other end (returned) takes 4 KB at a time."""
+        ours, theirs = socket.socketpair()
+        ours.setblocking(False)
+        theirs.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+        return cls(ours), theirs
+
+    def is_closing(self) -> bool:
+        return False
+
+    def get_write_buffer_size(self) -> int:
+        return len(self.queue)
+
+    def write(self, data: bytes) -> None:
+        self.queue += data
+        self.queued_writes += 1
+        self.flush()
+
+    def flush(self) -> None:
+        while self.queue:
+            try:
+                sent = self.sock.send(self.queue)
+            except BlockingIOError:
+                return
+            del self.queue[:sent]
+
+
+def _link_over(transport: _SocketTransport, pub: Any = None) -> Any:
+    """An outgoing link of ``pub`` whose connection is ``transport``."""
+    from rostui.core.node.topics import OutgoingLink
+
+    link = OutgoingLink.__new__(OutgoingLink)
+    link.pub = pub
+    link.paused = False
+    link.conn = transport  # type: ignore[assignment]
+    link._sock = transport.sock
+    link.remainder_pending = False
+    link.messages_sent = link.bytes_sent = 0
+    return link
+
+
+def _read_all(transport: _SocketTransport, theirs: socket.socket, got: bytearray, want: int) -> None:
+    while len(got) < want:
+        transport.flush()
+        got += theirs.recv(1 << 16)
+
+
+def test_a_players_frame_sender_goes_straight_to_one_subscriber_and_the_general_way_otherwise(
+        tmp_path: Path) -> None:
+    """The player's sender gives a file's regions to a lone subscriber's socket itself, queues what a full socket
+    does not take as the link would, sends views the publication's way, and once a second subscriber comes,
+    gives each frame to both: every subscriber gets whole frames in order, counted."""
+    import threading
+
+    from rostui.core.node.topics import FrameSender, Publication
+
+    _path, regions, expected = _frames_of_a_plain_bag(tmp_path)
+
+    class Pub:
+        """The parts of a publication its frame sender reads; its general path counts its calls."""
+
+        latch = False
+        local = ()
+        lock = threading.Lock()
+        messages_published = 0
+        general = 0
+        links: tuple[Any, ...] = ()
+
+        class node:  # noqa: N801 (the publication's node: this thread is its engine's)
+            loop_thread_id = threading.get_ident()
+
+        def publish_frame(self, frame: Any) -> None:
+            self.general += 1
+            Publication.publish_frame(self, frame)  # type: ignore[arg-type]
+
+    pub = Pub()
+    first, first_peer = _SocketTransport.pair()
+    second, second_peer = _SocketTransport.pair()
+    pub.links = (_link_over(first, pub),)
+    send = FrameSender(pub).send  # type: ignore[arg-type]
+    got_first, got_second = bytearray(), bytearray()
+    frames: list[Any] = [*regions[:150], *(memoryview(bytes(e)) for e in expected[150:160]), *regions[160:]]
+    for number, frame in enumerate(frames):
+        if number == 200:
+            pub.links = (*pub.links, _link_over(second, pub))
+        send(frame)
+        if number % 10 == 9:
+            got_first += first_peer.recv(8192)
+            first.flush()
+            if number >= 200:
+                got_second += second_peer.recv(8192)
+                second.flush()
+    _read_all(first, first_peer, got_first, sum(len(f) for f in expected))
+    _read_all(second, second_peer, got_second, sum(len(f) for f in expected[200:]))
+    assert bytes(got_first) == b"".join(expected)
+    assert bytes(got_second) == b"".join(expected[200:])
+    assert 0 < first.queued_writes, "a full socket's remainder went untried"
+    assert 10 + 100 <= pub.general < len(frames), "the straight path or the general one went untried"
+    assert pub.messages_published == len(frames)
+    assert pub.links[0].messages_sent == len(frames) and pub.links[1].messages_sent == 100
 
 
 def test_a_file_cut_short_under_its_regions_is_the_chunks_error(tmp_path: Path) -> None:

@@ -15,7 +15,6 @@ import signal
 import sys
 import time
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from rostui.core.bag.clock import DEFAULT_HZ, BagClock
@@ -23,6 +22,7 @@ from rostui.core.bag.files import Reader, open_reader, unordered_notice
 from rostui.core.bag.frames import merged_framed_messages
 from rostui.core.bag.model import BagError, BagSummary, Connection
 from rostui.core.bag.transport import MessageItem, StreamSource, Transport
+from rostui.core.records import Record
 
 STATUS_PERIOD = 0.1
 QUIET_TICK_PERIOD = 1.0
@@ -42,29 +42,38 @@ at once (:func:`~rostui.core.bag.frames.framed_messages`). Each reader's own 64 
 again: 60 MB more resident memory and 16 000 page faults in a 160 MB bag's play."""
 
 
-@dataclass
-class PlayOptions:
-    """How to play (see ``rostui bag play --help``)."""
+class PlayOptions(Record):
+    """How to play (see ``rostui bag play --help``). Records, not dataclasses, here and in the bag reader: a
+    player's start is part of what it costs beside ``rosbag play`` (:mod:`rostui.core.records`)."""
 
-    files: list[str] = field(default_factory=list)
-    rate: float = 1.0
-    loop: bool = False
-    start_paused: bool = False
-    start_s: float = 0.0
-    duration_s: float | None = None
-    delay_s: float = 0.2
-    clock: bool = False
-    clock_hz: float = DEFAULT_HZ
-    topics: list[str] = field(default_factory=list)
-    queue_size: int = 100
+    _fields = ("files", "rate", "loop", "start_paused", "start_s", "duration_s", "delay_s", "clock", "clock_hz",
+               "topics", "queue_size")
+
+    def __init__(self, files: list[str] | None = None, rate: float = 1.0, loop: bool = False,
+                 start_paused: bool = False, start_s: float = 0.0, duration_s: float | None = None,
+                 delay_s: float = 0.2, clock: bool = False, clock_hz: float = DEFAULT_HZ,
+                 topics: list[str] | None = None, queue_size: int = 100) -> None:
+        self.files: list[str] = [] if files is None else files
+        self.rate = rate
+        self.loop = loop
+        self.start_paused = start_paused
+        self.start_s = start_s
+        self.duration_s = duration_s
+        self.delay_s = delay_s
+        self.clock = clock
+        self.clock_hz = clock_hz
+        self.topics: list[str] = [] if topics is None else topics
+        self.queue_size = queue_size
 
 
-@dataclass
-class PlayStats:
+class PlayStats(Record):
     """What playback did: messages published and the lateness of each (seconds)."""
 
-    published: int = 0
-    lateness: list[float] = field(default_factory=list)
+    _fields = ("published", "lateness")
+
+    def __init__(self, published: int = 0, lateness: list[float] | None = None) -> None:
+        self.published = published
+        self.lateness: list[float] = [] if lateness is None else lateness
 
 
 def status_text(state: str, bag_time_ns: int, elapsed_s: float, total_s: float) -> str:
@@ -180,7 +189,7 @@ class Player:
 
     def _frame_sender(self, conn: Connection) -> Callable[[Any], None]:
         """The call that publishes ``conn``'s frames."""
-        sender: Callable[[Any], None] = self.publishers[(conn.topic, conn.md5sum)].impl.publish_frame
+        sender: Callable[[Any], None] = self.publishers[(conn.topic, conn.md5sum)].impl.frame_sender()
         return sender
 
     def _sender_for(self, conn: Connection) -> Callable[[Any], None] | None:

@@ -218,9 +218,9 @@ def _read_all(transport: _SocketTransport, theirs: socket.socket, got: bytearray
 
 def test_a_players_frame_sender_goes_straight_to_one_subscriber_and_the_general_way_otherwise(
         tmp_path: Path) -> None:
-    """The player's sender gives a file's regions to a lone subscriber's socket itself, queues what a full socket
-    does not take as the link would, sends views the publication's way, and once a second subscriber comes,
-    gives each frame to both: every subscriber gets whole frames in order, counted."""
+    """The player's sender gives frames (a file's regions, views of a chunk) to a lone subscriber's socket itself;
+    what a full socket does not take is queued as the link would, and frames go the publication's way while that
+    queue waits and once a second subscriber comes: every subscriber gets whole frames in order, counted."""
     import threading
 
     from rostui.core.node.topics import FrameSender, Publication
@@ -246,29 +246,43 @@ def test_a_players_frame_sender_goes_straight_to_one_subscriber_and_the_general_
 
     pub = Pub()
     first, first_peer = _SocketTransport.pair()
+    first.sock.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, 16384)
     second, second_peer = _SocketTransport.pair()
     pub.links = (_link_over(first, pub),)
     send = FrameSender(pub).send  # type: ignore[arg-type]
     got_first, got_second = bytearray(), bytearray()
-    frames: list[Any] = [*regions[:150], *(memoryview(bytes(e)) for e in expected[150:160]), *regions[160:]]
-    for number, frame in enumerate(frames):
-        if number == 200:
-            pub.links = (*pub.links, _link_over(second, pub))
+    frames: list[Any] = [*regions[:50], *(memoryview(bytes(e)) for e in expected[50:60]), *regions[60:]]
+
+    for frame in frames[:100]:  # a subscriber that keeps up: nothing waits, every frame goes straight
         send(frame)
-        if number % 10 == 9:
-            got_first += first_peer.recv(8192)
-            first.flush()
-            if number >= 200:
-                got_second += second_peer.recv(8192)
-                second.flush()
-    _read_all(first, first_peer, got_first, sum(len(f) for f in expected))
-    _read_all(second, second_peer, got_second, sum(len(f) for f in expected[200:]))
+        _drain(first, first_peer, got_first)
+    assert pub.general == 0 and first.queued_writes == 0
+
+    for frame in frames[100:200]:  # one that does not read for a while: its socket fills
+        send(frame)
+    assert first.queued_writes > 0 and 0 < pub.general < 100
+    _drain(first, first_peer, got_first)
+
+    pub.links = (*pub.links, _link_over(second, pub))
+    for frame in frames[200:]:
+        send(frame)
+        _drain(first, first_peer, got_first)
+        _drain(second, second_peer, got_second)
     assert bytes(got_first) == b"".join(expected)
     assert bytes(got_second) == b"".join(expected[200:])
-    assert 0 < first.queued_writes, "a full socket's remainder went untried"
-    assert 10 + 100 <= pub.general < len(frames), "the straight path or the general one went untried"
     assert pub.messages_published == len(frames)
     assert pub.links[0].messages_sent == len(frames) and pub.links[1].messages_sent == 100
+
+
+def _drain(transport: _SocketTransport, theirs: socket.socket, got: bytearray) -> None:
+    """Read what ``theirs`` holds until ``transport`` has nothing queued and nothing more arrives."""
+    while True:
+        transport.flush()
+        try:
+            got += theirs.recv(1 << 16, socket.MSG_DONTWAIT)
+        except BlockingIOError:
+            if not transport.queue:
+                return
 
 
 def test_a_file_cut_short_under_its_regions_is_the_chunks_error(tmp_path: Path) -> None:

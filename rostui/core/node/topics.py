@@ -536,19 +536,24 @@ Callback = Callable[..., Any]
 Registration = tuple[Callback, Any, "HeaderCheck | None"]
 
 
+def _unbound_send(data: bytes | memoryview) -> int:
+    raise RuntimeError("a frame sender sent with no subscriber bound")
+
+
 class FrameSender:
     """Sends a bag player's frames as :meth:`Publication.publish_frame` does, on the engine thread.
 
     While the publication has exactly one subscriber and no same-process one, is not latched, and the link and
-    its transport have nothing waiting, a frame that is a file's region goes to the subscriber's socket by
-    ``sendfile`` here, without the publication's and the link's general checks a message; anything else, and
-    what the socket does not take, goes their way.  A player sleeps before each message, so each call runs
+    its transport have nothing waiting, a frame goes to the subscriber's socket here (a file's region by
+    ``sendfile``, a view of a chunk by ``send``), without the publication's and the link's general checks a
+    message; what the socket does not take goes to the transport, as the link does it, and any other frame
+    goes the publication's way.  A player sleeps before each message, so each call runs
     with cold caches: the calls and checks left out were about 5% of a quiet play's CPU (bench/README.md,
     "Bag play CPU", fifteenth pass).  The publication's links are a tuple it replaces when they change: one
     identity test a message sees a subscriber come or go.
     """
 
-    __slots__ = ("_pub", "_links", "_link", "_transport", "_fd")
+    __slots__ = ("_pub", "_links", "_link", "_transport", "_fd", "_send")
 
     def __init__(self, pub: Publication) -> None:
         self._pub = pub
@@ -556,9 +561,10 @@ class FrameSender:
         self._link: OutgoingLink | None = None
         self._transport: asyncio.Transport | None = None
         self._fd = -1
+        self._send: Callable[[bytes | memoryview], int] = _unbound_send
 
     def _bind(self, links: tuple[OutgoingLink, ...]) -> None:
-        """Take the publication's links as they are now: the one link a region can go to straight, or none."""
+        """Take the publication's links as they are now: the one link a frame can go to straight, or none."""
         self._links = links
         self._link = None
         if len(links) != 1 or self._pub.latch:
@@ -567,7 +573,7 @@ class FrameSender:
         transport = link.conn.transport
         if link._sock is None or transport is None:
             return
-        self._link, self._transport, self._fd = link, transport, link._sock.fileno()
+        self._link, self._transport, self._fd, self._send = link, transport, link._sock.fileno(), link._sock.send
 
     def send(self, frame: bytes | memoryview | FileRegion) -> None:
         """Send one framed message to every subscriber (engine thread)."""
@@ -576,18 +582,19 @@ class FrameSender:
             self._bind(pub.links)
         link = self._link
         transport = self._transport
-        if (link is None or not isinstance(frame, FileRegion) or pub.local or link.paused or link.remainder_pending
-                or transport is None or transport.is_closing() or transport.get_write_buffer_size()):
+        if (link is None or pub.local or link.paused or link.remainder_pending or transport is None
+                or transport.is_closing() or transport.get_write_buffer_size()):
             pub.publish_frame(frame)
             return
-        length = frame.length
+        length = frame.length if isinstance(frame, FileRegion) else len(frame)
         with pub.lock:
             try:
-                sent = os.sendfile(self._fd, frame.fd, frame.offset, length)
+                sent = os.sendfile(self._fd, frame.fd, frame.offset, length) if isinstance(frame, FileRegion) \
+                    else self._send(frame)
             except OSError:
                 sent = 0  # a full socket, or a broken one (its transport sees that)
             if sent < length:
-                link.conn.write(frame.read(sent))
+                link.conn.write(frame.read(sent) if isinstance(frame, FileRegion) else frame[sent:])
             link.messages_sent += 1
             link.bytes_sent += length
             pub.messages_published += 1

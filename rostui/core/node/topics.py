@@ -587,7 +587,7 @@ class FrameSender:
             pub.publish_frame(frame)
             return
         length = frame.length if isinstance(frame, FileRegion) else len(frame)
-        with pub.lock:
+        with pub.lock:  # OutgoingLink.send_frame's write, written out here: a call less a message
             try:
                 sent = os.sendfile(self._fd, frame.fd, frame.offset, length) if isinstance(frame, FileRegion) \
                     else self._send(frame)

@@ -901,9 +901,10 @@ class BagReader(ChunkedFile):
                     if count and len(record.data) >= 12 and chunk_spans:
                         index_data.append((len(chunk_spans) - 1, record.data_at, min(count, len(record.data) // 12)))
                 elif record.op == OP_CHUNK_INFO:
-                    chunk_infos.append(_chunk_info(record))
+                    start, end, counts = _chunk_info(record)
+                    chunk_infos.append((start, end, counts))
                     if record.at >= self.index_pos:  # where chunk_spans reads them
-                        info_places.append((record.number("chunk_pos", 8), chunk_infos[-1][0], chunk_infos[-1][1]))
+                        info_places.append((record.number("chunk_pos", 8), start, end))
             except MalformedRecord as exc:
                 self._stop(exc)
                 break

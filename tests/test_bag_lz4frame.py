@@ -20,7 +20,7 @@ import pytest
 import xxhash
 
 from rostui.core.bag.inflate import inflate
-from rostui.core.bag.lz4frame import FrameError, compress_frame, decompress_frame
+from rostui.core.bag.lz4frame import FrameError, compress_frame, decompress_frame, decompress_frame_into
 from rostui.core.bag.model import MalformedRecord
 
 from conftest import SYSTEM_PYTHON, need_peer
@@ -93,10 +93,38 @@ def test_the_frames_rostui_writes_are_python_lz4s_in_roslz4s_form_and_roslz4_rea
 
 
 def _malformed(frame: bytes, declared: int) -> str:
+    """The error of ``frame`` as a chunk declaring ``declared`` bytes: the same whether or not it is first tried
+    straight into a buffer (as a player reads), since a frame that does not read into one is read again."""
     with pytest.raises(MalformedRecord) as caught:
         inflate("lz4", frame, declared, path="x.bag", offset=4117)
+    with pytest.raises(MalformedRecord) as into_buffer:
+        inflate("lz4", frame, declared, path="x.bag", offset=4117, buffer=bytearray)
+    assert str(into_buffer.value) == str(caught.value)
     assert "x.bag" in str(caught.value) and "4117" in str(caught.value)
     return str(caught.value)
+
+
+@pytest.mark.parametrize("name", list(SAMPLES))
+@pytest.mark.parametrize("block_size", [lz4.frame.BLOCKSIZE_MAX64KB, lz4.frame.BLOCKSIZE_MAX4MB])
+@pytest.mark.parametrize("checksums", [(False, False), (True, True)], ids=["no checksum", "both checksums"])
+def test_independent_blocks_decompress_straight_into_a_buffer_of_the_chunks_size(
+        name: str, block_size: int, checksums: tuple[bool, bool]) -> None:
+    """What a player reads: every block in its place in one buffer, which must come out exactly full; a buffer a
+    byte short or long, or linked blocks, are not read that way (the chunk is then read the general way)."""
+    data = SAMPLES[name]
+    for frame in (lz4.frame.compress(data, block_size=block_size, block_linked=False,
+                                     content_checksum=checksums[0], block_checksum=checksums[1]),
+                  compress_frame(data)):
+        out = bytearray(b"\xee" * len(data))
+        assert decompress_frame_into(frame, out) and out == data
+        assert inflate("lz4", frame, len(data), path="x.bag", offset=0, buffer=bytearray) == data
+        assert not decompress_frame_into(frame, bytearray(len(data) + 1))
+        if data:
+            assert not decompress_frame_into(frame, bytearray(len(data) - 1))
+    linked = lz4.frame.compress(data, block_size=block_size, block_linked=True)
+    if not linked[4] & 0x20:  # (python-lz4 marks a frame of one block independent)
+        assert not decompress_frame_into(linked, bytearray(len(data)))
+    assert inflate("lz4", linked, len(data), path="x.bag", offset=0, buffer=bytearray) == data
 
 
 def test_a_flipped_byte_under_a_checksum_is_a_malformed_chunk() -> None:

@@ -24,6 +24,7 @@ from rostui.core.bag.model import Frame, MalformedRecord, frame_of
 from rostui.core.records import FrozenRecord
 
 if TYPE_CHECKING:
+    from rostui.core.bag.chunk_buffers import BufferPool
     from rostui.core.bag.chunkinfo import ChunkInfos
 
 NO_CHUNK = 0xFFFFFFFF
@@ -61,13 +62,17 @@ class ChunkEntries(FrozenRecord):
 
 
 class ChunkCache:
-    """Decompressed chunks by number, least recently used dropped first once over ``max_bytes``."""
+    """Decompressed chunks by number, least recently used dropped first once over ``max_bytes``.
+
+    With a ``pool``, compressed chunks are decompressed into its buffers, and a chunk's buffer goes back to it when
+    the chunk is dropped (a player's: :meth:`~rostui.core.bag.fileindex.ChunkedFile.release`)."""
 
     def __init__(self, load: Callable[[int], bytes], max_bytes: int = CACHE_BYTES) -> None:
         self._load = load
         self.max_bytes = max_bytes
         self._chunks: OrderedDict[int, bytes] = OrderedDict()
         self._bytes = 0
+        self.pool: BufferPool | None = None
 
     @property
     def held_bytes(self) -> int:
@@ -85,14 +90,19 @@ class ChunkCache:
         self._bytes += len(data)
         while self._bytes > self.max_bytes and len(self._chunks) > 1:
             _, dropped = self._chunks.popitem(last=False)
-            self._bytes -= len(dropped)
+            self._let_go(dropped)
         return data
 
     def drop(self, chunk: int) -> None:
         """Stop holding chunk ``chunk`` (nothing when it is not held)."""
         data = self._chunks.pop(chunk, None)
         if data is not None:
-            self._bytes -= len(data)
+            self._let_go(data)
+
+    def _let_go(self, data: bytes) -> None:
+        self._bytes -= len(data)
+        if self.pool is not None and isinstance(data, bytearray):
+            self.pool.give(data)
 
     def clear(self) -> None:
         """Drop every chunk held."""
@@ -228,7 +238,9 @@ class ChunkedFile:
         data = self.file.read(place.stored)
         if len(data) < place.stored:
             raise MalformedRecord(self.path, place.record_at, "a chunk is cut short")
-        plain = inflate(place.compression, data, place.plain_size, path=self.path, offset=place.record_at)
+        pool = self.cache.pool
+        plain = inflate(place.compression, data, place.plain_size, path=self.path, offset=place.record_at,
+                        buffer=None if pool is None else pool.take)
         if place.crc and zlib.crc32(plain) != place.crc:
             raise MalformedRecord(self.path, place.record_at, "a chunk's bytes do not match its CRC")
         return plain

@@ -10,9 +10,10 @@ what it declares is a malformed record, whatever its data holds.
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from typing import Protocol
 
-from rostui.core.bag.lz4frame import decompress_frame
+from rostui.core.bag.lz4frame import decompress_frame, decompress_frame_into
 from rostui.core.bag.model import MalformedRecord
 
 #: What ``ROSTUI_BAG_MAX_CHUNK`` is when unset: a chunk holds at least one message, and ROS refuses messages over
@@ -117,9 +118,15 @@ def _errors() -> tuple[type[Exception], ...]:
     return OSError, EOFError, RuntimeError, ValueError, lz4.block.LZ4BlockError, zstandard.ZstdError
 
 
-def inflate(compression: str, data: bytes, declared: int, *, path: str, offset: int) -> bytes:
+def inflate(compression: str, data: bytes, declared: int, *, path: str, offset: int,
+            buffer: Callable[[int], bytearray] | None = None) -> bytes:
     """The plain bytes of the chunk record at ``offset`` of ``path`` whose ``compression`` data is ``data`` and
     whose header says it holds ``declared`` bytes.
+
+    ``buffer(size)`` (a :class:`~rostui.core.bag.chunk_buffers.BufferPool`'s ``take``) gives a bytearray to
+    decompress an lz4 chunk into, returned filled when its frame reads straight into it
+    (:func:`~rostui.core.bag.lz4frame.decompress_frame_into`); any other chunk, and an lz4 frame that does not,
+    take the general way, which also gives a broken one its exact error.
 
     :class:`~rostui.core.bag.model.MalformedRecord` when the declared size is over the cap, the compression is
     unknown, the data does not decompress, or it decompresses to more or fewer bytes than declared.
@@ -132,6 +139,10 @@ def inflate(compression: str, data: bytes, declared: int, *, path: str, offset: 
         if len(data) != declared:
             raise MalformedRecord(path, offset, f"an uncompressed chunk of {len(data)} bytes declares {declared}")
         return data
+    if buffer is not None and compression == "lz4":
+        out = buffer(declared)
+        if decompress_frame_into(data, out):
+            return out  # a bytearray: it offers all a chunk is read for (struct, memoryview, slices)
     limit = declared + 1
     try:
         if compression == "bz2":

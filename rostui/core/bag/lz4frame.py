@@ -8,7 +8,9 @@ copies a stored block at memory speed (bench/README.md, "Bag play CPU", third
 pass). So this reads the frame format (lz4's ``lz4_Frame_format.md``) itself:
 the header, each block (stored or compressed, linked to the previous 64 KiB or
 independent, with or without its own checksum), the end mark and the content
-checksum, and hands each compressed block to ``lz4.block``.
+checksum, and hands each compressed block to ``lz4.block``, or, with :func:`decompress_frame_into`, to cramjam's block
+decoder, which writes it in place in a buffer the caller gives (python-lz4's copies its output into a new bytes
+object).
 
 What it does not read (a dictionary id, reserved bits set, a version other
 than 1, a skippable frame) it leaves to python-lz4: :func:`decompress_frame`
@@ -49,14 +51,9 @@ class _NotRead(Exception):
     """A frame this module leaves to python-lz4, found out after its header."""
 
 
-def decompress_frame(data: bytes | memoryview, limit: int) -> tuple[list[bytes], bool] | None:
-    """The blocks of the lz4 frame at the start of ``data``, decompressed until they pass ``limit`` bytes or the
-    frame ends; and whether it ended (its end mark read and its content checksum, when it has one, matched).
-
-    None for a frame this does not read (see the module); :class:`FrameError` for a broken one (``lz4.block``
-    raises its own error for a block that does not decompress).
-    """
-    view = memoryview(data)
+def _header(view: memoryview) -> tuple[int, int, int, int | None] | None:
+    """The header of the lz4 frame at the start of ``view``, checked; None for a frame this module leaves to
+    python-lz4 (or one cut short in its header: ``(0, 0, -1, None)``)."""
     if len(view) < 7 or _U32.unpack_from(view, 0)[0] != FRAME_MAGIC:
         return None
     flg, bd = view[4], view[5]
@@ -69,12 +66,29 @@ def decompress_frame(data: bytes | memoryview, limit: int) -> tuple[list[bytes],
 
     pos = 6 + (8 if flg & _FLG_CONTENT_SIZE else 0)
     if len(view) <= pos:
-        return [], False  # cut short in its header
+        return 0, 0, -1, None
     if view[pos] != (xxhash.xxh32_intdigest(view[4:pos]) >> 8) & 0xFF:
         raise FrameError("the frame's header checksum does not match")
     content_size = _U64.unpack_from(view, 6)[0] if flg & _FLG_CONTENT_SIZE else None
+    return flg, block_max, pos + 1, content_size
+
+
+def decompress_frame(data: bytes | memoryview, limit: int) -> tuple[list[bytes], bool] | None:
+    """The blocks of the lz4 frame at the start of ``data``, decompressed until they pass ``limit`` bytes or the
+    frame ends; and whether it ended (its end mark read and its content checksum, when it has one, matched).
+
+    None for a frame this does not read (see the module); :class:`FrameError` for a broken one (``lz4.block``
+    raises its own error for a block that does not decompress).
+    """
+    view = memoryview(data)
+    header = _header(view)
+    if header is None:
+        return None
+    flg, block_max, pos, content_size = header
+    if pos < 0:
+        return [], False  # cut short in its header
     try:
-        parts, end = _blocks(view, pos + 1, flg, block_max, limit)
+        parts, end = _blocks(view, pos, flg, block_max, limit)
     except _NotRead:
         return None
     if end is None:
@@ -83,12 +97,81 @@ def decompress_frame(data: bytes | memoryview, limit: int) -> tuple[list[bytes],
         if len(view) < end + 4:
             return parts, False
         parts = [parts[0] if len(parts) == 1 else b"".join(parts)]  # xxhash's one-shot hash is 5x its streaming one
-        if xxhash.xxh32_intdigest(parts[0]) != _U32.unpack_from(view, end)[0]:
+        if not _checksum_matches(parts[0], view, end):
             raise FrameError("the frame's content checksum does not match")
     got = sum(len(p) for p in parts)
     if content_size is not None and content_size != got:
         raise FrameError(f"the frame holds {got} bytes and declares {content_size}")
     return parts, True
+
+
+def _checksum_matches(content: bytes | bytearray, view: memoryview, at: int) -> bool:
+    """Whether the content checksum stored at ``at`` of ``view`` is ``content``'s."""
+    import xxhash
+
+    return bool(xxhash.xxh32_intdigest(content) == _U32.unpack_from(view, at)[0])
+
+
+def decompress_frame_into(data: bytes | memoryview, out: bytearray) -> bool:
+    """Decompress the lz4 frame at the start of ``data`` straight into ``out``, which it must fill exactly: True
+    when it did (a frame of independent blocks, as roslz4 writes, ended by its end mark, every checksum it has
+    matching); False for anything else, with ``out`` holding whatever was written, so that the caller reads the
+    frame again by :func:`decompress_frame` for its verdict or python-lz4's reading.
+
+    Each block goes into its place in ``out`` (cramjam's block decoder), where :func:`decompress_frame` has
+    python-lz4 decompress it into a buffer of its own and copy it into a new bytes object: a player reusing its
+    buffers skips that copy of every chunk (bench/README.md, "Bag play CPU", sixteenth pass).
+    """
+    view = memoryview(data)
+    try:
+        header = _header(view)
+    except FrameError:
+        return False
+    if header is None or header[2] < 0 or not header[0] & _FLG_INDEPENDENT:
+        return False
+    flg, block_max, pos, content_size = header
+    import cramjam
+
+    decompress_into = cramjam.lz4.decompress_block_into
+    checked = bool(flg & _FLG_BLOCK_CHECKSUM)
+    target = memoryview(out)
+    room = len(out)
+    got = 0
+    while True:
+        if len(view) < pos + 4:
+            return False
+        (size,) = _U32.unpack_from(view, pos)
+        pos += 4
+        if size == END_MARK:
+            break
+        stored = bool(size & STORED_BIT)
+        size &= ~STORED_BIT
+        if size > block_max or len(view) < pos + size + (4 if checked else 0):
+            return False
+        block = view[pos:pos + size]
+        pos += size
+        if checked:
+            if not _checksum_matches(block, view, pos):
+                return False
+            pos += 4
+        if stored:
+            if size > room - got:
+                return False
+            target[got:got + size] = block
+            written = size
+        else:
+            space = min(block_max, room - got)
+            try:
+                written = decompress_into(block, target[got:got + space], output_len=space)
+            except cramjam.DecompressionError:
+                return False
+        got += written
+    if got != room or (content_size is not None and content_size != got):
+        return False
+    if flg & _FLG_CONTENT_CHECKSUM:
+        if len(view) < pos + 4 or not _checksum_matches(out, view, pos):
+            return False
+    return True
 
 
 def _blocks(view: memoryview, pos: int, flg: int, block_max: int, limit: int) -> tuple[list[bytes], int | None]:

@@ -781,7 +781,8 @@ class BagReader(ChunkedFile):
                 raise record.place.error("the index places a message here")
             return bytes(record.data)
         plain, data_at, end = self._data_in_chunk(chunk, offset)
-        return plain[data_at:end]
+        data = plain[data_at:end]
+        return data if type(data) is bytes else bytes(data)  # a chunk in a pool's buffer gives bytearray slices
 
     def framer(self, chunk: int) -> Callable[[int], Frame]:
         """The frames of chunk ``chunk``'s messages by offset: each message as :meth:`payload` finds it, with its

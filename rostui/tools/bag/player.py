@@ -17,10 +17,12 @@ import time
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any, Protocol
 
+from rostui.core.bag.chunk_buffers import BufferPool
 from rostui.core.bag.clock import DEFAULT_HZ, BagClock
 from rostui.core.bag.files import Reader, open_reader, unordered_notice
 from rostui.core.bag.frames import merged_framed_messages
 from rostui.core.bag.model import BagError, BagSummary, Connection
+from rostui.core.bag.rosbag2_0 import BagReader
 from rostui.core.bag.transport import MessageItem, StreamSource, Transport
 from rostui.core.records import Record
 
@@ -298,6 +300,8 @@ def open_bags(paths: Sequence[str], warn: Callable[[str], None]) -> tuple[list[R
             reader = open_reader(path)
             readers.append(reader)
             reader.cache.max_bytes = min(reader.cache.max_bytes, PLAY_CACHE_BYTES // len(paths))
+            if isinstance(reader, BagReader):  # its frames are views of its chunks, which take turns in a few buffers
+                reader.cache.pool = BufferPool()
             summary = reader.summary()
             summaries.append(summary)
             if not summary.message_count:

@@ -9,7 +9,8 @@ Debian rospy subscriber on Debian's ``roscore``. Each player is a child of this
 script; its CPU (user + system of it and every process it waited for, from
 ``wait4``) is read when it exits. ``rosbag play`` is Debian's command as users
 run it: a Python script that starts the C++ ``play`` program; its C++ part
-alone is reported too. Rounds are interleaved; the subscriber must receive
+alone is reported too. Before each play the script reads the bag, so that each
+player finds it in the page cache. Rounds are interleaved; the subscriber must receive
 every message of every run, or the run counts as failed. The summary gives the
 ratio of the medians and rostui's ratio within each round (its run and
 ``rosbag play``'s back to back) with their median.
@@ -112,6 +113,19 @@ def run_player(argv: list[str], env: dict[str, str]) -> dict[str, float]:
             "maxrss_mb": usage.ru_maxrss / 1024}
 
 
+def warm_page_cache(bag: Path) -> float:
+    """Read the whole bag (here, not in a player) so that every play finds it in the page cache; the seconds it
+    took. This VM's kernel pages out what no one touched for about a minute (DAMON's ``pageout`` scheme), and
+    bag files wait minutes between their plays: without this, whichever player came first after a pause read
+    the file from disk at its own cost (an uncompressed play's CPU was 0.94 s in such a round, 0.56 s in the
+    next)."""
+    start = time.perf_counter()
+    with bag.open("rb", buffering=0) as f:
+        while f.read(8 << 20):
+            pass
+    return time.perf_counter() - start
+
+
 def cpp_play_cpu(bag: Path, env: dict[str, str]) -> dict[str, float]:
     """Debian's C++ ``play`` program alone (what ``rosbag play`` starts), same options."""
     play = shutil.which("play", path="/usr/lib/rosbag:/usr/lib/x86_64-linux-gnu/rosbag:/opt/ros/noetic/lib/rosbag")
@@ -173,6 +187,7 @@ def main() -> int:
             order = kinds[rnd % len(kinds):] + kinds[:rnd % len(kinds)]
             for comp, bag in bags.items():
                 for kind in order:
+                    warm_s = warm_page_cache(bag)
                     if kind == "rosbag-cpp":
                         res = cpp_play_cpu(bag, env)
                     else:
@@ -182,10 +197,12 @@ def main() -> int:
                     sub.stdin.flush()
                     res["received"] = int(sub.stdout.readline())
                     res["load"] = os.getloadavg()[0]
+                    res["warm_s"] = warm_s
                     results.setdefault(f"{kind} {comp}", []).append(res)
                     print(f"round {rnd + 1} {kind:10} {comp:4}: CPU {res['cpu']:.2f} s (user {res['user']:.2f},"
                           f" sys {res['sys']:.2f}), wall {res['wall']:.1f} s, {res['received']}/{MESSAGES}"
-                          f" received, maxrss {res['maxrss_mb']:.0f} MB, load {res['load']:.1f}", flush=True)
+                          f" received, maxrss {res['maxrss_mb']:.0f} MB, load {res['load']:.1f}, bag read before"
+                          f" {warm_s:.2f} s", flush=True)
     finally:
         for proc in reversed(procs):
             try:

@@ -8,9 +8,10 @@ copies a stored block at memory speed (bench/README.md, "Bag play CPU", third
 pass). So this reads the frame format (lz4's ``lz4_Frame_format.md``) itself:
 the header, each block (stored or compressed, linked to the previous 64 KiB or
 independent, with or without its own checksum), the end mark and the content
-checksum, and hands each compressed block to ``lz4.block``, or, with :func:`decompress_frame_into`, to cramjam's block
-decoder, which writes it in place in a buffer the caller gives (python-lz4's copies its output into a new bytes
-object).
+checksum, and hands each compressed block to ``lz4.block``, or, with
+:func:`decompress_frame_into`, to cramjam's block decoder, which writes it in
+place in a buffer the caller gives (python-lz4's copies its output into a new
+bytes object).
 
 What it does not read (a dictionary id, reserved bits set, a version other
 than 1, a skippable frame) it leaves to python-lz4: :func:`decompress_frame`
@@ -105,7 +106,7 @@ def decompress_frame(data: bytes | memoryview, limit: int) -> tuple[list[bytes],
     return parts, True
 
 
-def _checksum_matches(content: bytes | bytearray, view: memoryview, at: int) -> bool:
+def _checksum_matches(content: bytes | bytearray | memoryview, view: memoryview, at: int) -> bool:
     """Whether the content checksum stored at ``at`` of ``view`` is ``content``'s."""
     import xxhash
 
@@ -163,7 +164,7 @@ def decompress_frame_into(data: bytes | memoryview, out: bytearray) -> bool:
             space = min(block_max, room - got)
             try:
                 written = decompress_into(block, target[got:got + space], output_len=space)
-            except cramjam.DecompressionError:
+            except Exception:  # noqa: BLE001 - whatever fails here, the general way gives its verdict
                 return False
         got += written
     if got != room or (content_size is not None and content_size != got):

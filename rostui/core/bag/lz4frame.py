@@ -139,22 +139,13 @@ def decompress_frame_into(data: bytes | memoryview, out: bytearray) -> bool:
     room = len(out)
     got = 0
     while True:
-        if len(view) < pos + 4:
+        try:
+            block, stored, pos = _next_block(view, pos, block_max, checked)
+        except (_CutShort, FrameError):
             return False
-        (size,) = _U32.unpack_from(view, pos)
-        pos += 4
-        if size == END_MARK:
+        if block is None:
             break
-        stored = bool(size & STORED_BIT)
-        size &= ~STORED_BIT
-        if size > block_max or len(view) < pos + size + (4 if checked else 0):
-            return False
-        block = view[pos:pos + size]
-        pos += size
-        if checked:
-            if not _checksum_matches(block, view, pos):
-                return False
-            pos += 4
+        size = len(block)
         if stored:
             if size > room - got:
                 return False
@@ -175,44 +166,61 @@ def decompress_frame_into(data: bytes | memoryview, out: bytearray) -> bool:
     return True
 
 
+class _CutShort(Exception):
+    """The data ends before the frame does."""
+
+
+def _next_block(view: memoryview, pos: int, block_max: int, checked: bool) -> tuple[memoryview | None, bool, int]:
+    """The block at ``pos``: its bytes as stored, whether it is stored uncompressed, and where the next starts
+    (its own checksum, when the frame has them, checked); ``(None, False, where the end mark ends)`` at the end
+    mark. :class:`_CutShort` when the data ends first; :class:`FrameError` for a block over the frame's size or
+    one whose checksum does not match."""
+    if len(view) < pos + 4:
+        raise _CutShort
+    (size,) = _U32.unpack_from(view, pos)
+    pos += 4
+    if size == END_MARK:
+        return None, False, pos
+    stored = bool(size & STORED_BIT)
+    size &= ~STORED_BIT
+    if size > block_max:
+        raise FrameError(f"a block of {size} bytes is over the frame's {block_max}-byte blocks")
+    if len(view) < pos + size + (4 if checked else 0):
+        raise _CutShort
+    block = view[pos:pos + size]
+    pos += size
+    if checked:
+        if not _checksum_matches(block, view, pos):
+            raise FrameError("a block's checksum does not match")
+        pos += 4
+    return block, stored, pos
+
+
 def _blocks(view: memoryview, pos: int, flg: int, block_max: int, limit: int) -> tuple[list[bytes], int | None]:
     """The frame's blocks from ``pos``: their bytes, and where the end mark ends (None when it was not reached
     within the data or within ``limit`` bytes)."""
     import lz4.block
-    import xxhash
 
     linked = not flg & _FLG_INDEPENDENT
     checked = bool(flg & _FLG_BLOCK_CHECKSUM)
     parts: list[bytes] = []
     got = 0
     while got < limit:
-        if len(view) < pos + 4:
+        try:
+            block, stored, pos = _next_block(view, pos, block_max, checked)
+        except _CutShort:
             return parts, None
-        (size,) = _U32.unpack_from(view, pos)
-        pos += 4
-        if size == END_MARK:
+        if block is None:
             return parts, pos
-        stored = bool(size & STORED_BIT)
-        size &= ~STORED_BIT
-        if size > block_max:
-            raise FrameError(f"a block of {size} bytes is over the frame's {block_max}-byte blocks")
-        if len(view) < pos + size + (4 if checked else 0):
-            return parts, None
-        block = view[pos:pos + size]
-        pos += size
-        if checked:
-            if xxhash.xxh32_intdigest(block) != _U32.unpack_from(view, pos)[0]:
-                raise FrameError("a block's checksum does not match")
-            pos += 4
         if stored:
             out = bytes(block)
         elif linked and parts:
             if len(parts[-1]) < LINK_WINDOW:
                 raise _NotRead  # a short block before a linked one: its window spans blocks; python-lz4 keeps it
-            out = lz4.block.decompress(block, uncompressed_size=_room(size, block_max),
+            out = lz4.block.decompress(block, uncompressed_size=_room(len(block), block_max),
                                        dict=memoryview(parts[-1])[-LINK_WINDOW:])
         else:
-            out = lz4.block.decompress(block, uncompressed_size=_room(size, block_max))
+            out = lz4.block.decompress(block, uncompressed_size=_room(len(block), block_max))
         parts.append(out)
         got += len(out)
     return parts, None

@@ -181,18 +181,30 @@ print(subprocess.run([sys.executable, "-c", "print(1)"], capture_output=True, te
 
 
 def test_asyncio_inspect_after_rospy(ros_env: dict[str, str], tmp_path: Path) -> None:
-    """asyncio imported without inspect (a stand-in in its modules) still tells coroutine functions apart and
-    names a callback in debug mode, and the script's own ``import inspect`` is the real module."""
+    """asyncio imported without inspect (a stand-in in its modules) still tells coroutine functions apart (without
+    importing it for functions, methods, partials and builtins, as every Ctrl-C handler asks) and names a callback in
+    debug mode, and the script's own ``import inspect`` is the real module."""
     code = '''import sys
 import rospy
 print("inspect" in sys.modules)
-import asyncio
+import asyncio, functools, signal
 async def job():
     pass
 def plain():
     pass
 print(asyncio.iscoroutinefunction(job), asyncio.iscoroutinefunction(plain))
 loop = asyncio.new_event_loop()
+stop = asyncio.Event()
+for handler in (stop.set, functools.partial(plain), print, plain):
+    loop.add_signal_handler(signal.SIGUSR1, handler)
+try:
+    loop.add_signal_handler(signal.SIGUSR1, functools.partial(job))
+except TypeError:
+    print("refused", "inspect" in sys.modules)
+class Job:
+    async def __call__(self):
+        pass
+print(asyncio.iscoroutinefunction(Job()), "inspect" in sys.modules)
 loop.set_debug(True)
 print("plain() at " in repr(loop.call_soon(plain)))
 loop.close()
@@ -201,7 +213,8 @@ print(type(inspect).__name__, inspect.isfunction(plain))
 '''
     out = _run(tmp_path, "coroutines.py", code, ros_env)
     assert out.returncode == 0, out.stderr
-    assert out.stdout.splitlines() == ["False", "True False", "True", "module True"], out.stdout + out.stderr
+    assert out.stdout.splitlines() == ["False", "True False", "refused False", "False True", "True", "module True"], \
+        out.stdout + out.stderr
 
 
 def test_xmlrpc_datetime_after_rospy(ros_env: dict[str, str], tmp_path: Path) -> None:

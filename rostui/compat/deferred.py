@@ -4,7 +4,8 @@ base64, decimal, datetime.py.
 asyncio imports ``ssl`` at once, and with it OpenSSL (5 MB of a rospy talker's
 peak memory), ``subprocess`` (with ``locale``: 2 ms of its start) and
 ``inspect`` (with ``ast`` and ``dis``: 8 ms), which it calls only in debug
-mode, on error paths and when a signal handler is added; xmlrpc.client
+mode, on error paths and when a signal handler is added (the stand-in answers
+that check itself for a function, a method or a builtin); xmlrpc.client
 imports ``http.client`` (and with it ``email`` and ``ssl`` again) for its
 ServerProxy alone, which rostui's XML-RPC does not use, and ``base64`` and
 ``decimal`` for values ROS never sends (2.5 ms of a talker's start, with the
@@ -48,26 +49,35 @@ class _Deferred(types.ModuleType):
     ``SSLSocket``): no object is an instance of them until the module is imported, so until then the
     stand-in answers them with :class:`_NoInstances` instead of importing it. The *callables* named are
     only called (xmlrpc.client's ``Decimal``, taken by ``from decimal import Decimal``): the stand-in
-    answers them with a function that imports the module when first called.
+    answers them with a function that imports the module when first called, unless *answers* holds a
+    function of the same name that knows the real one's answer without it (NotImplemented when it does not).
     """
 
     def __init__(self, name: str, put_back: Callable[[types.ModuleType], None],
                  classes: frozenset[str] = frozenset(), callables: frozenset[str] = frozenset(),
-                 constants: Mapping[str, object] | None = None) -> None:
+                 constants: Mapping[str, object] | None = None,
+                 answers: Mapping[str, Callable[..., object]] | None = None) -> None:
         super().__init__(name, f"Stands for {name}; imports it when first used.")
         self._put_back = put_back
         self._classes = classes
         self._callables = callables
+        self._answers = answers or {}
         for attr, value in (constants or {}).items():  # read without importing the module
             setattr(self, attr, value)
 
     def __getattr__(self, attr: str) -> object:
-        if attr.startswith("__") or attr in ("_put_back", "_classes", "_callables"):
+        if attr.startswith("__") or attr in ("_put_back", "_classes", "_callables", "_answers"):
             raise AttributeError(attr)
         if attr in self._classes and self.__name__ not in sys.modules:
             return _NoInstances
         if attr in self._callables:
+            answer = self._answers.get(attr)
+
             def call(*args: object, **kwargs: object) -> object:
+                if answer is not None and self.__name__ not in sys.modules:
+                    known = answer(*args, **kwargs)
+                    if known is not NotImplemented:
+                        return known
                 return getattr(self._real(), attr)(*args, **kwargs)
 
             return call
@@ -88,6 +98,32 @@ _INSPECT_CALLS = frozenset({"iscoroutinefunction", "unwrap", "isfunction", "isge
 """What asyncio's modules use of ``inspect``: functions called on a callback, a coroutine's result or an awaitable
 (in debug mode, in a handle's repr, on a coroutine that yields garbage, in ``add_signal_handler``), never at
 import."""
+
+
+_CO_COROUTINE = 0x80
+"""``inspect.CO_COROUTINE``: the code flag of an ``async def`` function (the same in every CPython 3)."""
+
+
+def _iscoroutinefunction_before_inspect(obj: object) -> object:
+    """``inspect.iscoroutinefunction(obj)`` while inspect is not imported, for what asyncio is mostly given
+    (``add_signal_handler``'s check, which every command that stops on Ctrl-C makes): a Python function, a method
+    of one, a ``functools.partial`` of those, a builtin; NotImplemented for anything else (the real one answers).
+    inspect's other mark of a coroutine function (``markcoroutinefunction``) needs inspect imported first."""
+    import functools
+
+    while True:
+        if isinstance(obj, types.MethodType):
+            obj = obj.__func__
+        elif isinstance(obj, functools.partial):
+            obj = obj.func
+        else:
+            break
+    if isinstance(obj, types.FunctionType):
+        return bool(obj.__code__.co_flags & _CO_COROUTINE)
+    if isinstance(obj, (types.BuiltinFunctionType, types.MethodWrapperType, types.WrapperDescriptorType,
+                        types.MethodDescriptorType)):
+        return False
+    return NotImplemented
 
 
 def _deferred_in_asyncio(name: str, **what: Any) -> tuple[_Deferred, list[types.ModuleType]] | None:
@@ -111,7 +147,8 @@ def _import_asyncio() -> None:
     real ones when first used (a TLS connection, a child process, a debug-mode check)."""
     stand_ins = {name: made for name, made in (
         ("subprocess", _deferred_in_asyncio("subprocess", constants=_SUBPROCESS_CONSTANTS)),
-        ("inspect", _deferred_in_asyncio("inspect", callables=_INSPECT_CALLS)),
+        ("inspect", _deferred_in_asyncio("inspect", callables=_INSPECT_CALLS,
+                                         answers={"iscoroutinefunction": _iscoroutinefunction_before_inspect})),
     ) if made is not None}
     for name, (stand_in, _users) in stand_ins.items():
         sys.modules[name] = stand_in  # asyncio imports them unconditionally: it gets the stand-ins

@@ -10,7 +10,8 @@ script; its CPU (user + system of it and every process it waited for, from
 ``wait4``) is read when it exits. ``rosbag play`` is Debian's command as users
 run it: a Python script that starts the C++ ``play`` program; its C++ part
 alone is reported too. Before each play the script reads the bag, so that each
-player finds it in the page cache. Rounds are interleaved; the subscriber must receive
+player finds it in the page cache; each round's line gives how long that read took and how often the player
+was preempted (its involuntary context switches). Rounds are interleaved; the subscriber must receive
 every message of every run, or the run counts as failed. The summary gives the
 ratio of the medians and rostui's ratio within each round (its run and
 ``rosbag play``'s back to back) with their median.
@@ -110,7 +111,7 @@ def run_player(argv: list[str], env: dict[str, str]) -> dict[str, float]:
     if proc.returncode != 0:
         raise RuntimeError(f"{argv[0]} exited {proc.returncode}: {err.strip()[-400:]}")
     return {"cpu": usage.ru_utime + usage.ru_stime, "user": usage.ru_utime, "sys": usage.ru_stime, "wall": wall,
-            "maxrss_mb": usage.ru_maxrss / 1024}
+            "maxrss_mb": usage.ru_maxrss / 1024, "preempted": usage.ru_nivcsw}
 
 
 def warm_page_cache(bag: Path) -> float:
@@ -202,7 +203,7 @@ def main() -> int:
                     print(f"round {rnd + 1} {kind:10} {comp:4}: CPU {res['cpu']:.2f} s (user {res['user']:.2f},"
                           f" sys {res['sys']:.2f}), wall {res['wall']:.1f} s, {res['received']}/{MESSAGES}"
                           f" received, maxrss {res['maxrss_mb']:.0f} MB, load {res['load']:.1f}, bag read before"
-                          f" {warm_s:.2f} s", flush=True)
+                          f" {warm_s:.2f} s, preempted {res['preempted']} times", flush=True)
     finally:
         for proc in reversed(procs):
             try:

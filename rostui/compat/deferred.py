@@ -5,7 +5,7 @@ asyncio imports ``ssl`` at once, and with it OpenSSL (5 MB of a rospy talker's
 peak memory), ``subprocess`` (with ``locale``: 2 ms of its start) and
 ``inspect`` (with ``ast`` and ``dis``: 8 ms), which it calls only in debug
 mode, on error paths and when a signal handler is added (the stand-in answers
-that check itself for a function, a method or a builtin); xmlrpc.client
+that check itself for a function, a method, a ``functools.partial`` or a builtin); xmlrpc.client
 imports ``http.client`` (and with it ``email`` and ``ssl`` again) for its
 ServerProxy alone, which rostui's XML-RPC does not use, and ``base64`` and
 ``decimal`` for values ROS never sends (2.5 ms of a talker's start, with the

@@ -76,3 +76,34 @@ def test_a_played_lz4_bag_reads_its_chunks_into_a_few_buffers_and_held_frames_ke
         assert [bytes(f)[4:] for f in held] == expected
     else:
         assert len(set(taken)) <= 2
+
+
+@pytest.mark.parametrize("compression", ["bz2", "lz4"])
+def test_compressed_chunks_read_through_the_pools_read_buffer_give_every_message(
+        tmp_path: Path, compression: str) -> None:
+    """Each chunk's stored bytes go into the pool's one read buffer and are decompressed out of it before the next
+    chunk is read over them: bz2 (the general way, from a view) and lz4 (straight into a pooled buffer) alike."""
+    path = str(write_counts(tmp_path / "c.bag", count=300, flush_every=20, compression=compression))
+    plain = open_reader(path)
+    expected = [d for _c, _t, d, _i in merged_messages([plain])]
+    plain.close()
+    reader = open_reader(path)
+    reader.cache.pool = BufferPool()
+    assert [bytes(frame)[4:] for _c, _t, frame in framed_messages(reader)] == expected
+    reader.close()
+
+
+def test_the_read_buffer_gives_what_the_file_holds_and_fewer_bytes_at_its_end(tmp_path: Path) -> None:
+    """A larger read takes a new buffer: a view of the previous read keeps its bytes, and no resize of a buffer
+    still viewed is attempted (which Python refuses)."""
+    data = bytes(range(256)) * 40
+    path = tmp_path / "f"
+    path.write_bytes(data)
+    pool = BufferPool()
+    with open(path, "rb") as f:
+        small = pool.read_stored(f.fileno(), 100, 50)
+        assert bytes(small) == data[100:150]
+        large = pool.read_stored(f.fileno(), 1000, 5000)
+        assert bytes(large) == data[1000:6000] and bytes(small) == data[100:150]
+        tail = pool.read_stored(f.fileno(), len(data) - 10, 100)
+        assert bytes(tail) == data[-10:]

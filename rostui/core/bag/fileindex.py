@@ -234,11 +234,15 @@ class ChunkedFile:
     def read_chunk(self, place: ChunkPlace) -> bytes:
         """The plain bytes of the chunk at ``place``: read, decompressed within the size it declares, checked
         against its CRC; MalformedRecord when any of that fails."""
-        self.file.seek(place.data_at)
-        data = self.file.read(place.stored)
+        pool = self.cache.pool
+        data: bytes | memoryview
+        if pool is not None and place.compression not in ("", "none"):  # decompressed into a new buffer at once
+            data = pool.read_stored(self.file.fileno(), place.data_at, place.stored)
+        else:
+            self.file.seek(place.data_at)
+            data = self.file.read(place.stored)
         if len(data) < place.stored:
             raise MalformedRecord(self.path, place.record_at, "a chunk is cut short")
-        pool = self.cache.pool
         plain = inflate(place.compression, data, place.plain_size, path=self.path, offset=place.record_at,
                         buffer=None if pool is None else pool.take)
         if place.crc and zlib.crc32(plain) != place.crc:

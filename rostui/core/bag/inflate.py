@@ -42,10 +42,10 @@ class _Streaming(Protocol):
     @property
     def unused_data(self) -> bytes: ...
 
-    def decompress(self, data: bytes, max_length: int = -1) -> bytes: ...
+    def decompress(self, data: bytes | memoryview, max_length: int = -1) -> bytes: ...
 
 
-def _drain(decompressor: _Streaming, data: bytes, limit: int, parts: list[bytes]) -> int:
+def _drain(decompressor: _Streaming, data: bytes | memoryview, limit: int, parts: list[bytes]) -> int:
     """Decompress ``data`` into ``parts`` until ``limit`` bytes, the stream's end or the input's; returns how
     many bytes were added."""
     got = 0
@@ -59,7 +59,7 @@ def _drain(decompressor: _Streaming, data: bytes, limit: int, parts: list[bytes]
     return got
 
 
-def _bz2(data: bytes, limit: int) -> tuple[list[bytes], bool]:
+def _bz2(data: bytes | memoryview, limit: int) -> tuple[list[bytes], bool]:
     """bz2 streams one after the other (as ``bz2.decompress`` reads them), up to ``limit`` bytes; and whether
     the last stream ended."""
     import bz2
@@ -77,7 +77,7 @@ def _bz2(data: bytes, limit: int) -> tuple[list[bytes], bool]:
     return parts, ended
 
 
-def _lz4(data: bytes, limit: int) -> tuple[list[bytes], bool]:
+def _lz4(data: bytes | memoryview, limit: int) -> tuple[list[bytes], bool]:
     """One lz4 frame, up to ``limit`` bytes; and whether it ended (python-lz4's frame decoder only for frames
     :mod:`~rostui.core.bag.lz4frame` leaves to it)."""
     read = decompress_frame(data, limit)
@@ -91,7 +91,7 @@ def _lz4(data: bytes, limit: int) -> tuple[list[bytes], bool]:
     return parts, frame.eof
 
 
-def _zstd(data: bytes, limit: int, declared: int) -> tuple[list[bytes], bool]:
+def _zstd(data: bytes | memoryview, limit: int, declared: int) -> tuple[list[bytes], bool]:
     """zstd frames, up to ``limit`` bytes, with a window no larger than the chunk needs; the frames' end is where
     the reader runs dry (a frame cut short gives fewer bytes)."""
     import zstandard
@@ -118,10 +118,11 @@ def _errors() -> tuple[type[Exception], ...]:
     return OSError, EOFError, RuntimeError, ValueError, lz4.block.LZ4BlockError, zstandard.ZstdError
 
 
-def inflate(compression: str, data: bytes, declared: int, *, path: str, offset: int,
+def inflate(compression: str, data: bytes | memoryview, declared: int, *, path: str, offset: int,
             buffer: Callable[[int], bytearray] | None = None) -> bytes:
     """The plain bytes of the chunk record at ``offset`` of ``path`` whose ``compression`` data is ``data`` and
-    whose header says it holds ``declared`` bytes.
+    whose header says it holds ``declared`` bytes. ``data`` may be a view of a buffer that is read into again once
+    this returns: nothing returned for compressed data refers to it.
 
     ``buffer(size)`` (a :class:`~rostui.core.bag.chunk_buffers.BufferPool`'s ``take``) gives a bytearray to
     decompress an lz4 chunk into, returned filled when its frame reads straight into it
@@ -138,7 +139,7 @@ def inflate(compression: str, data: bytes, declared: int, *, path: str, offset: 
     if compression in ("", "none"):
         if len(data) != declared:
             raise MalformedRecord(path, offset, f"an uncompressed chunk of {len(data)} bytes declares {declared}")
-        return data
+        return data if isinstance(data, bytes) else bytes(data)
     if buffer is not None and compression == "lz4":
         out = buffer(declared)
         if decompress_frame_into(data, out):

@@ -20,10 +20,14 @@ ratio of the medians and rostui's ratio within each round (its run and
     .venv/bin/python bench/bench_bag_play_cpu.py --load 2        # with two busy-looping processes
     .venv/bin/python bench/bench_bag_play_cpu.py --rounds 1 --only lz4 --json out.json
     .venv/bin/python bench/bench_bag_play_cpu.py --rostui /tmp/new/bin/rostui --before /tmp/old/bin/rostui
+    .venv/bin/python bench/bench_bag_play_cpu.py --rostui /tmp/deb/bin/rostui --also pyenv=/tmp/pyenv/bin/rostui
 
 ``--rostui`` plays with another install's ``rostui`` (a regular ``pip install``, as
 users have, starts faster than the editable ``.venv``); ``--before`` adds a fourth
-player, an install of the commit before a change, to the same rounds.
+player, an install of the commit before a change, to the same rounds, and
+``--also LABEL=EXE`` any other (the same code on another Python, say). Each
+rostui's Python is printed first: the interpreter's build moves a player's CPU
+(bench/README.md, "Bag play CPU", eighteenth pass).
 """
 
 from __future__ import annotations
@@ -92,6 +96,19 @@ def write_bag(path: Path, compression: str) -> None:
                     str(DATA_BYTES), str(RATE_HZ)], check=True)
 
 
+def interpreter_of(exe: str) -> str:
+    """The Python an installed ``rostui`` script runs on (its ``#!`` line): its version, the binary it resolves
+    to, and whether the interpreter runs from a shared libpython (slower calls) or is linked into the binary."""
+    with open(exe, "rb") as f:
+        first = f.readline().decode(errors="replace")
+    python = first[2:].strip() if first.startswith("#!") else sys.executable
+    probe = ("import os, sys; maps = open('/proc/self/maps').read(); "
+             "print(sys.version.split()[0], os.path.realpath(sys.executable), "
+             "'(libpython shared)' if 'libpython' in maps else '(libpython linked in)')")
+    out = subprocess.run([python, "-c", probe], capture_output=True, text=True, check=False)
+    return out.stdout.strip() or f"{python}: {out.stderr.strip()[-200:]}"
+
+
 def player_argv(kind: str, bag: Path, exes: dict[str, str]) -> list[str]:
     """The command line of one player (``exes``: the ``rostui`` executable of each rostui kind)."""
     if kind in exes:
@@ -151,10 +168,19 @@ def main() -> int:
     parser.add_argument("--json", help="write the results here")
     parser.add_argument("--rostui", default=ROSTUI, help="the rostui executable to measure")
     parser.add_argument("--before", help="another rostui executable (the commit before) measured in the same rounds")
+    parser.add_argument("--also", action="append", default=[], metavar="LABEL=EXE",
+                        help="another rostui executable measured in the same rounds (repeatable)")
     args = parser.parse_args()
     exes = {"rostui": args.rostui}
     if args.before:
         exes["before"] = args.before
+    for also in args.also:
+        label, _, exe = also.partition("=")
+        if not exe or label in ("rostui", "rosbag", "rosbag-cpp") or label in exes:
+            parser.error(f"--also {also}: give LABEL=EXE with a label of its own")
+        exes[label] = exe
+    for label, exe in exes.items():
+        print(f"{label}: {exe} on Python {interpreter_of(exe)}", flush=True)
 
     folder = Path(args.dir or tempfile.mkdtemp(prefix="bench-play-cpu-"))
     folder.mkdir(parents=True, exist_ok=True)
@@ -233,7 +259,8 @@ def main() -> int:
               f" (each round: {', '.join(f'{r:.2f}' for r in paired)}; their median"
               f" {summary[comp]['rostui/rosbag by round']:.2f}x),"
               f" rostui/C++ play {summary[comp]['rostui/rosbag-cpp']:.2f}x;"
-              + (f" before {med['before']:.2f} ({med['before'] / med['rosbag']:.2f}x);" if "before" in med else "")
+              + "".join(f" {label} {med[label]:.2f} ({med[label] / med['rosbag']:.2f}x);" for label in exes
+                        if label != "rostui")
               +
               f" every message delivered: {'yes' if complete else 'NO'}")
     if args.json:

@@ -49,7 +49,8 @@ def test_playing_two_big_files_keeps_a_bounded_cache(tmp_path: Path) -> None:
 
 def test_a_player_loads_neither_uvloop_nor_openssl(ros_env: dict[str, str], rostui_core: Any, tmp_path: Path) -> None:
     """bag play runs on asyncio's loop: uvloop and the OpenSSL it loads (5 MB, 8 ms of every start) stay out
-    of the process, as /proc/PID/maps shows while it plays."""
+    of the process, as /proc/PID/maps shows while it plays; so do the writers' bz2 and ctypes (a reader
+    decompresses bz2 chunks only when a bag has them)."""
     path = tmp_path / "blobs.bag"
     write_blobs(path, 3, 0)
     player = subprocess.Popen(rostui_cmd("bag", "play", "-q", "--pause", str(path)), env=ros_env,
@@ -58,5 +59,6 @@ def test_a_player_loads_neither_uvloop_nor_openssl(ros_env: dict[str, str], rost
         wait_for_publisher(ros_env, "/blob")
         maps = Path(f"/proc/{player.pid}/maps").read_text()
         assert "uvloop" not in maps and "libssl" not in maps and "_ssl" not in maps
+        assert "_bz2" not in maps and "_ctypes" not in maps
     finally:
         stop_process(player)

@@ -172,10 +172,10 @@ LETTERS = bytes(ord("a") + i % 26 for i in range(256))
 def _lend_bag(path: Path, monkeypatch: pytest.MonkeyPatch, count: int = 24) -> list[bytes]:
     """Write ``count`` messages from the recorder's buffer pool the recorder's way: a buffer goes back to the
     pool (and is overwritten by the next message) as soon as neither the writer nor its file holds it."""
-    from rostui.core.bag import mcapfile, rosbag2_0
+    from rostui.core.bag import mcapfile, sink
     from rostui.core.bag.receive import BufferPool
 
-    for module in (mcapfile, rosbag2_0):
+    for module in (mcapfile, sink):  # the .bag writer imports open_append from sink when it is made
         monkeypatch.setattr(module, "open_append", lambda name, direct=False: _staging_file(Path(name)))
     pool = BufferPool()
     writer = open_writer(str(path), chunk_crcs=False)

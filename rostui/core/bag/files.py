@@ -15,7 +15,10 @@ from rostui.core.bag.progress import Progress, counted
 from rostui.core.bag.rosbag2_0 import COMPRESSIONS as BAG_COMPRESSIONS
 from rostui.core.bag.rosbag2_0 import MAGIC as BAG_MAGIC
 from rostui.core.bag.rosbag2_0 import BagReader, BagWriter
-from rostui.core.bag.sink import AppendFile
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from rostui.core.bag.sink import AppendFile  # imported by the writers that use it: a reader needs none
 
 COMPRESSIONS = ("none", "lz4", "zstd", "bz2")
 

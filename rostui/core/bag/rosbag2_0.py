@@ -9,7 +9,6 @@ stops cleanly at the first incomplete record.
 
 from __future__ import annotations
 
-import bz2
 import os
 import struct
 import time
@@ -18,11 +17,13 @@ from typing import Any, BinaryIO
 
 from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace
 from rostui.core.bag.inflate import inflate
-from rostui.core.bag.iov import Parts
 from rostui.core.bag.model import BagError, BagSummary, Connection, Frame, MalformedRecord
-from rostui.core.bag.sink import AppendFile, open_append
 from rostui.core.file_region import FileRegion
 from rostui.core.records import FrozenRecord
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from rostui.core.bag.sink import AppendFile  # the writer's file: imported when a writer is made
 
 MAGIC = b"#ROSBAG V2.0\n"
 FILE_HEADER_LENGTH = 4096
@@ -91,6 +92,8 @@ def parse_header(buf: bytes | memoryview) -> dict[str, bytes]:
 
 def _compress(kind: str, data: bytes) -> bytes:
     if kind == "bz2":
+        import bz2
+
         return bz2.compress(data)
     if kind == "lz4":
         return _roslz4_frame(data)
@@ -141,6 +144,9 @@ class BagWriter:
         self.compression = compression
         self.chunk_bytes = chunk_bytes
         self.max_chunk_age = max_chunk_age
+        from rostui.core.bag.iov import Parts  # here: a reader (a player) needs neither
+        from rostui.core.bag.sink import open_append
+
         self.out = open_append(path, direct) if resume is None else resume.out
         self.connections: dict[int, Connection] = {} if resume is None else dict(resume.connections)
         self.chunk_infos: list[tuple[int, int, int, dict[int, int]]] = [] if resume is None else list(resume.chunks)

@@ -84,8 +84,15 @@ def topic_prefix(lib: str) -> str:
     return "/bench/" + lib.replace("-", "_")
 
 
+PEER_PYTHON: str | None = None
+"""``--python``: the interpreter rostui's peers and the floor run on, when given."""
+
+
 def venv_python() -> str:
-    """The project's venv interpreter, or the one running this script."""
+    """The interpreter rostui's peers run on: ``--python``, else the project's venv, else the one running this
+    script."""
+    if PEER_PYTHON:
+        return PEER_PYTHON
     candidate = ROOT / ".venv" / "bin" / "python"
     return str(candidate) if candidate.exists() else sys.executable
 
@@ -379,10 +386,14 @@ def main() -> int:
                         help="start this many busy-looping processes for the whole run (a loaded machine)")
     parser.add_argument("--only", choices=("latency",), help="measure the round trips only")
     parser.add_argument("--before", type=Path, help=f"a checkout of an earlier commit, measured as {BEFORE}")
+    parser.add_argument("--python", help="the Python rostui's peers and the floor run on (one with rostui installed; "
+                                         "default: the project's .venv)")
     parser.add_argument("--floors", default="pong",
                         help="the no-ROS echoing ends measured each round: a comma list of tcp_floor.py's pong (the"
                              " floor), pong-uvloop, pong-msg")
     args = parser.parse_args()
+    global PEER_PYTHON
+    PEER_PYTHON = args.python
     libs = [x for x in args.libs.split(",") if x]
     unknown = set(libs) - set(LIBS) - {NO_POLL, BEFORE}
     if unknown or not libs:

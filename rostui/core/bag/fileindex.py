@@ -19,7 +19,7 @@ from collections import OrderedDict
 from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING, Any, NamedTuple
 
-from rostui.core.bag.inflate import inflate
+from rostui.core.bag.inflate import UNCOMPRESSED, inflate
 from rostui.core.bag.model import Frame, MalformedRecord, frame_of
 from rostui.core.records import FrozenRecord
 
@@ -236,7 +236,7 @@ class ChunkedFile:
         against its CRC; MalformedRecord when any of that fails."""
         pool = self.cache.pool
         data: bytes | memoryview
-        if pool is not None and place.compression not in ("", "none"):  # decompressed into a new buffer at once
+        if pool is not None and place.compression not in UNCOMPRESSED:  # decompressed into a new buffer at once
             data = pool.read_stored(self.file.fileno(), place.data_at, place.stored)
         else:
             self.file.seek(place.data_at)

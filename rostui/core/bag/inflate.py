@@ -20,6 +20,9 @@ from rostui.core.bag.model import MalformedRecord
 #: a gigabyte (rostui's TCPROS limit, ``ROSTUI_TCPROS_MAX_FRAME``, is the same).
 DEFAULT_MAX_CHUNK = 1 << 30
 
+UNCOMPRESSED = ("", "none")
+"""The compression names of a chunk stored as it is (a chunk header may leave the name empty)."""
+
 _MIN_ZSTD_WINDOW = 1 << 23
 """zstd frames written without their size known use a window set by the level (8 MiB covers up to level 19)."""
 
@@ -136,7 +139,7 @@ def inflate(compression: str, data: bytes | memoryview, declared: int, *, path: 
     if declared > cap:
         raise MalformedRecord(path, offset, f"a chunk declares {declared} bytes, more than ROSTUI_BAG_MAX_CHUNK "
                                             f"allows ({cap})")
-    if compression in ("", "none"):
+    if compression in UNCOMPRESSED:
         if len(data) != declared:
             raise MalformedRecord(path, offset, f"an uncompressed chunk of {len(data)} bytes declares {declared}")
         return data if isinstance(data, bytes) else bytes(data)

@@ -16,7 +16,7 @@ from collections.abc import Callable, Iterator
 from typing import Any, BinaryIO
 
 from rostui.core.bag.fileindex import NO_CHUNK, ChunkedFile, ChunkEntries, ChunkPlace
-from rostui.core.bag.inflate import inflate
+from rostui.core.bag.inflate import UNCOMPRESSED, inflate
 from rostui.core.bag.model import BagError, BagSummary, Connection, Frame, MalformedRecord
 from rostui.core.file_region import FileRegion
 from rostui.core.records import FrozenRecord
@@ -33,7 +33,6 @@ FILE_HEADER_RECORD_SIZE = 4 + FILE_HEADER_LENGTH + 4
 OP_MSG_DATA, OP_FILE_HEADER, OP_INDEX_DATA, OP_CHUNK, OP_CHUNK_INFO, OP_CONNECTION = 2, 3, 4, 5, 6, 7
 COMPRESSIONS = ("none", "bz2", "lz4")
 _U32 = struct.Struct("<I")
-_UNCOMPRESSED = ("", "none")
 _RECORD_PEEK = 64
 """Bytes read to find a message record's data: its header length, the header rosbag writes (op, conn and time:
 38 bytes) and the data length."""
@@ -800,7 +799,7 @@ class BagReader(ChunkedFile):
         if chunk == NO_CHUNK:
             return super().framer(chunk)
         place = self.chunk_table[chunk]
-        if place.compression in _UNCOMPRESSED and place.plain_size == place.stored \
+        if place.compression in UNCOMPRESSED and place.plain_size == place.stored \
                 and place.data_at + place.stored <= self.size:
             return self._regions_in_chunk(place)
 
